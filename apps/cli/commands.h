@@ -1,0 +1,24 @@
+// The CLI's subcommands. Each file apps/cli/cmd_<name>.cpp registers one subcommand: it adds
+// its options to `app` and stores in `action` what to run when that subcommand is chosen.
+// Errors are thrown (InputError, OptionsError, OutputError); main maps them to exit codes.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace treesketch::cli {
+
+using Action = std::function<void()>;
+
+/// Exit codes of the treesketch command.
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitInternal = 1,  ///< an unexpected error (a bug): please report
+  kExitUsage = 2,     ///< bad command line or option values
+  kExitInput = 3,     ///< an input file could not be read
+  kExitOutput = 4,    ///< an output file could not be written
+};
+
+// [declare register functions here, one line each]
+
+}  // namespace treesketch::cli

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs the Debian packages treesketch needs, only those that are missing. Idempotent.
+# Usage: scripts/install_deps.sh [--gui]   (--gui adds the windowing/OpenGL packages and xvfb)
+set -euo pipefail
+pkgs=(build-essential cmake pkg-config libeigen3-dev libembree-dev libtbb-dev libnanoflann-dev
+      libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev)
+gui=(libglfw3-dev libglew-dev libimgui-dev libstb-dev xvfb xauth libgl1-mesa-dri)
+if [[ "${1:-}" == "--gui" || "${TREESKETCH_GUI:-1}" == "1" ]]; then pkgs+=("${gui[@]}"); fi
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then exit 0; fi
+echo "install_deps: installing ${missing[*]}" >&2
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

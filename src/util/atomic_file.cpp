@@ -1,0 +1,49 @@
+#include "treesketch/util/atomic_file.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <fstream>
+#include <string>
+
+#include "treesketch/util/error.h"
+
+namespace treesketch {
+
+namespace fs = std::filesystem;
+
+void writeFileAtomically(const fs::path& path, const std::function<void(std::ostream&)>& write, bool binary) {
+  static std::atomic<unsigned> counter{0};
+  fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  if (!fs::is_directory(dir)) throw OutputError(path.string() + ": directory '" + dir.string() + "' does not exist");
+  fs::path tmp = dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
+                        std::to_string(counter.fetch_add(1)));
+  try {
+    {
+      std::ofstream out(tmp, binary ? std::ios::binary | std::ios::out : std::ios::out);
+      if (!out) throw OutputError(path.string() + ": cannot create temporary file '" + tmp.string() + "'");
+      write(out);
+      out.flush();
+      if (!out) throw OutputError(path.string() + ": write failed (disk full or I/O error)");
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) throw OutputError(path.string() + ": cannot rename temporary file: " + ec.message());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw;
+  }
+}
+
+void checkNotAnInput(const fs::path& output, std::initializer_list<fs::path> inputs) {
+  std::error_code ec;
+  if (!fs::exists(output, ec)) return;
+  for (const auto& in : inputs) {
+    if (fs::exists(in, ec) && fs::equivalent(output, in, ec)) {
+      throw OutputError(output.string() + ": refusing to overwrite an input file");
+    }
+  }
+}
+
+}  // namespace treesketch
