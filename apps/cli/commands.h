@@ -20,5 +20,6 @@ enum ExitCode : int {
 };
 
 // [declare register functions here, one line each]
+void registerInfo(CLI::App& app, Action& action);
 
 }  // namespace treesketch::cli

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Action action;
   // [register subcommands here, one line each]
+  registerInfo(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,87 @@
+// Robust 2D circle fitting: RANSAC over 3-point circles with an adaptive iteration count, then a
+// least-squares refinement on the inliers (algebraic Kåsa fit, then geometric Gauss–Newton).
+// Source: thesis §4.4 and appendix B (RANSAC with probability 0.999 of an outlier-free sample,
+// Ziv Yaniv's CircleParamEstimator); Fischler & Bolles 1981 for the adaptive sample count.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "treesketch/geom/types.h"
+
+namespace treesketch::fit {
+
+/// An optional constraint on where a circle's centre may lie (plane coordinates): within
+/// `maxDistance` of a line (hasLine) or of a point. Used by the node fit so that RANSAC only
+/// considers circles whose centre is inside the node's test region (see node_fit.h).
+struct CentreRegion {
+  bool active = false;
+  bool hasLine = false;
+  geom::Vec2 origin = geom::Vec2::Zero();  ///< a point on the line, or the point
+  geom::Vec2 dir = geom::Vec2::UnitX();    ///< unit direction of the line (hasLine)
+  double maxDistance = std::numeric_limits<double>::infinity();
+
+  /// True when `c` satisfies the constraint (always true when not active).
+  bool contains(const geom::Vec2& c) const;
+};
+
+struct CircleFitOptions {
+  /// Probability that at least one sample is outlier-free. Thesis appendix B: 0.999.
+  double probability = 0.999;
+  /// Absolute inlier threshold on |distance to centre − radius|, world units. Design choice:
+  /// 0.01 (about 2σ of the 5 mm range noise of a terrestrial scanner). The thesis used the
+  /// estimator's delta of 0.5 scene units.
+  double inlierThreshold = 0.01;
+  /// Relative inlier threshold (fraction of the candidate radius). The threshold used is
+  /// max(inlierThreshold, inlierThresholdRelative · radius), so large trunks tolerate bark
+  /// roughness and small branches keep an absolute floor. Set to 0 for a purely absolute test.
+  double inlierThresholdRelative = 0.05;
+  /// Minimum support: at least this many inliers... (design choice)
+  int minInliers = 8;
+  /// ...and at least this fraction of the input points (design choice: 0.1).
+  double minInlierFraction = 0.1;
+  /// Accepted radius range, world units.
+  double minRadius = 0.0;
+  double maxRadius = std::numeric_limits<double>::infinity();
+  /// Hard cap and floor on the number of RANSAC samples (the adaptive count lies in between).
+  int maxIterations = 2000;
+  int minIterations = 10;
+  /// Hypotheses are scored on a fixed random subset of at most this many points (the final
+  /// inliers are always classified on all points). 0 = score on all points. Speed design choice.
+  int maxScoringPoints = 1000;
+  /// Gauss–Newton iterations of the geometric refinement, and inlier re-classification rounds.
+  int refineIterations = 20;
+  int refineRounds = 3;
+  /// Seed of the random sampler: equal seeds and inputs give equal results.
+  std::uint64_t seed = 1;
+  /// Optional centre constraint.
+  CentreRegion centreRegion;
+};
+
+struct CircleFitResult {
+  bool ok = false;
+  std::string reason;  ///< why no circle was found (empty when ok)
+  geom::Vec2 centre = geom::Vec2::Zero();
+  double radius = 0.0;
+  std::vector<std::uint32_t> inliers;  ///< indices into the input, increasing
+  int iterations = 0;                   ///< RANSAC samples drawn
+  double rms = 0.0;                     ///< RMS geometric residual over the inliers, world units
+};
+
+/// Fits a circle to 2D points (plane coordinates, world units). Returns ok=false with a reason
+/// for fewer than 3 points, all-collinear/duplicate input, or no circle with enough support inside
+/// the radius bounds and centre region. NaN/Inf points are never counted as inliers. Throws
+/// OptionsError for invalid options (probability outside (0,1), negative thresholds...).
+CircleFitResult fitCircleRansac(const std::vector<geom::Vec2>& points, const CircleFitOptions& options = {});
+
+/// The circle through three points; false when they are (nearly) collinear.
+bool circleFrom3(const geom::Vec2& a, const geom::Vec2& b, const geom::Vec2& c, geom::Vec2* centre, double* radius);
+
+/// Least-squares circle through `points[indices]`: algebraic (Kåsa) start refined by Gauss–Newton
+/// on the geometric distance. Returns false for fewer than 3 points or a degenerate system.
+bool fitCircleLeastSquares(const std::vector<geom::Vec2>& points, const std::vector<std::uint32_t>& indices,
+                           int iterations, geom::Vec2* centre, double* radius);
+
+}  // namespace treesketch::fit

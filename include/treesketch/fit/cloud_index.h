@@ -1,0 +1,92 @@
+// Slicing the cloud: the points near a node's plane ("nearPts", thesis §4.4) and those of them
+// near the node's line or point ("testPts"). A uniform grid built once answers these queries by
+// touching only the cells near the region; the thesis's full scan per node is kept as the
+// reference path (sliceBruteForce) and both give identical index sets.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "treesketch/geom/point_cloud.h"
+#include "treesketch/geom/types.h"
+
+namespace treesketch::fit {
+
+/// A query region: the slab |(p − planePoint)·planeNormal| < halfThickness, optionally
+/// intersected with the open cylinder of radius `radius` around the line (linePoint, lineDir)
+/// (kind Cylinder) or the open ball of radius `radius` around `centre` (kind Ball).
+/// All in world units and frame; normal and line direction are unit vectors.
+struct SliceRegion {
+  enum class Kind { Slab, Cylinder, Ball };
+  Kind kind = Kind::Slab;
+  geom::Vec3 planePoint = geom::Vec3::Zero();
+  geom::Vec3 planeNormal = geom::Vec3::UnitY();
+  double halfThickness = 0.05;
+  geom::Vec3 linePoint = geom::Vec3::Zero();  ///< Cylinder: a point on the axis; Ball: the centre
+  geom::Vec3 lineDir = geom::Vec3::UnitZ();   ///< Cylinder: unit axis direction
+  double radius = std::numeric_limits<double>::infinity();
+
+  /// The exact membership test used by every path (strict inequalities, as the thesis).
+  bool contains(const geom::Vec3& p) const {
+    if (!(std::abs((p - planePoint).dot(planeNormal)) < halfThickness)) return false;
+    if (kind == Kind::Slab) return true;
+    geom::Vec3 d = p - linePoint;
+    if (kind == Kind::Ball) return d.squaredNorm() < radius * radius;
+    return (d - d.dot(lineDir) * lineDir).squaredNorm() < radius * radius;
+  }
+  /// Throws OptionsError for a non-finite or non-positive size or a zero normal/direction.
+  void validate() const;
+};
+
+/// Thesis reference path: scans every point of `cloud` (O(n) per query). Returns the indices of
+/// the points inside `region`, increasing.
+std::vector<std::uint32_t> sliceBruteForce(const geom::PointCloud& cloud, const SliceRegion& region);
+
+struct CloudIndexOptions {
+  /// Grid resolution: about one cell per this many points (over the bounding box volume; scans
+  /// cover surfaces, so occupied cells hold more). Speed design choice.
+  double pointsPerCell = 2.0;
+  /// Upper bound on the number of cells (memory: 4 bytes a cell).
+  std::size_t maxCells = std::size_t(1) << 24;
+};
+
+/// A uniform grid over the cloud. Holds its own copy of the positions (sorted by cell); results
+/// are indices into the original cloud. Immutable after construction: safe to query from many
+/// threads at once. Non-finite points are left out of every query result.
+class CloudIndex {
+ public:
+  /// Builds the grid (O(n)). An empty cloud gives an index whose queries return nothing.
+  explicit CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& options = {});
+
+  /// Indices of the points inside `region`, increasing (identical to sliceBruteForce). When
+  /// `positions` is given it receives the matching positions (same order).
+  std::vector<std::uint32_t> query(const SliceRegion& region, std::vector<geom::Vec3>* positions = nullptr) const;
+  /// The same, by scanning every stored point (the thesis's cost; for benchmarks).
+  std::vector<std::uint32_t> queryBruteForce(const SliceRegion& region,
+                                             std::vector<geom::Vec3>* positions = nullptr) const;
+  /// Number of points inside `region` (same cost as query, no allocation of the result).
+  std::size_t count(const SliceRegion& region) const;
+
+  /// True when the region's line/ball test cannot exclude any point of the cloud (the cylinder
+  /// or ball contains the whole bounding box), i.e. the region equals its slab within the cloud.
+  bool regionCoversCloud(const SliceRegion& region) const;
+
+  std::size_t size() const { return ids_.size(); }
+  const geom::BBox& bounds() const { return bounds_; }
+  double cellSize() const { return cell_; }
+
+ private:
+  template <class Visit>
+  void forEachCandidateCell(const SliceRegion& region, Visit&& visit) const;
+
+  geom::BBox bounds_;
+  double cell_ = 1.0;
+  int dims_[3] = {0, 0, 0};
+  std::vector<std::uint32_t> cellStart_;  ///< size cells+1, into sorted arrays
+  std::vector<geom::Vec3> sorted_;        ///< finite positions, sorted by cell
+  std::vector<std::uint32_t> ids_;        ///< original index of each sorted point
+};
+
+}  // namespace treesketch::fit

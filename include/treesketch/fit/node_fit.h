@@ -1,0 +1,80 @@
+// Fitting one sketch node: slice the cloud with the node's plane, keep the slice points near the
+// node's line (or point), fit a circle in the plane with RANSAC, and grow the line tolerance
+// while no circle is found (thesis §3.1.3, §4.4, appendix B: SketchNode::CollectPoints/CalcDisc).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "treesketch/fit/circle_fit.h"
+#include "treesketch/fit/cloud_index.h"
+#include "treesketch/geom/types.h"
+#include "treesketch/sketch/sketch.h"
+
+namespace treesketch::fit {
+
+enum class NodeStatus { Fitted, Skipped, Disabled };
+/// "fitted", "skipped", "disabled".
+const char* toString(NodeStatus status);
+
+struct NodeFitOptions {
+  /// The RANSAC circle fit. Its centreRegion is set by fitNode (see "sanity rule" below); the
+  /// seed is used as given.
+  CircleFitOptions circle;
+  /// Safety cap on lineEpsilon growth steps (the thesis loop has none; it ends when the test
+  /// points equal the slice, which the cap never pre-empts for clouds < 10,000 steps across).
+  int maxGrowthSteps = 10000;
+  /// Also compute and keep the full slice (nearPts) indices, even when the first fit succeeds.
+  /// Off by default: the full slab is only computed when a fit fails (lazy), see NodeResult.
+  bool keepSlice = false;
+  /// Thesis reference path: every slice by a scan of all points (for benchmarks and tests).
+  bool bruteForce = false;
+};
+
+/// Everything the fit of one node produced (plain data for the viewer and tests). Indices are
+/// into the cloud the CloudIndex was built from, increasing.
+struct NodeResult {
+  NodeStatus status = NodeStatus::Skipped;
+  std::string reason;  ///< why the node was skipped or disabled; empty when fitted
+  geom::Vec3 centre = geom::Vec3::Zero();  ///< circle centre, world, on the node's plane
+  geom::Vec3 normal = geom::Vec3::UnitY(); ///< the node's plane normal (unit, as given by the sketch)
+  double radius = 0.0;                      ///< world units
+  double rms = 0.0;                         ///< RMS residual of the inliers, world units
+  /// The slice (points within ε of the plane). Computed only when a fit failed once, with
+  /// keepSlice, or in bruteForce mode (sliceComputed says which); otherwise use nodeSlice().
+  bool sliceComputed = false;
+  std::vector<std::uint32_t> sliceIndices;
+  std::vector<std::uint32_t> testIndices;    ///< slice points in the final test region
+  std::vector<std::uint32_t> inlierIndices;  ///< the circle's inliers (subset of testIndices)
+  int iterations = 0;        ///< RANSAC samples drawn, summed over all growth steps
+  double lineEpsilon = 0.0;  ///< the test region radius used last (world units)
+  int growthSteps = 0;       ///< how many times lineEpsilon grew
+  double ms = 0.0;           ///< wall time of this fit
+};
+
+/// The slab of a node: points within params.sliceHalfThickness of its plane.
+SliceRegion slabRegion(const sketch::NodeGeometry& geometry, const sketch::SamplingParams& params);
+/// The node's test region for a given line tolerance: slab ∩ cylinder of radius lineEpsilon
+/// around L (screen nodes) or slab ∩ ball of that radius around planePoint (point nodes).
+SliceRegion testRegion(const sketch::NodeGeometry& geometry, const sketch::SamplingParams& params,
+                       double lineEpsilon);
+/// The node's slice (nearPts) indices, increasing: what the viewer highlights for a selected node.
+std::vector<std::uint32_t> nodeSlice(const CloudIndex& index, const sketch::NodeGeometry& geometry,
+                                     const sketch::SamplingParams& params);
+
+/// Fits one node. Procedure (thesis appendix B): test points = slice ∩ test region of radius
+/// lineEpsilon; project them to 2D on an orthonormal basis of the plane (u along L's direction
+/// for screen nodes); RANSAC; on failure lineEpsilon += lineEpsilonStep and retry, until a circle
+/// is found or the test points are the whole slice (then the node is Skipped with a reason).
+/// Sanity rule (design choice): the circle's centre must lie within the current lineEpsilon of
+/// L (screen nodes, distance measured in the plane) or of planePoint (point nodes): a circle
+/// centred outside the test region belongs to some other surface than the branch the user
+/// pointed at. The radius is NOT limited by lineEpsilon: a line through a trunk's centre with a
+/// small tolerance sees the near and far arcs of a wider circle, which is a valid fit.
+/// params.enabled = false gives status Disabled without touching the cloud.
+/// Throws OptionsError for non-positive or non-finite sampling sizes, a zero normal/direction.
+NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& geometry,
+                   const sketch::SamplingParams& params, const NodeFitOptions& options = {});
+
+}  // namespace treesketch::fit

@@ -1,0 +1,61 @@
+// ASPRS LAS 1.0–1.4 point clouds, uncompressed, point data record formats 0–10. Only the
+// coordinates are read (X, Y, Z int32 at the start of every record, times scale plus offset);
+// compressed LAZ is refused with a message saying how to decompress it.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <istream>
+#include <string>
+#include <string_view>
+
+#include "treesketch/geom/point_cloud.h"
+#include "treesketch/geom/types.h"
+#include "treesketch/io/read_options.h"
+
+namespace treesketch::io {
+
+struct LasHeader {
+  int versionMajor = 1;
+  int versionMinor = 2;
+  std::string systemId;
+  std::string generatingSoftware;
+  std::uint16_t headerSize = 0;
+  std::uint32_t offsetToPointData = 0;
+  std::uint32_t numVlrs = 0;
+  std::uint8_t pointFormat = 0;  ///< 0..10 (compression bits already rejected)
+  std::uint16_t recordLength = 0;
+  std::uint32_t legacyPointCount = 0;
+  std::uint64_t pointCount = 0;  ///< the 64-bit count for LAS 1.4 when set, else the legacy count
+  geom::Vec3 scale = geom::Vec3::Ones();
+  geom::Vec3 offset = geom::Vec3::Zero();
+  geom::Vec3 min = geom::Vec3::Zero();  ///< header bounds (world units, as stored)
+  geom::Vec3 max = geom::Vec3::Zero();
+};
+
+/// Smallest record length of each point data record format 0..10, in bytes (LAS 1.4 R15 table).
+std::uint16_t lasMinRecordLength(int pointFormat);
+
+/// Parses the public header block at the start of `data` (the whole file or at least its
+/// header). Throws InputError with the byte offset for: a signature other than "LASF", a version
+/// other than 1.0–1.4, a header size too small for its version, compressed point data (LAZ),
+/// a point format above 10, a record length too short for its format, a zero or non-finite
+/// scale, an offset to point data inside the header.
+LasHeader parseLasHeader(std::string_view data, const std::string& source);
+/// Reads the header of a LAS file (InputError for .laz with the decompression hint).
+LasHeader readLasHeader(const std::filesystem::path& path);
+
+/// Reads all points: X/Y/Z * scale + offset (world units, usually metres; Z up). Throws
+/// InputError for a bad header (above), data shorter than pointCount records (naming the offset
+/// where it ends), fewer than options.minPoints points. Allocation is capped by the bytes present.
+geom::PointCloud readLas(std::istream& in, const std::string& source, const CloudReadOptions& options = {},
+                         LasHeader* header = nullptr);
+/// Same, from a file. A ".laz" path throws InputError explaining that compressed LAS is not
+/// supported and how to decompress it (laszip or pdal).
+geom::PointCloud readLas(const std::filesystem::path& path, const CloudReadOptions& options = {},
+                         LasHeader* header = nullptr);
+
+/// The message used for compressed LAS (LAZ) input, naming `source`.
+std::string lazNotSupportedMessage(const std::string& source);
+
+}  // namespace treesketch::io

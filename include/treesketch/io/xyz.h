@@ -1,0 +1,33 @@
+// Plain-text point clouds: one point a line, "x y z" followed by any extra columns (intensity,
+// colour, ...) which are ignored. Fields are separated by spaces, tabs, commas or semicolons.
+// Header lines at the top ("X,Y,Z", a point count, "# comment") are skipped; CRLF is accepted.
+#pragma once
+
+#include <filesystem>
+#include <istream>
+#include <ostream>
+#include <string>
+
+#include "treesketch/geom/point_cloud.h"
+#include "treesketch/io/read_options.h"
+
+namespace treesketch::io {
+
+/// Reads a text cloud from `in`; `source` names it in error messages. Coordinates are taken as
+/// they are (metres in the file's frame). Lines starting with '#' or "//" and blank lines are
+/// skipped anywhere; up to `options.maxHeaderLines` non-numeric lines are skipped before the
+/// first point. Decimal separators must be '.' (a "1,5" decimal comma reads as two fields).
+/// Throws InputError naming the line for: a line with fewer than 3 numbers after the data
+/// started, NaN/Inf, a number out of range, no points at all, fewer than options.minPoints.
+geom::PointCloud readXyz(std::istream& in, const std::string& source, const CloudReadOptions& options = {});
+/// Same, from a file (InputError if it cannot be opened).
+geom::PointCloud readXyz(const std::filesystem::path& path, const CloudReadOptions& options = {});
+
+/// Writes "x y z\n" per point with the shortest decimal form that reads back to the same double
+/// (exact round trip, so UTM coordinates keep far better than millimetres). Attributes are not
+/// written (use PLY for those). Throws OutputError for a non-finite coordinate.
+void writeXyz(std::ostream& out, const geom::PointCloud& cloud);
+/// Same, to a file, through writeFileAtomically.
+void writeXyz(const std::filesystem::path& path, const geom::PointCloud& cloud);
+
+}  // namespace treesketch::io

@@ -1,0 +1,160 @@
+// The sketch: a tree of nodes a user draws over a view of the cloud (or an automatic method
+// proposes). Each node becomes a 3D line and a plane (thesis §3.1.2, §4.3); the fit module
+// slices the cloud with that plane and fits the branch's circle.
+//
+// Nodes are of two kinds:
+//  - screen nodes: a 2D position (pixels, top-left origin) under one of the sketch's cameras.
+//    Because each node keeps its own camera, one sketch can mix nodes drawn from several views
+//    (thesis §6.3, future work).
+//  - point nodes: a 3D point and a plane normal given directly (automatic methods).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "treesketch/geom/camera.h"
+#include "treesketch/geom/types.h"
+
+namespace treesketch::sketch {
+
+using NodeId = std::int32_t;
+constexpr NodeId kNoNode = -1;
+/// Sine of the angle below which two view rays count as parallel in Sketch::geometry (a numerical
+/// tolerance, not a tunable: one pixel of a 30° perspective view at 1280 px is ~4e-4 rad).
+constexpr double kParallelTolerance = 1e-6;
+
+/// Per-node sampling sizes, in world units (the cloud's units). Thesis §4.4, appendix B.
+struct SamplingParams {
+  /// Half-thickness ε of the slab around the node's plane: points closer than this to the plane
+  /// form the slice ("nearPts"). Thesis: the constant EPSILON.
+  double sliceHalfThickness = 0.05;
+  /// Initial radius of the cylinder around the node's line L: slice points closer than this to L
+  /// are the RANSAC test points ("testPts"). Thesis: the user-defined lineEpsilon.
+  double lineEpsilon = 0.25;
+  /// How much lineEpsilon grows after each failed fit (thesis: lineEpsilon++, i.e. one unit).
+  double lineEpsilonStep = 0.25;
+  /// A disabled node keeps its place in the hierarchy but is not fitted (treated as skipped).
+  bool enabled = true;
+
+  bool operator==(const SamplingParams&) const = default;
+};
+
+struct Node {
+  NodeId id = kNoNode;
+  NodeId parent = kNoNode;
+  std::vector<NodeId> children;  ///< maintained by Sketch, in insertion order
+  /// Index into Sketch::cameras for a screen node; -1 for a point node.
+  int camera = -1;
+  geom::Vec2 screen = geom::Vec2::Zero();  ///< screen nodes: pixels, top-left origin, y down
+  geom::Vec3 point = geom::Vec3::Zero();   ///< point nodes: a point on the branch axis (world)
+  geom::Vec3 normal = geom::Vec3::Zero();  ///< point nodes: the slice plane's normal (world)
+  SamplingParams params;
+
+  bool isScreenNode() const { return camera >= 0; }
+};
+
+/// The 3D geometry a node stands for (world frame).
+struct NodeGeometry {
+  /// Screen nodes: the line L through the node, from the near-plane point (linePoint) along the
+  /// unit direction lineDir (the view ray A). Point nodes have no line: hasLine = false and the
+  /// test region is the disc of radius lineEpsilon around `planePoint` instead of the cylinder.
+  bool hasLine = false;
+  geom::Vec3 linePoint = geom::Vec3::Zero();
+  geom::Vec3 lineDir = geom::Vec3::Zero();
+  /// The slice plane: contains L (screen nodes) or `point` (point nodes); unit normal.
+  geom::Vec3 planePoint = geom::Vec3::Zero();
+  geom::Vec3 planeNormal = geom::Vec3::UnitY();
+
+  bool operator==(const NodeGeometry&) const = default;
+};
+
+class Sketch {
+ public:
+  /// Sampling sizes given to new nodes.
+  SamplingParams defaults;
+  /// The world's up axis: the root's plane uses -up in place of A_parent (thesis: (0,-1,0)).
+  geom::UpAxis up = geom::UpAxis::Y;
+
+  /// Adds a camera (returns the index of an identical existing one if present). Throws
+  /// OptionsError for a degenerate camera.
+  int addCamera(const geom::Camera& camera);
+  const std::vector<geom::Camera>& cameras() const { return cameras_; }
+
+  /// Adds a screen node under camera `camera` as a child of `parent` (kNoNode: the root; throws
+  /// OptionsError if a root exists already or `parent`/`camera` is unknown). Returns its id.
+  NodeId addScreenNode(NodeId parent, int camera, const geom::Vec2& screen);
+  NodeId addScreenNode(NodeId parent, int camera, const geom::Vec2& screen, const SamplingParams& params);
+  /// Adds a point node (3D point + plane normal, world frame). Throws OptionsError for a zero
+  /// normal or NaN.
+  NodeId addPointNode(NodeId parent, const geom::Vec3& point, const geom::Vec3& normal);
+  NodeId addPointNode(NodeId parent, const geom::Vec3& point, const geom::Vec3& normal,
+                      const SamplingParams& params);
+  /// Removes a node. withSubtree: its descendants go too. Otherwise its children are
+  /// re-attached to its parent; removing the root without its subtree makes its first child the
+  /// new root and re-attaches the other children to it. Throws OptionsError for an unknown id.
+  void removeNode(NodeId id, bool withSubtree);
+  /// Moves a screen node on screen (or a point node in 3D).
+  void moveNode(NodeId id, const geom::Vec2& screen);
+  void movePointNode(NodeId id, const geom::Vec3& point, const geom::Vec3& normal);
+  void setParams(NodeId id, const SamplingParams& params);
+  /// Re-parents `id` under `newParent` (throws if that would make a cycle).
+  void setParent(NodeId id, NodeId newParent);
+
+  bool contains(NodeId id) const { return nodes_.count(id) != 0; }
+  const Node& node(NodeId id) const;  ///< throws OptionsError for an unknown id
+  NodeId root() const;                ///< kNoNode when empty
+  std::size_t size() const { return nodes_.size(); }
+  bool empty() const { return nodes_.empty(); }
+  /// All ids in increasing order.
+  std::vector<NodeId> ids() const;
+  /// Ids in parent-before-child order (depth first from the root).
+  std::vector<NodeId> topologicalOrder() const;
+  const std::map<NodeId, Node>& nodes() const { return nodes_; }
+
+  /// The node's 3D line and plane (see NodeGeometry), world frame. Screen nodes: L by
+  /// unprojecting the screen point at window depth 0 and 1 (linePoint = the near point, lineDir
+  /// A = unit far - near; planePoint = linePoint). Normal, first rule that gives one:
+  ///  1. N = (A × A_parent) × A (thesis §4.3), A_parent = the parent's own view ray (under its own
+  ///     camera, so mixed views work), or -up for the root; used when |A × A_parent| >
+  ///     kParallelTolerance. A point-node parent has no ray: go to 2.
+  ///  2. (Orthographic camera, or parallel rays from two views.) The screen-space stroke: the
+  ///     parent is projected into this node's camera (a same-camera screen parent: its screen
+  ///     position; another camera's screen parent: the point of its line closest to this node's
+  ///     line, or the middle of its near-far segment when the lines are parallel; a point parent:
+  ///     its point); stroke = node.screen - parent.screen in pixels, taken to world along the
+  ///     camera's right and up vectors (screen y is down), minus its A component.
+  ///  3. Zero stroke (node drawn on its parent): the parent's normal minus its A component.
+  ///  4. Root with A parallel to up (top view), or nothing else: the camera's screen-up made
+  ///     perpendicular to A.
+  /// N is unit and oriented from the parent towards the node (for the root: up), i.e. the way the
+  /// branch grows, as point nodes' normals (branch tangents). The plane is the thesis's; only the
+  /// sign convention is fixed. Point nodes: their point and normalized normal, hasLine = false.
+  /// Throws OptionsError for an unknown id or a singular camera.
+  NodeGeometry geometry(NodeId id) const;
+
+  /// Checks the whole structure: one root, parents exist, no cycles, children lists agree,
+  /// cameras valid and referenced ones exist, finite values, positive sampling sizes. Throws
+  /// OptionsError naming the node.
+  void validate() const;
+
+  /// Low-level insertion used by readers (keeps the given id and parent; call validate() after).
+  /// node.children is ignored: children lists are rebuilt from parent links (in insertion order,
+  /// so insert parents before children to keep an order). Throws OptionsError for a duplicate or
+  /// negative id. Later addScreenNode/addPointNode ids continue after the largest id.
+  void insertRaw(const Node& node);
+  /// Low-level camera insertion used by readers (no de-duplication).
+  int insertRawCamera(const geom::Camera& camera);
+
+ private:
+  NodeId attachNew(NodeId parent, Node node);
+  Node& mutableNode(NodeId id);
+
+  std::map<NodeId, Node> nodes_;
+  std::vector<geom::Camera> cameras_;
+  NodeId nextId_ = 0;
+};
+
+}  // namespace treesketch::sketch

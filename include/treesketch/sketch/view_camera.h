@@ -1,0 +1,19 @@
+// Choosing the camera of an automatic sketch: a preset view of the cloud's bounding box or a
+// camera saved as JSON (for the CLI's --view option).
+#pragma once
+
+#include <string>
+
+#include "treesketch/geom/camera.h"
+
+namespace treesketch::sketch {
+
+/// `view` is "front", "side" or "top": geom::presetCamera framing `bounds` (world) with `up`,
+/// `viewport` and `orthographic`. Anything else is the path of a camera file
+/// ({"view":[16],"projection":[16],"viewport":[4]}, see io/sketch_file.h), read as is (`bounds`,
+/// `viewport` and `orthographic` are then ignored). Throws OptionsError for an empty `view` or an
+/// empty box with a preset, InputError for a missing or bad camera file.
+geom::Camera cameraForView(const std::string& view, const geom::BBox& bounds, geom::UpAxis up,
+                           const geom::Viewport& viewport = {}, bool orthographic = false);
+
+}  // namespace treesketch::sketch

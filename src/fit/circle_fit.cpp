@@ -1,0 +1,278 @@
+// RANSAC circle fit (thesis §4.4, appendix B) with least-squares refinement.
+#include "treesketch/fit/circle_fit.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "treesketch/util/error.h"
+
+namespace treesketch::fit {
+
+using geom::Vec2;
+
+bool CentreRegion::contains(const Vec2& c) const {
+  if (!active) return true;
+  Vec2 d = c - origin;
+  double dist = hasLine ? std::abs(d.x() * dir.y() - d.y() * dir.x()) : d.norm();
+  return dist <= maxDistance;
+}
+
+bool circleFrom3(const Vec2& a, const Vec2& b, const Vec2& c, Vec2* centre, double* radius) {
+  Vec2 ab = b - a, ac = c - a;
+  double d = 2.0 * (ab.x() * ac.y() - ab.y() * ac.x());
+  double scale = ab.squaredNorm() * ac.squaredNorm();
+  // Reject (nearly) collinear triples: |sin(angle)| below ~1e-6.
+  if (!(d * d > 4e-12 * scale) || scale == 0.0) return false;
+  double ab2 = ab.squaredNorm(), ac2 = ac.squaredNorm();
+  Vec2 rel((ac.y() * ab2 - ab.y() * ac2) / d, (ab.x() * ac2 - ac.x() * ab2) / d);
+  *centre = a + rel;
+  *radius = rel.norm();
+  return std::isfinite(*radius);
+}
+
+namespace {
+
+bool kasaFit(const std::vector<Vec2>& pts, const std::vector<std::uint32_t>& idx, Vec2* centre, double* radius) {
+  Vec2 mean = Vec2::Zero();
+  for (auto i : idx) mean += pts[i];
+  mean /= double(idx.size());
+  // Minimize Σ (x² + y² + D x + E y + F)² in coordinates relative to the mean.
+  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+  for (auto i : idx) {
+    Vec2 p = pts[i] - mean;
+    Eigen::Vector3d row(p.x(), p.y(), 1.0);
+    double rhs = -p.squaredNorm();
+    ata += row * row.transpose();
+    atb += row * rhs;
+  }
+  Eigen::LDLT<Eigen::Matrix3d> ldlt(ata);
+  if (ldlt.info() != Eigen::Success) return false;
+  Eigen::Vector3d s = ldlt.solve(atb);
+  if (!s.allFinite()) return false;
+  Vec2 c(-0.5 * s[0], -0.5 * s[1]);
+  double r2 = c.squaredNorm() - s[2];
+  if (!(r2 > 0.0)) return false;
+  *centre = c + mean;
+  *radius = std::sqrt(r2);
+  return true;
+}
+
+double geometricCost(const std::vector<Vec2>& pts, const std::vector<std::uint32_t>& idx, const Vec2& c, double r) {
+  double cost = 0.0;
+  for (auto i : idx) {
+    double e = (pts[i] - c).norm() - r;
+    cost += e * e;
+  }
+  return cost;
+}
+
+}  // namespace
+
+bool fitCircleLeastSquares(const std::vector<Vec2>& pts, const std::vector<std::uint32_t>& idx, int iterations,
+                           Vec2* centre, double* radius) {
+  if (idx.size() < 3) return false;
+  Vec2 c;
+  double r;
+  if (!kasaFit(pts, idx, &c, &r)) {
+    // Kåsa fails only for (nearly) collinear data; start from the given estimate if any.
+    if (!(*radius > 0.0) || !centre->allFinite()) return false;
+    c = *centre;
+    r = *radius;
+  }
+  double cost = geometricCost(pts, idx, c, r);
+  for (int it = 0; it < iterations; ++it) {
+    Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d jtr = Eigen::Vector3d::Zero();
+    for (auto i : idx) {
+      Vec2 d = pts[i] - c;
+      double n = d.norm();
+      if (n <= 0.0) continue;
+      Eigen::Vector3d j(-d.x() / n, -d.y() / n, -1.0);
+      double res = n - r;
+      jtj += j * j.transpose();
+      jtr += j * res;
+    }
+    Eigen::Vector3d step = jtj.ldlt().solve(-jtr);
+    if (!step.allFinite()) break;
+    // Step halving keeps the geometric cost decreasing (a damped Gauss–Newton).
+    double t = 1.0;
+    bool improved = false;
+    for (int h = 0; h < 10; ++h, t *= 0.5) {
+      Vec2 c2 = c + t * step.head<2>();
+      double r2 = r + t * step[2];
+      if (!(r2 > 0.0)) continue;
+      double cost2 = geometricCost(pts, idx, c2, r2);
+      if (cost2 < cost) {
+        c = c2;
+        r = r2;
+        improved = cost - cost2 > 1e-15 * (1.0 + cost);
+        cost = cost2;
+        break;
+      }
+    }
+    if (!improved) break;
+  }
+  if (!c.allFinite() || !std::isfinite(r)) return false;
+  *centre = c;
+  *radius = r;
+  return true;
+}
+
+namespace {
+
+void checkOptions(const CircleFitOptions& o) {
+  auto bad = [](const std::string& what) { throw OptionsError("circle fit: " + what); };
+  if (!(o.probability > 0.0 && o.probability < 1.0)) bad("probability must be in (0, 1)");
+  if (!(o.inlierThreshold >= 0.0) || !std::isfinite(o.inlierThreshold)) bad("inlierThreshold must be >= 0");
+  if (!(o.inlierThresholdRelative >= 0.0) || !std::isfinite(o.inlierThresholdRelative))
+    bad("inlierThresholdRelative must be >= 0");
+  if (o.inlierThreshold == 0.0 && o.inlierThresholdRelative == 0.0) bad("an inlier threshold must be positive");
+  if (o.minInliers < 3) bad("minInliers must be >= 3");
+  if (!(o.minInlierFraction >= 0.0 && o.minInlierFraction <= 1.0)) bad("minInlierFraction must be in [0, 1]");
+  if (!(o.minRadius >= 0.0) || !(o.maxRadius > o.minRadius)) bad("radius bounds must satisfy 0 <= min < max");
+  if (o.maxIterations < 1 || o.minIterations < 0) bad("iteration bounds must be positive");
+  if (o.maxScoringPoints < 0 || o.refineIterations < 0 || o.refineRounds < 0) bad("counts must be >= 0");
+}
+
+struct Scorer {
+  const std::vector<Vec2>& pts;
+  const CircleFitOptions& opt;
+  double threshold(double r) const { return std::max(opt.inlierThreshold, opt.inlierThresholdRelative * r); }
+  // Inlier count and residual sum over `idx`.
+  std::pair<std::size_t, double> score(const std::vector<std::uint32_t>& idx, const Vec2& c, double r) const {
+    double t = threshold(r);
+    std::size_t count = 0;
+    double sum = 0.0;
+    for (auto i : idx) {
+      double e = std::abs((pts[i] - c).norm() - r);
+      if (e <= t) {  // NaN compares false: never an inlier
+        ++count;
+        sum += e;
+      }
+    }
+    return {count, sum};
+  }
+  std::vector<std::uint32_t> inliers(std::size_t n, const Vec2& c, double r) const {
+    double t = threshold(r);
+    std::vector<std::uint32_t> out;
+    for (std::size_t i = 0; i < n; ++i)
+      if (std::abs((pts[i] - c).norm() - r) <= t) out.push_back(std::uint32_t(i));
+    return out;
+  }
+  bool admissible(const Vec2& c, double r) const {
+    return r >= opt.minRadius && r <= opt.maxRadius && opt.centreRegion.contains(c);
+  }
+};
+
+}  // namespace
+
+CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFitOptions& options) {
+  checkOptions(options);
+  CircleFitResult res;
+  const std::size_t n = points.size();
+  std::vector<std::uint32_t> finite;
+  finite.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (points[i].allFinite()) finite.push_back(std::uint32_t(i));
+  if (finite.size() < 3) {
+    res.reason = "fewer than 3 points (" + std::to_string(finite.size()) + ")";
+    return res;
+  }
+  const std::size_t needed =
+      std::max<std::size_t>(std::size_t(options.minInliers), std::size_t(std::ceil(options.minInlierFraction * n)));
+  if (finite.size() < needed) {
+    res.reason = "too few points for the minimum support (" + std::to_string(finite.size()) + " < " +
+                 std::to_string(needed) + ")";
+    return res;
+  }
+
+  std::mt19937_64 rng(options.seed);
+  // The scoring subset: a deterministic random subset of the finite points.
+  std::vector<std::uint32_t> sample = finite;
+  if (options.maxScoringPoints > 0 && sample.size() > std::size_t(options.maxScoringPoints)) {
+    std::size_t m = std::size_t(options.maxScoringPoints);
+    for (std::size_t i = 0; i < m; ++i) {
+      std::size_t j = i + std::size_t(rng() % (sample.size() - i));
+      std::swap(sample[i], sample[j]);
+    }
+    sample.resize(m);
+  }
+  const std::size_t ns = sample.size();
+  Scorer scorer{points, options};
+
+  std::size_t bestCount = 0;
+  double bestSum = 0.0;
+  Vec2 bestC = Vec2::Zero();
+  double bestR = 0.0;
+  double maxIter = options.maxIterations;
+  int it = 0;
+  const double logFail = std::log(1.0 - options.probability);
+  while (it < options.maxIterations && (it < options.minIterations || it < maxIter)) {
+    ++it;
+    std::size_t a = rng() % ns, b = rng() % ns, c = rng() % ns;
+    if (a == b || a == c || b == c) continue;
+    Vec2 centre;
+    double r;
+    if (!circleFrom3(points[sample[a]], points[sample[b]], points[sample[c]], &centre, &r)) continue;
+    if (!scorer.admissible(centre, r)) continue;
+    auto [count, sum] = scorer.score(sample, centre, r);
+    if (count > bestCount || (count == bestCount && count > 0 && sum < bestSum)) {
+      bestCount = count;
+      bestSum = sum;
+      bestC = centre;
+      bestR = r;
+      // Adaptive sample count N = log(1 − p) / log(1 − w³) from the best inlier ratio w.
+      double w = double(count) / double(ns);
+      double w3 = w * w * w;
+      if (w3 >= 1.0)
+        maxIter = 0;
+      else if (w3 > 0.0)
+        maxIter = std::min<double>(options.maxIterations, std::ceil(logFail / std::log1p(-w3)));
+    }
+  }
+  res.iterations = it;
+  if (bestCount < 3) {
+    res.reason = "no admissible 3-point circle (points collinear, or outside the radius bounds or centre region)";
+    return res;
+  }
+
+  // Refinement: classify on all points, least-squares fit, repeat.
+  Vec2 c = bestC;
+  double r = bestR;
+  std::vector<std::uint32_t> inl = scorer.inliers(n, c, r);
+  for (int round = 0; round < options.refineRounds; ++round) {
+    Vec2 c2 = c;
+    double r2 = r;
+    if (!fitCircleLeastSquares(points, inl, options.refineIterations, &c2, &r2)) break;
+    if (!scorer.admissible(c2, r2)) break;  // keep the last admissible circle
+    auto inl2 = scorer.inliers(n, c2, r2);
+    if (inl2.size() < 3) break;
+    bool same = inl2 == inl;
+    c = c2;
+    r = r2;
+    inl = std::move(inl2);
+    if (same) break;
+  }
+  if (inl.size() < needed) {
+    res.reason = "best circle has too few inliers (" + std::to_string(inl.size()) + " < " + std::to_string(needed) +
+                 " of " + std::to_string(n) + ")";
+    return res;
+  }
+  double ss = 0.0;
+  for (auto i : inl) {
+    double e = (points[i] - c).norm() - r;
+    ss += e * e;
+  }
+  res.ok = true;
+  res.centre = c;
+  res.radius = r;
+  res.rms = std::sqrt(ss / double(inl.size()));
+  res.inliers = std::move(inl);
+  return res;
+}
+
+}  // namespace treesketch::fit

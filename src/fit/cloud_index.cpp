@@ -1,0 +1,228 @@
+// Slice queries on a uniform grid (thesis §4.4 CollectPoints / CalcDisc, made output-sensitive).
+#include "treesketch/fit/cloud_index.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "treesketch/util/error.h"
+
+namespace treesketch::fit {
+
+using geom::Vec3;
+
+void SliceRegion::validate() const {
+  auto bad = [](const std::string& what) { throw OptionsError("slice region: " + what); };
+  if (!planePoint.allFinite() || !planeNormal.allFinite()) bad("plane point and normal must be finite");
+  if (std::abs(planeNormal.norm() - 1.0) > 1e-6) bad("plane normal must be a unit vector");
+  if (!(halfThickness > 0.0) || !std::isfinite(halfThickness)) bad("half-thickness must be positive and finite");
+  if (kind == Kind::Slab) return;
+  if (!linePoint.allFinite()) bad("line point / centre must be finite");
+  if (!(radius > 0.0) || std::isnan(radius)) bad("radius must be positive");
+  if (kind == Kind::Cylinder && std::abs(lineDir.norm() - 1.0) > 1e-6) bad("line direction must be a unit vector");
+}
+
+std::vector<std::uint32_t> sliceBruteForce(const geom::PointCloud& cloud, const SliceRegion& region) {
+  region.validate();
+  std::vector<std::uint32_t> out;
+  const auto& pts = cloud.positions;
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (region.contains(pts[i])) out.push_back(std::uint32_t(i));
+  return out;
+}
+
+CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& options) {
+  if (!(options.pointsPerCell > 0.0) || options.maxCells < 1)
+    throw OptionsError("cloud index: pointsPerCell and maxCells must be positive");
+  if (cloud.size() >= std::size_t(std::numeric_limits<std::uint32_t>::max()))
+    throw OptionsError("cloud index: too many points (at most 2^32 - 2)");
+  const auto& pts = cloud.positions;
+  std::size_t nFinite = 0;
+  for (const auto& p : pts)
+    if (p.allFinite()) {
+      bounds_.add(p);
+      ++nFinite;
+    }
+  if (nFinite == 0) {
+    cellStart_.assign(1, 0);
+    return;
+  }
+  Vec3 ext = bounds_.extent();
+  double diag = std::max(bounds_.diagonal(), 1e-9);
+  Vec3 thick = ext.cwiseMax(Vec3::Constant(1e-3 * diag));
+  double targetCells = std::clamp(double(nFinite) / options.pointsPerCell, 1.0, double(options.maxCells));
+  cell_ = std::cbrt(thick.prod() / targetCells);
+  for (;;) {
+    double total = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      dims_[a] = std::max(1, int(std::ceil(ext[a] / cell_)));
+      total *= dims_[a];
+    }
+    if (total <= double(options.maxCells)) break;
+    cell_ *= 1.25;
+  }
+  const std::size_t nCells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
+  std::vector<std::uint32_t> cellOf(pts.size(), std::uint32_t(-1));
+  cellStart_.assign(nCells + 1, 0);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (!pts[i].allFinite()) continue;
+    std::size_t lin = 0;
+    for (int a = 2; a >= 0; --a) {
+      int c = std::clamp(int(std::floor((pts[i][a] - bounds_.min[a]) / cell_)), 0, dims_[a] - 1);
+      lin = lin * dims_[a] + c;
+    }
+    cellOf[i] = std::uint32_t(lin);
+    ++cellStart_[lin + 1];
+  }
+  for (std::size_t c = 0; c < nCells; ++c) cellStart_[c + 1] += cellStart_[c];
+  std::vector<std::uint32_t> fill(cellStart_.begin(), cellStart_.end() - 1);
+  sorted_.resize(nFinite);
+  ids_.resize(nFinite);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (cellOf[i] == std::uint32_t(-1)) continue;
+    std::uint32_t slot = fill[cellOf[i]]++;
+    sorted_[slot] = pts[i];
+    ids_[slot] = std::uint32_t(i);
+  }
+}
+
+bool CloudIndex::regionCoversCloud(const SliceRegion& region) const {
+  if (region.kind == SliceRegion::Kind::Slab || bounds_.empty()) return true;
+  for (int corner = 0; corner < 8; ++corner) {
+    Vec3 p((corner & 1) ? bounds_.max.x() : bounds_.min.x(), (corner & 2) ? bounds_.max.y() : bounds_.min.y(),
+           (corner & 4) ? bounds_.max.z() : bounds_.min.z());
+    Vec3 d = p - region.linePoint;
+    if (region.kind == SliceRegion::Kind::Cylinder) d -= d.dot(region.lineDir) * region.lineDir;
+    if (!(d.norm() < region.radius)) return false;
+  }
+  return true;
+}
+
+// Visits (as a linear cell index) every cell that may hold a point of `region`: the cells of the
+// region's bounding box (ball, or the clipped cylinder axis ± radius) whose column along the
+// normal's dominant axis meets the slab, and whose centre is within radius + half-diagonal of the
+// axis/centre. A superset of the cells holding region points; points are then tested exactly.
+template <class Visit>
+void CloudIndex::forEachCandidateCell(const SliceRegion& region, Visit&& visit) const {
+  if (sorted_.empty()) return;
+  const double margin = 1e-6 * cell_;
+  Vec3 lo = bounds_.min, hi = bounds_.min + Vec3(dims_[0], dims_[1], dims_[2]) * cell_;
+  const double r = region.radius;
+  if (region.kind == SliceRegion::Kind::Ball) {
+    lo = lo.cwiseMax(region.linePoint - Vec3::Constant(r + margin));
+    hi = hi.cwiseMin(region.linePoint + Vec3::Constant(r + margin));
+  } else if (region.kind == SliceRegion::Kind::Cylinder && std::isfinite(r)) {
+    // Clip the axis to the grid box grown by r (slab method), then bound the clipped segment ± r.
+    Vec3 blo = lo - Vec3::Constant(r + margin), bhi = hi + Vec3::Constant(r + margin);
+    double t0 = -std::numeric_limits<double>::infinity(), t1 = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+      double o = region.linePoint[a], d = region.lineDir[a];
+      if (std::abs(d) < 1e-300) {
+        if (o < blo[a] || o > bhi[a]) return;
+        continue;
+      }
+      double ta = (blo[a] - o) / d, tb = (bhi[a] - o) / d;
+      t0 = std::max(t0, std::min(ta, tb));
+      t1 = std::min(t1, std::max(ta, tb));
+    }
+    if (t0 > t1) return;
+    Vec3 p0 = region.linePoint + t0 * region.lineDir, p1 = region.linePoint + t1 * region.lineDir;
+    lo = lo.cwiseMax(p0.cwiseMin(p1) - Vec3::Constant(r + margin));
+    hi = hi.cwiseMin(p0.cwiseMax(p1) + Vec3::Constant(r + margin));
+  }
+  int clo[3], chi[3];
+  for (int a = 0; a < 3; ++a) {
+    if (lo[a] > hi[a]) return;
+    clo[a] = int(std::clamp(std::floor((lo[a] - bounds_.min[a]) / cell_), 0.0, double(dims_[a] - 1)));
+    chi[a] = int(std::clamp(std::floor((hi[a] - bounds_.min[a]) / cell_), 0.0, double(dims_[a] - 1)));
+  }
+  const Vec3& n = region.planeNormal;
+  int k = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::abs(n[a]) > std::abs(n[k])) k = a;
+  const int ia = (k + 1) % 3, ib = (k + 2) % 3;
+  const double halfDiag = 0.5 * std::sqrt(3.0) * cell_;
+  const double reach = r + halfDiag + margin;
+  const double nk = n[k];
+  const double slabK = (region.halfThickness + margin) / std::abs(nk);
+  const double planeD = n.dot(region.planePoint);
+  for (int i = clo[ia]; i <= chi[ia]; ++i) {
+    double a0 = bounds_.min[ia] + i * cell_, a1 = a0 + cell_;
+    for (int j = clo[ib]; j <= chi[ib]; ++j) {
+      double b0 = bounds_.min[ib] + j * cell_, b1 = b0 + cell_;
+      // The plane's k coordinate over the column's rectangle is linear: extremes at corners.
+      double kmin = std::numeric_limits<double>::infinity(), kmax = -kmin;
+      for (double av : {a0, a1})
+        for (double bv : {b0, b1}) {
+          double kv = (planeD - n[ia] * av - n[ib] * bv) / nk;
+          kmin = std::min(kmin, kv);
+          kmax = std::max(kmax, kv);
+        }
+      kmin -= slabK;
+      kmax += slabK;
+      int k0 = std::max(clo[k], int(std::clamp(std::floor((kmin - bounds_.min[k]) / cell_), -1.0, 1e9)));
+      int k1 = std::min(chi[k], int(std::clamp(std::floor((kmax - bounds_.min[k]) / cell_), -1.0, 1e9)));
+      for (int c = k0; c <= k1; ++c) {
+        int idx[3];
+        idx[k] = c;
+        idx[ia] = i;
+        idx[ib] = j;
+        std::size_t lin = (std::size_t(idx[2]) * dims_[1] + idx[1]) * dims_[0] + idx[0];
+        if (cellStart_[lin] == cellStart_[lin + 1]) continue;
+        if (region.kind != SliceRegion::Kind::Slab) {
+          Vec3 centre = bounds_.min + (Vec3(idx[0], idx[1], idx[2]) + Vec3::Constant(0.5)) * cell_;
+          Vec3 d = centre - region.linePoint;
+          if (region.kind == SliceRegion::Kind::Cylinder) d -= d.dot(region.lineDir) * region.lineDir;
+          if (d.squaredNorm() > reach * reach) continue;
+        }
+        visit(lin);
+      }
+    }
+  }
+}
+
+namespace {
+
+std::vector<std::uint32_t> finish(std::vector<std::pair<std::uint32_t, std::uint32_t>>& hits,
+                                  const std::vector<Vec3>& sorted, std::vector<Vec3>* positions) {
+  std::sort(hits.begin(), hits.end());
+  std::vector<std::uint32_t> out(hits.size());
+  for (std::size_t i = 0; i < hits.size(); ++i) out[i] = hits[i].first;
+  if (positions) {
+    positions->resize(hits.size());
+    for (std::size_t i = 0; i < hits.size(); ++i) (*positions)[i] = sorted[hits[i].second];
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> CloudIndex::query(const SliceRegion& region, std::vector<Vec3>* positions) const {
+  region.validate();
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> hits;
+  forEachCandidateCell(region, [&](std::size_t cell) {
+    for (std::uint32_t s = cellStart_[cell]; s < cellStart_[cell + 1]; ++s)
+      if (region.contains(sorted_[s])) hits.emplace_back(ids_[s], s);
+  });
+  return finish(hits, sorted_, positions);
+}
+
+std::vector<std::uint32_t> CloudIndex::queryBruteForce(const SliceRegion& region, std::vector<Vec3>* positions) const {
+  region.validate();
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> hits;
+  for (std::size_t s = 0; s < sorted_.size(); ++s)
+    if (region.contains(sorted_[s])) hits.emplace_back(ids_[s], std::uint32_t(s));
+  return finish(hits, sorted_, positions);
+}
+
+std::size_t CloudIndex::count(const SliceRegion& region) const {
+  region.validate();
+  std::size_t n = 0;
+  forEachCandidateCell(region, [&](std::size_t cell) {
+    for (std::uint32_t s = cellStart_[cell]; s < cellStart_[cell + 1]; ++s) n += region.contains(sorted_[s]);
+  });
+  return n;
+}
+
+}  // namespace treesketch::fit

@@ -1,0 +1,67 @@
+#include "io/io_util.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+
+#include "treesketch/util/error.h"
+
+namespace treesketch::io::detail {
+
+namespace fs = std::filesystem;
+
+std::string readAll(std::istream& in, const std::string& source) {
+  if (!in) throw InputError(source + ": cannot read (stream is not readable)");
+  std::string data;
+  // Size by seeking when the stream allows it, so a large file is read in one block.
+  auto start = in.tellg();
+  if (start != std::istream::pos_type(-1)) {
+    in.seekg(0, std::ios::end);
+    auto end = in.tellg();
+    in.seekg(start);
+    if (end != std::istream::pos_type(-1) && end >= start && in) data.reserve(static_cast<std::size_t>(end - start));
+  }
+  in.clear();
+  constexpr std::size_t kBlock = 1 << 20;
+  std::string block(kBlock, '\0');
+  while (in) {
+    in.read(block.data(), static_cast<std::streamsize>(kBlock));
+    data.append(block.data(), static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad()) throw InputError(source + ": read error after " + std::to_string(data.size()) + " bytes");
+  return data;
+}
+
+std::string readFile(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path.string() + ": file not found");
+  if (fs::is_directory(path, ec)) throw InputError(path.string() + ": is a directory, expected a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot open for reading");
+  return readAll(in, path.string());
+}
+
+std::string lowerExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+std::string quoted(std::string_view s) {
+  std::string out = "'";
+  std::size_t n = std::min<std::size_t>(s.size(), 40);
+  for (std::size_t i = 0; i < n; ++i) {
+    unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c >= 32 && c < 127) {
+      out += static_cast<char>(c);
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    }
+  }
+  if (s.size() > n) out += "...";
+  return out + "'";
+}
+
+}  // namespace treesketch::io::detail

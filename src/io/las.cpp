@@ -1,0 +1,164 @@
+// LAS reader. Format reference: ASPRS "LAS Specification 1.4 – R15" (2019) and the 1.0–1.3
+// specifications it supersedes; only the public header block and the X/Y/Z of each record are used.
+#include "treesketch/io/las.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "io/io_util.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::io {
+
+namespace {
+
+// Byte offsets in the public header block.
+constexpr std::size_t kOffVersionMajor = 24, kOffVersionMinor = 25, kOffSystemId = 26, kOffSoftware = 58,
+                      kOffHeaderSize = 94, kOffPointDataOffset = 96, kOffNumVlrs = 100, kOffPointFormat = 104,
+                      kOffRecordLength = 105, kOffLegacyCount = 107, kOffScale = 131, kOffOffset = 155,
+                      kOffMaxX = 179, kOffPointCount64 = 247;
+constexpr std::size_t kHeaderSize12 = 227, kHeaderSize13 = 235, kHeaderSize14 = 375;
+
+std::string fixedString(std::string_view data, std::size_t off, std::size_t n) {
+  std::string s(data.substr(off, n));
+  s.resize(std::strlen(s.c_str()));
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+std::string lazNotSupportedMessage(const std::string& source) {
+  return source +
+         ": compressed LAS (LAZ) is not supported; decompress it first, e.g. 'laszip -i in.laz -o out.las' or "
+         "'pdal translate in.laz out.las', and read the .las file";
+}
+
+std::uint16_t lasMinRecordLength(int pointFormat) {
+  static const std::uint16_t kLengths[] = {20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67};
+  if (pointFormat < 0 || pointFormat > 10) return 0;
+  return kLengths[pointFormat];
+}
+
+LasHeader parseLasHeader(std::string_view data, const std::string& source) {
+  if (data.empty()) throw InputError(source + ": file is empty, expected a LAS file starting with 'LASF'");
+  if (data.size() < 4 || data.substr(0, 4) != "LASF")
+    throw InputError(atOffset(source, 0, "bad signature " + detail::quoted(data.substr(0, 4)) +
+                                             ", expected 'LASF' (not a LAS file)"));
+  if (data.size() < kHeaderSize12)
+    throw InputError(atOffset(source, data.size(), "truncated header: " + std::to_string(data.size()) +
+                                                       " bytes, expected at least " + std::to_string(kHeaderSize12)));
+  LasHeader h;
+  h.versionMajor = static_cast<std::uint8_t>(data[kOffVersionMajor]);
+  h.versionMinor = static_cast<std::uint8_t>(data[kOffVersionMinor]);
+  if (h.versionMajor != 1 || h.versionMinor > 4)
+    throw InputError(atOffset(source, kOffVersionMajor,
+                              "unsupported LAS version " + std::to_string(h.versionMajor) + "." +
+                                  std::to_string(h.versionMinor) + ", expected 1.0 to 1.4"));
+  h.systemId = fixedString(data, kOffSystemId, 32);
+  h.generatingSoftware = fixedString(data, kOffSoftware, 32);
+  h.headerSize = detail::loadLE<std::uint16_t>(data.data() + kOffHeaderSize);
+  std::size_t need = h.versionMinor >= 4 ? kHeaderSize14 : h.versionMinor == 3 ? kHeaderSize13 : kHeaderSize12;
+  if (h.headerSize < need)
+    throw InputError(atOffset(source, kOffHeaderSize,
+                              "header size " + std::to_string(h.headerSize) + " too small for LAS 1." +
+                                  std::to_string(h.versionMinor) + ", expected at least " + std::to_string(need)));
+  if (data.size() < h.headerSize)
+    throw InputError(atOffset(source, data.size(), "truncated header: expected " + std::to_string(h.headerSize) +
+                                                       " bytes of header"));
+  h.offsetToPointData = detail::loadLE<std::uint32_t>(data.data() + kOffPointDataOffset);
+  h.numVlrs = detail::loadLE<std::uint32_t>(data.data() + kOffNumVlrs);
+  std::uint8_t fmt = static_cast<std::uint8_t>(data[kOffPointFormat]);
+  if (fmt & 0xC0) throw InputError(lazNotSupportedMessage(source) + " (point format byte " + std::to_string(fmt) +
+                                   " has the compression bit set)");
+  if (fmt > 10)
+    throw InputError(atOffset(source, kOffPointFormat,
+                              "unsupported point data record format " + std::to_string(fmt) + ", expected 0 to 10"));
+  h.pointFormat = fmt;
+  h.recordLength = detail::loadLE<std::uint16_t>(data.data() + kOffRecordLength);
+  if (h.recordLength < lasMinRecordLength(fmt))
+    throw InputError(atOffset(source, kOffRecordLength,
+                              "point record length " + std::to_string(h.recordLength) + " is too short for point format " +
+                                  std::to_string(fmt) + ", expected at least " +
+                                  std::to_string(lasMinRecordLength(fmt))));
+  h.legacyPointCount = detail::loadLE<std::uint32_t>(data.data() + kOffLegacyCount);
+  h.pointCount = h.legacyPointCount;
+  if (h.versionMinor >= 4) {
+    std::uint64_t c64 = detail::loadLE<std::uint64_t>(data.data() + kOffPointCount64);
+    if (c64 != 0) h.pointCount = c64;
+  }
+  for (int k = 0; k < 3; ++k) {
+    h.scale[k] = detail::loadLE<double>(data.data() + kOffScale + 8 * k);
+    h.offset[k] = detail::loadLE<double>(data.data() + kOffOffset + 8 * k);
+    h.max[k] = detail::loadLE<double>(data.data() + kOffMaxX + 16 * k);
+    h.min[k] = detail::loadLE<double>(data.data() + kOffMaxX + 16 * k + 8);
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(h.scale[k]) || h.scale[k] == 0)
+      throw InputError(atOffset(source, kOffScale + 8 * k, "scale factor must be finite and non-zero"));
+    if (!std::isfinite(h.offset[k]))
+      throw InputError(atOffset(source, kOffOffset + 8 * k, "offset must be finite"));
+  }
+  if (h.offsetToPointData < h.headerSize)
+    throw InputError(atOffset(source, kOffPointDataOffset,
+                              "offset to point data " + std::to_string(h.offsetToPointData) +
+                                  " lies inside the header, expected at least " + std::to_string(h.headerSize)));
+  return h;
+}
+
+LasHeader readLasHeader(const std::filesystem::path& path) {
+  if (detail::lowerExtension(path) == ".laz") throw InputError(lazNotSupportedMessage(path.string()));
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path.string() + ": file not found");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot open for reading");
+  std::string head(kHeaderSize14, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return parseLasHeader(head, path.string());
+}
+
+namespace {
+
+geom::PointCloud parseLas(std::string_view data, const std::string& source, const CloudReadOptions& options,
+                          LasHeader* headerOut) {
+  LasHeader h = parseLasHeader(data, source);
+  if (headerOut) *headerOut = h;
+  if (h.offsetToPointData > data.size())
+    throw InputError(atOffset(source, data.size(), "truncated: point data should start at byte " +
+                                                       std::to_string(h.offsetToPointData)));
+  std::size_t avail = (data.size() - h.offsetToPointData) / h.recordLength;
+  if (h.pointCount > avail)
+    throw InputError(atOffset(source, h.offsetToPointData + avail * h.recordLength,
+                              "truncated: the header promises " + std::to_string(h.pointCount) + " points of " +
+                                  std::to_string(h.recordLength) + " bytes, but only " + std::to_string(avail) +
+                                  " complete records follow"));
+  geom::PointCloud cloud;
+  auto n = static_cast<std::size_t>(h.pointCount);
+  cloud.positions.resize(n);
+  const char* p = data.data() + h.offsetToPointData;
+  for (std::size_t i = 0; i < n; ++i, p += h.recordLength) {
+    for (int k = 0; k < 3; ++k)
+      cloud.positions[i][k] = detail::loadLE<std::int32_t>(p + 4 * k) * h.scale[k] + h.offset[k];
+    if (!cloud.positions[i].allFinite())
+      throw InputError(atOffset(source, static_cast<std::uint64_t>(p - data.data()),
+                                "coordinate overflows to Inf after scale and offset, expected finite"));
+  }
+  checkCloudSize(cloud, source, options.minPoints);
+  return cloud;
+}
+
+}  // namespace
+
+geom::PointCloud readLas(std::istream& in, const std::string& source, const CloudReadOptions& options,
+                         LasHeader* header) {
+  return parseLas(detail::readAll(in, source), source, options, header);
+}
+
+geom::PointCloud readLas(const std::filesystem::path& path, const CloudReadOptions& options, LasHeader* header) {
+  if (detail::lowerExtension(path) == ".laz") throw InputError(lazNotSupportedMessage(path.string()));
+  return parseLas(detail::readFile(path), path.string(), options, header);
+}
+
+}  // namespace treesketch::io

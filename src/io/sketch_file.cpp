@@ -1,0 +1,305 @@
+// Sketch files and camera files (JSON, nlohmann). See include/treesketch/io/sketch_file.h.
+#include "treesketch/io/sketch_file.h"
+
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "treesketch/util/atomic_file.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::io {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr const char* kFormatName = "treesketch-sketch";
+constexpr int kFormatVersion = 1;
+
+/// Error context: "source: where: what".
+struct Ctx {
+  const std::string& source;
+  std::string where;  // "node 7", "camera 2", "defaults", "" (top level)
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError(source + ": " + (where.empty() ? "" : where + ": ") + what);
+  }
+};
+
+std::string typeName(const json& j) { return j.type_name(); }
+
+const json& field(const json& obj, const char* key, const Ctx& ctx) {
+  auto it = obj.find(key);
+  if (it == obj.end()) ctx.fail(std::string("missing \"") + key + "\"");
+  return *it;
+}
+
+double number(const json& j, const std::string& what, const Ctx& ctx) {
+  if (!j.is_number()) ctx.fail(what + ": expected a number, got " + typeName(j));
+  double v = j.get<double>();
+  if (!std::isfinite(v)) ctx.fail(what + ": not a finite number");
+  return v;
+}
+
+long long integer(const json& j, const std::string& what, const Ctx& ctx) {
+  if (!j.is_number_integer()) ctx.fail(what + ": expected an integer, got " + typeName(j));
+  if (j.is_number_unsigned()) {
+    auto u = j.get<std::uint64_t>();
+    if (u > static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max())) ctx.fail(what + ": out of range");
+    return static_cast<long long>(u);
+  }
+  long long v = j.get<long long>();
+  if (v < std::numeric_limits<std::int32_t>::min() || v > std::numeric_limits<std::int32_t>::max())
+    ctx.fail(what + ": out of range");
+  return v;
+}
+
+std::vector<double> numbers(const json& obj, const char* key, std::size_t count, const Ctx& ctx) {
+  const json& a = field(obj, key, ctx);
+  std::string what = std::string("\"") + key + "\"";
+  if (!a.is_array() || a.size() != count)
+    ctx.fail(what + ": expected an array of " + std::to_string(count) + " numbers");
+  std::vector<double> out(count);
+  for (std::size_t i = 0; i < count; ++i) out[i] = number(a[i], what + "[" + std::to_string(i) + "]", ctx);
+  return out;
+}
+
+json mat4ToJson(const geom::Mat4& m) {
+  json a = json::array();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) a.push_back(m(r, c));
+  return a;
+}
+
+geom::Mat4 mat4FromJson(const json& obj, const char* key, const Ctx& ctx) {
+  std::vector<double> v = numbers(obj, key, 16, ctx);
+  geom::Mat4 m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m(r, c) = v[4 * r + c];
+  return m;
+}
+
+json cameraToJson(const geom::Camera& cam) {
+  json j;
+  j["view"] = mat4ToJson(cam.view);
+  j["projection"] = mat4ToJson(cam.projection);
+  j["viewport"] = {cam.viewport.x, cam.viewport.y, cam.viewport.width, cam.viewport.height};
+  return j;
+}
+
+geom::Camera cameraFromJson(const json& j, const Ctx& ctx) {
+  if (!j.is_object()) ctx.fail("expected a camera object, got " + typeName(j));
+  geom::Camera cam;
+  cam.view = mat4FromJson(j, "view", ctx);
+  cam.projection = mat4FromJson(j, "projection", ctx);
+  std::vector<double> vp = numbers(j, "viewport", 4, ctx);
+  cam.viewport = geom::Viewport{vp[0], vp[1], vp[2], vp[3]};
+  try {
+    cam.validate("degenerate camera");
+  } catch (const OptionsError& e) {
+    ctx.fail(e.what());
+  }
+  return cam;
+}
+
+json paramsToJson(const sketch::SamplingParams& p) {
+  json j;
+  j["sliceHalfThickness"] = p.sliceHalfThickness;
+  j["lineEpsilon"] = p.lineEpsilon;
+  j["lineEpsilonStep"] = p.lineEpsilonStep;
+  j["enabled"] = p.enabled;
+  return j;
+}
+
+sketch::SamplingParams paramsFromJson(const json& j, const sketch::SamplingParams& base, const Ctx& ctx) {
+  if (!j.is_object()) ctx.fail("\"params\": expected an object, got " + typeName(j));
+  sketch::SamplingParams p = base;
+  auto num = [&](const char* key, double& out) {
+    auto it = j.find(key);
+    if (it != j.end()) out = number(*it, std::string("\"") + key + "\"", ctx);
+  };
+  num("sliceHalfThickness", p.sliceHalfThickness);
+  num("lineEpsilon", p.lineEpsilon);
+  num("lineEpsilonStep", p.lineEpsilonStep);
+  auto it = j.find("enabled");
+  if (it != j.end()) {
+    if (!it->is_boolean()) ctx.fail("\"enabled\": expected true or false, got " + typeName(*it));
+    p.enabled = it->get<bool>();
+  }
+  if (!(p.sliceHalfThickness > 0)) ctx.fail("sliceHalfThickness must be > 0");
+  if (!(p.lineEpsilon > 0)) ctx.fail("lineEpsilon must be > 0");
+  if (!(p.lineEpsilonStep > 0)) ctx.fail("lineEpsilonStep must be > 0");
+  return p;
+}
+
+json parseJson(std::istream& in, const std::string& source) {
+  if (!in) throw InputError(source + ": cannot read");
+  try {
+    return json::parse(in);
+  } catch (const json::parse_error& e) {
+    std::string what = e.what();
+    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line L, column C: ..."
+    auto pos = what.find("parse error");
+    throw InputError(atOffset(source, e.byte, "malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos))));
+  }
+}
+
+sketch::Node nodeFromJson(const json& j, std::size_t index, const sketch::SamplingParams& defaults,
+                          const std::string& source) {
+  Ctx ctx{source, "node #" + std::to_string(index)};
+  if (!j.is_object()) ctx.fail("expected a node object, got " + typeName(j));
+  sketch::Node n;
+  n.id = static_cast<sketch::NodeId>(integer(field(j, "id", ctx), "\"id\"", ctx));
+  ctx.where = "node " + std::to_string(n.id);
+  n.parent = static_cast<sketch::NodeId>(integer(field(j, "parent", ctx), "\"parent\"", ctx));
+  if (n.parent < sketch::kNoNode) ctx.fail("\"parent\" must be -1 (root) or a node id");
+  bool hasScreen = j.contains("screen") || j.contains("camera");
+  bool hasPoint = j.contains("point") || j.contains("normal");
+  if (hasScreen && hasPoint) ctx.fail("has both \"screen\"/\"camera\" and \"point\"/\"normal\"");
+  if (!hasScreen && !hasPoint) ctx.fail("needs \"camera\" and \"screen\" (screen node) or \"point\" and \"normal\"");
+  if (hasScreen) {
+    long long cam = integer(field(j, "camera", ctx), "\"camera\"", ctx);
+    if (cam < 0) ctx.fail("\"camera\" must be >= 0");
+    n.camera = static_cast<int>(cam);
+    std::vector<double> s = numbers(j, "screen", 2, ctx);
+    n.screen = geom::Vec2(s[0], s[1]);
+  } else {
+    n.camera = -1;
+    std::vector<double> p = numbers(j, "point", 3, ctx);
+    std::vector<double> q = numbers(j, "normal", 3, ctx);
+    n.point = geom::Vec3(p[0], p[1], p[2]);
+    n.normal = geom::Vec3(q[0], q[1], q[2]);
+    if (!(n.normal.norm() > 0)) ctx.fail("\"normal\" is zero");
+  }
+  auto it = j.find("params");
+  n.params = it == j.end() ? defaults : paramsFromJson(*it, defaults, ctx);
+  return n;
+}
+
+sketch::Sketch sketchFromJson(const json& root, const std::string& source) {
+  Ctx top{source, ""};
+  if (!root.is_object()) top.fail("expected a JSON object at the top level, got " + typeName(root));
+  const json& format = field(root, "format", top);
+  if (!format.is_string() || format.get<std::string>() != kFormatName)
+    top.fail(std::string("\"format\" must be \"") + kFormatName + "\", got " + format.dump());
+  long long version = integer(field(root, "version", top), "\"version\"", top);
+  if (version != kFormatVersion)
+    top.fail("unsupported version " + std::to_string(version) + " (this program reads version " +
+             std::to_string(kFormatVersion) + ")");
+  sketch::Sketch sk;
+  if (auto it = root.find("up"); it != root.end()) {
+    if (!it->is_string()) top.fail("\"up\": expected \"y\" or \"z\", got " + typeName(*it));
+    try {
+      sk.up = geom::parseUpAxis(it->get<std::string>());
+    } catch (const OptionsError& e) {
+      top.fail(e.what());
+    }
+  }
+  if (auto it = root.find("defaults"); it != root.end()) sk.defaults = paramsFromJson(*it, {}, Ctx{source, "defaults"});
+  const json& cams = field(root, "cameras", top);
+  if (!cams.is_array()) top.fail("\"cameras\": expected an array, got " + typeName(cams));
+  for (std::size_t i = 0; i < cams.size(); ++i)
+    sk.insertRawCamera(cameraFromJson(cams[i], Ctx{source, "camera " + std::to_string(i)}));
+  const json& nodes = field(root, "nodes", top);
+  if (!nodes.is_array()) top.fail("\"nodes\": expected an array, got " + typeName(nodes));
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    sketch::Node n = nodeFromJson(nodes[i], i, sk.defaults, source);
+    if (n.camera >= static_cast<int>(sk.cameras().size()))
+      throw InputError(source + ": node " + std::to_string(n.id) + ": camera " + std::to_string(n.camera) +
+                       " does not exist (the file has " + std::to_string(sk.cameras().size()) + " cameras)");
+    try {
+      sk.insertRaw(n);
+    } catch (const OptionsError& e) {
+      throw InputError(source + ": " + e.what());
+    }
+  }
+  try {
+    sk.validate();
+  } catch (const OptionsError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+  return sk;
+}
+
+json sketchToJson(const sketch::Sketch& sk) {
+  json j;
+  j["format"] = kFormatName;
+  j["version"] = kFormatVersion;
+  j["up"] = geom::toString(sk.up);
+  j["defaults"] = paramsToJson(sk.defaults);
+  j["cameras"] = json::array();
+  for (const auto& c : sk.cameras()) j["cameras"].push_back(cameraToJson(c));
+  j["nodes"] = json::array();
+  for (sketch::NodeId id : sk.topologicalOrder()) {
+    const sketch::Node& n = sk.node(id);
+    json o;
+    o["id"] = n.id;
+    o["parent"] = n.parent;
+    if (n.isScreenNode()) {
+      o["camera"] = n.camera;
+      o["screen"] = {n.screen.x(), n.screen.y()};
+    } else {
+      o["point"] = {n.point.x(), n.point.y(), n.point.z()};
+      o["normal"] = {n.normal.x(), n.normal.y(), n.normal.z()};
+    }
+    o["params"] = paramsToJson(n.params);
+    j["nodes"].push_back(std::move(o));
+  }
+  return j;
+}
+
+void checkParamsFinite(const sketch::SamplingParams& p) {
+  if (!std::isfinite(p.sliceHalfThickness) || !std::isfinite(p.lineEpsilon) || !std::isfinite(p.lineEpsilonStep))
+    throw OptionsError("sketch defaults: sampling sizes must be finite");
+}
+
+}  // namespace
+
+sketch::Sketch readSketch(std::istream& in, const std::string& source) {
+  return sketchFromJson(parseJson(in, source), source);
+}
+
+sketch::Sketch readSketch(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot open for reading");
+  return readSketch(in, path.string());
+}
+
+void writeSketch(std::ostream& out, const sketch::Sketch& sk) {
+  sk.validate();
+  checkParamsFinite(sk.defaults);
+  out << sketchToJson(sk).dump(1) << "\n";
+  if (!out) throw OutputError("sketch: write failed");
+}
+
+void writeSketch(const std::filesystem::path& path, const sketch::Sketch& sk) {
+  sk.validate();
+  checkParamsFinite(sk.defaults);
+  std::string text = sketchToJson(sk).dump(1) + "\n";
+  writeFileAtomically(path, [&](std::ostream& out) { out << text; });
+}
+
+geom::Camera readCamera(std::istream& in, const std::string& source) {
+  return cameraFromJson(parseJson(in, source), Ctx{source, "camera"});
+}
+
+geom::Camera readCamera(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot open for reading");
+  return readCamera(in, path.string());
+}
+
+void writeCamera(std::ostream& out, const geom::Camera& camera) {
+  camera.validate("camera");
+  out << cameraToJson(camera).dump(1) << "\n";
+  if (!out) throw OutputError("camera: write failed");
+}
+
+void writeCamera(const std::filesystem::path& path, const geom::Camera& camera) {
+  camera.validate(path.string());
+  std::string text = cameraToJson(camera).dump(1) + "\n";
+  writeFileAtomically(path, [&](std::ostream& out) { out << text; });
+}
+
+}  // namespace treesketch::io

@@ -1,0 +1,91 @@
+// Parallel, deterministic casting of a ray pattern: see include/treesketch/scan/pattern_cast.h.
+// Rays are cut into fixed-size chunks (independent of the thread count); each chunk collects its
+// hits in ray order, and the chunks are joined in order.
+#include "treesketch/scan/pattern_cast.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "treesketch/scan/counter_rng.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::scan {
+
+namespace {
+
+// Rays per chunk: a unit of work and of progress reports; results do not depend on it.
+constexpr std::uint64_t kRaysPerChunk = 4096;
+// counterGaussian streams used for range noise (sphere jitter uses streams 0, 1).
+constexpr std::uint32_t kNoiseStream = 8;
+
+struct ChunkOut {
+  std::vector<geom::Vec3> positions;
+  std::vector<std::int32_t> meshId;
+  std::vector<std::int32_t> station;
+  std::vector<std::uint64_t> hitsPerMesh;
+};
+
+}  // namespace
+
+ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, const RayGenerator& generator,
+                       const CastOptions& options, const ProgressFn& progress) {
+  if (!(options.rangeNoise >= 0.0) || !std::isfinite(options.rangeNoise))
+    throw OptionsError("scan: range noise must be a finite number >= 0, got " + std::to_string(options.rangeNoise));
+  const auto start = std::chrono::steady_clock::now();
+  ScanResult result;
+  result.stats.raysCast = rayCount;
+  result.stats.hitsPerMesh.assign(scene.meshCount(), 0);
+  if (rayCount == 0) return result;
+
+  const std::uint64_t chunkCount = (rayCount + kRaysPerChunk - 1) / kRaysPerChunk;
+  std::vector<ChunkOut> chunks(chunkCount);
+  std::atomic<std::uint64_t> done{0};
+  const double sigma = options.rangeNoise;
+
+  tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, chunkCount, 1), [&](const tbb::blocked_range<std::uint64_t>& r) {
+    for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
+      ChunkOut& out = chunks[c];
+      out.hitsPerMesh.assign(scene.meshCount(), 0);
+      const std::uint64_t first = c * kRaysPerChunk;
+      const std::uint64_t last = std::min(rayCount, first + kRaysPerChunk);
+      for (std::uint64_t i = first; i < last; ++i) {
+        const ScanRay sr = generator(i);
+        const accel::RayHit hit = scene.intersect(sr.ray);
+        if (!hit.hit()) continue;
+        geom::Vec3 p = hit.point;
+        if (sigma > 0.0) p += (sigma * counterGaussian(options.seed, i, kNoiseStream)) * sr.ray.dir.normalized();
+        out.positions.push_back(p);
+        ++out.hitsPerMesh[static_cast<std::size_t>(hit.meshIndex)];
+        if (options.recordMesh) out.meshId.push_back(hit.meshIndex);
+        if (options.recordStation) out.station.push_back(sr.station);
+      }
+      if (progress) progress(done.fetch_add(last - first) + (last - first), rayCount);
+    }
+  });
+
+  // Join the chunks in order.
+  std::size_t total = 0;
+  for (const ChunkOut& c : chunks) total += c.positions.size();
+  geom::PointCloud& cloud = result.cloud;
+  cloud.positions.reserve(total);
+  if (options.recordMesh) cloud.meshId.reserve(total);
+  if (options.recordStation) cloud.station.reserve(total);
+  std::vector<std::uint64_t>& perMesh = result.stats.hitsPerMesh;
+  for (ChunkOut& c : chunks) {
+    cloud.positions.insert(cloud.positions.end(), c.positions.begin(), c.positions.end());
+    cloud.meshId.insert(cloud.meshId.end(), c.meshId.begin(), c.meshId.end());
+    cloud.station.insert(cloud.station.end(), c.station.begin(), c.station.end());
+    for (std::size_t m = 0; m < perMesh.size(); ++m) perMesh[m] += c.hitsPerMesh[m];
+    ChunkOut().positions.swap(c.positions);  // free as we go
+  }
+  result.stats.hits = total;
+  result.stats.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace treesketch::scan

@@ -1,0 +1,142 @@
+// Terrestrial laser scanner stations (thesis §6.3 future work): see
+// include/treesketch/scan/tls_scan.h.
+#include "treesketch/scan/tls_scan.h"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "treesketch/util/error.h"
+
+namespace treesketch::scan {
+
+namespace {
+
+using geom::Vec3;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+// Tolerance, in steps, when counting how many steps fit in a range (so 150/0.2 counts 751).
+constexpr double kStepSlack = 1e-9;
+// Refuse patterns beyond this many rays (memory for the points would be the problem first).
+constexpr std::uint64_t kMaxRays = 1ull << 36;
+
+void checkOptions(const TlsScanOptions& o) {
+  if (!(o.stepDeg > 0.0) || !std::isfinite(o.stepDeg))
+    throw OptionsError("TLS scan: angular step must be > 0 degrees, got " + std::to_string(o.stepDeg));
+  if (!(o.zenithMinDeg >= 0.0 && o.zenithMaxDeg <= 180.0 && o.zenithMinDeg <= o.zenithMaxDeg))
+    throw OptionsError("TLS scan: zenith range must satisfy 0 <= min <= max <= 180 degrees, got " +
+                       std::to_string(o.zenithMinDeg) + ".." + std::to_string(o.zenithMaxDeg));
+  if (o.stations.empty() && o.stationCount < 1)
+    throw OptionsError("TLS scan: need at least one station, got " + std::to_string(o.stationCount));
+  for (std::size_t i = 0; i < o.stations.size(); ++i)
+    if (!o.stations[i].allFinite()) throw OptionsError("TLS scan: station " + std::to_string(i) + " is not finite");
+  if (!std::isfinite(o.stationRadius) || !std::isfinite(o.stationHeight) || !std::isfinite(o.ringStartDeg))
+    throw OptionsError("TLS scan: station radius, height and ring start must be finite");
+  if (o.stations.empty() && o.stationRadius <= 0.0 && !(o.radiusFactor > 0.0 && std::isfinite(o.radiusFactor)))
+    throw OptionsError("TLS scan: radius factor must be > 0, got " + std::to_string(o.radiusFactor));
+  if (!(o.rangeNoise >= 0.0) || !std::isfinite(o.rangeNoise))
+    throw OptionsError("TLS scan: range noise must be a finite number >= 0, got " + std::to_string(o.rangeNoise));
+  if (!(o.maxRange > 0.0))
+    throw OptionsError("TLS scan: maximum range must be > 0, got " + std::to_string(o.maxRange));
+}
+
+// Horizontal axes (e1, e2) with e1 x e2 = up.
+void horizontalAxes(geom::UpAxis up, Vec3& e1, Vec3& e2) {
+  if (up == geom::UpAxis::Z) {
+    e1 = Vec3::UnitX();
+    e2 = Vec3::UnitY();
+  } else {
+    e1 = Vec3::UnitZ();
+    e2 = Vec3::UnitX();
+  }
+}
+
+}  // namespace
+
+std::uint64_t tlsAzimuthSteps(const TlsScanOptions& o) {
+  checkOptions(o);
+  const double steps = 360.0 / o.stepDeg;
+  auto n = static_cast<std::uint64_t>(std::ceil(steps - kStepSlack));
+  return std::max<std::uint64_t>(n, 1);
+}
+
+std::uint64_t tlsZenithSteps(const TlsScanOptions& o) {
+  checkOptions(o);
+  return static_cast<std::uint64_t>(std::floor((o.zenithMaxDeg - o.zenithMinDeg) / o.stepDeg + kStepSlack)) + 1;
+}
+
+std::uint64_t tlsRaysPerStation(const TlsScanOptions& o) {
+  const double rays = static_cast<double>(tlsAzimuthSteps(o)) * static_cast<double>(tlsZenithSteps(o));
+  if (rays > static_cast<double>(kMaxRays))
+    throw OptionsError("TLS scan: step " + std::to_string(o.stepDeg) + " degrees gives too many rays per station");
+  return tlsAzimuthSteps(o) * tlsZenithSteps(o);
+}
+
+std::uint64_t tlsRayCount(const TlsScanOptions& o) {
+  const std::uint64_t stations = o.stations.empty() ? static_cast<std::uint64_t>(std::max(o.stationCount, 0))
+                                                    : o.stations.size();
+  const std::uint64_t perStation = tlsRaysPerStation(o);
+  if (static_cast<double>(perStation) * static_cast<double>(stations) > static_cast<double>(kMaxRays))
+    throw OptionsError("TLS scan: too many rays (" + std::to_string(stations) + " stations)");
+  return perStation * stations;
+}
+
+std::vector<Vec3> tlsStationPositions(const TlsScanOptions& o, const geom::BBox& bounds) {
+  checkOptions(o);
+  if (!o.stations.empty()) return o.stations;
+  if (bounds.empty()) throw OptionsError("TLS scan: the scene is empty, so there is no centre to place stations around");
+  Vec3 e1, e2;
+  horizontalAxes(o.up, e1, e2);
+  const Vec3 upv = geom::upVector(o.up);
+  const Vec3 c = bounds.center();
+  const Vec3 base = c - upv * geom::height(c, o.up) + upv * (geom::height(bounds.min, o.up) + o.stationHeight);
+  const double radius = o.stationRadius > 0.0 ? o.stationRadius : o.radiusFactor * bounds.diagonal();
+  std::vector<Vec3> out;
+  for (int s = 0; s < o.stationCount; ++s) {
+    const double a = (o.ringStartDeg + 360.0 * s / o.stationCount) * kDeg;
+    out.push_back(base + radius * (std::cos(a) * e1 + std::sin(a) * e2));
+  }
+  return out;
+}
+
+ScanResult tlsScan(const accel::RayScene& scene, const TlsScanOptions& options, const ProgressFn& progress) {
+  checkOptions(options);
+  const std::vector<Vec3> stations = tlsStationPositions(options, scene.bounds());
+  const std::uint64_t nAz = tlsAzimuthSteps(options), nZen = tlsZenithSteps(options);
+  const std::uint64_t perStation = tlsRaysPerStation(options);
+  const std::uint64_t total = tlsRayCount(options);
+  Vec3 e1, e2;
+  horizontalAxes(options.up, e1, e2);
+  const Vec3 upv = geom::upVector(options.up);
+  const double step = options.stepDeg * kDeg, zen0 = options.zenithMinDeg * kDeg;
+  const double maxRange = options.maxRange;
+
+  auto generator = [&](std::uint64_t i) {
+    const std::uint64_t s = i / perStation, rem = i % perStation;
+    const double az = static_cast<double>(rem / nZen) * step;
+    const double zen = zen0 + static_cast<double>(rem % nZen) * step;
+    const double sz = std::sin(zen);
+    ScanRay sr;
+    sr.ray.origin = stations[s];
+    sr.ray.dir = sz * std::cos(az) * e1 + sz * std::sin(az) * e2 + std::cos(zen) * upv;  // unit length
+    sr.ray.tfar = maxRange;
+    sr.station = static_cast<std::int32_t>(s);
+    return sr;
+  };
+  (void)nAz;
+  CastOptions cast;
+  cast.rangeNoise = options.rangeNoise;
+  cast.seed = options.seed;
+  cast.recordMesh = options.recordMesh;
+  cast.recordStation = true;
+  return castPattern(scene, total, generator, cast, progress);
+}
+
+ScanResult tlsScan(const std::vector<geom::TriMesh>& meshes, const TlsScanOptions& options,
+                   const ProgressFn& progress) {
+  tlsRayCount(options);  // validate before the (possibly long) BVH build
+  const accel::RayScene scene(meshes);
+  return tlsScan(scene, options, progress);
+}
+
+}  // namespace treesketch::scan

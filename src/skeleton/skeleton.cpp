@@ -1,0 +1,406 @@
+// Level-set skeleton: Verroust & Lazarus 1999 ("Extracting skeletal curves from 3D scattered
+// data"), with the clustering by distance bins and adjacency of Xu, Gossett & Chen 2007.
+#include "treesketch/skeleton/skeleton.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <queue>
+
+#include "treesketch/util/error.h"
+
+namespace treesketch::skeleton {
+namespace {
+
+using geom::Vec3;
+
+void checkOptions(const SkeletonOptions& o) {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0) || !std::isfinite(v)) throw OptionsError(std::string("skeleton: ") + name + " must be > 0");
+  };
+  auto nonNegative = [](double v, const char* name) {
+    if (!(v >= 0) || !std::isfinite(v)) throw OptionsError(std::string("skeleton: ") + name + " must be >= 0");
+  };
+  positive(o.binWidthVoxels, "binWidthVoxels");
+  nonNegative(o.rootHeightVoxels, "rootHeightVoxels");
+  nonNegative(o.spurLengthRadii, "spurLengthRadii");
+  nonNegative(o.spurLengthBins, "spurLengthBins");
+  nonNegative(o.minBranchLinearity, "minBranchLinearity");
+  nonNegative(o.collinearToleranceRadii, "collinearToleranceRadii");
+  nonNegative(o.collinearToleranceVoxels, "collinearToleranceVoxels");
+  positive(o.maxSegmentRadii, "maxSegmentRadii");
+  positive(o.maxSegmentBins, "maxSegmentBins");
+  if (o.radiusMedianWindow < 1) throw OptionsError("skeleton: radiusMedianWindow must be >= 1");
+}
+
+struct UnionFind {
+  std::vector<std::uint32_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  std::uint32_t find(std::uint32_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+Vec3 safeNormalized(const Vec3& v, const Vec3& fallback) {
+  const double n = v.norm();
+  return n > 1e-12 ? Vec3(v / n) : fallback;
+}
+
+/// Children lists rebuilt from parents (increasing indices).
+void linkChildren(std::vector<SkeletonNode>& nodes) {
+  for (auto& n : nodes) n.children.clear();
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (nodes[i].parent >= 0) nodes[nodes[i].parent].children.push_back(static_cast<std::int32_t>(i));
+}
+
+/// Longest path (world length) from each node down its subtree; nodes must be parent-first.
+std::vector<double> subtreeReach(const std::vector<SkeletonNode>& nodes) {
+  std::vector<double> reach(nodes.size(), 0.0);
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    const auto& n = nodes[i];
+    if (n.parent >= 0) {
+      const double viaThis = reach[i] + (n.position - nodes[n.parent].position).norm();
+      reach[n.parent] = std::max(reach[n.parent], viaThis);
+    }
+  }
+  return reach;
+}
+
+/// The child continuing a node's branch: longest reach (ties: lowest index); -1 for none.
+std::int32_t mainChild(const std::vector<SkeletonNode>& nodes, const std::vector<double>& reach, std::size_t i) {
+  std::int32_t best = -1;
+  double bestLength = -1;
+  for (std::int32_t c : nodes[i].children) {
+    const double length = reach[c] + (nodes[c].position - nodes[i].position).norm();
+    if (length > bestLength) {
+      bestLength = length;
+      best = c;
+    }
+  }
+  return best;
+}
+
+/// Douglas–Peucker on chain[first..last]: marks kept interior indices.
+void simplifyChain(const std::vector<Vec3>& pts, const std::vector<double>& tolerance,
+                   const std::vector<double>& maxSegment, std::size_t first, std::size_t last,
+                   std::vector<char>& keep) {
+  if (last <= first + 1) return;
+  const Vec3 a = pts[first], b = pts[last];
+  const Vec3 ab = b - a;
+  const double len = ab.norm();
+  double worst = -1;
+  std::size_t worstIndex = first;
+  bool tooFar = false;
+  for (std::size_t i = first + 1; i < last; ++i) {
+    double d;
+    if (len < 1e-12) {
+      d = (pts[i] - a).norm();
+    } else {
+      const double t = std::clamp((pts[i] - a).dot(ab) / (len * len), 0.0, 1.0);
+      d = (pts[i] - (a + t * ab)).norm();
+    }
+    const double excess = d / std::max(tolerance[i], 1e-12);
+    if (excess > worst) {
+      worst = excess;
+      worstIndex = i;
+    }
+  }
+  const double segmentLimit = std::min(maxSegment[first], maxSegment[last]);
+  if (len > segmentLimit) tooFar = true;
+  if (worst <= 1.0 && !tooFar) return;
+  if (worst <= 1.0) {
+    // Straight but too long: split at the node nearest the middle of the chord.
+    double bestGap = std::numeric_limits<double>::infinity();
+    for (std::size_t i = first + 1; i < last; ++i) {
+      const double gap = std::abs((pts[i] - a).dot(ab) / len - 0.5 * len);
+      if (gap < bestGap) {
+        bestGap = gap;
+        worstIndex = i;
+      }
+    }
+  }
+  keep[worstIndex] = 1;
+  simplifyChain(pts, tolerance, maxSegment, first, worstIndex, keep);
+  simplifyChain(pts, tolerance, maxSegment, worstIndex, last, keep);
+}
+
+}  // namespace
+
+std::size_t countBranchPoints(const std::vector<SkeletonNode>& nodes) {
+  return static_cast<std::size_t>(
+      std::count_if(nodes.begin(), nodes.end(), [](const SkeletonNode& n) { return n.children.size() >= 2; }));
+}
+
+std::size_t countEnds(const std::vector<SkeletonNode>& nodes) {
+  return static_cast<std::size_t>(
+      std::count_if(nodes.begin(), nodes.end(), [](const SkeletonNode& n) { return n.children.empty(); }));
+}
+
+GeodesicLevels computeGeodesicLevels(const VoxelGraph& g, const SkeletonOptions& options) {
+  checkOptions(options);
+  GeodesicLevels lv;
+  const std::size_t n = g.size();
+  lv.binWidth = options.binWidthVoxels * g.voxelSize;
+  lv.distance.assign(n, std::numeric_limits<double>::infinity());
+  lv.predecessor.assign(n, -1);
+  lv.level.assign(n, -1);
+  lv.vertexNode.assign(n, -1);
+  if (n == 0) return lv;
+
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i)
+    if (g.piece[i] == 0) lowest = std::min(lowest, geom::height(g.positions[i], options.up));
+  const double rootTop = lowest + options.rootHeightVoxels * g.voxelSize;
+  using Item = std::pair<double, std::uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (g.piece[i] == 0 && geom::height(g.positions[i], options.up) <= rootTop) {
+      lv.rootVertices.push_back(static_cast<std::uint32_t>(i));
+      lv.distance[i] = 0;
+      queue.emplace(0.0, static_cast<std::uint32_t>(i));
+    }
+  }
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > lv.distance[v]) continue;
+    for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+      const std::uint32_t w = g.targets[k];
+      const double nd = d + g.weights[k];
+      if (nd < lv.distance[w]) {
+        lv.distance[w] = nd;
+        lv.predecessor[w] = v;
+        queue.emplace(nd, w);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::isfinite(lv.distance[i])) lv.level[i] = static_cast<std::int32_t>(std::floor(lv.distance[i] / lv.binWidth));
+  return lv;
+}
+
+std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv, const SkeletonOptions& options) {
+  checkOptions(options);
+  const std::size_t n = g.size();
+  std::vector<SkeletonNode> nodes;
+  if (n == 0 || lv.rootVertices.empty()) return nodes;
+
+  // Connected pieces of each level set; all of level 0 is one piece (a single root).
+  UnionFind uf(n);
+  const std::uint32_t anchor = lv.rootVertices.front();
+  for (std::size_t v = 0; v < n; ++v) {
+    if (lv.level[v] < 0) continue;
+    if (lv.level[v] == 0) uf.unite(anchor, static_cast<std::uint32_t>(v));
+    for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k)
+      if (lv.level[g.targets[k]] == lv.level[v]) uf.unite(static_cast<std::uint32_t>(v), g.targets[k]);
+  }
+  // Node order: by level, then by the piece's lowest vertex index (deterministic; parents first).
+  std::vector<std::uint32_t> reps;
+  for (std::size_t v = 0; v < n; ++v)
+    if (lv.level[v] >= 0 && uf.find(static_cast<std::uint32_t>(v)) == v) reps.push_back(static_cast<std::uint32_t>(v));
+  std::stable_sort(reps.begin(), reps.end(), [&](std::uint32_t a, std::uint32_t b) { return lv.level[a] < lv.level[b]; });
+  std::vector<std::int32_t> repNode(n, -1);
+  for (std::size_t i = 0; i < reps.size(); ++i) repNode[reps[i]] = static_cast<std::int32_t>(i);
+  nodes.resize(reps.size());
+
+  std::vector<std::uint32_t> count(nodes.size(), 0);
+  std::vector<double> linSum(nodes.size(), 0.0);
+  std::vector<std::int64_t> firstVertex(nodes.size(), -1);  // the piece's vertex nearest the root
+  for (std::size_t v = 0; v < n; ++v) {
+    if (lv.level[v] < 0) continue;
+    const std::int32_t id = repNode[uf.find(static_cast<std::uint32_t>(v))];
+    lv.vertexNode[v] = id;
+    auto& node = nodes[id];
+    node.position += g.positions[v];
+    node.support += g.pointCount[v];
+    node.level = lv.level[v];
+    linSum[id] += g.linearity[v] * g.pointCount[v];
+    ++count[id];
+    if (firstVertex[id] < 0 || lv.distance[v] < lv.distance[firstVertex[id]]) firstVertex[id] = static_cast<std::int64_t>(v);
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    auto& node = nodes[i];
+    node.position /= count[i];
+    node.linearity = static_cast<float>(linSum[i] / std::max(node.support, 1));
+    node.distance = lv.distance[firstVertex[i]];
+    const std::int64_t pred = lv.predecessor[firstVertex[i]];
+    node.parent = (i == 0 || pred < 0) ? -1 : lv.vertexNode[pred];
+  }
+  linkChildren(nodes);
+
+  // Directions: from the grandparent (or parent) to this node; the root towards its children.
+  const Vec3 up = geom::upVector(options.up);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    auto& node = nodes[i];
+    if (node.parent >= 0) {
+      const auto& p = nodes[node.parent];
+      const Vec3 from = p.parent >= 0 ? nodes[p.parent].position : p.position;
+      node.direction = safeNormalized(node.position - from, up);
+    } else {
+      Vec3 sum = Vec3::Zero();
+      for (std::int32_t c : node.children) sum += nodes[c].position - node.position;
+      node.direction = safeNormalized(sum, up);
+    }
+  }
+  // Radius: mean distance of the piece's voxels to the axis through the centroid.
+  std::vector<double> radiusSum(nodes.size(), 0.0);
+  for (std::size_t v = 0; v < n; ++v) {
+    const std::int32_t id = lv.vertexNode[v];
+    if (id < 0) continue;
+    const Vec3 d = g.positions[v] - nodes[id].position;
+    radiusSum[id] += (d - d.dot(nodes[id].direction) * nodes[id].direction).norm();
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    nodes[i].radius = std::max(radiusSum[i] / count[i], 0.25 * g.voxelSize);
+  return nodes;
+}
+
+std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw, double voxelSize, double binWidth,
+                                           const SkeletonOptions& options) {
+  checkOptions(options);
+  std::vector<SkeletonNode> out;
+  const std::size_t n = raw.size();
+  if (n == 0) return out;
+  const std::vector<double> reach = subtreeReach(raw);
+  std::vector<std::int32_t> mainOf(n);
+  for (std::size_t i = 0; i < n; ++i) mainOf[i] = mainChild(raw, reach, i);
+
+  // Radius: running median along the main chain through each node.
+  std::vector<double> radius(n);
+  const int half = options.radiusMedianWindow / 2;
+  std::vector<double> window;
+  for (std::size_t i = 0; i < n; ++i) {
+    window.assign(1, raw[i].radius);
+    std::int32_t up = raw[i].parent, down = mainOf[i];
+    for (int k = 0; k < half; ++k) {
+      if (up >= 0) {
+        window.push_back(raw[up].radius);
+        up = raw[up].parent;
+      }
+      if (down >= 0) {
+        window.push_back(raw[down].radius);
+        down = mainOf[down];
+      }
+    }
+    std::nth_element(window.begin(), window.begin() + window.size() / 2, window.end());
+    radius[i] = window[window.size() / 2];
+  }
+
+  // Subtree linearity (support-weighted), bottom-up.
+  std::vector<double> linSum(n), supSum(n);
+  for (std::size_t i = n; i-- > 0;) {
+    linSum[i] += raw[i].linearity * raw[i].support;
+    supSum[i] += raw[i].support;
+    if (raw[i].parent >= 0) {
+      linSum[raw[i].parent] += linSum[i];
+      supSum[raw[i].parent] += supSum[i];
+    }
+  }
+
+  // Prune side sub-trees that are spurs or foliage.
+  std::vector<char> kept(n, 0);
+  kept[0] = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!kept[i]) continue;
+    const double spur = std::max(options.spurLengthRadii * radius[i], options.spurLengthBins * binWidth);
+    for (std::int32_t c : raw[i].children) {
+      if (c == mainOf[i]) {
+        kept[c] = 1;
+        continue;
+      }
+      const double length = reach[c] + (raw[c].position - raw[i].position).norm();
+      const double lin = supSum[c] > 0 ? linSum[c] / supSum[c] : 0.0;
+      kept[c] = length >= spur && lin >= options.minBranchLinearity;
+    }
+  }
+  std::vector<std::vector<std::int32_t>> keptChildren(n);
+  for (std::size_t i = 1; i < n; ++i)
+    if (kept[i]) keptChildren[raw[i].parent].push_back(static_cast<std::int32_t>(i));
+
+  // Chains between key nodes (root, forks, ends), simplified by Douglas–Peucker.
+  std::vector<char> select(n, 0);
+  select[0] = 1;
+  auto isKey = [&](std::size_t i) { return i == 0 || keptChildren[i].size() != 1; };
+  std::vector<std::int32_t> chain;
+  std::vector<Vec3> pts;
+  std::vector<double> tol, maxSeg;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!kept[k] || !isKey(k)) continue;
+    select[k] = 1;
+    for (std::int32_t c : keptChildren[k]) {
+      chain.assign(1, static_cast<std::int32_t>(k));
+      std::int32_t cur = c;
+      while (true) {
+        chain.push_back(cur);
+        if (isKey(cur)) break;
+        cur = keptChildren[cur].front();
+      }
+      pts.clear();
+      tol.clear();
+      maxSeg.clear();
+      for (std::int32_t id : chain) {
+        pts.push_back(raw[id].position);
+        tol.push_back(std::max(options.collinearToleranceRadii * radius[id], options.collinearToleranceVoxels * voxelSize));
+        maxSeg.push_back(std::max(options.maxSegmentRadii * radius[id], options.maxSegmentBins * binWidth));
+      }
+      std::vector<char> keep(chain.size(), 0);
+      keep.front() = keep.back() = 1;
+      simplifyChain(pts, tol, maxSeg, 0, chain.size() - 1, keep);
+      for (std::size_t j = 0; j < chain.size(); ++j)
+        if (keep[j]) select[chain[j]] = 1;
+    }
+  }
+
+  // Re-index (raw order is parent-first, so the result is too).
+  std::vector<std::int32_t> newIndex(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!select[i]) continue;
+    newIndex[i] = static_cast<std::int32_t>(out.size());
+    SkeletonNode node = raw[i];
+    node.raw = static_cast<std::int32_t>(i);
+    node.radius = radius[i];
+    node.children.clear();
+    std::int32_t p = raw[i].parent;
+    while (p >= 0 && !select[p]) p = raw[p].parent;
+    node.parent = p >= 0 ? newIndex[p] : -1;
+    out.push_back(node);
+  }
+  linkChildren(out);
+  const std::vector<double> outReach = subtreeReach(out);
+  const Vec3 up = geom::upVector(options.up);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    auto& node = out[i];
+    const std::int32_t m = mainChild(out, outReach, i);
+    const Vec3 next = m >= 0 ? out[m].position : node.position;
+    const Vec3 prev = node.parent >= 0 ? out[node.parent].position : node.position;
+    node.direction = safeNormalized(next - prev, node.direction.norm() > 0 ? node.direction : up);
+    node.branchOrder = node.parent < 0 ? 0 : out[node.parent].branchOrder;
+    if (node.parent >= 0 && mainChild(out, outReach, node.parent) != static_cast<std::int32_t>(i)) ++node.branchOrder;
+  }
+  return out;
+}
+
+Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& options, const ProgressFn& progress) {
+  checkOptions(options);
+  Skeleton s;
+  s.up = options.up;
+  if (progress) progress(0, 4);
+  s.graph = buildVoxelGraph(cloud, options.graph);
+  if (progress) progress(1, 4);
+  s.levels = computeGeodesicLevels(s.graph, options);
+  if (progress) progress(2, 4);
+  s.rawNodes = levelSetNodes(s.graph, s.levels, options);
+  if (progress) progress(3, 4);
+  s.nodes = simplifySkeleton(s.rawNodes, s.graph.voxelSize, s.levels.binWidth, options);
+  if (progress) progress(4, 4);
+  return s;
+}
+
+}  // namespace treesketch::skeleton

@@ -1,0 +1,424 @@
+// Voxel neighbourhood graph with local shape features and occlusion bridging.
+// Bridging follows Xu, Gossett & Chen 2007 ("Knowledge and heuristic-based modeling of
+// laser-scanned trees"): a disconnected sub-graph is joined when it lies within a distance and a
+// cone; here the cone is around the sub-graph's own axis at the joint, which also admits gaps in
+// drooping branches.
+#include "treesketch/skeleton/voxel_graph.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <nanoflann.hpp>
+#include <numeric>
+#include <sstream>
+
+#include "skeleton/voxel_hash.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::skeleton {
+namespace {
+
+using geom::Vec3;
+using detail::VoxelHash;
+
+void checkOptions(const VoxelGraphOptions& o) {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0) || !std::isfinite(v)) throw OptionsError(std::string("skeleton graph: ") + name + " must be > 0");
+  };
+  if (!(o.voxelSize >= 0) || !std::isfinite(o.voxelSize))
+    throw OptionsError("skeleton graph: voxelSize must be >= 0 (0 = automatic)");
+  positive(o.autoDiagonalFraction, "autoDiagonalFraction");
+  positive(o.autoSpacingFactor, "autoSpacingFactor");
+  positive(o.shapeCellVoxels, "shapeCellVoxels");
+  positive(o.coneAngleDeg, "coneAngleDeg");
+  positive(o.coneRadiusVoxels, "coneRadiusVoxels");
+  if (!(o.maxGapVoxels >= 0)) throw OptionsError("skeleton graph: maxGapVoxels must be >= 0");
+  if (!(o.freeGapVoxels >= 0)) throw OptionsError("skeleton graph: freeGapVoxels must be >= 0");
+  if (o.reach < 1 || o.reach > 3) throw OptionsError("skeleton graph: reach must be 1, 2 or 3");
+  if (o.maxVoxels < 1) throw OptionsError("skeleton graph: maxVoxels must be >= 1");
+}
+
+void checkFinite(const geom::PointCloud& cloud) {
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (!cloud.positions[i].allFinite()) {
+      std::ostringstream s;
+      s << "skeleton: point " << i << " has a NaN or infinite coordinate";
+      throw OptionsError(s.str());
+    }
+  }
+}
+
+/// Grid corner a little below the box so every point maps to non-negative cells.
+Vec3 gridOrigin(const geom::BBox& box, double cell) { return box.min - Vec3::Constant(0.5 * cell); }
+
+/// Number of occupied voxels of size `cell`.
+std::size_t countVoxels(const geom::PointCloud& cloud, const Vec3& origin, double cell) {
+  VoxelHash hash(cloud.size() / 8 + 16);
+  for (const Vec3& p : cloud.positions) hash.findOrInsert(detail::cellKey(p, origin, cell), 0);
+  return hash.size();
+}
+
+struct Voxelized {
+  std::vector<Vec3> positions;
+  std::vector<std::int32_t> counts;
+  std::vector<std::uint32_t> pointVoxel;
+  std::vector<std::uint64_t> keys;
+  VoxelHash hash;
+};
+
+Voxelized voxelize(const geom::PointCloud& cloud, const Vec3& origin, double cell) {
+  Voxelized v;
+  v.pointVoxel.resize(cloud.size());
+  std::vector<Vec3> sums;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const std::uint64_t key = detail::cellKey(cloud.positions[i], origin, cell);
+    const std::uint32_t id = v.hash.findOrInsert(key, static_cast<std::uint32_t>(sums.size()));
+    if (id == sums.size()) {
+      sums.push_back(Vec3::Zero());
+      v.counts.push_back(0);
+      v.keys.push_back(key);
+    }
+    sums[id] += cloud.positions[i];
+    ++v.counts[id];
+    v.pointVoxel[i] = id;
+  }
+  v.positions.resize(sums.size());
+  for (std::size_t i = 0; i < sums.size(); ++i) v.positions[i] = sums[i] / v.counts[i];
+  return v;
+}
+
+/// Local PCA features: moments of voxel centroids summed per coarse cell, then over each cell's
+/// 3×3×3 block of cells.
+void computeFeatures(VoxelGraph& g, const std::vector<std::uint64_t>& keys, double shapeCellVoxels) {
+  const std::size_t n = g.size();
+  const double cell = shapeCellVoxels * g.voxelSize;
+  struct Moments {
+    double n = 0;
+    Vec3 s = Vec3::Zero();
+    Eigen::Matrix3d ss = Eigen::Matrix3d::Zero();
+  };
+  VoxelHash cellHash(n / 4 + 16);
+  std::vector<Moments> moments;
+  std::vector<std::uint64_t> cellKeys;
+  std::vector<std::uint32_t> voxelCell(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint64_t key = detail::cellKey(g.positions[i], g.origin, cell);
+    const std::uint32_t id = cellHash.findOrInsert(key, static_cast<std::uint32_t>(moments.size()));
+    if (id == moments.size()) {
+      moments.emplace_back();
+      cellKeys.push_back(key);
+    }
+    // Relative to the grid origin keeps the sums well conditioned for georeferenced clouds.
+    const Vec3 p = g.positions[i] - g.origin;
+    moments[id].n += 1;
+    moments[id].s += p;
+    moments[id].ss += p * p.transpose();
+    voxelCell[i] = id;
+  }
+  const std::size_t cells = moments.size();
+  std::vector<float> lin(cells), pla(cells), sca(cells);
+  std::vector<geom::Vec3f> dir(cells);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      std::int64_t x, y, z;
+      detail::unpackKey(cellKeys[c], x, y, z);
+      Moments m;
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            if (x + dx < 0 || y + dy < 0 || z + dz < 0) continue;
+            const std::uint32_t id = cellHash.find(detail::packKey(x + dx, y + dy, z + dz));
+            if (id == VoxelHash::kMissing) continue;
+            m.n += moments[id].n;
+            m.s += moments[id].s;
+            m.ss += moments[id].ss;
+          }
+      lin[c] = 0;
+      pla[c] = 0;
+      sca[c] = 1;
+      dir[c] = geom::Vec3f::UnitX();
+      if (m.n < 3) continue;
+      const Vec3 mean = m.s / m.n;
+      const Eigen::Matrix3d cov = m.ss / m.n - mean * mean.transpose();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+      eig.computeDirect(cov);
+      const Vec3 ev = eig.eigenvalues();  // increasing
+      const double l1 = std::max(ev(2), 1e-30), l2 = std::max(ev(1), 0.0), l3 = std::max(ev(0), 0.0);
+      lin[c] = static_cast<float>((l1 - l2) / l1);
+      pla[c] = static_cast<float>((l2 - l3) / l1);
+      sca[c] = static_cast<float>(l3 / l1);
+      dir[c] = eig.eigenvectors().col(2).cast<float>().normalized();
+    }
+  });
+  g.linearity.resize(n);
+  g.planarity.resize(n);
+  g.scattering.resize(n);
+  g.principal.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    g.linearity[i] = lin[voxelCell[i]];
+    g.planarity[i] = pla[voxelCell[i]];
+    g.scattering[i] = sca[voxelCell[i]];
+    g.principal[i] = dir[voxelCell[i]];
+  }
+}
+
+/// Grid edges (both directions) in compressed rows.
+void buildGridEdges(VoxelGraph& g, const Voxelized& v, int reach) {
+  const std::size_t n = g.size();
+  auto forNeighbours = [&](std::size_t i, auto&& fn) {
+    std::int64_t x, y, z;
+    detail::unpackKey(v.keys[i], x, y, z);
+    for (int dx = -reach; dx <= reach; ++dx)
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dz = -reach; dz <= reach; ++dz) {
+          if ((dx | dy | dz) == 0) continue;
+          if (x + dx < 0 || y + dy < 0 || z + dz < 0) continue;
+          const std::uint32_t id = v.hash.find(detail::packKey(x + dx, y + dy, z + dz));
+          if (id != VoxelHash::kMissing) fn(id);
+        }
+  };
+  std::vector<std::uint32_t> degree(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      std::uint32_t d = 0;
+      forNeighbours(i, [&](std::uint32_t) { ++d; });
+      degree[i] = d;
+    }
+  });
+  g.offsets.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) g.offsets[i + 1] = g.offsets[i] + degree[i];
+  g.targets.resize(g.offsets[n]);
+  g.weights.resize(g.offsets[n]);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      std::uint32_t k = g.offsets[i];
+      forNeighbours(i, [&](std::uint32_t j) {
+        g.targets[k] = j;
+        g.weights[k] = static_cast<float>((g.positions[i] - g.positions[j]).norm());
+        ++k;
+      });
+    }
+  });
+}
+
+/// Connected pieces, numbered by decreasing point count (ties: lowest first vertex).
+void labelPieces(VoxelGraph& g) {
+  const std::size_t n = g.size();
+  std::vector<std::int32_t> label(n, -1);
+  std::vector<std::int64_t> pieceCount;
+  std::vector<std::uint32_t> stack;
+  for (std::size_t s = 0; s < n; ++s) {
+    if (label[s] >= 0) continue;
+    const auto id = static_cast<std::int32_t>(pieceCount.size());
+    pieceCount.push_back(0);
+    label[s] = id;
+    stack.assign(1, static_cast<std::uint32_t>(s));
+    while (!stack.empty()) {
+      const std::uint32_t v = stack.back();
+      stack.pop_back();
+      pieceCount[id] += g.pointCount[v];
+      for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+        const std::uint32_t w = g.targets[k];
+        if (label[w] < 0) {
+          label[w] = id;
+          stack.push_back(w);
+        }
+      }
+    }
+  }
+  std::vector<std::int32_t> order(pieceCount.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return pieceCount[a] > pieceCount[b]; });
+  std::vector<std::int32_t> rank(order.size());
+  for (std::size_t r = 0; r < order.size(); ++r) rank[order[r]] = static_cast<std::int32_t>(r);
+  g.piece.resize(n);
+  for (std::size_t i = 0; i < n; ++i) g.piece[i] = rank[label[i]];
+}
+
+struct CloudAdaptor {
+  const std::vector<Vec3>& pts;
+  std::size_t kdtree_get_point_count() const { return pts.size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t d) const { return pts[i][static_cast<int>(d)]; }
+  template <class B>
+  bool kdtree_get_bbox(B&) const {
+    return false;
+  }
+};
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>, CloudAdaptor, 3,
+                                                   std::uint32_t>;
+
+struct UnionFind {
+  std::vector<std::int32_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::int32_t find(std::int32_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  }
+  /// Joins, keeping the smaller label as the representative (piece 0 stays the main one).
+  void unite(std::int32_t a, std::int32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return;
+    if (a < b) parent[b] = a;
+    else parent[a] = b;
+  }
+};
+
+/// Bridges pieces to the main piece (Kruskal over the shortest gap of each voxel).
+void bridgePieces(VoxelGraph& g, const VoxelGraphOptions& o) {
+  const std::size_t n = g.size();
+  const std::int32_t pieces = n == 0 ? 0 : *std::max_element(g.piece.begin(), g.piece.end()) + 1;
+  if (pieces <= 1 || o.maxGapVoxels <= 0) return;
+  std::vector<std::int64_t> piecePoints(pieces, 0);
+  for (std::size_t i = 0; i < n; ++i) piecePoints[g.piece[i]] += g.pointCount[i];
+  auto eligible = [&](std::int32_t p) { return p == 0 || piecePoints[p] >= o.minBridgePoints; };
+
+  CloudAdaptor adaptor{g.positions};
+  KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+  const double maxGap = o.maxGapVoxels * g.voxelSize;
+
+  struct Candidate {
+    double length;
+    std::uint32_t from, to;  // to = vertex of the piece being attached
+  };
+  std::vector<Candidate> best(n, Candidate{-1, 0, 0});
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::pair<std::uint32_t, double>> hits;
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      if (g.piece[i] == 0 || !eligible(g.piece[i])) continue;
+      hits.clear();
+      nanoflann::SearchParams params;
+      params.sorted = true;
+      tree.radiusSearch(g.positions[i].data(), maxGap * maxGap, hits, params);
+      for (const auto& [j, d2] : hits) {
+        if (g.piece[j] == g.piece[i] || !eligible(g.piece[j])) continue;
+        best[i] = Candidate{std::sqrt(d2), j, static_cast<std::uint32_t>(i)};
+        break;
+      }
+    }
+  });
+  std::vector<Candidate> candidates;
+  for (const Candidate& c : best)
+    if (c.length >= 0) candidates.push_back(c);
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return std::tie(a.length, a.to, a.from) < std::tie(b.length, b.to, b.from);
+  });
+
+  const double freeGap = o.freeGapVoxels * g.voxelSize;
+  const double coneCos = std::cos(o.coneAngleDeg * M_PI / 180.0);
+  const double coneRadius = o.coneRadiusVoxels * g.voxelSize;
+  UnionFind uf(pieces);
+  std::vector<std::pair<std::uint32_t, double>> hits;
+  for (const Candidate& c : candidates) {
+    if (uf.find(g.piece[c.from]) == uf.find(g.piece[c.to])) continue;
+    if (c.length > freeGap) {
+      // Axis of the attached piece near its joint.
+      hits.clear();
+      tree.radiusSearch(g.positions[c.to].data(), coneRadius * coneRadius, hits, nanoflann::SearchParams());
+      Vec3 mean = Vec3::Zero();
+      int count = 0;
+      for (const auto& h : hits)
+        if (g.piece[h.first] == g.piece[c.to]) {
+          mean += g.positions[h.first];
+          ++count;
+        }
+      if (count < 3) continue;
+      mean /= count;
+      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+      for (const auto& h : hits)
+        if (g.piece[h.first] == g.piece[c.to]) {
+          const Vec3 d = g.positions[h.first] - mean;
+          cov += d * d.transpose();
+        }
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+      eig.computeDirect(cov);
+      const Vec3 axis = eig.eigenvectors().col(2);
+      const Vec3 gap = (g.positions[c.from] - g.positions[c.to]) / c.length;
+      if (std::abs(axis.dot(gap)) < coneCos) continue;
+    }
+    uf.unite(g.piece[c.from], g.piece[c.to]);
+    g.bridges.push_back(Bridge{c.from, c.to, c.length});
+  }
+  if (g.bridges.empty()) return;
+
+  // Rebuild the rows with the bridge edges appended.
+  std::vector<std::uint32_t> extra(n, 0);
+  for (const Bridge& b : g.bridges) {
+    ++extra[b.from];
+    ++extra[b.to];
+  }
+  std::vector<std::uint32_t> offsets(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) offsets[i + 1] = offsets[i] + (g.offsets[i + 1] - g.offsets[i]) + extra[i];
+  std::vector<std::uint32_t> targets(offsets[n]);
+  std::vector<float> weights(offsets[n]);
+  std::vector<std::uint32_t> fill(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t k = offsets[i];
+    for (std::uint32_t e = g.offsets[i]; e < g.offsets[i + 1]; ++e, ++k) {
+      targets[k] = g.targets[e];
+      weights[k] = g.weights[e];
+    }
+    fill[i] = k;
+  }
+  for (const Bridge& b : g.bridges) {
+    targets[fill[b.from]] = b.to;
+    weights[fill[b.from]++] = static_cast<float>(b.length);
+    targets[fill[b.to]] = b.from;
+    weights[fill[b.to]++] = static_cast<float>(b.length);
+  }
+  g.offsets = std::move(offsets);
+  g.targets = std::move(targets);
+  g.weights = std::move(weights);
+}
+
+}  // namespace
+
+double chooseVoxelSize(const geom::PointCloud& cloud, const VoxelGraphOptions& options) {
+  checkOptions(options);
+  if (options.voxelSize > 0) return options.voxelSize;
+  const geom::BBox box = cloud.bounds();
+  const double diag = box.diagonal();
+  if (cloud.size() < 2 || !(diag > 0)) return 1.0;
+  double size = diag * options.autoDiagonalFraction;
+  // Point spacing from occupancy: a surface sampled every h puts ~ (v/h)^2 points in a voxel.
+  const std::size_t occupied = countVoxels(cloud, gridOrigin(box, size), size);
+  const double perVoxel = static_cast<double>(cloud.size()) / static_cast<double>(std::max<std::size_t>(occupied, 1));
+  const double spacing = size / std::sqrt(std::max(perVoxel, 1.0));
+  size = std::max(size, options.autoSpacingFactor * spacing);
+  // Keep the grid below the packing limit and the voxel count below the budget.
+  size = std::max(size, box.extent().maxCoeff() / static_cast<double>(detail::kAxisCells - 4));
+  for (int iter = 0; iter < 8; ++iter) {
+    const std::size_t count = countVoxels(cloud, gridOrigin(box, size), size);
+    if (count <= options.maxVoxels) break;
+    size *= std::max(1.05, std::sqrt(static_cast<double>(count) / static_cast<double>(options.maxVoxels)));
+  }
+  return size;
+}
+
+VoxelGraph buildVoxelGraph(const geom::PointCloud& cloud, const VoxelGraphOptions& options) {
+  checkOptions(options);
+  checkFinite(cloud);
+  VoxelGraph g;
+  g.voxelSize = chooseVoxelSize(cloud, options);
+  g.offsets.assign(1, 0);
+  if (cloud.empty()) return g;
+  const geom::BBox box = cloud.bounds();
+  if (box.extent().maxCoeff() / g.voxelSize > static_cast<double>(detail::kAxisCells - 4))
+    throw OptionsError("skeleton graph: voxelSize too small for the cloud's extent (over 2^21 voxels per axis)");
+  g.origin = gridOrigin(box, g.voxelSize);
+  Voxelized v = voxelize(cloud, g.origin, g.voxelSize);
+  g.positions = std::move(v.positions);
+  g.pointCount = std::move(v.counts);
+  g.pointVoxel = std::move(v.pointVoxel);
+  computeFeatures(g, v.keys, options.shapeCellVoxels);
+  buildGridEdges(g, v, options.reach);
+  labelPieces(g);
+  bridgePieces(g, options);
+  return g;
+}
+
+}  // namespace treesketch::skeleton

@@ -1,0 +1,17 @@
+// Choosing the camera of an automatic sketch (see view_camera.h).
+#include "treesketch/sketch/view_camera.h"
+
+#include "treesketch/io/sketch_file.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::sketch {
+
+geom::Camera cameraForView(const std::string& view, const geom::BBox& bounds, geom::UpAxis up,
+                           const geom::Viewport& viewport, bool orthographic) {
+  if (view.empty()) throw OptionsError("view: expected 'front', 'side', 'top' or a camera file, got ''");
+  if (view == "front" || view == "side" || view == "top")
+    return geom::presetCamera(geom::parsePresetView(view), bounds, up, viewport, orthographic);
+  return io::readCamera(std::filesystem::path(view));
+}
+
+}  // namespace treesketch::sketch

@@ -1,0 +1,73 @@
+#include "treesketch/viewer/point_colors.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace treesketch::viewer {
+
+using geom::Vec3;
+
+Rgb rampColor(double t) {
+  // Stops approximating matplotlib's viridis at 0, .25, .5, .75, 1.
+  static const double kStops[5][3] = {
+      {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
+  if (!(t >= 0.0)) t = 0.0;
+  if (t > 1.0) t = 1.0;
+  double x = t * 4.0;
+  int i = std::min(static_cast<int>(x), 3);
+  double f = x - i;
+  Rgb c;
+  for (int k = 0; k < 3; ++k)
+    c[k] = static_cast<std::uint8_t>(std::lround(kStops[i][k] + f * (kStops[i + 1][k] - kStops[i][k])));
+  return c;
+}
+
+std::vector<Rgb> heightColors(const geom::PointCloud& cloud, geom::UpAxis up) {
+  std::vector<Rgb> colors(cloud.size());
+  if (cloud.empty()) return colors;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Vec3& p : cloud.positions) {
+    double h = geom::height(p, up);
+    lo = std::min(lo, h);
+    hi = std::max(hi, h);
+  }
+  double range = hi - lo;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 16384), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i)
+      colors[i] = rampColor(range > 0 ? (geom::height(cloud.positions[i], up) - lo) / range : 0.5);
+  });
+  return colors;
+}
+
+double distanceToCircle(const Vec3& p, const Circle3& circle) {
+  Vec3 d = p - circle.centre;
+  double h = d.dot(circle.normal);
+  double radial = (d - h * circle.normal).norm();
+  double dr = radial - circle.radius;
+  return std::sqrt(h * h + dr * dr);
+}
+
+std::vector<Rgb> circleDistanceColors(const geom::PointCloud& cloud, const std::vector<Circle3>& circles,
+                                      double maxDistance) {
+  std::vector<Rgb> colors(cloud.size(), rampColor(1.0));
+  if (circles.empty() || cloud.empty()) return colors;
+  double scale = maxDistance > 0 ? 1.0 / maxDistance : 1.0;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 8192), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      double best = std::numeric_limits<double>::infinity();
+      for (const Circle3& c : circles) best = std::min(best, distanceToCircle(cloud.positions[i], c));
+      colors[i] = rampColor(best * scale);
+    }
+  });
+  return colors;
+}
+
+std::vector<Rgb> plainColors(const geom::PointCloud& cloud, const Rgb& color) {
+  return std::vector<Rgb>(cloud.size(), color);
+}
+
+}  // namespace treesketch::viewer

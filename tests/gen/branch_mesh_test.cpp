@@ -1,0 +1,117 @@
+#include "treesketch/gen/branch_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "treesketch/util/error.h"
+
+namespace treesketch::gen {
+namespace {
+
+using geom::Vec3;
+
+Skeleton straightTrunk(int sections, double radius, double height) {
+  Skeleton s;
+  SkeletonBranch b;
+  for (int i = 0; i < sections; ++i)
+    b.sections.push_back({Vec3(0, height * i / (sections - 1), 0), radius, Vec3(0, 1, 0)});
+  s.branches = {b};
+  return s;
+}
+
+/// Signed volume enclosed by a closed, consistently oriented mesh (positive when outward).
+double signedVolume(const geom::TriMesh& m) {
+  double v = 0;
+  for (const auto& t : m.triangles)
+    v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
+  return v;
+}
+
+TEST(BranchMesh, StraightTubeIsClosedOutwardAndHasTheRightVolume) {
+  const int n = 10;
+  Skeleton s = straightTrunk(4, 0.3, 2.0);
+  BranchMesh bm = buildBranchMesh(s, BranchMeshOptions{{n}});
+  EXPECT_EQ(bm.mesh.vertices.size(), 4u * n);
+  EXPECT_EQ(bm.mesh.triangles.size(), 3u * n * 2 + 2u * (n - 2));
+  EXPECT_NO_THROW(bm.mesh.checkConsistent());
+  // Closed: every undirected edge is used by exactly two triangles, once in each direction.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (const auto& t : bm.mesh.triangles)
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  for (const auto& [edge, count] : directed) {
+    EXPECT_EQ(count, 1);
+    EXPECT_EQ(directed.count({edge.second, edge.first}), 1u);
+  }
+  double prism = 0.5 * n * 0.3 * 0.3 * std::sin(2 * std::numbers::pi / n) * 2.0;
+  EXPECT_NEAR(signedVolume(bm.mesh), prism, 1e-9);
+  ASSERT_EQ(bm.branchTriangleCount.size(), 1u);
+  EXPECT_EQ(bm.branchTriangleCount[0], bm.mesh.triangles.size());
+}
+
+TEST(BranchMesh, RingsLieOnTheirSectionsAndDoNotTwist) {
+  // A helix-like bent branch with a child.
+  Skeleton s;
+  SkeletonBranch trunk;
+  const int n = 12;
+  for (int i = 0; i < n; ++i) {
+    double a = 0.25 * i;
+    Vec3 c(std::cos(a), 0.4 * i, std::sin(a));
+    Vec3 d(-std::sin(a) * 0.25, 0.4, std::cos(a) * 0.25);
+    trunk.sections.push_back({c, 0.1 - 0.005 * i, d.normalized()});
+  }
+  SkeletonBranch child;
+  child.id = 1;
+  child.parent = 0;
+  child.parentSection = 5;
+  child.level = 1;
+  for (int i = 0; i < 4; ++i)
+    child.sections.push_back({trunk.sections[5].center + Vec3(0.3 * i, 0.1 * i, 0), 0.03, Vec3(3, 1, 0).normalized()});
+  s.branches = {trunk, child};
+  BranchMesh bm = buildBranchMesh(s, BranchMeshOptions{{8, 5}});
+  ASSERT_EQ(bm.vertexBranch.size(), bm.mesh.vertices.size());
+  EXPECT_EQ(bm.mesh.vertices.size(), 12u * 8 + 4u * 5);
+  for (std::size_t v = 0; v < bm.mesh.vertices.size(); ++v) {
+    const Section& sec = s.branches[bm.vertexBranch[v]].sections[bm.vertexSection[v]];
+    Vec3 d = bm.mesh.vertices[v] - sec.center;
+    EXPECT_NEAR(d.norm(), sec.radius, 1e-12);
+    EXPECT_NEAR(d.dot(sec.axis), 0.0, 1e-12);
+    EXPECT_NEAR(distanceToSectionAxis(sec, bm.mesh.vertices[v]), sec.radius, 1e-12);
+  }
+  // No twist: vertex 0 of consecutive rings moves by a minimal rotation, so its direction
+  // stays close (the axis turns by a small angle per section here).
+  for (int i = 1; i < n; ++i) {
+    Vec3 a = (bm.mesh.vertices[(i - 1) * 8] - s.branches[0].sections[i - 1].center).normalized();
+    Vec3 b = (bm.mesh.vertices[i * 8] - s.branches[0].sections[i].center).normalized();
+    double turn = std::acos(std::clamp(s.branches[0].sections[i - 1].axis.dot(s.branches[0].sections[i].axis), -1.0, 1.0));
+    EXPECT_LE(std::acos(std::clamp(a.dot(b), -1.0, 1.0)), turn + 1e-9);
+  }
+  // A child gets a tip cap but no base cap.
+  EXPECT_EQ(bm.branchTriangleCount[1], 3u * 5 * 2 + 3u);
+  for (const auto& t : bm.mesh.triangles) {
+    Vec3 e = (bm.mesh.vertices[t[1]] - bm.mesh.vertices[t[0]]).cross(bm.mesh.vertices[t[2]] - bm.mesh.vertices[t[0]]);
+    EXPECT_GT(e.norm(), 1e-8);
+  }
+}
+
+TEST(BranchMesh, EmptySkeletonGivesEmptyMesh) {
+  BranchMesh bm = buildBranchMesh(Skeleton{});
+  EXPECT_TRUE(bm.mesh.empty());
+  EXPECT_TRUE(bm.mesh.vertices.empty());
+}
+
+TEST(BranchMesh, RejectsBadInput) {
+  Skeleton s = straightTrunk(3, 0.1, 1.0);
+  EXPECT_THROW(buildBranchMesh(s, BranchMeshOptions{{2}}), OptionsError);
+  EXPECT_THROW(buildBranchMesh(s, BranchMeshOptions{{}}), OptionsError);
+  s.branches[0].sections[1].axis = Vec3::Zero();
+  EXPECT_THROW(buildBranchMesh(s), OptionsError);
+  s = straightTrunk(3, 0.1, 1.0);
+  s.branches[0].sections.resize(1);
+  EXPECT_THROW(buildBranchMesh(s), OptionsError);
+}
+
+}  // namespace
+}  // namespace treesketch::gen
