@@ -21,5 +21,8 @@ enum ExitCode : int {
 
 // [declare register functions here, one line each]
 void registerInfo(CLI::App& app, Action& action);
+void registerReconstruct(CLI::App& app, Action& action);
+void registerScan(CLI::App& app, Action& action);
+void registerSketch(CLI::App& app, Action& action);
 
 }  // namespace treesketch::cli

@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
   Action action;
   // [register subcommands here, one line each]
   registerInfo(app, action);
+  registerReconstruct(app, action);
+  registerScan(app, action);
+  registerSketch(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -132,6 +132,8 @@ Skeleton readSkeletonJson(std::istream& in, const std::string& source) {
     j = json::parse(in);
   } catch (const json::parse_error& e) {
     throw InputError(atOffset(source, e.byte, std::string("expected valid JSON (") + e.what() + ")"));
+  } catch (const json::exception& e) {  // e.g. a number too large for a double
+    throw InputError(source + ": expected valid JSON with finite numbers (" + e.what() + ")");
   }
   return skeletonFromJson(j, source);
 }

@@ -271,6 +271,11 @@ void TreeOptions::validate() const {
     if (!finite(l.childLengthTaper) || l.childLengthTaper < 0 || l.childLengthTaper >= 1)
       fail(at + "childLengthTaper must be in [0, 1)");
   }
+  double perBranch = 1, expected = 1;  // branches of each level, expected total
+  for (std::size_t i = 0; i + 1 < levels.size(); ++i) expected += (perBranch *= levels[i].children);
+  if (expected > static_cast<double>(kMaxBranches))
+    fail("the children counts give " + std::to_string(static_cast<long long>(expected)) + " branches, more than " +
+         std::to_string(kMaxBranches));
   if (detail < 1 || detail > 16) fail("detail must be in [1, 16], got " + std::to_string(detail));
   if (!std::isfinite(minRadius) || minRadius <= 0 || minRadius > levels[0].radius)
     fail("minRadius must be in (0, trunk radius]");

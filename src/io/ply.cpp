@@ -82,6 +82,7 @@ class Cursor {
 
   void beginElement(const PlyElement& e) { element_ = &e; }
   void beginRecord(std::uint64_t index) {
+    if (ascii_) skipSpace();
     record_ = index;
     recordPos_ = pos_;
     recordLine_ = line_;
@@ -155,7 +156,7 @@ class Cursor {
   [[noreturn]] void failAtRecord(const std::string& what) const { fail(recordLine_, recordPos_, what); }
 
  private:
-  std::string_view token() {
+  void skipSpace() {
     const char* p = data_.data() + pos_;
     const char* e = data_.data() + data_.size();
     while (p < e && (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')) {
@@ -163,6 +164,12 @@ class Cursor {
       ++p;
     }
     pos_ = static_cast<std::size_t>(p - data_.data());
+  }
+
+  std::string_view token() {
+    skipSpace();
+    const char* p = data_.data() + pos_;
+    const char* e = data_.data() + data_.size();
     if (p == e) failHere("unexpected end of file (truncated data), expected another value");
     const char* s = p;
     while (p < e && !(*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')) ++p;

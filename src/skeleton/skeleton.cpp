@@ -27,6 +27,8 @@ void checkOptions(const SkeletonOptions& o) {
   nonNegative(o.spurLengthRadii, "spurLengthRadii");
   nonNegative(o.spurLengthBins, "spurLengthBins");
   nonNegative(o.minBranchLinearity, "minBranchLinearity");
+  nonNegative(o.minEndSupportFraction, "minEndSupportFraction");
+  nonNegative(o.forkZoneRadii, "forkZoneRadii");
   nonNegative(o.collinearToleranceRadii, "collinearToleranceRadii");
   nonNegative(o.collinearToleranceVoxels, "collinearToleranceVoxels");
   positive(o.maxSegmentRadii, "maxSegmentRadii");
@@ -131,6 +133,66 @@ void simplifyChain(const std::vector<Vec3>& pts, const std::vector<double>& tole
   simplifyChain(pts, tolerance, maxSegment, worstIndex, last, keep);
 }
 
+/// Pieces of one level set that touch the same piece below and the same piece above are arcs of
+/// one ring broken by sparse sampling or a junction: join them. Bottom-up, so the pieces below
+/// are final when a level is processed.
+void mergeSplitRings(const VoxelGraph& g, const GeodesicLevels& lv, UnionFind& uf) {
+  struct Step {
+    std::int32_t level;
+    std::uint32_t low, high;
+  };
+  std::vector<Step> steps;
+  for (std::size_t v = 0; v < g.size(); ++v) {
+    if (lv.level[v] < 0) continue;
+    for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k)
+      if (lv.level[g.targets[k]] == lv.level[v] + 1) steps.push_back(Step{lv.level[v], static_cast<std::uint32_t>(v), g.targets[k]});
+  }
+  std::stable_sort(steps.begin(), steps.end(), [](const Step& a, const Step& b) { return a.level < b.level; });
+  // steps[levelStart[k] .. levelStart[k+1]) go from level k to k+1.
+  std::size_t begin = 0;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> below, above;  // (piece at k, neighbour piece)
+  while (begin < steps.size()) {
+    const std::int32_t k = steps[begin].level + 1;  // the level being merged
+    std::size_t end = begin;
+    while (end < steps.size() && steps[end].level == k - 1) ++end;
+    std::size_t next = end;
+    while (next < steps.size() && steps[next].level == k) ++next;
+    below.clear();
+    above.clear();
+    for (std::size_t i = begin; i < end; ++i) below.emplace_back(uf.find(steps[i].high), uf.find(steps[i].low));
+    for (std::size_t i = end; i < next; ++i) above.emplace_back(uf.find(steps[i].high), uf.find(steps[i].low));
+    std::sort(below.begin(), below.end());
+    below.erase(std::unique(below.begin(), below.end()), below.end());
+    // Group level-k pieces by the piece above them.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> byAbove;
+    for (const auto& [high, low] : above) byAbove.emplace_back(high, low);  // (piece above, piece at k)
+    std::sort(byAbove.begin(), byAbove.end());
+    byAbove.erase(std::unique(byAbove.begin(), byAbove.end()), byAbove.end());
+    auto lowerOf = [&](std::uint32_t piece) {
+      auto it = std::lower_bound(below.begin(), below.end(), std::make_pair(piece, 0u));
+      std::vector<std::uint32_t> out;
+      for (; it != below.end() && it->first == piece; ++it) out.push_back(it->second);
+      return out;
+    };
+    for (std::size_t a = 0; a < byAbove.size();) {
+      std::size_t b = a;
+      while (b < byAbove.size() && byAbove[b].first == byAbove[a].first) ++b;
+      for (std::size_t i = a; i < b; ++i)
+        for (std::size_t j = i + 1; j < b; ++j) {
+          const std::uint32_t pi = uf.find(byAbove[i].second), pj = uf.find(byAbove[j].second);
+          if (pi == pj) continue;
+          const auto li = lowerOf(byAbove[i].second), lj = lowerOf(byAbove[j].second);
+          bool share = false;
+          for (std::uint32_t x : li)
+            if (std::find(lj.begin(), lj.end(), x) != lj.end()) share = true;
+          if (share) uf.unite(pi, pj);
+        }
+      a = b;
+    }
+    begin = end;
+  }
+}
+
 }  // namespace
 
 std::size_t countBranchPoints(const std::vector<SkeletonNode>& nodes) {
@@ -201,6 +263,7 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
     for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k)
       if (lv.level[g.targets[k]] == lv.level[v]) uf.unite(static_cast<std::uint32_t>(v), g.targets[k]);
   }
+  if (options.mergeSplitRings) mergeSplitRings(g, lv, uf);
   // Node order: by level, then by the piece's lowest vertex index (deterministic; parents first).
   std::vector<std::uint32_t> reps;
   for (std::size_t v = 0; v < n; ++v)
@@ -319,10 +382,33 @@ std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw,
       const double lin = supSum[c] > 0 ? linSum[c] / supSum[c] : 0.0;
       kept[c] = length >= spur && lin >= options.minBranchLinearity;
     }
+    for (std::int32_t c : raw[i].children)
+      if (kept[c] && raw[c].children.empty() && raw[c].support < options.minEndSupportFraction * raw[i].support)
+        kept[c] = 0;
   }
   std::vector<std::vector<std::int32_t>> keptChildren(n);
   for (std::size_t i = 1; i < n; ++i)
     if (kept[i]) keptChildren[raw[i].parent].push_back(static_cast<std::int32_t>(i));
+
+  // Forks: a fork's level set holds the parent's ring and the children's bases, so its centroid
+  // (and those of the few pieces below it) drift towards the children. Put them back on the
+  // line of the parent chain further down.
+  std::vector<Vec3> position(n);
+  for (std::size_t i = 0; i < n; ++i) position[i] = raw[i].position;
+  for (std::size_t f = 0; f < n; ++f) {
+    if (!kept[f] || keptChildren[f].size() < 2) continue;
+    const double near = options.forkZoneRadii * radius[f] + binWidth;
+    std::int32_t a1 = raw[f].parent;
+    while (a1 >= 0 && raw[f].distance - raw[a1].distance < near) a1 = raw[a1].parent;
+    std::int32_t a2 = a1;
+    while (a2 >= 0 && raw[f].distance - raw[a2].distance < 2 * near) a2 = raw[a2].parent;
+    if (a1 < 0 || a2 < 0) continue;
+    const Vec3 base = raw[a1].position;
+    const Vec3 axis = safeNormalized(raw[a1].position - raw[a2].position, Vec3::Zero());
+    if (axis.isZero()) continue;
+    for (std::int32_t j = static_cast<std::int32_t>(f); j != a1; j = raw[j].parent)
+      position[j] = base + (raw[j].position - base).dot(axis) * axis;
+  }
 
   // Chains between key nodes (root, forks, ends), simplified by Douglas–Peucker.
   std::vector<char> select(n, 0);
@@ -346,7 +432,7 @@ std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw,
       tol.clear();
       maxSeg.clear();
       for (std::int32_t id : chain) {
-        pts.push_back(raw[id].position);
+        pts.push_back(position[id]);
         tol.push_back(std::max(options.collinearToleranceRadii * radius[id], options.collinearToleranceVoxels * voxelSize));
         maxSeg.push_back(std::max(options.maxSegmentRadii * radius[id], options.maxSegmentBins * binWidth));
       }
@@ -365,6 +451,7 @@ std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw,
     newIndex[i] = static_cast<std::int32_t>(out.size());
     SkeletonNode node = raw[i];
     node.raw = static_cast<std::int32_t>(i);
+    node.position = position[i];
     node.radius = radius[i];
     node.children.clear();
     std::int32_t p = raw[i].parent;

@@ -169,6 +169,7 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     if (cloud.empty()) throw InputError("the point cloud is empty");
     recon_.reset();
     cloud_ = std::move(cloud);
+    ++cloudVersion_;
     up_ = up;
     sourcePath_ = sourcePath;
     sketch_ = sketch::Sketch{};

@@ -45,8 +45,9 @@ struct TlsScanOptions {
   double rangeNoise = 0.002;
   /// Rays find hits only within this distance of their station, scene units.
   double maxRange = std::numeric_limits<double>::infinity();
-  /// Which axis is up (station heights, zenith angles).
-  geom::UpAxis up = geom::UpAxis::Z;
+  /// Which axis is up (station heights, zenith angles). Y, like the meshes of the thesis and of
+  /// gen/; real TLS data are Z-up.
+  geom::UpAxis up = geom::UpAxis::Y;
   /// Seed of the range noise; each ray's noise depends only on (seed, ray index).
   std::uint64_t seed = 1;
   /// Record PointCloud::meshId (which input mesh each point lies on).

@@ -31,6 +31,12 @@ struct SkeletonOptions {
   double binWidthVoxels = 2.0;
   /// Root region: voxels of the main piece within this height of its lowest one, in voxels.
   double rootHeightVoxels = 1.5;
+  /// Join pieces of a level set that touch the same piece below and above (arcs of one ring split
+  /// by sparse sampling or a junction) instead of making them separate nodes.
+  bool mergeSplitRings = true;
+  /// End nodes with fewer points than this fraction of their parent's are dropped (the partial
+  /// last level set at a branch tip, whose centroid is off the axis).
+  double minEndSupportFraction = 0.5;
 
   /// Spurs: a side sub-tree whose longest path from its fork is shorter than the largest of
   /// `spurLengthRadii` × the fork's radius and `spurLengthBins` level sets is dropped.
@@ -39,6 +45,11 @@ struct SkeletonOptions {
   /// Foliage: a side sub-tree whose nodes' mean linearity (VoxelGraph::linearity, support-weighted)
   /// is below this is dropped as leaves (0 keeps everything). Leaves are planar or scattered.
   double minBranchLinearity = 0.0;
+
+  /// Forks: the fork node and the raw nodes within forkZoneRadii × radius + one level set below
+  /// it are moved onto the line of the parent chain below that zone (their level sets include the
+  /// children's bases, which pull the centroids sideways).
+  double forkZoneRadii = 2.0;
 
   /// Simplification of each chain between forks and ends (Douglas–Peucker): a node is dropped
   /// when it lies closer than max(collinearToleranceRadii × radius, collinearToleranceVoxels ×

@@ -21,6 +21,7 @@
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/tri_mesh.h"
 #include "treesketch/sketch/sketch.h"
+#include "treesketch/util/progress.h"
 #include "treesketch/viewer/orbit_camera.h"
 #include "treesketch/viewer/point_colors.h"
 #include "treesketch/viewer/undo_stack.h"
@@ -151,6 +152,8 @@ class ViewerState {
   /// are scanned first with the sphere scanner's defaults; `progress` reports the scan.
   bool openFile(const std::filesystem::path& path, geom::UpAxis up, const ProgressFn& progress = {});
   const geom::PointCloud& cloud() const { return cloud_; }
+  /// Increases whenever a new cloud is set.
+  std::uint64_t cloudVersion() const { return cloudVersion_; }
   geom::UpAxis up() const { return up_; }
   const sketch::Sketch& sketch() const { return sketch_; }
   /// Where the sketch is autosaved after every edit (empty: never).
@@ -212,6 +215,8 @@ class ViewerState {
   bool autoSketchUniform(int nodes = 12);
   /// Replaces the sketch by the automatic skeleton sketch (branching); false when unavailable.
   bool autoSketchSkeleton();
+  /// Ends the current merge of consecutive edits (call when a slider is released).
+  void finishEdit() { lastEditKey_.clear(); }
   bool saveSketch(const std::filesystem::path& path);
   bool loadSketch(const std::filesystem::path& path);
   /// Writes the current tube mesh (.obj or .ply, atomically).
@@ -301,6 +306,7 @@ class ViewerState {
   ColorMode colorsMode_ = ColorMode::Height;
   bool colorsStale_ = true;
   std::uint64_t colorsVersion_ = 1;
+  std::uint64_t cloudVersion_ = 0;
   std::uint64_t sceneVersion_ = 1;
   geom::TriMesh emptyMesh_;
   double lastRebuildMs_ = 0.0;

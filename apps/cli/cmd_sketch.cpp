@@ -1,0 +1,86 @@
+// `treesketch sketch auto CLOUD --nodes N --view front|side|top|CAMERA.json [--method uniform]
+// [--up y|z] [--ortho] -o SKETCH.json`: an automatic sketch of a cloud, saved for `reconstruct`
+// or for refining in the desktop tool. Methods: "uniform" = the thesis baseline (§5.4).
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "treesketch/io/point_cloud_io.h"
+#include "treesketch/io/sketch_file.h"
+#include "treesketch/sketch/auto_sketch.h"
+#include "treesketch/sketch/view_camera.h"
+#include "treesketch/util/atomic_file.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::cli {
+
+namespace {
+
+/// What every automatic method gets.
+struct AutoSketchInput {
+  const geom::PointCloud& cloud;
+  const geom::Camera& camera;
+  int nodes;
+  geom::UpAxis up;
+};
+using AutoSketchMethod = std::function<sketch::Sketch(const AutoSketchInput&)>;
+
+/// The automatic methods by name. A new method is one more entry here.
+const std::map<std::string, AutoSketchMethod>& autoSketchMethods() {
+  static const std::map<std::string, AutoSketchMethod> methods = {
+      {"uniform",
+       [](const AutoSketchInput& in) { return sketch::uniformAutoSketch(in.cloud, in.camera, in.nodes, in.up); }},
+  };
+  return methods;
+}
+
+struct AutoOptions {
+  std::string cloud, view = "front", method = "uniform", up = "y", output;
+  int nodes = 18;  // the thesis's automatic sketches had 18 nodes (Table 5.2)
+  bool ortho = false;
+  int width = 1280, height = 800;
+};
+
+void runAuto(const AutoOptions& o) {
+  geom::UpAxis up = geom::parseUpAxis(o.up);
+  if (o.nodes < 1) throw OptionsError("--nodes must be >= 1, got " + std::to_string(o.nodes));
+  if (o.width < 1 || o.height < 1) throw OptionsError("--width and --height must be >= 1");
+  checkNotAnInput(o.output, {o.cloud});
+  geom::PointCloud cloud = io::readPointCloud(o.cloud);
+  geom::Viewport viewport{0, 0, static_cast<double>(o.width), static_cast<double>(o.height)};
+  geom::Camera camera = sketch::cameraForView(o.view, cloud.bounds(), up, viewport, o.ortho);
+  const auto& methods = autoSketchMethods();
+  auto it = methods.find(o.method);
+  if (it == methods.end()) throw OptionsError("--method: unknown method '" + o.method + "'");
+  sketch::Sketch sk = it->second(AutoSketchInput{cloud, camera, o.nodes, up});
+  io::writeSketch(std::filesystem::path(o.output), sk);
+  std::printf("sketch: %zu nodes (%s, view %s) from %zu points -> %s\n", sk.size(), o.method.c_str(), o.view.c_str(),
+              cloud.size(), o.output.c_str());
+}
+
+}  // namespace
+
+void registerSketch(CLI::App& app, Action& action) {
+  auto* sub = app.add_subcommand("sketch", "Make sketches automatically");
+  sub->require_subcommand(1);
+  auto* autoCmd = sub->add_subcommand("auto", "An automatic sketch of a point cloud, saved as JSON");
+  auto o = std::make_shared<AutoOptions>();
+  std::vector<std::string> names;
+  for (const auto& [name, m] : autoSketchMethods()) names.push_back(name);
+  autoCmd->add_option("cloud", o->cloud, "Point cloud (.ply .xyz .txt .csv .pts .las)")->required();
+  autoCmd->add_option("-n,--nodes", o->nodes, "Number of nodes (default 18, as the thesis's automatic sketches)");
+  autoCmd->add_option("--view", o->view, "front, side, top, or a camera JSON file {view, projection, viewport}");
+  autoCmd->add_option("--method", o->method, "Automatic method")->check(CLI::IsMember(names));
+  autoCmd->add_option("--up", o->up, "World up axis: y or z")->check(CLI::IsMember({"y", "z", "Y", "Z"}));
+  autoCmd->add_flag("--ortho", o->ortho, "Orthographic preset camera (default perspective, 30° field of view)");
+  autoCmd->add_option("--width", o->width, "Viewport width of a preset camera, pixels (default 1280)");
+  autoCmd->add_option("--height", o->height, "Viewport height of a preset camera, pixels (default 800)");
+  autoCmd->add_option("-o,--output", o->output, "Output sketch (.json)")->required();
+  autoCmd->callback([o, &action] { action = [o] { runAuto(*o); }; });
+}
+
+}  // namespace treesketch::cli

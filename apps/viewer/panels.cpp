@@ -1,0 +1,239 @@
+#include "panels.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace treesketch::gui {
+
+using viewer::NodeStatus;
+
+geom::Viewport Layout::sceneViewport(int width, int height) {
+  geom::Viewport vp;
+  vp.x = kPanelWidth;
+  vp.y = 0;
+  vp.width = std::max(1.0, width - static_cast<double>(kPanelWidth));
+  vp.height = std::max(1.0, height - static_cast<double>(kStatusHeight));
+  return vp;
+}
+
+namespace {
+
+ImU32 rgb(const unsigned char c[3], int alpha = 255) { return IM_COL32(c[0], c[1], c[2], alpha); }
+
+/// A logarithmic slider for a world-unit size; returns true when the value changed.
+bool sizeSlider(const char* label, double* value, double lo, double hi) {
+  float v = static_cast<float>(*value);
+  bool changed = ImGui::SliderFloat(label, &v, static_cast<float>(lo), static_cast<float>(hi), "%.4f",
+                                    ImGuiSliderFlags_Logarithmic);
+  if (changed) *value = v;
+  return changed;
+}
+
+void samplingControls(viewer::ViewerState& state) {
+  const sketch::Sketch& sk = state.sketch();
+  bool haveNode = state.selected() != sketch::kNoNode && sk.contains(state.selected());
+  sketch::SamplingParams p = haveNode ? sk.node(state.selected()).params : sk.defaults;
+  double diag = std::max(state.cloud().bounds().diagonal(), 1e-6);
+  double slice = p.sliceHalfThickness, line = p.lineEpsilon;
+  if (sizeSlider("slice half-thickness", &slice, 1e-4 * diag, 0.1 * diag)) state.setSliceHalfThickness(slice);
+  if (ImGui::IsItemDeactivatedAfterEdit()) state.finishEdit();
+  if (sizeSlider("lineEpsilon", &line, 1e-3 * diag, 0.5 * diag)) state.setLineEpsilon(line);
+  if (ImGui::IsItemDeactivatedAfterEdit()) state.finishEdit();
+  if (haveNode) {
+    bool enabled = p.enabled;
+    if (ImGui::Checkbox("enabled", &enabled)) state.setNodeEnabled(enabled);
+  }
+}
+
+void selectedNodeSection(viewer::ViewerState& state) {
+  const sketch::Sketch& sk = state.sketch();
+  sketch::NodeId id = state.selected();
+  if (id == sketch::kNoNode || !sk.contains(id)) {
+    ImGui::TextDisabled("No node selected: sizes for new nodes");
+    samplingControls(state);
+    return;
+  }
+  const sketch::Node& node = sk.node(id);
+  viewer::NodeFitView fit = state.nodeFit(id);
+  ImGui::Text("Node %d  (parent %d, %zu children)", id, node.parent, node.children.size());
+  ImVec4 statusColor = fit.status == NodeStatus::Fitted    ? ImVec4(0.3f, 0.9f, 0.4f, 1)
+                       : fit.status == NodeStatus::Skipped ? ImVec4(1.0f, 0.4f, 0.2f, 1)
+                                                           : ImVec4(0.8f, 0.8f, 0.8f, 1);
+  ImGui::TextColored(statusColor, "%s", viewer::toString(fit.status));
+  if (fit.status == NodeStatus::Fitted) {
+    ImGui::Text("circle: radius %.4f at (%.3f, %.3f, %.3f)", fit.circle.radius, fit.circle.centre.x(),
+                fit.circle.centre.y(), fit.circle.centre.z());
+    ImGui::Text("inliers %zu of %zu test points", fit.inliers, fit.testPoints);
+    ImGui::Text("lineEpsilon used: %.4f", fit.finalLineEpsilon);
+  } else if (fit.status == NodeStatus::Skipped) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(statusColor, "why: %s", fit.reason.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  samplingControls(state);
+  if (ImGui::Button("Delete node")) state.deleteSelected(false);
+  ImGui::SameLine();
+  if (ImGui::Button("Delete subtree")) state.deleteSelected(true);
+  ImGui::SameLine();
+  if (ImGui::Button("Deselect")) state.selectNode(sketch::kNoNode);
+}
+
+void displaySection(viewer::ViewerState& state) {
+  viewer::DisplayOptions& d = state.display();
+  const char* colorModes[] = {"height", "distance to circles", "plain"};
+  int cm = static_cast<int>(d.colorMode);
+  if (ImGui::Combo("colour", &cm, colorModes, 3)) d.colorMode = static_cast<viewer::ColorMode>(cm);
+  ImGui::SliderFloat("point size", &d.pointSize, 1.0f, 8.0f, "%.1f px");
+  int ms = static_cast<int>(d.meshStyle);
+  ImGui::Text("tubes:");
+  ImGui::SameLine();
+  ImGui::RadioButton("solid", &ms, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("wireframe", &ms, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("hidden", &ms, 2);
+  d.meshStyle = static_cast<viewer::MeshStyle>(ms);
+  ImGui::Checkbox("cloud", &d.showCloud);
+  ImGui::SameLine();
+  ImGui::Checkbox("nodes", &d.showNodes);
+  ImGui::SameLine();
+  ImGui::Checkbox("circles", &d.showCircles);
+  ImGui::Checkbox("sampling region of the selected node", &d.showSamplingRegion);
+  bool ortho = state.orbit().orthographic();
+  if (ImGui::Checkbox("orthographic", &ortho)) state.setOrthographic(ortho);
+  if (ImGui::Button("Front")) state.presetView(geom::PresetView::Front);
+  ImGui::SameLine();
+  if (ImGui::Button("Side")) state.presetView(geom::PresetView::Side);
+  ImGui::SameLine();
+  if (ImGui::Button("Top")) state.presetView(geom::PresetView::Top);
+  ImGui::SameLine();
+  if (ImGui::Button("Fit")) state.fitView();
+}
+
+void messagesSection(const viewer::ViewerState& state) {
+  const auto& msgs = state.messages();
+  std::size_t first = msgs.size() > 6 ? msgs.size() - 6 : 0;
+  ImGui::PushTextWrapPos(0.0f);
+  for (std::size_t i = first; i < msgs.size(); ++i) {
+    if (msgs[i].error) ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", msgs[i].text.c_str());
+    else ImGui::TextDisabled("%s", msgs[i].text.c_str());
+  }
+  ImGui::PopTextWrapPos();
+}
+
+}  // namespace
+
+void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height) {
+  ImGui::SetNextWindowPos(ImVec2(0, 0));
+  ImGui::SetNextWindowSize(ImVec2(Layout::kPanelWidth, height - Layout::kStatusHeight));
+  ImGui::Begin("treesketch", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar);
+  ImGui::PushItemWidth(150);
+  ImGui::TextUnformatted("treesketch");
+  ImGui::TextDisabled("%s", panel.inputName.c_str());
+  ImGui::Text("%zu points, %zu nodes", state.cloud().size(), state.sketch().size());
+
+  if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::InputText("sketch", &panel.sketchPath);
+    if (ImGui::Button("Load sketch")) state.loadSketch(panel.sketchPath);
+    ImGui::SameLine();
+    if (ImGui::Button("Save sketch")) state.saveSketch(panel.sketchPath);
+    ImGui::InputText("mesh", &panel.meshPath);
+    if (ImGui::Button("Export mesh (OBJ/PLY)")) state.exportMesh(panel.meshPath);
+    ImGui::InputText("png", &panel.screenshotPath);
+    if (ImGui::Button("Screenshot")) panel.screenshotRequested = true;
+  }
+  if (ImGui::CollapsingHeader("Sketch", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::SliderInt("nodes", &panel.autoNodes, 2, 40);
+    ImGui::SameLine();
+    if (ImGui::Button("Auto")) state.autoSketchUniform(panel.autoNodes);
+    if (ImGui::Button("Auto skeleton")) state.autoSketchSkeleton();
+    ImGui::SameLine();
+    if (ImGui::Button("Clear")) state.clearSketch();
+    ImGui::BeginDisabled(!state.canUndo());
+    if (ImGui::Button("Undo")) state.undo();
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!state.canRedo());
+    if (ImGui::Button("Redo")) state.redo();
+    ImGui::EndDisabled();
+    if (state.canUndo()) {
+      ImGui::SameLine();
+      ImGui::TextDisabled("(%s)", state.history().undoLabel().c_str());
+    }
+  }
+  if (ImGui::CollapsingHeader("Node", ImGuiTreeNodeFlags_DefaultOpen)) selectedNodeSection(state);
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) displaySection(state);
+  if (ImGui::CollapsingHeader("Help", panel.showHelp ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled(
+        "Left click: add a node (child of the active one) / select a node. Left drag on a node: move it. "
+        "Right drag: orbit. Middle or Shift+right drag: pan. Wheel: zoom. Delete: remove node "
+        "(Shift: with subtree). Ctrl+Z / Ctrl+Y: undo / redo. 1 2 3: front, side, top. F: fit. O: ortho.");
+    ImGui::PopTextWrapPos();
+  }
+  ImGui::Separator();
+  messagesSection(state);
+  ImGui::PopItemWidth();
+  ImGui::End();
+
+  // Status bar.
+  ImGui::SetNextWindowPos(ImVec2(0, height - Layout::kStatusHeight));
+  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(width), Layout::kStatusHeight));
+  ImGui::Begin("status", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
+                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoSavedSettings);
+  viewer::StatusMessage last = state.lastMessage();
+  ImGui::Text("%zu points | %zu nodes: %zu fitted, %zu skipped | last rebuild %.2f ms | %s |", state.cloud().size(),
+              state.sketch().size(), state.fittedCount(), state.skippedCount(), state.lastRebuildMs(),
+              state.orbit().orthographic() ? "orthographic" : "perspective");
+  ImGui::SameLine();
+  if (last.error) ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", last.text.c_str());
+  else ImGui::TextUnformatted(last.text.c_str());
+  ImGui::End();
+}
+
+void drawMarkers(const viewer::ViewerState& state) {
+  if (!state.display().showNodes) return;
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  geom::Viewport vp = state.orbit().viewport();
+  dl->PushClipRect(ImVec2(static_cast<float>(vp.x), static_cast<float>(vp.y)),
+                   ImVec2(static_cast<float>(vp.x + vp.width), static_cast<float>(vp.y + vp.height)));
+  std::vector<viewer::NodeMarker> markers = state.nodeMarkers();
+  auto find = [&](sketch::NodeId id) -> const viewer::NodeMarker* {
+    for (const auto& m : markers)
+      if (m.id == id) return &m;
+    return nullptr;
+  };
+  for (const auto& m : markers) {
+    const viewer::NodeMarker* p = m.parent == sketch::kNoNode ? nullptr : find(m.parent);
+    if (!p || !m.visible || !p->visible) continue;
+    dl->AddLine(ImVec2(float(p->screen.x()), float(p->screen.y())), ImVec2(float(m.screen.x()), float(m.screen.y())),
+                IM_COL32(255, 235, 120, 220), 2.0f);
+  }
+  for (const auto& m : markers) {
+    if (!m.visible) continue;
+    ImVec2 c(float(m.screen.x()), float(m.screen.y()));
+    const unsigned char* fill = m.status == NodeStatus::Fitted    ? kMarkerFitted
+                                : m.status == NodeStatus::Skipped ? kMarkerSkipped
+                                                                  : kMarkerPending;
+    if (m.inCurrentView) {
+      dl->AddCircleFilled(c, 6.0f, rgb(fill), 20);
+    } else {
+      dl->AddCircle(c, 6.0f, rgb(fill), 20, 2.5f);  // drawn under another view
+    }
+    dl->AddCircle(c, 7.0f, IM_COL32(20, 20, 20, 255), 20, 1.5f);
+    if (m.active) dl->AddCircle(c, 10.5f, IM_COL32(255, 230, 0, 255), 24, 2.0f);
+    if (m.selected) dl->AddCircle(c, 14.0f, IM_COL32(255, 255, 255, 255), 24, 2.0f);
+    char label[16];
+    std::snprintf(label, sizeof label, "%d", m.id);
+    dl->AddText(ImVec2(c.x + 9, c.y - 18), IM_COL32(255, 255, 255, 230), label);
+  }
+  dl->PopClipRect();
+}
+
+}  // namespace treesketch::gui

@@ -1,0 +1,42 @@
+// The window's Dear ImGui parts: the side panel (file actions, sketch tools, the selected node's
+// sampling sizes and fit, display options, messages), the status bar, and the node markers drawn
+// over the 3D view. Every button calls one ViewerState action; nothing here keeps sketch state.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "treesketch/viewer/viewer_state.h"
+
+namespace treesketch::gui {
+
+/// Window layout in pixels: the side panel on the left, the status bar at the bottom, the 3D view
+/// in the rest.
+struct Layout {
+  static constexpr float kPanelWidth = 340.0f;
+  static constexpr float kStatusHeight = 26.0f;
+  /// The 3D view's rectangle for a window of `width` x `height` pixels.
+  static geom::Viewport sceneViewport(int width, int height);
+};
+
+/// Marker fill colours (RGB), shared with the screenshot checker through the docs.
+inline constexpr unsigned char kMarkerFitted[3] = {60, 220, 90};
+inline constexpr unsigned char kMarkerSkipped[3] = {255, 80, 40};
+inline constexpr unsigned char kMarkerPending[3] = {200, 200, 200};
+
+struct PanelState {
+  std::string sketchPath;      ///< the Load / Save sketch path
+  std::string meshPath = "treesketch_mesh.obj";
+  std::string screenshotPath = "treesketch_screenshot.png";
+  std::string inputName;       ///< shown at the top
+  int autoNodes = 12;
+  bool screenshotRequested = false;  ///< set by the Screenshot button; the main loop takes it
+  bool showHelp = true;
+};
+
+/// Builds the side panel and the status bar for this frame (between ImGui::NewFrame and Render).
+void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height);
+/// Draws node markers and parent links over the 3D view (ImGui background draw list).
+void drawMarkers(const viewer::ViewerState& state);
+
+}  // namespace treesketch::gui

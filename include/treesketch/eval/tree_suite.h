@@ -1,0 +1,42 @@
+// Test trees with a known answer for the evaluation: a branch mesh (the reference surface), an
+// optional leaf mesh (occlusion and noise in leaf-on scans) and the true branch axes (what a
+// careful user would trace). Two sources: the built-in generator (always available) and a folder
+// of third-party trees in the ez-tree layout (<name>.branches.obj, <name>.leaves.obj,
+// <name>.json with a "skeleton.limbs" list; see ../shared/data/trees/README.md).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "treesketch/geom/tri_mesh.h"
+#include "treesketch/geom/types.h"
+#include "treesketch/sketch/polyline_sketch.h"
+
+namespace treesketch::eval {
+
+struct TreeCase {
+  std::string name;
+  geom::TriMesh branches;                       ///< reference surface (trunk and branches)
+  geom::TriMesh leaves;                         ///< may be empty
+  std::vector<sketch::BranchPolyline> axes;     ///< true branch axes, trunk first
+  std::vector<std::vector<double>> axisRadii;   ///< radius at each axis vertex (same shape as axes)
+  geom::UpAxis up = geom::UpAxis::Y;
+};
+
+/// `count` trees from the built-in generator: presets "default", "sparse", "conifer" cycling,
+/// seeds 1, 2, 3...; with leaves. Deterministic.
+std::vector<TreeCase> builtinTrees(int count);
+
+/// Reads every <name>.json in `folder` that has a matching <name>.branches.obj: the branch mesh,
+/// the leaf mesh when <name>.leaves.obj exists, and the limbs of the JSON skeleton as axes
+/// (each limb's parent vertex = its parent limb's section nearest to the limb's first centre).
+/// Sorted by name. Throws InputError naming the file for a malformed JSON or mesh, and when the
+/// folder holds no tree.
+std::vector<TreeCase> loadTreeFolder(const std::filesystem::path& folder);
+
+/// Reads one ez-tree JSON skeleton's limbs as axes (and radii). Throws InputError naming the file.
+void readEzTreeAxes(const std::filesystem::path& json, std::vector<sketch::BranchPolyline>& axes,
+                    std::vector<std::vector<double>>& radii);
+
+}  // namespace treesketch::eval

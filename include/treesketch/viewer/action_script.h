@@ -1,0 +1,93 @@
+// Scripted sessions for the viewer (`treesketch gui --script ACTIONS.json`): a JSON list of what a
+// person does — clicks and drags at window positions, key presses, slider values, buttons, save,
+// export, screenshot — parsed into actions and applied to a ViewerState one by one. The window
+// draws a frame after each action and takes the screenshots; tests run scripts without a window.
+//
+// Format: either a JSON array of actions or {"window": [width, height], "actions": [...]}.
+// An action is an object with one verb key, or a string "VERB [ARGUMENT]":
+//   {"click": [x, y], "button": "left"|"right"|"middle", "mods": "shift+ctrl"}
+//   {"drag": [[x0, y0], [x1, y1]], "button": ..., "mods": ..., "steps": 8}
+//   {"scroll": steps}                      wheel notches, positive zooms in
+//   {"key": "ctrl+z"}                      see ViewerState::keyPress
+//   {"slider": "sliceHalfThickness"|"lineEpsilon"|"pointSize", "value": number}
+//   {"option": "colorMode"|"meshStyle"|"projection"|"showCloud"|"showNodes"|"showCircles"|
+//              "showRegion", "value": "height"|"wireframe"|"ortho"|true|...}
+//   {"view": "front"|"side"|"top"|"fit"}
+//   {"select": nodeId}                     -1 clears the selection
+//   {"button": "autoSketch"|"autoSkeleton"|"undo"|"redo"|"clear"|"fit"|"delete"|"deleteSubtree"}
+//   {"save": PATH}, {"load": PATH}, {"export": PATH}, {"screenshot": PATH}   ("save"/"load"
+//                                          without a path use the session's sketch path)
+//   {"wait": frames}
+//   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
+//               "errors": n, "meshTriangles": n}}   ("meshTriangles" checks "at least n")
+// Paths are relative to the current directory.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <istream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "treesketch/geom/types.h"
+#include "treesketch/viewer/viewer_state.h"
+
+namespace treesketch::viewer {
+
+struct ScriptAction {
+  enum class Kind { Click, Drag, Scroll, Key, Slider, Option, View, Select, Button, Save, Load, Export, Screenshot,
+                    Wait, Expect };
+  Kind kind = Kind::Wait;
+  std::size_t index = 0;  ///< position in the script (0-based), for messages
+  geom::Vec2 from = geom::Vec2::Zero(), to = geom::Vec2::Zero();
+  MouseButton button = MouseButton::Left;
+  int mods = kModNone;
+  int steps = 8;             ///< drag: mouse moves; wait: frames
+  double value = 0.0;        ///< scroll steps, slider value, select id
+  std::string name;          ///< key, slider, option, view or button name
+  std::string text;          ///< option value (text form)
+  std::filesystem::path path;
+  std::vector<std::pair<std::string, double>> expect;
+};
+
+struct ActionScript {
+  int windowWidth = 1280, windowHeight = 800;  ///< pixels
+  std::vector<ScriptAction> actions;
+};
+
+/// Parses a script. Throws InputError naming `source`, the action's index and what was expected
+/// (or the byte offset of malformed JSON) for: malformed JSON, an unknown verb, a missing or
+/// non-numeric coordinate, NaN/Inf, an unknown button/modifier/slider/option/view name, a
+/// non-positive window size. An empty action list is valid.
+ActionScript parseActionScript(std::istream& in, const std::string& source);
+ActionScript parseActionScript(const std::filesystem::path& path);
+
+struct ScriptHooks {
+  /// Draws one frame (called after every action; may be empty when there is no window).
+  std::function<void()> frame;
+  /// Writes a screenshot of the current frame; throws on failure. Empty: screenshots fail with a
+  /// message ("needs a window").
+  std::function<void(const std::filesystem::path&)> screenshot;
+  /// The sketch path "save"/"load" use when the action gives none.
+  std::filesystem::path sketchPath;
+  /// Called with each action's index and a one-line description before it runs (logging).
+  std::function<void(const ScriptAction&, const std::string&)> log;
+};
+
+struct ScriptReport {
+  std::size_t actionsRun = 0;
+  /// One line per failed action ("action 3 (export mesh.obj): no mesh to export ...").
+  std::vector<std::string> failures;
+  bool ok() const { return failures.empty(); }
+};
+
+/// Applies every action to `state` in order; an action that fails (an error status message, a
+/// failed expectation, a failed screenshot) is recorded and the script goes on, as a person would.
+ScriptReport runActionScript(ViewerState& state, const ActionScript& script, const ScriptHooks& hooks = {});
+
+/// A one-line description of an action ("click (640, 300) left").
+std::string describe(const ScriptAction& action);
+
+}  // namespace treesketch::viewer

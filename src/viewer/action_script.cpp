@@ -1,0 +1,389 @@
+#include "treesketch/viewer/action_script.h"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "treesketch/util/error.h"
+
+namespace treesketch::viewer {
+
+using nlohmann::json;
+using Kind = ScriptAction::Kind;
+
+namespace {
+
+class Parser {
+ public:
+  explicit Parser(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(std::size_t index, const std::string& what) const {
+    throw InputError(source_ + ": action " + std::to_string(index) + ": " + what);
+  }
+
+  double number(const json& j, std::size_t index, const std::string& what) const {
+    if (!j.is_number()) fail(index, what + ": expected a number, got " + j.dump());
+    double v = j.get<double>();
+    if (!std::isfinite(v)) fail(index, what + ": not a finite number");
+    return v;
+  }
+
+  geom::Vec2 point(const json& j, std::size_t index, const std::string& what) const {
+    if (!j.is_array() || j.size() != 2) fail(index, what + ": expected [x, y], got " + j.dump());
+    return geom::Vec2(number(j[0], index, what + " x"), number(j[1], index, what + " y"));
+  }
+
+  std::string string(const json& j, std::size_t index, const std::string& what) const {
+    if (!j.is_string()) fail(index, what + ": expected a string, got " + j.dump());
+    return j.get<std::string>();
+  }
+
+  MouseButton button(const std::string& s, std::size_t index) const {
+    if (s == "left") return MouseButton::Left;
+    if (s == "right") return MouseButton::Right;
+    if (s == "middle") return MouseButton::Middle;
+    fail(index, "button must be 'left', 'right' or 'middle', got '" + s + "'");
+  }
+
+  int mods(const std::string& s, std::size_t index) const {
+    int m = kModNone;
+    std::stringstream ss(s);
+    std::string part;
+    while (std::getline(ss, part, '+')) {
+      if (part == "shift") m |= kModShift;
+      else if (part == "ctrl") m |= kModCtrl;
+      else if (part == "alt") m |= kModAlt;
+      else if (!part.empty()) fail(index, "modifier must be shift, ctrl or alt, got '" + part + "'");
+    }
+    return m;
+  }
+
+  ScriptAction fromString(const std::string& s, std::size_t index) const {
+    ScriptAction a;
+    a.index = index;
+    std::string verb = s, arg;
+    if (auto sp = s.find(' '); sp != std::string::npos) {
+      verb = s.substr(0, sp);
+      arg = s.substr(s.find_first_not_of(' ', sp) == std::string::npos ? s.size() : s.find_first_not_of(' ', sp));
+    }
+    if (verb == "save" || verb == "load" || verb == "export" || verb == "screenshot") {
+      a.kind = verb == "save" ? Kind::Save : verb == "load" ? Kind::Load : verb == "export" ? Kind::Export
+                                                                                           : Kind::Screenshot;
+      a.path = arg;
+      if (arg.empty() && (a.kind == Kind::Export || a.kind == Kind::Screenshot)) fail(index, verb + " needs a PATH");
+    } else if (verb == "key") {
+      if (arg.empty()) fail(index, "key needs a key name");
+      a.kind = Kind::Key;
+      a.name = arg;
+    } else if (verb == "view") {
+      a.kind = Kind::View;
+      a.name = arg;
+      checkView(a.name, index);
+    } else if (verb == "undo" || verb == "redo" || verb == "fit" || verb == "clear" || verb == "autoSketch" ||
+               verb == "autoSkeleton" || verb == "delete" || verb == "deleteSubtree") {
+      a.kind = Kind::Button;
+      a.name = verb;
+    } else if (verb == "wait") {
+      a.kind = Kind::Wait;
+      a.steps = arg.empty() ? 1 : std::atoi(arg.c_str());
+    } else {
+      fail(index, "unknown action '" + s + "'");
+    }
+    return a;
+  }
+
+  void checkView(const std::string& v, std::size_t index) const {
+    if (v != "front" && v != "side" && v != "top" && v != "fit")
+      fail(index, "view must be front, side, top or fit, got '" + v + "'");
+  }
+
+  ScriptAction fromObject(const json& j, std::size_t index) const {
+    ScriptAction a;
+    a.index = index;
+    if (j.contains("button") && !j["button"].is_string()) fail(index, "button: expected a string");
+    if (j.contains("mods")) a.mods = mods(string(j["mods"], index, "mods"), index);
+    if (j.contains("click")) {
+      a.kind = Kind::Click;
+      a.from = a.to = point(j["click"], index, "click");
+      if (j.contains("button")) a.button = button(j["button"].get<std::string>(), index);
+    } else if (j.contains("drag")) {
+      a.kind = Kind::Drag;
+      const json& d = j["drag"];
+      if (!d.is_array() || d.size() != 2) fail(index, "drag: expected [[x0, y0], [x1, y1]]");
+      a.from = point(d[0], index, "drag start");
+      a.to = point(d[1], index, "drag end");
+      if (j.contains("button")) a.button = button(j["button"].get<std::string>(), index);
+      if (j.contains("steps")) a.steps = static_cast<int>(number(j["steps"], index, "steps"));
+      if (a.steps < 1) fail(index, "steps must be at least 1");
+    } else if (j.contains("scroll")) {
+      a.kind = Kind::Scroll;
+      a.value = number(j["scroll"], index, "scroll");
+    } else if (j.contains("key")) {
+      a.kind = Kind::Key;
+      a.name = string(j["key"], index, "key");
+    } else if (j.contains("slider")) {
+      a.kind = Kind::Slider;
+      a.name = string(j["slider"], index, "slider");
+      if (a.name != "sliceHalfThickness" && a.name != "lineEpsilon" && a.name != "pointSize")
+        fail(index, "slider must be sliceHalfThickness, lineEpsilon or pointSize, got '" + a.name + "'");
+      if (!j.contains("value")) fail(index, "slider needs a \"value\"");
+      a.value = number(j["value"], index, "value");
+    } else if (j.contains("option")) {
+      a.kind = Kind::Option;
+      a.name = string(j["option"], index, "option");
+      if (!j.contains("value")) fail(index, "option needs a \"value\"");
+      const json& v = j["value"];
+      if (v.is_boolean()) a.text = v.get<bool>() ? "true" : "false";
+      else a.text = string(v, index, "value");
+      static const char* kOptions[] = {"colorMode", "meshStyle",   "projection", "showCloud",
+                                       "showNodes", "showCircles", "showRegion"};
+      bool known = false;
+      for (const char* o : kOptions) known |= a.name == o;
+      if (!known) fail(index, "unknown option '" + a.name + "'");
+    } else if (j.contains("view")) {
+      a.kind = Kind::View;
+      a.name = string(j["view"], index, "view");
+      checkView(a.name, index);
+    } else if (j.contains("select")) {
+      a.kind = Kind::Select;
+      a.value = number(j["select"], index, "select");
+    } else if (j.contains("button")) {
+      ScriptAction b = fromString(j["button"].get<std::string>(), index);
+      if (b.kind != Kind::Button) fail(index, "unknown button '" + j["button"].get<std::string>() + "'");
+      return b;
+    } else if (j.contains("save") || j.contains("load") || j.contains("export") || j.contains("screenshot")) {
+      std::string verb = j.contains("save") ? "save" : j.contains("load") ? "load" : j.contains("export") ? "export"
+                                                                                                        : "screenshot";
+      const json& p = j[verb];
+      std::string path = p.is_null() ? std::string() : string(p, index, verb);
+      return fromString(path.empty() ? verb : verb + " " + path, index);
+    } else if (j.contains("wait")) {
+      a.kind = Kind::Wait;
+      a.steps = static_cast<int>(number(j["wait"], index, "wait"));
+    } else if (j.contains("expect")) {
+      a.kind = Kind::Expect;
+      const json& e = j["expect"];
+      if (!e.is_object()) fail(index, "expect: expected an object");
+      static const char* kKeys[] = {"nodes", "fitted", "skipped", "selected", "active", "errors", "meshTriangles"};
+      for (const auto& [k, v] : e.items()) {
+        bool known = false;
+        for (const char* key : kKeys) known |= k == key;
+        if (!known) fail(index, "expect: unknown key '" + k + "'");
+        a.expect.emplace_back(k, number(v, index, "expect " + k));
+      }
+    } else {
+      fail(index, "unknown action " + j.dump());
+    }
+    return a;
+  }
+
+  ActionScript parse(std::istream& in) const {
+    json doc;
+    try {
+      doc = json::parse(in);
+    } catch (const json::parse_error& e) {
+      throw InputError(atOffset(source_, e.byte, std::string("malformed JSON: ") + e.what()));
+    }
+    ActionScript script;
+    const json* list = &doc;
+    if (doc.is_object()) {
+      if (doc.contains("window")) {
+        const json& w = doc["window"];
+        if (!w.is_array() || w.size() != 2 || !w[0].is_number_integer() || !w[1].is_number_integer() ||
+            w[0].get<int>() <= 0 || w[1].get<int>() <= 0)
+          throw InputError(source_ + ": \"window\": expected [width, height] in positive pixels");
+        script.windowWidth = w[0].get<int>();
+        script.windowHeight = w[1].get<int>();
+      }
+      if (!doc.contains("actions")) throw InputError(source_ + ": expected an \"actions\" list");
+      list = &doc["actions"];
+    }
+    if (!list->is_array()) throw InputError(source_ + ": expected a list of actions");
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const json& a = (*list)[i];
+      if (a.is_string()) script.actions.push_back(fromString(a.get<std::string>(), i));
+      else if (a.is_object()) script.actions.push_back(fromObject(a, i));
+      else fail(i, "expected an object or a string, got " + a.dump());
+    }
+    return script;
+  }
+
+ private:
+  std::string source_;
+};
+
+const char* buttonName(MouseButton b) {
+  return b == MouseButton::Left ? "left" : b == MouseButton::Right ? "right" : "middle";
+}
+
+bool parseBool(const std::string& s) {
+  if (s == "true" || s == "on" || s == "1") return true;
+  if (s == "false" || s == "off" || s == "0") return false;
+  throw OptionsError("expected true or false, got '" + s + "'");
+}
+
+void applyOption(ViewerState& state, const std::string& name, const std::string& value) {
+  DisplayOptions& d = state.display();
+  if (name == "colorMode") d.colorMode = parseColorMode(value);
+  else if (name == "meshStyle") d.meshStyle = parseMeshStyle(value);
+  else if (name == "projection") {
+    if (value != "ortho" && value != "orthographic" && value != "perspective")
+      throw OptionsError("projection must be 'ortho' or 'perspective', got '" + value + "'");
+    state.setOrthographic(value != "perspective");
+  } else if (name == "showCloud") d.showCloud = parseBool(value);
+  else if (name == "showNodes") d.showNodes = parseBool(value);
+  else if (name == "showCircles") d.showCircles = parseBool(value);
+  else if (name == "showRegion") d.showSamplingRegion = parseBool(value);
+  else throw OptionsError("unknown option '" + name + "'");
+}
+
+/// Checks one expectation; returns "" or what differs.
+std::string checkExpect(const ViewerState& state, const std::string& key, double want) {
+  double got = 0;
+  if (key == "nodes") got = static_cast<double>(state.sketch().size());
+  else if (key == "fitted") got = static_cast<double>(state.fittedCount());
+  else if (key == "skipped") got = static_cast<double>(state.skippedCount());
+  else if (key == "selected") got = state.selected();
+  else if (key == "active") got = state.active();
+  else if (key == "errors") got = static_cast<double>(state.errorCount());
+  else if (key == "meshTriangles") {
+    got = static_cast<double>(state.mesh().triangles.size());
+    if (got >= want) return {};
+    return key + ": expected at least " + std::to_string(static_cast<long long>(want)) + ", got " +
+           std::to_string(static_cast<long long>(got));
+  }
+  if (got == want) return {};
+  return key + ": expected " + std::to_string(static_cast<long long>(want)) + ", got " +
+         std::to_string(static_cast<long long>(got));
+}
+
+}  // namespace
+
+ActionScript parseActionScript(std::istream& in, const std::string& source) { return Parser(source).parse(in); }
+
+ActionScript parseActionScript(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot open the script");
+  return parseActionScript(in, path.string());
+}
+
+std::string describe(const ScriptAction& a) {
+  auto pt = [](const geom::Vec2& p) {
+    std::ostringstream s;
+    s << "(" << p.x() << ", " << p.y() << ")";
+    return s.str();
+  };
+  switch (a.kind) {
+    case Kind::Click: return "click " + pt(a.from) + " " + buttonName(a.button);
+    case Kind::Drag: return "drag " + pt(a.from) + " -> " + pt(a.to) + " " + buttonName(a.button);
+    case Kind::Scroll: return "scroll " + std::to_string(a.value);
+    case Kind::Key: return "key " + a.name;
+    case Kind::Slider: return "slider " + a.name + " = " + std::to_string(a.value);
+    case Kind::Option: return "option " + a.name + " = " + a.text;
+    case Kind::View: return "view " + a.name;
+    case Kind::Select: return "select " + std::to_string(static_cast<int>(a.value));
+    case Kind::Button: return "button " + a.name;
+    case Kind::Save: return "save " + a.path.string();
+    case Kind::Load: return "load " + a.path.string();
+    case Kind::Export: return "export " + a.path.string();
+    case Kind::Screenshot: return "screenshot " + a.path.string();
+    case Kind::Wait: return "wait " + std::to_string(a.steps);
+    case Kind::Expect: {
+      std::string s = "expect";
+      for (const auto& [k, v] : a.expect) s += " " + k + "=" + std::to_string(static_cast<long long>(v));
+      return s;
+    }
+  }
+  return "?";
+}
+
+ScriptReport runActionScript(ViewerState& state, const ActionScript& script, const ScriptHooks& hooks) {
+  ScriptReport report;
+  for (const ScriptAction& a : script.actions) {
+    std::string what = describe(a);
+    if (hooks.log) hooks.log(a, what);
+    std::size_t errorsBefore = state.errorCount();
+    std::string failure;
+    try {
+      switch (a.kind) {
+        case Kind::Click: state.clickAt(a.from, a.button, a.mods); break;
+        case Kind::Drag: {
+          // Move in steps, drawing a frame after each, as a real drag would.
+          state.mouseDown(a.from, a.button, a.mods);
+          for (int i = 1; i <= a.steps; ++i) {
+            state.mouseMove(a.from + (a.to - a.from) * (double(i) / a.steps));
+            if (hooks.frame) hooks.frame();
+          }
+          state.mouseUp(a.to, a.button, a.mods);
+          break;
+        }
+        case Kind::Scroll: state.scroll(a.value); break;
+        case Kind::Key:
+          if (!state.keyPress(a.name, a.mods)) failure = "no action is bound to key '" + a.name + "'";
+          break;
+        case Kind::Slider:
+          if (a.name == "sliceHalfThickness") state.setSliceHalfThickness(a.value);
+          else if (a.name == "lineEpsilon") state.setLineEpsilon(a.value);
+          else if (a.name == "pointSize") {
+            if (!(a.value > 0)) throw OptionsError("pointSize must be positive");
+            state.display().pointSize = static_cast<float>(a.value);
+          }
+          break;
+        case Kind::Option: applyOption(state, a.name, a.text); break;
+        case Kind::View:
+          if (a.name == "fit") state.fitView();
+          else state.presetView(geom::parsePresetView(a.name));
+          break;
+        case Kind::Select: state.selectNode(static_cast<sketch::NodeId>(a.value)); break;
+        case Kind::Button:
+          if (a.name == "undo") state.undo();
+          else if (a.name == "redo") state.redo();
+          else if (a.name == "fit") state.fitView();
+          else if (a.name == "clear") state.clearSketch();
+          else if (a.name == "autoSketch") state.autoSketchUniform();
+          else if (a.name == "autoSkeleton") state.autoSketchSkeleton();
+          else if (a.name == "delete") state.deleteSelected(false);
+          else if (a.name == "deleteSubtree") state.deleteSelected(true);
+          break;
+        case Kind::Save:
+        case Kind::Load: {
+          std::filesystem::path p = a.path.empty() ? hooks.sketchPath : a.path;
+          if (p.empty()) throw OptionsError("no sketch path: give one (\"save PATH\") or start with --sketch");
+          if (a.kind == Kind::Save) state.saveSketch(p);
+          else state.loadSketch(p);
+          break;
+        }
+        case Kind::Export: state.exportMesh(a.path); break;
+        case Kind::Screenshot:
+          if (!hooks.screenshot) throw OptionsError("screenshots need a window");
+          if (hooks.frame) hooks.frame();
+          hooks.screenshot(a.path);
+          state.info("screenshot written to " + a.path.string());
+          break;
+        case Kind::Wait:
+          for (int i = 0; i < a.steps && hooks.frame; ++i) hooks.frame();
+          break;
+        case Kind::Expect:
+          for (const auto& [k, v] : a.expect) {
+            std::string d = checkExpect(state, k, v);
+            if (!d.empty()) failure += (failure.empty() ? "" : "; ") + d;
+          }
+          break;
+      }
+    } catch (const std::exception& e) {
+      failure = e.what();
+      state.error(what + ": " + e.what());
+    }
+    if (failure.empty() && state.errorCount() > errorsBefore) failure = state.lastMessage().text;
+    if (!failure.empty()) {
+      report.failures.push_back("action " + std::to_string(a.index) + " (" + what + "): " + failure);
+      if (a.kind == Kind::Expect || a.kind == Kind::Key) state.error(report.failures.back());
+    }
+    ++report.actionsRun;
+    if (hooks.frame && a.kind != Kind::Wait && a.kind != Kind::Screenshot) hooks.frame();
+  }
+  return report;
+}
+
+}  // namespace treesketch::viewer

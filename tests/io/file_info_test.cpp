@@ -1,0 +1,87 @@
+#include "treesketch/io/file_info.h"
+
+#include <gtest/gtest.h>
+
+#include "io_test_util.h"
+#include "test_support.h"
+#include "treesketch/io/mesh_io.h"
+#include "treesketch/io/point_cloud_io.h"
+
+namespace treesketch::io {
+namespace {
+
+using testing::expectError;
+
+std::string detail(const FileInfo& info, const std::string& key) {
+  for (const auto& [k, v] : info.details)
+    if (k == key) return v;
+  return "<none>";
+}
+
+TEST(FileInfo, DescribesEachFormat) {
+  test::TempDir dir;
+  geom::TriMesh m;
+  m.vertices = {geom::Vec3(0, 0, 0), geom::Vec3(2, 0, 0), geom::Vec3(0, 2, 0)};
+  m.triangles = {{0, 1, 2}};
+  writeMesh(dir / "m.ply", m);
+  FileInfo a = inspectFile(dir / "m.ply");
+  EXPECT_EQ(a.format, "PLY binary_little_endian");
+  EXPECT_TRUE(a.isMesh);
+  EXPECT_EQ(a.mesh.triangles.size(), 1u);
+  EXPECT_DOUBLE_EQ(a.mesh.area(), 2.0);
+  EXPECT_EQ(detail(a, "element vertex"), "3 x (double x, double y, double z)");
+  EXPECT_EQ(detail(a, "element face"), "1 x (list uchar int vertex_indices)");
+
+  writeMesh(dir / "m.obj", m);
+  FileInfo b = inspectFile(dir / "m.obj");
+  EXPECT_EQ(b.format, "OBJ");
+  EXPECT_EQ(b.mesh.vertices.size(), 3u);
+
+  geom::PointCloud c;
+  c.positions = {geom::Vec3(1, 2, 3)};
+  writePointCloud(dir / "one.ply", c);
+  FileInfo d = inspectFile(dir / "one.ply");  // info accepts any non-empty cloud
+  EXPECT_FALSE(d.isMesh);
+  EXPECT_EQ(d.cloud.size(), 1u);
+
+  testing::LasSpec s;
+  s.versionMinor = 4;
+  s.pointFormat = 6;
+  s.points = {{1, 2, 3}, {4, 5, 6}};
+  test::writeText(dir / "p.las", testing::buildLas(s));
+  FileInfo e = inspectFile(dir / "p.las");
+  EXPECT_EQ(e.format, "LAS 1.4");
+  EXPECT_EQ(detail(e, "point data format"), "6");
+  EXPECT_EQ(detail(e, "scale"), "0.001 0.001 0.001");
+  EXPECT_EQ(e.cloud.size(), 2u);
+
+  expectError([&] { inspectFile(dir / "x.laz"); }, {"x.laz", "laszip"});
+  expectError([&] { inspectFile(dir / "x.doc"); }, {"x.doc", "unknown"});
+}
+
+TEST(InfoCli, BadFileExitsWithInputCodeAndOneLineNamingIt) {
+  test::TempDir dir;
+  auto bad = dir / "bad.ply";
+  test::writeText(bad, "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+                       "property float z\nend_header\n0 0 0\n1 1\n");
+  std::string out;
+  EXPECT_EQ(test::runCli("info '" + bad.string() + "'", &out), 3);
+  EXPECT_NE(out.find(bad.string()), std::string::npos) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_EQ(test::runCli("info '" + (dir / "missing.xyz").string() + "'", &out), 3);
+  EXPECT_NE(out.find("missing.xyz"), std::string::npos) << out;
+}
+
+TEST(InfoCli, GoodFilePrintsCounts) {
+  test::TempDir dir;
+  geom::PointCloud c;
+  for (int i = 0; i < 7; ++i) c.positions.emplace_back(i, 0, 0);
+  writePointCloud(dir / "c.xyz", c);
+  std::string out;
+  EXPECT_EQ(test::runCli("info '" + (dir / "c.xyz").string() + "'", &out), 0) << out;
+  EXPECT_NE(out.find("points: 7\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("bbox diagonal: 6.000000"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace treesketch::io

@@ -1,0 +1,116 @@
+// Helpers for the io tests: checking InputError messages, building LAS and PLY bytes in code.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "treesketch/util/error.h"
+
+namespace treesketch::io::testing {
+
+/// Runs `f`, expects an exception of type E whose message contains every one of `parts`.
+template <class E = InputError, class F>
+void expectError(F&& f, std::initializer_list<std::string> parts) {
+  try {
+    f();
+    ADD_FAILURE() << "expected an exception, none was thrown";
+  } catch (const E& e) {
+    std::string msg = e.what();
+    for (const auto& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "message: " << msg << "\nmissing: " << p;
+  }
+}
+
+/// Appends `v` in little (big = false) or big endian byte order.
+template <class T>
+void put(std::string& s, T v, bool big = false) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  if (big != (std::endian::native == std::endian::big)) {
+    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+  }
+  s.append(b, sizeof(T));
+}
+
+/// A tiny LAS writer for tests: the public header block and records whose first 12 bytes are
+/// X, Y, Z int32 (the rest filled with a byte pattern).
+struct LasSpec {
+  int versionMinor = 2;
+  int pointFormat = 0;
+  int recordLength = 0;  ///< 0: the minimum for the format
+  std::array<double, 3> scale{0.001, 0.001, 0.001};
+  std::array<double, 3> offset{0, 0, 0};
+  std::vector<std::array<std::int32_t, 3>> points;
+  std::int64_t legacyCount = -1;  ///< -1: points.size() (0 for formats 6-10 in 1.4)
+  std::int64_t count64 = -1;      ///< -1: points.size()
+  int vlrBytes = 0;               ///< bytes of (junk) VLR area between header and points
+  int headerSizeOverride = 0;
+};
+
+inline std::string buildLas(const LasSpec& s) {
+  static const int kMin[] = {20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67};
+  int recLen = s.recordLength ? s.recordLength : kMin[s.pointFormat];
+  int headerSize = s.versionMinor >= 4 ? 375 : s.versionMinor == 3 ? 235 : 227;
+  int declaredHeader = s.headerSizeOverride ? s.headerSizeOverride : headerSize;
+  std::string h = "LASF";
+  put<std::uint16_t>(h, 0);       // file source id
+  put<std::uint16_t>(h, 0);       // global encoding
+  h.append(16, '\0');             // GUID
+  h += static_cast<char>(1);
+  h += static_cast<char>(s.versionMinor);
+  std::string sys = "treesketch test";
+  sys.resize(32, '\0');
+  h += sys;
+  std::string sw = "io_test_util";
+  sw.resize(32, '\0');
+  h += sw;
+  put<std::uint16_t>(h, 1);
+  put<std::uint16_t>(h, 2024);
+  put<std::uint16_t>(h, static_cast<std::uint16_t>(declaredHeader));
+  put<std::uint32_t>(h, static_cast<std::uint32_t>(headerSize + s.vlrBytes));
+  put<std::uint32_t>(h, s.vlrBytes ? 1 : 0);
+  h += static_cast<char>(s.pointFormat);
+  put<std::uint16_t>(h, static_cast<std::uint16_t>(recLen));
+  std::int64_t legacy = s.legacyCount >= 0 ? s.legacyCount
+                        : (s.versionMinor >= 4 && s.pointFormat >= 6) ? 0
+                                                                      : static_cast<std::int64_t>(s.points.size());
+  put<std::uint32_t>(h, static_cast<std::uint32_t>(legacy));
+  for (int i = 0; i < 5; ++i) put<std::uint32_t>(h, 0);
+  for (double v : s.scale) put(h, v);
+  for (double v : s.offset) put(h, v);
+  std::array<double, 3> mn{1e300, 1e300, 1e300}, mx{-1e300, -1e300, -1e300};
+  for (const auto& p : s.points) {
+    for (int k = 0; k < 3; ++k) {
+      double w = p[k] * s.scale[k] + s.offset[k];
+      mn[k] = std::min(mn[k], w);
+      mx[k] = std::max(mx[k], w);
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    put(h, mx[k]);
+    put(h, mn[k]);
+  }
+  if (s.versionMinor >= 3) put<std::uint64_t>(h, 0);  // waveform start
+  if (s.versionMinor >= 4) {
+    put<std::uint64_t>(h, 0);  // first EVLR
+    put<std::uint32_t>(h, 0);  // number of EVLRs
+    put<std::uint64_t>(h, static_cast<std::uint64_t>(s.count64 >= 0 ? s.count64 : static_cast<std::int64_t>(s.points.size())));
+    for (int i = 0; i < 15; ++i) put<std::uint64_t>(h, 0);
+  }
+  h.resize(static_cast<std::size_t>(headerSize), '\0');
+  h.append(static_cast<std::size_t>(s.vlrBytes), '\x5a');
+  for (const auto& p : s.points) {
+    for (int k = 0; k < 3; ++k) put(h, p[k]);
+    for (int b = 12; b < recLen; ++b) h += static_cast<char>(0xA0 + b);
+  }
+  return h;
+}
+
+}  // namespace treesketch::io::testing

@@ -1,0 +1,124 @@
+#include "treesketch/io/obj.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <sstream>
+
+#include "io_test_util.h"
+#include "test_support.h"
+
+namespace treesketch::io {
+namespace {
+
+using testing::expectError;
+using Tri = std::array<std::uint32_t, 3>;
+
+geom::TriMesh objFrom(const std::string& text, ObjStats* st = nullptr) {
+  std::istringstream in(text);
+  return readObj(in, "mem.obj", st);
+}
+
+TEST(Obj, QuadsPolygonsSlashesNegativeIndicesAndIgnoredLines) {
+  std::string text =
+      "# comment\r\n"
+      "mtllib a.mtl\r\n"
+      "o thing\r\n"
+      "v 0 0 0\r\n"
+      "v 1 0 0 1.0\r\n"
+      "v 1 1 0 0.5 0.5 0.5\r\n"
+      "v 0 1 0\r\n"
+      "vt 0 0\nvn 0 0 1\ng group\nusemtl m\ns off\n"
+      "f 1/1/1 2/2/1 3/3/1 4/4/1\n"  // quad -> 2 triangles
+      "v 0.5 2 0\n"
+      "f -5//1 -4//1 -1//1\n"        // negative: 1 2 5
+      "f 1/1 3/3 5/5\n"
+      "f 1 2 3 5 4\n"                // pentagon -> 3 triangles
+      "l 1 2\n";
+  ObjStats st;
+  geom::TriMesh m = objFrom(text, &st);
+  ASSERT_EQ(m.vertices.size(), 5u);
+  EXPECT_EQ(m.vertices[2], geom::Vec3(1, 1, 0));
+  ASSERT_EQ(m.triangles.size(), 2u + 1u + 1u + 3u);
+  EXPECT_EQ(m.triangles[0], (Tri{0, 1, 2}));
+  EXPECT_EQ(m.triangles[1], (Tri{0, 2, 3}));
+  EXPECT_EQ(m.triangles[2], (Tri{0, 1, 4}));
+  EXPECT_EQ(m.triangles[3], (Tri{0, 2, 4}));
+  EXPECT_EQ(m.triangles[6], (Tri{0, 4, 3}));
+  EXPECT_EQ(st.polygons, 4u);
+  EXPECT_EQ(st.nonTriangles, 2u);
+  EXPECT_EQ(st.ignoredLines, 8u);
+}
+
+TEST(Obj, RoundTripIsExact) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-50, 50);
+  geom::TriMesh m;
+  for (int i = 0; i < 100; ++i) m.vertices.emplace_back(u(rng), u(rng), 5e5 + u(rng));
+  for (std::uint32_t i = 0; i + 2 < 100; ++i) m.triangles.push_back({i, i + 2, i + 1});
+  std::stringstream ss;
+  writeObj(ss, m);
+  geom::TriMesh back = readObj(ss, "mem");
+  EXPECT_EQ(back.vertices, m.vertices);
+  EXPECT_EQ(back.triangles, m.triangles);
+  test::TempDir dir;
+  writeObj(dir / "m.obj", m);
+  EXPECT_EQ(readObj(dir / "m.obj").triangles, m.triangles);
+}
+
+const std::string kVerts = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+
+TEST(Obj, RejectsBadInputWithItsLine) {
+  expectError([] { objFrom(""); }, {"mem.obj", "empty"});
+  expectError([] { objFrom(kVerts + "f 1 2 5\n"); }, {"mem.obj:5:", "index 5 out of range"});
+  expectError([] { objFrom(kVerts + "f 0 1 2\n"); }, {"mem.obj:5:", "index 0"});
+  expectError([] { objFrom(kVerts + "f -1 -2 -5\n"); }, {"mem.obj:5:", "-5 out of range"});
+  expectError([] { objFrom(kVerts + "f 1 2\n"); }, {"mem.obj:5:", "2 corners"});
+  expectError([] { objFrom(kVerts + "f a b c\n"); }, {"mem.obj:5:", "'a'"});
+  expectError([] { objFrom("v 0 0 0\nv 1 nan 0\n"); }, {"mem.obj:2:", "non-finite"});
+  expectError([] { objFrom("v 0 0 0\nv 1 0\n"); }, {"mem.obj:2:", "3 numbers"});
+  expectError([] { objFrom("hello world\n"); }, {"mem.obj:1:", "unknown OBJ keyword", "'hello'"});
+  expectError([] { objFrom(kVerts); }, {"mem.obj", "no faces"});
+  expectError([] { objFrom(kVerts + "f 1 2 5\n"); }, {"(vertices defined so far)"});
+}
+
+TEST(Obj, VerticesCanBeReadAsACloud) {
+  std::istringstream in(kVerts + "f 1 2 3\n");
+  EXPECT_EQ(readObjVertices(in, "mem").size(), 4u);
+  std::istringstream noFaces(kVerts);
+  EXPECT_EQ(readObjVertices(noFaces, "mem").size(), 4u);
+}
+
+TEST(Obj, WriterRejectsBadData) {
+  geom::TriMesh m;
+  m.vertices = {geom::Vec3(0, 0, 0), geom::Vec3(1, 0, 0), geom::Vec3(0, std::nan(""), 0)};
+  m.triangles = {{0, 1, 2}};
+  std::ostringstream out;
+  expectError<OutputError>([&] { writeObj(out, m); }, {"vertex 2"});
+  m.vertices[2].y() = 1;
+  m.triangles = {{0, 1, 3}};
+  expectError<OptionsError>([&] { writeObj(out, m); }, {"vertex 3"});
+}
+
+TEST(Obj, RealBranchMeshesHaveTheirDocumentedCounts) {
+  struct Tree {
+    const char* file;
+    std::size_t vertices, triangles;
+  };
+  const Tree trees[] = {{"aspen_medium_s101", 2820, 5088},
+                        {"pine_medium_s13977", 5516, 10032},
+                        {"oak_medium_s35729", 2184, 3166},
+                        {"bush_2_s45590", 1900, 3352}};
+  for (const auto& t : trees) {
+    auto path = test::sharedDataDir() / "trees" / (std::string(t.file) + ".branches.obj");
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "no shared data";
+    geom::TriMesh m = readObj(path);
+    EXPECT_EQ(m.vertices.size(), t.vertices) << t.file;
+    EXPECT_EQ(m.triangles.size(), t.triangles) << t.file;
+    EXPECT_NO_THROW(m.checkConsistent());
+    EXPECT_GT(m.area(), 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace treesketch::io

@@ -1,0 +1,132 @@
+#include "treesketch/io/xyz.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <sstream>
+
+#include "io_test_util.h"
+#include "test_support.h"
+
+namespace treesketch::io {
+namespace {
+
+using testing::expectError;
+
+geom::PointCloud readText(const std::string& text, const CloudReadOptions& opt = {}) {
+  std::istringstream in(text);
+  return readXyz(in, "mem.xyz", opt);
+}
+
+TEST(Xyz, RoundTripIsExactForUtmCoordinates) {
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  geom::PointCloud c;
+  for (int i = 0; i < 500; ++i) c.positions.emplace_back(5e5 + 1000 * u(rng), 5.4e6 + 1000 * u(rng), 250 + u(rng));
+  c.positions.emplace_back(-1e-300, 1e300, 0.1);
+  std::stringstream ss;
+  writeXyz(ss, c);
+  geom::PointCloud back = readXyz(ss, "mem");
+  ASSERT_EQ(back.size(), c.size());
+  for (std::size_t i = 0; i < c.size(); ++i) EXPECT_EQ(back.positions[i], c.positions[i]) << i;
+}
+
+TEST(Xyz, PathRoundTripGoesThroughTheFile) {
+  test::TempDir dir;
+  geom::PointCloud c;
+  for (int i = 0; i < 5; ++i) c.positions.emplace_back(i, 2 * i, 0.5 * i);
+  writeXyz(dir / "a.xyz", c);
+  EXPECT_EQ(test::readText(dir / "a.xyz").substr(0, 6), "0 0 0\n");
+  EXPECT_EQ(readXyz(dir / "a.xyz").positions, c.positions);
+}
+
+TEST(Xyz, AcceptsSeparatorsHeadersCommentsCrlfAndExtraColumns) {
+  std::string text =
+      "X,Y,Z,intensity\r\n"
+      "# a comment\r\n"
+      "1,2,3,99\r\n"
+      "\r\n"
+      "4;5;6\r\n"
+      "  7\t8 9 extra words here   \r\n"
+      "// another comment\n"
+      "+1e1 -2.5e-1 .5   \n"
+      "11 12 13";  // no final newline
+  geom::PointCloud c = readText(text);
+  ASSERT_EQ(c.size(), 5u);
+  EXPECT_EQ(c.positions[0], geom::Vec3(1, 2, 3));
+  EXPECT_EQ(c.positions[1], geom::Vec3(4, 5, 6));
+  EXPECT_EQ(c.positions[2], geom::Vec3(7, 8, 9));
+  EXPECT_EQ(c.positions[3], geom::Vec3(10, -0.25, 0.5));
+  EXPECT_EQ(c.positions[4], geom::Vec3(11, 12, 13));
+}
+
+TEST(Xyz, PointCountLineOfPtsFilesIsSkippedAsHeader) {
+  geom::PointCloud c = readText("4\n0 0 0 1 255 0 0\n1 0 0 1 255 0 0\n0 1 0 1 0 0 0\n0 0 1 1 0 0 0\n");
+  EXPECT_EQ(c.size(), 4u);
+}
+
+TEST(Xyz, RejectsEmptyAndBlankFiles) {
+  expectError([] { readText(""); }, {"mem.xyz", "empty"});
+  expectError([] { readText("\n\n  \n"); }, {"mem.xyz", "no point lines"});
+}
+
+TEST(Xyz, RejectsGarbageTextWithItsLine) {
+  CloudReadOptions opt;
+  opt.maxHeaderLines = 2;
+  expectError([&] { readText("hello\nworld\nthis is\nnot a cloud\n", opt); }, {"mem.xyz:3:", "expected 'x y z'"});
+  expectError([] { readText("0 0 0\n1 1 1\n2 2\n3 3 3\n4 4 4\n"); }, {"mem.xyz:3:", "'2 2'"});
+  expectError([] { readText("0 0 0\n1 1 1\nx y z\n3 3 3\n"); }, {"mem.xyz:3:"});
+  expectError([] { readText("0 0 0\n1 1 1e999\n"); }, {"mem.xyz:2:"});
+  std::string binary("\x01\x02\xff\x00\x10", 5);
+  expectError([&] { readText(binary + "\n" + binary + "\n", opt); }, {"mem.xyz"});
+}
+
+TEST(Xyz, RejectsNanAndInfWithTheirLine) {
+  expectError([] { readText("0 0 0\n1 1 1\n2 nan 2\n3 3 3\n"); }, {"mem.xyz:3:", "non-finite"});
+  expectError([] { readText("0 0 0\n1 1 1\n2 2 2\n3 3 -inf\n"); }, {"mem.xyz:4:", "non-finite"});
+}
+
+TEST(Xyz, RejectsCloudsSmallerThanTheMinimumUnlessAllowed) {
+  expectError([] { readText("0 0 0\n1 0 0\n0 1 0\n"); }, {"mem.xyz", "only 3 points", "at least 4"});
+  CloudReadOptions opt;
+  opt.minPoints = 1;
+  EXPECT_EQ(readText("0 0 0\n1 0 0\n0 1 0\n", opt).size(), 3u);
+}
+
+TEST(Xyz, MissingFileIsAnInputError) {
+  test::TempDir dir;
+  expectError([&] { readXyz(dir / "none.xyz"); }, {"none.xyz", "not found"});
+  expectError([&] { readXyz(dir.path()); }, {"directory"});
+}
+
+TEST(Xyz, WriterRejectsNonFinitePoints) {
+  geom::PointCloud c;
+  c.positions.emplace_back(0, std::numeric_limits<double>::quiet_NaN(), 0);
+  std::ostringstream out;
+  expectError<OutputError>([&] { writeXyz(out, c); }, {"point 0", "non-finite"});
+}
+
+TEST(Xyz, RealAdTreeCloudWithTrailingSpaces) {
+  auto path = test::sharedDataDir() / "real" / "adtree_tree7.xyz";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no shared data";
+  geom::PointCloud c = readXyz(path);
+  ASSERT_EQ(c.size(), 15130u);
+  EXPECT_EQ(c.positions[0], geom::Vec3(-9.679, -9.128, 3.152));
+  geom::Vec3 e = c.bounds().extent();
+  EXPECT_NEAR(e.x(), 3.06, 0.01);
+  EXPECT_NEAR(e.y(), 3.21, 0.01);
+  EXPECT_NEAR(e.z(), 5.23, 0.01);
+}
+
+TEST(Xyz, RealRTwigCloud) {
+  auto path = test::sharedDataDir() / "real" / "rtwig_cloud.txt";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no shared data";
+  geom::PointCloud c = readXyz(path);
+  ASSERT_EQ(c.size(), 14667u);
+  EXPECT_EQ(c.positions[0], geom::Vec3(0.73229748, -16.39104271, 253.89553833));
+  EXPECT_GT(c.bounds().min.z(), 253.0);
+  EXPECT_LT(c.bounds().max.z(), 259.0);
+}
+
+}  // namespace
+}  // namespace treesketch::io
