@@ -73,7 +73,11 @@ nlohmann::json reportJson(const ReconstructArgs& a, const recon::ReconstructionR
 void runReconstruct(const ReconstructArgs& a) {
   checkNotAnInput(a.output, {a.cloud, a.sketch});
   if (!a.report.empty()) checkNotAnInput(a.report, {a.cloud, a.sketch});
-  io::meshFormatFromPath(a.output);  // reject a bad extension before the work
+  try {
+    io::meshFormatFromPath(a.output);  // reject a bad extension before the work
+  } catch (const InputError& e) {
+    throw OptionsError(std::string("-o: ") + e.what());
+  }
   recon::ReconstructionOptions opt;
   opt.seed = a.seed;
   opt.sweep.ringVertices = a.ring;
@@ -116,8 +120,7 @@ void registerReconstruct(CLI::App& app, Action& action) {
   sub->add_option("--report", a->report, "Write a JSON report of every node's fit");
   sub->add_option("--ring", a->ring, "Vertices per ring (default 16)")->check(CLI::Range(3, 4096));
   sub->add_option("--inlier-threshold", a->inlierThreshold,
-                  "Absolute RANSAC inlier threshold, cloud units (default 0.01; the threshold used is "
-                  "max(T, 0.05 x radius))")
+                  "RANSAC inlier threshold on |distance to centre - radius|, cloud units (default 0.01)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--seed", a->seed, "Random seed of the circle fits (default 1)");
   sub->callback([a, &action] { action = [a] { runReconstruct(*a); }; });

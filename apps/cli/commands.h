@@ -20,6 +20,8 @@ enum ExitCode : int {
 };
 
 // [declare register functions here, one line each]
+void registerDemo(CLI::App& app, Action& action);
+void registerGui(CLI::App& app, Action& action);
 void registerInfo(CLI::App& app, Action& action);
 void registerReconstruct(CLI::App& app, Action& action);
 void registerScan(CLI::App& app, Action& action);

@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Action action;
   // [register subcommands here, one line each]
+  registerDemo(app, action);
+  registerGui(app, action);
   registerInfo(app, action);
   registerReconstruct(app, action);
   registerScan(app, action);

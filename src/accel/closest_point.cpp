@@ -152,7 +152,7 @@ namespace {
 // 32 bytes: two nodes per cache line.
 struct Node {
   float lo[3];
-  std::uint32_t offset;  ///< interior: index of the right child (left child = this + 1); leaf: first triangle
+  std::uint32_t offset;  ///< interior: index of the right child (left child = this + 1); leaf: first slot
   float hi[3];
   std::uint32_t count;  ///< 0 for an interior node, else the number of triangles of the leaf
 };
@@ -161,13 +161,53 @@ struct Tri {
   Vec3 a, b, c;
 };
 
-// Cheap lower bounds of a triangle's distance, tested before the exact double test: its box and
-// its plane, in float, relative to the BVH origin (the plane normal is zero for a degenerate
-// triangle, so that bound never culls it).
-struct TriCull {
-  float lo[3], hi[3];
-  float n[3], offset;  ///< unit normal and n . a (relative to the origin)
+// Four triangles in float, structure-of-arrays (GCC/Clang vector extensions compile this to SSE),
+// relative to the BVH origin: corners, inverse squared edge lengths (0 for a zero-length edge),
+// the unnormalised normal and its inverse squared length (0 for a degenerate triangle).
+using V4 = float __attribute__((vector_size(16)));
+using V4i = std::int32_t __attribute__((vector_size(16)));
+
+struct Packet {
+  V4 ax, ay, az, bx, by, bz, cx, cy, cz;
+  V4 inv0, inv1, inv2;
+  V4 nx, ny, nz, invN2;
 };
+
+inline V4 splat(float x) { return V4{x, x, x, x}; }
+inline V4 vmin(V4 a, V4 b) { return a < b ? a : b; }
+inline V4 vmax(V4 a, V4 b) { return a > b ? a : b; }
+inline V4 clamp01(V4 t) { return vmin(vmax(t, splat(0.0f)), splat(1.0f)); }
+
+// Approximate squared distances (float) from q to the packet's four triangles: the plane distance
+// when q projects inside the triangle, else the distance to the nearest edge. Branch-free. Its
+// error is a few float ulps of the coordinates; the caller keeps a margin well above that and
+// decides with the exact double test.
+inline V4 packetDistance2(const Packet& p, V4 qx, V4 qy, V4 qz) {
+  const V4 e0x = p.bx - p.ax, e0y = p.by - p.ay, e0z = p.bz - p.az;
+  const V4 e1x = p.cx - p.bx, e1y = p.cy - p.by, e1z = p.cz - p.bz;
+  const V4 e2x = p.ax - p.cx, e2y = p.ay - p.cy, e2z = p.az - p.cz;
+  const V4 pax = qx - p.ax, pay = qy - p.ay, paz = qz - p.az;
+  const V4 pbx = qx - p.bx, pby = qy - p.by, pbz = qz - p.bz;
+  const V4 pcx = qx - p.cx, pcy = qy - p.cy, pcz = qz - p.cz;
+  auto edge = [](V4 px, V4 py, V4 pz, V4 ex, V4 ey, V4 ez, V4 inv) {
+    const V4 t = clamp01((px * ex + py * ey + pz * ez) * inv);
+    const V4 dx = px - t * ex, dy = py - t * ey, dz = pz - t * ez;
+    return dx * dx + dy * dy + dz * dz;
+  };
+  const V4 dEdge = vmin(vmin(edge(pax, pay, paz, e0x, e0y, e0z, p.inv0), edge(pbx, pby, pbz, e1x, e1y, e1z, p.inv1)),
+                        edge(pcx, pcy, pcz, e2x, e2y, e2z, p.inv2));
+  // q projects inside when it is on the inner side of all three edges: n . (e x (q - start)) >= 0.
+  auto side = [&](V4 ex, V4 ey, V4 ez, V4 px, V4 py, V4 pz) {
+    const V4 cx = ey * pz - ez * py, cy = ez * px - ex * pz, cz = ex * py - ey * px;
+    return p.nx * cx + p.ny * cy + p.nz * cz;
+  };
+  const V4 s0 = side(e0x, e0y, e0z, pax, pay, paz), s1 = side(e1x, e1y, e1z, pbx, pby, pbz),
+           s2 = side(e2x, e2y, e2z, pcx, pcy, pcz);
+  const V4i inside = (s0 >= splat(0.0f)) & (s1 >= splat(0.0f)) & (s2 >= splat(0.0f));
+  const V4 plane = p.nx * pax + p.ny * pay + p.nz * paz;
+  const V4 dPlane = plane * plane * p.invN2;
+  return inside ? dPlane : dEdge;
+}
 
 float roundDown(double x) {
   float f = static_cast<float>(x);
@@ -178,10 +218,19 @@ float roundUp(double x) {
   return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
 
-inline float boxDistance2(const Node& n, float qx, float qy, float qz) {
-  float dx = std::max(std::max(n.lo[0] - qx, qx - n.hi[0]), 0.0f);
-  float dy = std::max(std::max(n.lo[1] - qy, qy - n.hi[1]), 0.0f);
-  float dz = std::max(std::max(n.lo[2] - qz, qz - n.hi[2]), 0.0f);
+// The traversed tree: the binary tree collapsed into 4-wide nodes (the four children's boxes in
+// SSE lanes). An empty lane has an inverted box (lo = +inf, hi = -inf): infinitely far.
+struct Node4 {
+  V4 lox, loy, loz, hix, hiy, hiz;
+  std::uint32_t child[4];  ///< leaf: first slot; interior: Node4 index
+  std::uint32_t count[4];  ///< leaf: triangle count (> 0); interior or empty lane: 0
+};
+
+inline V4 boxDistance2(const Node4& n, V4 qx, V4 qy, V4 qz) {
+  const V4 zero = splat(0.0f);
+  const V4 dx = vmax(vmax(n.lox - qx, qx - n.hix), zero);
+  const V4 dy = vmax(vmax(n.loy - qy, qy - n.hiy), zero);
+  const V4 dz = vmax(vmax(n.loz - qz, qz - n.hiz), zero);
   return dx * dx + dy * dy + dz * dz;
 }
 
@@ -191,18 +240,24 @@ struct MeshClosestPoint::Impl {
   ClosestPointOptions options;
   Vec3 origin = Vec3::Zero();
   double scale = 0;                  ///< bounding-box diagonal (metres), for the float-error margin
-  std::vector<Node> nodes;
-  std::vector<Tri> tris;             ///< in leaf order
-  std::vector<TriCull> culls;        ///< in leaf order
-  std::vector<std::uint32_t> triId;  ///< leaf order -> input triangle index
+  std::size_t triangles = 0;
+  std::vector<Node> nodes;            ///< binary tree (build only; cleared after collapsing)
+  std::vector<Node4> nodes4;
+  /// Slots in leaf order; each leaf starts at a multiple of 4 and is padded to one (padding
+  /// repeats the leaf's last triangle).
+  std::vector<Tri> tris;
+  std::vector<Packet> packets;       ///< slot / 4
+  std::vector<std::uint32_t> triId;  ///< slot -> input triangle index
 
   void build(const geom::TriMesh& mesh);
   std::uint32_t buildNode(std::vector<std::uint32_t>& ids, const std::vector<Vec3>& centroids,
                           const std::vector<geom::BBox>& boxes, std::size_t begin, std::size_t end);
-  /// Closest point with a starting bound: best2 (squared distance, metres²) and its triangle
-  /// (leaf-order index, -1 for none) and point. Returns the leaf-order index of the best triangle.
-  std::int64_t search(const Vec3& q, double& best2, std::int64_t bestTri, Vec3& bestPoint) const;
-  ClosestHit answer(const Vec3& q, double maxDistance, std::int64_t warmTri) const;
+  void layoutSlots(const geom::TriMesh& mesh, const std::vector<std::uint32_t>& ids);
+  std::uint32_t collapse(std::uint32_t binaryNode);
+  /// Closest point with a starting bound: best2 (squared distance, metres²) and its slot (-1 for
+  /// none) and point. Returns the slot of the best triangle.
+  std::int64_t search(const Vec3& q, double& best2, std::int64_t bestSlot, Vec3& bestPoint) const;
+  ClosestHit answer(const Vec3& q, double maxDistance, std::int64_t warmSlot) const;
 };
 
 void MeshClosestPoint::Impl::build(const geom::TriMesh& mesh) {
@@ -215,13 +270,13 @@ void MeshClosestPoint::Impl::build(const geom::TriMesh& mesh) {
       if (v >= nv)
         throw OptionsError("closest point: triangle " + std::to_string(i) + " references vertex " +
                            std::to_string(v) + " of " + std::to_string(nv));
-  if (nt == 0) return;
-  if (nt >= std::numeric_limits<std::uint32_t>::max() / 2)
-    throw OptionsError("closest point: too many triangles (" + std::to_string(nt) + ")");
   if (options.leafSize < 1 || options.leafSize > 64)
     throw OptionsError("closest point: leafSize must be in [1, 64], got " + std::to_string(options.leafSize));
   if (options.blockSize < 1)
     throw OptionsError("closest point: blockSize must be positive, got " + std::to_string(options.blockSize));
+  if (nt == 0) return;
+  if (nt >= std::numeric_limits<std::uint32_t>::max() / 8)
+    throw OptionsError("closest point: too many triangles (" + std::to_string(nt) + ")");
 
   geom::BBox all;
   std::vector<Vec3> centroids(nt);
@@ -234,37 +289,75 @@ void MeshClosestPoint::Impl::build(const geom::TriMesh& mesh) {
   }
   origin = all.center();
   scale = all.diagonal();
+  triangles = nt;
   std::vector<std::uint32_t> ids(nt);
   std::iota(ids.begin(), ids.end(), 0u);
   nodes.reserve(2 * (nt / options.leafSize + 1));
   buildNode(ids, centroids, boxes, 0, nt);
-  triId = ids;
-  tris.resize(nt);
-  for (std::size_t i = 0; i < nt; ++i) {
-    const auto& t = mesh.triangles[ids[i]];
-    tris[i] = {mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
+  layoutSlots(mesh, ids);
+  nodes4.reserve(nodes.size() / 2 + 1);
+  collapse(0);
+  nodes.clear();
+  nodes.shrink_to_fit();
+}
+
+std::uint32_t MeshClosestPoint::Impl::collapse(std::uint32_t b) {
+  const auto index = static_cast<std::uint32_t>(nodes4.size());
+  nodes4.emplace_back();
+  // The children: start from the binary node's two and open the largest interior one until four.
+  std::vector<std::uint32_t> kids;
+  if (nodes[b].count > 0) {
+    kids = {b};  // the whole tree is one leaf
+  } else {
+    kids = {b + 1, nodes[b].offset};
   }
-  culls.resize(nt);
-  for (std::size_t i = 0; i < nt; ++i) {
-    const Tri& t = tris[i];
-    TriCull& c = culls[i];
-    const Vec3 a = t.a - origin, b = t.b - origin, cc = t.c - origin;
+  auto halfArea = [&](std::uint32_t k) {
+    const Node& n = nodes[k];
+    const float x = n.hi[0] - n.lo[0], y = n.hi[1] - n.lo[1], z = n.hi[2] - n.lo[2];
+    return x * y + y * z + z * x;
+  };
+  while (kids.size() < 4) {
+    int open = -1;
+    for (int i = 0; i < static_cast<int>(kids.size()); ++i)
+      if (nodes[kids[i]].count == 0 && (open < 0 || halfArea(kids[i]) > halfArea(kids[open]))) open = i;
+    if (open < 0) break;
+    const std::uint32_t k = kids[open];
+    kids[open] = k + 1;
+    kids.push_back(nodes[k].offset);
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  std::uint32_t child[4] = {0, 0, 0, 0}, count[4] = {0, 0, 0, 0};
+  float lo[3][4], hi[3][4];
+  for (int i = 0; i < 4; ++i) {
     for (int k = 0; k < 3; ++k) {
-      c.lo[k] = roundDown(std::min({a[k], b[k], cc[k]}));
-      c.hi[k] = roundUp(std::max({a[k], b[k], cc[k]}));
+      lo[k][i] = inf;
+      hi[k][i] = -inf;
     }
-    Vec3 n = (b - a).cross(cc - a);
-    const double len = n.norm();
-    // Slivers get no plane bound: their normal is too unreliable to cull with.
-    const double longest = std::max({(b - a).norm(), (cc - b).norm(), (a - cc).norm()});
-    if (len > 1e-6 * longest * longest) {
-      n /= len;
+    if (i >= static_cast<int>(kids.size())) continue;
+    const Node& n = nodes[kids[i]];
+    for (int k = 0; k < 3; ++k) {
+      lo[k][i] = n.lo[k];
+      hi[k][i] = n.hi[k];
+    }
+    if (n.count > 0) {
+      child[i] = n.offset;
+      count[i] = n.count;
     } else {
-      n.setZero();
+      child[i] = collapse(kids[i]);  // may reallocate nodes4: write through the index below
     }
-    for (int k = 0; k < 3; ++k) c.n[k] = static_cast<float>(n[k]);
-    c.offset = static_cast<float>(n.dot(a));
   }
+  Node4& out = nodes4[index];
+  out.lox = V4{lo[0][0], lo[0][1], lo[0][2], lo[0][3]};
+  out.loy = V4{lo[1][0], lo[1][1], lo[1][2], lo[1][3]};
+  out.loz = V4{lo[2][0], lo[2][1], lo[2][2], lo[2][3]};
+  out.hix = V4{hi[0][0], hi[0][1], hi[0][2], hi[0][3]};
+  out.hiy = V4{hi[1][0], hi[1][1], hi[1][2], hi[1][3]};
+  out.hiz = V4{hi[2][0], hi[2][1], hi[2][2], hi[2][3]};
+  for (int i = 0; i < 4; ++i) {
+    out.child[i] = child[i];
+    out.count[i] = count[i];
+  }
+  return index;
 }
 
 std::uint32_t MeshClosestPoint::Impl::buildNode(std::vector<std::uint32_t>& ids, const std::vector<Vec3>& centroids,
@@ -285,17 +378,17 @@ std::uint32_t MeshClosestPoint::Impl::buildNode(std::vector<std::uint32_t>& ids,
     }
   }
   const std::size_t count = end - begin;
+  // A leaf when small enough; otherwise split at the median centroid along the longest axis (when
+  // all centroids coincide this is an arbitrary halving: overlapping boxes, still correct).
+  if (count <= static_cast<std::size_t>(options.leafSize)) {
+    nodes[index].offset = static_cast<std::uint32_t>(begin);  // an index into `ids` until layoutSlots
+    nodes[index].count = static_cast<std::uint32_t>(count);
+    return index;
+  }
   const Vec3 ext = cbox.extent();
   int axis = 0;
   if (ext.y() > ext[axis]) axis = 1;
   if (ext.z() > ext[axis]) axis = 2;
-  // A leaf when small enough; otherwise split at the median centroid along the longest axis (when
-  // all centroids coincide this is an arbitrary halving: overlapping boxes, still correct).
-  if (count <= static_cast<std::size_t>(options.leafSize)) {
-    nodes[index].offset = static_cast<std::uint32_t>(begin);
-    nodes[index].count = static_cast<std::uint32_t>(count);
-    return index;
-  }
   const std::size_t mid = begin + count / 2;
   std::nth_element(ids.begin() + begin, ids.begin() + mid, ids.begin() + end,
                    [&](std::uint32_t x, std::uint32_t y) { return centroids[x][axis] < centroids[y][axis]; });
@@ -306,98 +399,140 @@ std::uint32_t MeshClosestPoint::Impl::buildNode(std::vector<std::uint32_t>& ids,
   return index;
 }
 
-std::int64_t MeshClosestPoint::Impl::search(const Vec3& q, double& best2, std::int64_t bestTri,
+void MeshClosestPoint::Impl::layoutSlots(const geom::TriMesh& mesh, const std::vector<std::uint32_t>& ids) {
+  std::size_t slots = 0;
+  for (const Node& n : nodes)
+    if (n.count > 0) slots += (n.count + 3) / 4 * 4;
+  tris.resize(slots);
+  triId.resize(slots);
+  packets.resize(slots / 4);
+  std::size_t next = 0;
+  for (Node& n : nodes) {
+    if (n.count == 0) continue;
+    const std::size_t first = n.offset, padded = (n.count + 3) / 4 * 4;
+    for (std::size_t j = 0; j < padded; ++j) {
+      const std::uint32_t id = ids[first + std::min<std::size_t>(j, n.count - 1)];
+      const auto& t = mesh.triangles[id];
+      tris[next + j] = {mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
+      triId[next + j] = id;
+    }
+    n.offset = static_cast<std::uint32_t>(next);
+    next += padded;
+  }
+  for (std::size_t s = 0; s < slots; ++s) {
+    Packet& p = packets[s / 4];
+    const int lane = static_cast<int>(s % 4);
+    const Tri& t = tris[s];
+    const Vec3 a = t.a - origin, b = t.b - origin, c = t.c - origin;
+    const Vec3 n = (b - a).cross(c - a);
+    auto inv = [](double len2) { return len2 > 0 ? static_cast<float>(1.0 / len2) : 0.0f; };
+    p.ax[lane] = static_cast<float>(a.x()), p.ay[lane] = static_cast<float>(a.y()), p.az[lane] = static_cast<float>(a.z());
+    p.bx[lane] = static_cast<float>(b.x()), p.by[lane] = static_cast<float>(b.y()), p.bz[lane] = static_cast<float>(b.z());
+    p.cx[lane] = static_cast<float>(c.x()), p.cy[lane] = static_cast<float>(c.y()), p.cz[lane] = static_cast<float>(c.z());
+    p.inv0[lane] = inv((b - a).squaredNorm());
+    p.inv1[lane] = inv((c - b).squaredNorm());
+    p.inv2[lane] = inv((a - c).squaredNorm());
+    p.nx[lane] = static_cast<float>(n.x()), p.ny[lane] = static_cast<float>(n.y()), p.nz[lane] = static_cast<float>(n.z());
+    p.invN2[lane] = inv(n.squaredNorm());
+  }
+}
+
+std::int64_t MeshClosestPoint::Impl::search(const Vec3& q, double& best2, std::int64_t bestSlot,
                                             Vec3& bestPoint) const {
-  if (nodes.empty()) return bestTri;
+  if (nodes4.empty()) return bestSlot;
   const Vec3 rel = q - origin;
   const float qx = static_cast<float>(rel.x()), qy = static_cast<float>(rel.y()), qz = static_cast<float>(rel.z());
-  // Float box distances may be short of the true ones by rounding: prune a box only when it is
-  // farther than the best distance plus a margin well above float error at this scale.
-  const double margin = 1e-6 * (scale + rel.cwiseAbs().maxCoeff());
+  const V4 vqx = splat(qx), vqy = splat(qy), vqz = splat(qz);
+  // Float distances may be short of the true ones by rounding: a box or triangle is skipped only
+  // when it is farther than the best distance plus a margin well above float error at this scale
+  // (float carries ~6e-8 relative; the margin is ~100 times that).
+  const double margin = 4e-6 * (scale + rel.cwiseAbs().maxCoeff());
   auto limitOf = [margin](double b2) {
     if (!std::isfinite(b2)) return std::numeric_limits<float>::infinity();
     double l = std::sqrt(b2) + margin;
-    return static_cast<float>(l * l * (1 + 1e-6));
+    return static_cast<float>(l * l);
   };
   float limit2 = limitOf(best2);
 
-  struct Entry {
-    std::uint32_t node;
-    float d2;
-  };
-  Entry stack[128];
-  int top = 0;
-  std::uint32_t node = 0;
-  if (boxDistance2(nodes[0], qx, qy, qz) > limit2) return bestTri;
-  for (;;) {
-    const Node& n = nodes[node];
-    if (n.count > 0) {
-      for (std::uint32_t i = n.offset, e = n.offset + n.count; i < e; ++i) {
-        const TriCull& tc = culls[i];
-        const float dx = std::max(std::max(tc.lo[0] - qx, qx - tc.hi[0]), 0.0f);
-        const float dy = std::max(std::max(tc.lo[1] - qy, qy - tc.hi[1]), 0.0f);
-        const float dz = std::max(std::max(tc.lo[2] - qz, qz - tc.hi[2]), 0.0f);
-        const float plane = tc.n[0] * qx + tc.n[1] * qy + tc.n[2] * qz - tc.offset;
-        if (std::max(dx * dx + dy * dy + dz * dz, plane * plane) > limit2) continue;
-        const Tri& t = tris[i];
-        Vec3 c = closestPointOnTriangle(q, t.a, t.b, t.c);
-        double d2 = (c - q).squaredNorm();
-        if (d2 < best2 || (bestTri < 0 && d2 <= best2)) {
-          best2 = d2;
-          bestTri = i;
-          bestPoint = c;
-          limit2 = limitOf(best2);
+  // Stack of boxes still to visit, with their squared distance at push time: leaves (count > 0)
+  // and 4-wide nodes. Nearer boxes are pushed last, so they are opened first. It never overflows:
+  // at most 3 entries per level, and the tree has < 24 levels of 4-wide nodes for 2^32 triangles.
+  // (Three separate arrays rather than an array of structs: whole-struct copies in and out of
+  // the stack stall store-to-load forwarding.)
+  std::uint32_t stackIndex[128], stackCount[128];
+  float stackD2[128];
+  stackIndex[0] = 0, stackCount[0] = 0, stackD2[0] = 0.0f;
+  int top = 1;
+  while (top > 0) {
+    --top;
+    if (stackD2[top] > limit2) continue;
+    const std::uint32_t index = stackIndex[top], count = stackCount[top];
+    if (count > 0) {
+      for (std::uint32_t s = index, e = index + count; s < e; s += 4) {
+        const V4 d2f = packetDistance2(packets[s / 4], vqx, vqy, vqz);
+        const std::uint32_t lanes = std::min<std::uint32_t>(4, e - s);
+        for (std::uint32_t lane = 0; lane < lanes; ++lane) {
+          if (d2f[lane] > limit2) continue;
+          const Tri& t = tris[s + lane];
+          const Vec3 c = closestPointOnTriangle(q, t.a, t.b, t.c);
+          const double d2 = (c - q).squaredNorm();
+          if (d2 < best2 || (bestSlot < 0 && d2 <= best2)) {
+            best2 = d2;
+            bestSlot = s + lane;
+            bestPoint = c;
+            limit2 = limitOf(best2);
+          }
         }
       }
-    } else {
-      std::uint32_t near = node + 1, far = n.offset;
-      float dn = boxDistance2(nodes[near], qx, qy, qz), df = boxDistance2(nodes[far], qx, qy, qz);
-      if (df < dn) {
-        std::swap(near, far);
-        std::swap(dn, df);
-      }
-      if (dn <= limit2) {
-        if (df <= limit2 && top < 128) stack[top++] = {far, df};
-        node = near;
-        continue;
-      }
+      continue;
     }
-    // Pop the next box still within reach.
-    bool next = false;
-    while (top > 0) {
-      const Entry e = stack[--top];
-      if (e.d2 <= limit2) {
-        node = e.node;
-        next = true;
-        break;
+    const Node4& n = nodes4[index];
+    const V4 d = boxDistance2(n, vqx, vqy, vqz);
+    int order[4];
+    int k = 0;
+    for (int i = 0; i < 4; ++i) {
+      if (!(d[i] <= limit2)) continue;
+      // Insertion by decreasing distance: the nearest ends last, on top of the stack.
+      int j = k++;
+      while (j > 0 && d[order[j - 1]] < d[i]) {
+        order[j] = order[j - 1];
+        --j;
       }
+      order[j] = i;
     }
-    if (!next) break;
+    if (top + k > 128) k = 128 - top;  // unreachable (see above); keeps the arrays in bounds
+    for (int j = 0; j < k; ++j) {
+      const int i = order[j];
+      stackIndex[top] = n.child[i];
+      stackCount[top] = n.count[i];
+      stackD2[top] = d[i];
+      ++top;
+    }
   }
-  return bestTri;
+  return bestSlot;
 }
 
-ClosestHit MeshClosestPoint::Impl::answer(const Vec3& q, double maxDistance, std::int64_t warmTri) const {
+ClosestHit MeshClosestPoint::Impl::answer(const Vec3& q, double maxDistance, std::int64_t warmSlot) const {
   ClosestHit hit;
   if (tris.empty() || !q.allFinite() || !(maxDistance >= 0)) return hit;
   double best2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : std::numeric_limits<double>::infinity();
-  std::int64_t bestTri = -1;
+  std::int64_t bestSlot = -1;
   Vec3 bestPoint = Vec3::Zero();
-  if (warmTri >= 0) {
-    const Tri& t = tris[warmTri];
+  if (warmSlot >= 0) {
+    const Tri& t = tris[warmSlot];
     Vec3 c = closestPointOnTriangle(q, t.a, t.b, t.c);
     double d2 = (c - q).squaredNorm();
     if (d2 <= best2) {
       best2 = d2;
-      bestTri = warmTri;
+      bestSlot = warmSlot;
       bestPoint = c;
     }
   }
-  bestTri = search(q, best2, bestTri, bestPoint);
-  if (bestTri < 0) return hit;
+  bestSlot = search(q, best2, bestSlot, bestPoint);
+  if (bestSlot < 0) return hit;
   hit.point = bestPoint;
   hit.distance = std::sqrt(best2);
-  hit.index = bestTri;  // leaf order; mapped by the caller
+  hit.index = bestSlot;  // a slot; mapped to the input triangle by the caller
   return hit;
 }
 
@@ -410,8 +545,8 @@ MeshClosestPoint::~MeshClosestPoint() = default;
 MeshClosestPoint::MeshClosestPoint(MeshClosestPoint&&) noexcept = default;
 MeshClosestPoint& MeshClosestPoint::operator=(MeshClosestPoint&&) noexcept = default;
 
-std::size_t MeshClosestPoint::triangleCount() const { return impl_->tris.size(); }
-std::size_t MeshClosestPoint::nodeCount() const { return impl_->nodes.size(); }
+std::size_t MeshClosestPoint::triangleCount() const { return impl_->triangles; }
+std::size_t MeshClosestPoint::nodeCount() const { return impl_->nodes4.size(); }
 
 ClosestHit MeshClosestPoint::query(const Vec3& p, double maxDistance) const {
   ClosestHit hit = impl_->answer(p, maxDistance, -1);

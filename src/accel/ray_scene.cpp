@@ -55,7 +55,15 @@ struct RayScene::Impl {
   RTCScene scene = nullptr;
   Vec3 centre = Vec3::Zero();  // world -> Embree frame: subtract centre
   geom::BBox bounds;
-  std::vector<geom::TriMesh> meshes;  // double-precision copies (vertices + triangles only)
+  // Per mesh, per triangle: unit normal and offset (n . x = offset on the plane), world
+  // coordinates, double precision; one cache line per hit to refine t (a zero normal marks a
+  // degenerate triangle).
+  struct Plane {
+    Vec3 normal;
+    double offset;
+  };
+  std::vector<std::vector<Plane>> planes;
+  std::size_t meshCount = 0;
   std::size_t triangleCount = 0;
 
   ~Impl() {
@@ -94,16 +102,10 @@ struct RayScene::Impl {
     hit.primId = rh.hit.primID;
     double t = rh.ray.tfar;
     // Refine t in double: intersect the ray with the hit triangle's plane (world coordinates).
-    const geom::TriMesh& m = meshes[rh.hit.geomID];
-    const auto& tri = m.triangles[rh.hit.primID];
-    const Vec3& a = m.vertices[tri[0]];
-    const Vec3 n = (m.vertices[tri[1]] - a).cross(m.vertices[tri[2]] - a);
-    const double denom = n.dot(dir);
+    const Plane& pl = planes[rh.hit.geomID][rh.hit.primID];
+    const double denom = pl.normal.dot(dir);
     // Trust the plane only when the ray is not nearly parallel to it (cos > 1e-3).
-    if (std::abs(denom) > 1e-3 * n.norm() * dir.norm()) {
-      const double tPlane = n.dot(a - origin) / denom;
-      if (std::isfinite(tPlane)) t = tPlane;
-    }
+    if (std::abs(denom) > 1e-3 * dir.norm()) t = (pl.offset - pl.normal.dot(origin)) / denom;
     hit.t = t;
     hit.point = origin + t * dir;
     return hit;
@@ -116,8 +118,9 @@ RayScene::RayScene(const geom::TriMesh& mesh, const RaySceneOptions& options)
 RayScene::RayScene(const std::vector<geom::TriMesh>& meshes, const RaySceneOptions& options)
     : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
-  // Validate and copy (positions + triangles only).
-  s.meshes.resize(meshes.size());
+  // Validate; keep each triangle's plane in double precision.
+  s.meshCount = meshes.size();
+  s.planes.resize(meshes.size());
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     const geom::TriMesh& in = meshes[i];
     for (std::size_t t = 0; t < in.triangles.size(); ++t)
@@ -130,8 +133,15 @@ RayScene::RayScene(const std::vector<geom::TriMesh>& meshes, const RaySceneOptio
       if (!finite(in.vertices[v]))
         throw OptionsError("ray scene: mesh " + std::to_string(i) + " vertex " + std::to_string(v) +
                            " is not finite (NaN or Inf)");
-    s.meshes[i].vertices = in.vertices;
-    s.meshes[i].triangles = in.triangles;
+    std::vector<Impl::Plane>& planes = s.planes[i];
+    planes.resize(in.triangles.size());
+    for (std::size_t t = 0; t < in.triangles.size(); ++t) {
+      const Vec3& a = in.vertices[in.triangles[t][0]];
+      Vec3 n = (in.vertices[in.triangles[t][1]] - a).cross(in.vertices[in.triangles[t][2]] - a);
+      const double len = n.norm();
+      n = len > 0.0 && std::isfinite(len) ? Vec3(n / len) : Vec3::Zero();
+      planes[t] = {n, n.dot(a)};
+    }
     s.triangleCount += in.triangles.size();
     if (!in.triangles.empty()) s.bounds.add(in.bounds());
   }
@@ -146,8 +156,8 @@ RayScene::RayScene(const std::vector<geom::TriMesh>& meshes, const RaySceneOptio
   throwOnEmbreeError(s.device, "ray scene: new scene");
   rtcSetSceneBuildQuality(s.scene, toEmbree(options.quality));
 
-  for (std::size_t i = 0; i < s.meshes.size(); ++i) {
-    const geom::TriMesh& m = s.meshes[i];
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    const geom::TriMesh& m = meshes[i];
     if (m.triangles.empty()) continue;
     RTCGeometry g = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
     throwOnEmbreeError(s.device, "ray scene: new geometry");
@@ -199,7 +209,7 @@ std::vector<RayHit> RayScene::intersectAll(const std::vector<Ray>& rays, const P
   return hits;
 }
 
-std::size_t RayScene::meshCount() const { return impl_->meshes.size(); }
+std::size_t RayScene::meshCount() const { return impl_->meshCount; }
 std::size_t RayScene::triangleCount() const { return impl_->triangleCount; }
 const geom::BBox& RayScene::bounds() const { return impl_->bounds; }
 

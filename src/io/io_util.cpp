@@ -19,14 +19,18 @@ std::string readAll(std::istream& in, const std::string& source) {
     in.seekg(0, std::ios::end);
     auto end = in.tellg();
     in.seekg(start);
-    if (end != std::istream::pos_type(-1) && end >= start && in) data.reserve(static_cast<std::size_t>(end - start));
+    if (end != std::istream::pos_type(-1) && end >= start && in) {
+      data.resize(static_cast<std::size_t>(end - start));
+      in.read(data.data(), static_cast<std::streamsize>(data.size()));
+      data.resize(static_cast<std::size_t>(in.gcount()));
+    }
   }
-  in.clear();
-  constexpr std::size_t kBlock = 1 << 20;
-  std::string block(kBlock, '\0');
+  in.clear(in.rdstate() & ~std::ios::failbit);
+  // Whatever is left (or everything, for streams that cannot seek), in blocks.
+  char block[1 << 16];
   while (in) {
-    in.read(block.data(), static_cast<std::streamsize>(kBlock));
-    data.append(block.data(), static_cast<std::size_t>(in.gcount()));
+    in.read(block, sizeof block);
+    data.append(block, static_cast<std::size_t>(in.gcount()));
   }
   if (in.bad()) throw InputError(source + ": read error after " + std::to_string(data.size()) + " bytes");
   return data;

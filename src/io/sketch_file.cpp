@@ -12,6 +12,7 @@
 namespace treesketch::io {
 
 using nlohmann::json;
+using ojson = nlohmann::ordered_json;  // writing: keys in a readable order
 
 namespace {
 
@@ -65,8 +66,8 @@ std::vector<double> numbers(const json& obj, const char* key, std::size_t count,
   return out;
 }
 
-json mat4ToJson(const geom::Mat4& m) {
-  json a = json::array();
+ojson mat4ToJson(const geom::Mat4& m) {
+  ojson a = ojson::array();
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) a.push_back(m(r, c));
   return a;
@@ -80,8 +81,8 @@ geom::Mat4 mat4FromJson(const json& obj, const char* key, const Ctx& ctx) {
   return m;
 }
 
-json cameraToJson(const geom::Camera& cam) {
-  json j;
+ojson cameraToJson(const geom::Camera& cam) {
+  ojson j;
   j["view"] = mat4ToJson(cam.view);
   j["projection"] = mat4ToJson(cam.projection);
   j["viewport"] = {cam.viewport.x, cam.viewport.y, cam.viewport.width, cam.viewport.height};
@@ -103,8 +104,8 @@ geom::Camera cameraFromJson(const json& j, const Ctx& ctx) {
   return cam;
 }
 
-json paramsToJson(const sketch::SamplingParams& p) {
-  json j;
+ojson paramsToJson(const sketch::SamplingParams& p) {
+  ojson j;
   j["sliceHalfThickness"] = p.sliceHalfThickness;
   j["lineEpsilon"] = p.lineEpsilon;
   j["lineEpsilonStep"] = p.lineEpsilonStep;
@@ -142,6 +143,9 @@ json parseJson(std::istream& in, const std::string& source) {
     // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line L, column C: ..."
     auto pos = what.find("parse error");
     throw InputError(atOffset(source, e.byte, "malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos))));
+  } catch (const json::exception& e) {
+    // e.g. out_of_range.406 "number overflow parsing '1e999'": nlohmann gives no position.
+    throw InputError(source + ": malformed JSON: " + e.what());
   }
 }
 
@@ -222,18 +226,18 @@ sketch::Sketch sketchFromJson(const json& root, const std::string& source) {
   return sk;
 }
 
-json sketchToJson(const sketch::Sketch& sk) {
-  json j;
+ojson sketchToJson(const sketch::Sketch& sk) {
+  ojson j;
   j["format"] = kFormatName;
   j["version"] = kFormatVersion;
   j["up"] = geom::toString(sk.up);
   j["defaults"] = paramsToJson(sk.defaults);
-  j["cameras"] = json::array();
+  j["cameras"] = ojson::array();
   for (const auto& c : sk.cameras()) j["cameras"].push_back(cameraToJson(c));
-  j["nodes"] = json::array();
+  j["nodes"] = ojson::array();
   for (sketch::NodeId id : sk.topologicalOrder()) {
     const sketch::Node& n = sk.node(id);
-    json o;
+    ojson o;
     o["id"] = n.id;
     o["parent"] = n.parent;
     if (n.isScreenNode()) {
@@ -247,6 +251,24 @@ json sketchToJson(const sketch::Sketch& sk) {
     j["nodes"].push_back(std::move(o));
   }
   return j;
+}
+
+/// One top-level key a line, one camera or node a line (diff-friendly, still plain JSON).
+std::string layout(const ojson& j) {
+  std::string out = "{\n";
+  std::size_t k = 0;
+  for (auto it = j.begin(); it != j.end(); ++it, ++k) {
+    out += "  " + ojson(it.key()).dump() + ": ";
+    if (it->is_array() && !it->empty() && it->front().is_object()) {
+      out += "[\n";
+      for (std::size_t i = 0; i < it->size(); ++i) out += "    " + (*it)[i].dump() + (i + 1 < it->size() ? ",\n" : "\n");
+      out += "  ]";
+    } else {
+      out += it->dump();
+    }
+    out += k + 1 < j.size() ? ",\n" : "\n";
+  }
+  return out + "}\n";
 }
 
 void checkParamsFinite(const sketch::SamplingParams& p) {
@@ -269,14 +291,14 @@ sketch::Sketch readSketch(const std::filesystem::path& path) {
 void writeSketch(std::ostream& out, const sketch::Sketch& sk) {
   sk.validate();
   checkParamsFinite(sk.defaults);
-  out << sketchToJson(sk).dump(1) << "\n";
+  out << layout(sketchToJson(sk));
   if (!out) throw OutputError("sketch: write failed");
 }
 
 void writeSketch(const std::filesystem::path& path, const sketch::Sketch& sk) {
   sk.validate();
   checkParamsFinite(sk.defaults);
-  std::string text = sketchToJson(sk).dump(1) + "\n";
+  std::string text = layout(sketchToJson(sk));
   writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 
@@ -292,13 +314,13 @@ geom::Camera readCamera(const std::filesystem::path& path) {
 
 void writeCamera(std::ostream& out, const geom::Camera& camera) {
   camera.validate("camera");
-  out << cameraToJson(camera).dump(1) << "\n";
+  out << layout(cameraToJson(camera));
   if (!out) throw OutputError("camera: write failed");
 }
 
 void writeCamera(const std::filesystem::path& path, const geom::Camera& camera) {
   camera.validate(path.string());
-  std::string text = cameraToJson(camera).dump(1) + "\n";
+  std::string text = layout(cameraToJson(camera));
   writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 

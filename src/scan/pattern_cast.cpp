@@ -33,6 +33,14 @@ struct ChunkOut {
 
 ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, const RayGenerator& generator,
                        const CastOptions& options, const ProgressFn& progress) {
+  const RayBatchGenerator batch = [&generator](std::uint64_t first, std::size_t count, ScanRay* out) {
+    for (std::size_t k = 0; k < count; ++k) out[k] = generator(first + k);
+  };
+  return castPattern(scene, rayCount, batch, options, progress);
+}
+
+ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, const RayBatchGenerator& generator,
+                       const CastOptions& options, const ProgressFn& progress) {
   if (!(options.rangeNoise >= 0.0) || !std::isfinite(options.rangeNoise))
     throw OptionsError("scan: range noise must be a finite number >= 0, got " + std::to_string(options.rangeNoise));
   const auto start = std::chrono::steady_clock::now();
@@ -52,16 +60,21 @@ ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, con
       out.hitsPerMesh.assign(scene.meshCount(), 0);
       const std::uint64_t first = c * kRaysPerChunk;
       const std::uint64_t last = std::min(rayCount, first + kRaysPerChunk);
-      for (std::uint64_t i = first; i < last; ++i) {
-        const ScanRay sr = generator(i);
-        const accel::RayHit hit = scene.intersect(sr.ray);
-        if (!hit.hit()) continue;
-        geom::Vec3 p = hit.point;
-        if (sigma > 0.0) p += (sigma * counterGaussian(options.seed, i, kNoiseStream)) * sr.ray.dir.normalized();
-        out.positions.push_back(p);
-        ++out.hitsPerMesh[static_cast<std::size_t>(hit.meshIndex)];
-        if (options.recordMesh) out.meshId.push_back(hit.meshIndex);
-        if (options.recordStation) out.station.push_back(sr.station);
+      ScanRay batch[kRayBatch];
+      for (std::uint64_t b = first; b < last; b += kRayBatch) {
+        const auto count = static_cast<std::size_t>(std::min<std::uint64_t>(kRayBatch, last - b));
+        generator(b, count, batch);
+        for (std::size_t k = 0; k < count; ++k) {
+          const ScanRay& sr = batch[k];
+          const accel::RayHit hit = scene.intersect(sr.ray);
+          if (!hit.hit()) continue;
+          geom::Vec3 p = hit.point;
+          if (sigma > 0.0) p += (sigma * counterGaussian(options.seed, b + k, kNoiseStream)) * sr.ray.dir.normalized();
+          out.positions.push_back(p);
+          ++out.hitsPerMesh[static_cast<std::size_t>(hit.meshIndex)];
+          if (options.recordMesh) out.meshId.push_back(hit.meshIndex);
+          if (options.recordStation) out.station.push_back(sr.station);
+        }
       }
       if (progress) progress(done.fetch_add(last - first) + (last - first), rayCount);
     }

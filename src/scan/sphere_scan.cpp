@@ -52,30 +52,66 @@ std::uint64_t sphereRayCount(const SphereScanOptions& options) {
   return 8 * n * n;
 }
 
-Vec3 sphereGridDirection(std::uint64_t n, std::uint64_t index) {
-  // Face f of the octahedron: corners A = sz Z (apex), B = sx X, C = sy Y.
+namespace {
+
+// Position of a ray origin on the octahedron grid: face f (0..7), row r (0..n-1) from the face's
+// apex, triangle c (0..2r) in the row.
+struct GridCell {
+  std::uint64_t f = 0, r = 0, c = 0;
+};
+
+GridCell gridCell(std::uint64_t n, std::uint64_t index) {
   const std::uint64_t perFace = n * n;
-  const std::uint64_t f = index / perFace;
-  const std::uint64_t k = index % perFace;
-  const double sx = (f & 1) ? -1.0 : 1.0, sy = (f & 2) ? -1.0 : 1.0, sz = (f & 4) ? -1.0 : 1.0;
-  // Row r (between grid lines a+b = r and r+1 counted from the apex) holds 2r+1 triangles.
-  auto r = static_cast<std::uint64_t>(std::sqrt(static_cast<double>(k)));
-  while (r * r > k) --r;
-  while ((r + 1) * (r + 1) <= k) ++r;
-  const std::uint64_t c = k - r * r, m = c / 2;
-  // Centroid in grid coordinates (a along A->B, b along A->C, in units of 1/n).
-  double a, b;
-  if (c % 2 == 0) {  // upright triangle: (r-m, m), (r+1-m, m), (r-m, m+1)
-    a = static_cast<double>(r - m) + 1.0 / 3.0;
-    b = static_cast<double>(m) + 1.0 / 3.0;
-  } else {  // inverted: (r-m, m), (r-m-1, m+1), (r-m, m+1)
-    a = static_cast<double>(r - m) - 1.0 / 3.0;
-    b = static_cast<double>(m) + 2.0 / 3.0;
-  }
-  const double inv = 1.0 / static_cast<double>(n);
-  const double wa = a * inv, wb = b * inv, wApex = 1.0 - wa - wb;
-  return Vec3(sx * wa, sy * wb, sz * wApex).normalized();
+  GridCell g;
+  g.f = index / perFace;
+  const std::uint64_t k = index - g.f * perFace;
+  // Row r holds triangles r^2 .. r^2 + 2r of the face.
+  g.r = static_cast<std::uint64_t>(std::sqrt(static_cast<double>(k)));
+  if (g.r * g.r > k) --g.r;  // sqrt of a double is exact enough that one step corrects it
+  if ((g.r + 1) * (g.r + 1) <= k) ++g.r;
+  g.c = k - g.r * g.r;
+  return g;
 }
+
+// Steps to the next cell in index order.
+void nextCell(std::uint64_t n, GridCell& g) {
+  if (++g.c <= 2 * g.r) return;
+  g.c = 0;
+  if (++g.r < n) return;
+  g.r = 0;
+  ++g.f;
+}
+
+// Face f has corners A = sz Z (apex), B = sx X, C = sy Y. The centroid of triangle c of row r,
+// in grid coordinates (a along A->B, b along A->C, units of 1/n): upright triangles (c even)
+// (r-m, m), (r+1-m, m), (r-m, m+1); inverted (c odd) (r-m, m), (r-m-1, m+1), (r-m, m+1); m = c/2.
+Vec3 cellDirection(std::uint64_t n, const GridCell& g) {
+  const double sx = (g.f & 1) ? -1.0 : 1.0, sy = (g.f & 2) ? -1.0 : 1.0, sz = (g.f & 4) ? -1.0 : 1.0;
+  const std::uint64_t m = g.c >> 1;
+  const bool inverted = g.c & 1;
+  const double a = static_cast<double>(g.r - m) + (inverted ? -1.0 / 3.0 : 1.0 / 3.0);
+  const double b = static_cast<double>(m) + (inverted ? 2.0 / 3.0 : 1.0 / 3.0);
+  const Vec3 p(sx * a, sy * b, sz * (static_cast<double>(n) - a - b));
+  return p / p.norm();
+}
+
+}  // namespace
+
+Vec3 sphereGridDirection(std::uint64_t n, std::uint64_t index) { return cellDirection(n, gridCell(n, index)); }
+
+namespace {
+
+// An orthonormal basis (e1, e2) perpendicular to the unit vector d, branch-free (Duff et al.,
+// "Building an Orthonormal Basis, Revisited", JCGT 2017).
+inline void orthonormalBasis(const Vec3& d, Vec3& e1, Vec3& e2) {
+  const double sign = std::copysign(1.0, d.z());
+  const double a = -1.0 / (sign + d.z());
+  const double b = d.x() * d.y() * a;
+  e1 = Vec3(1.0 + sign * d.x() * d.x() * a, sign * b, -sign * d.x());
+  e2 = Vec3(b, sign + d.y() * d.y() * a, -d.y());
+}
+
+}  // namespace
 
 ScanResult sphereScan(const accel::RayScene& scene, const SphereScanOptions& options, const ProgressFn& progress) {
   checkOptions(options);
@@ -85,27 +121,32 @@ ScanResult sphereScan(const accel::RayScene& scene, const SphereScanOptions& opt
   cast.seed = options.seed;
   cast.recordMesh = options.recordMesh;
   const geom::BBox& box = scene.bounds();
-  if (box.empty()) return castPattern(scene, 0, {}, cast, progress);
+  if (box.empty()) return castPattern(scene, 0, RayBatchGenerator{}, cast, progress);
 
   const Vec3 centre = box.center();
   const double radius = options.radius > 0.0 ? options.radius : options.radiusFactor * box.diagonal();
   const double cosJitter = std::cos(options.jitterDeg * std::numbers::pi / 180.0);
   const std::uint64_t seed = options.seed;
-  auto generator = [=](std::uint64_t i) {
-    const Vec3 u = sphereGridDirection(n, i);
-    ScanRay sr;
-    sr.ray.origin = centre + radius * u;
-    Vec3 d = -u;
-    if (cosJitter < 1.0) {  // uniform direction in the cap of half-angle jitterDeg around d
-      const double cosA = 1.0 - counterUniform(seed, i, kJitterStream) * (1.0 - cosJitter);
-      const double sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
-      const double phi = 2.0 * std::numbers::pi * counterUniform(seed, i, kJitterStream + 1);
-      const Vec3 e1 = geom::anyPerpendicular(d);
-      const Vec3 e2 = d.cross(e1);
-      d = cosA * d + sinA * (std::cos(phi) * e1 + std::sin(phi) * e2);
+  const RayBatchGenerator generator = [=](std::uint64_t first, std::size_t count, ScanRay* out) {
+    GridCell cell = gridCell(n, first);
+    for (std::size_t k = 0; k < count; ++k, nextCell(n, cell)) {
+      const std::uint64_t i = first + k;
+      const Vec3 u = cellDirection(n, cell);
+      ScanRay& sr = out[k];
+      sr.ray = accel::Ray{};
+      sr.ray.origin = centre + radius * u;
+      Vec3 d = -u;
+      if (cosJitter < 1.0) {  // uniform direction in the cap of half-angle jitterDeg around d
+        const double cosA = 1.0 - counterUniform(seed, i, kJitterStream) * (1.0 - cosJitter);
+        const double sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
+        const double phi = 2.0 * std::numbers::pi * counterUniform(seed, i, kJitterStream + 1);
+        Vec3 e1, e2;
+        orthonormalBasis(d, e1, e2);
+        d = cosA * d + sinA * (std::cos(phi) * e1 + std::sin(phi) * e2);
+      }
+      sr.ray.dir = d;
+      sr.station = -1;
     }
-    sr.ray.dir = d;
-    return sr;
   };
   return castPattern(scene, 8 * n * n, generator, cast, progress);
 }

@@ -111,19 +111,35 @@ ScanResult tlsScan(const accel::RayScene& scene, const TlsScanOptions& options, 
   const double step = options.stepDeg * kDeg, zen0 = options.zenithMinDeg * kDeg;
   const double maxRange = options.maxRange;
 
-  auto generator = [&](std::uint64_t i) {
-    const std::uint64_t s = i / perStation, rem = i % perStation;
-    const double az = static_cast<double>(rem / nZen) * step;
-    const double zen = zen0 + static_cast<double>(rem % nZen) * step;
-    const double sz = std::sin(zen);
-    ScanRay sr;
-    sr.ray.origin = stations[s];
-    sr.ray.dir = sz * std::cos(az) * e1 + sz * std::sin(az) * e2 + std::cos(zen) * upv;  // unit length
-    sr.ray.tfar = maxRange;
-    sr.station = static_cast<std::int32_t>(s);
-    return sr;
+  // Direction tables: the sweep is a grid, so no trigonometry per ray.
+  std::vector<double> cosAz(nAz), sinAz(nAz), cosZen(nZen), sinZen(nZen);
+  for (std::uint64_t a = 0; a < nAz; ++a) {
+    cosAz[a] = std::cos(static_cast<double>(a) * step);
+    sinAz[a] = std::sin(static_cast<double>(a) * step);
+  }
+  for (std::uint64_t z = 0; z < nZen; ++z) {
+    cosZen[z] = std::cos(zen0 + static_cast<double>(z) * step);
+    sinZen[z] = std::sin(zen0 + static_cast<double>(z) * step);
+  }
+  const RayBatchGenerator generator = [&](std::uint64_t first, std::size_t count, ScanRay* out) {
+    std::uint64_t s = first / perStation, rem = first % perStation;
+    std::uint64_t a = rem / nZen, z = rem % nZen;
+    for (std::size_t k = 0; k < count; ++k) {
+      ScanRay& sr = out[k];
+      sr.ray = accel::Ray{};
+      sr.ray.origin = stations[s];
+      sr.ray.dir = sinZen[z] * (cosAz[a] * e1 + sinAz[a] * e2) + cosZen[z] * upv;  // unit length
+      sr.ray.tfar = maxRange;
+      sr.station = static_cast<std::int32_t>(s);
+      if (++z == nZen) {  // zenith is the fast (mirror) axis, then azimuth, then station
+        z = 0;
+        if (++a == nAz) {
+          a = 0;
+          ++s;
+        }
+      }
+    }
   };
-  (void)nAz;
   CastOptions cast;
   cast.rangeNoise = options.rangeNoise;
   cast.seed = options.seed;

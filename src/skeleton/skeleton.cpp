@@ -2,6 +2,7 @@
 // data"), with the clustering by distance bins and adjacency of Xu, Gossett & Chen 2007.
 #include "treesketch/skeleton/skeleton.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -400,12 +401,26 @@ std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw,
     const double near = options.forkZoneRadii * radius[f] + binWidth;
     std::int32_t a1 = raw[f].parent;
     while (a1 >= 0 && raw[f].distance - raw[a1].distance < near) a1 = raw[a1].parent;
-    std::int32_t a2 = a1;
-    while (a2 >= 0 && raw[f].distance - raw[a2].distance < 2 * near) a2 = raw[a2].parent;
-    if (a1 < 0 || a2 < 0) continue;
-    const Vec3 base = raw[a1].position;
-    const Vec3 axis = safeNormalized(raw[a1].position - raw[a2].position, Vec3::Zero());
-    if (axis.isZero()) continue;
+    // Support-weighted line through the ancestors between near and 3 × near below the fork.
+    Vec3 mean = Vec3::Zero();
+    double weight = 0;
+    int count = 0;
+    for (std::int32_t a = a1; a >= 0 && raw[f].distance - raw[a].distance < 3 * near; a = raw[a].parent) {
+      mean += raw[a].support * raw[a].position;
+      weight += raw[a].support;
+      ++count;
+    }
+    if (count < 3 || weight <= 0) continue;
+    mean /= weight;
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::int32_t a = a1; a >= 0 && raw[f].distance - raw[a].distance < 3 * near; a = raw[a].parent) {
+      const Vec3 d = raw[a].position - mean;
+      cov += raw[a].support * d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(cov);
+    const Vec3 axis = eig.eigenvectors().col(2).normalized();
+    const Vec3 base = mean;
     for (std::int32_t j = static_cast<std::int32_t>(f); j != a1; j = raw[j].parent)
       position[j] = base + (raw[j].position - base).dot(axis) * axis;
   }

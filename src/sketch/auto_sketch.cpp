@@ -89,11 +89,25 @@ Sketch uniformAutoSketch(const geom::PointCloud& cloud, const geom::Camera& came
     Vec2 screen(x, yMin + (i + 0.5) * band);
     SamplingParams params = sk.defaults;
     params.sliceHalfThickness = halfThickness;
-    Vec3 nearP = camera.unproject(screen, 0.0);
-    Vec3 dir = (camera.unproject(screen, 1.0) - nearP).normalized();
-    params.lineEpsilon = std::max(maxDistanceToBox(bounds, nearP, dir), sk.defaults.lineEpsilon);
-    params.lineEpsilonStep = params.lineEpsilon;
     parent = sk.addScreenNode(parent, cam, screen, params);
+  }
+
+  // Maximal lineEpsilon: the farthest point of the node's slice from its line (so the test
+  // points are the whole slice at once); a slice without points gets the bound from the box.
+  double margin = 1e-9 * bounds.diagonal();
+  for (NodeId id : sk.ids()) {
+    NodeGeometry g = sk.geometry(id);
+    SamplingParams params = sk.node(id).params;
+    double farthest = -1;
+    for (const Vec3& p : cloud.positions) {
+      Vec3 r = p - g.planePoint;
+      if (std::abs(r.dot(g.planeNormal)) > params.sliceHalfThickness) continue;
+      farthest = std::max(farthest, (r - g.lineDir * g.lineDir.dot(r)).norm());
+    }
+    if (farthest < 0) farthest = maxDistanceToBox(bounds, g.linePoint, g.lineDir);
+    params.lineEpsilon = farthest * (1 + 1e-9) + margin;
+    params.lineEpsilonStep = params.lineEpsilon;
+    sk.setParams(id, params);
   }
   return sk;
 }

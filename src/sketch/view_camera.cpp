@@ -1,6 +1,8 @@
 // Choosing the camera of an automatic sketch (see view_camera.h).
 #include "treesketch/sketch/view_camera.h"
 
+#include <filesystem>
+
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/util/error.h"
 
@@ -11,6 +13,9 @@ geom::Camera cameraForView(const std::string& view, const geom::BBox& bounds, ge
   if (view.empty()) throw OptionsError("view: expected 'front', 'side', 'top' or a camera file, got ''");
   if (view == "front" || view == "side" || view == "top")
     return geom::presetCamera(geom::parsePresetView(view), bounds, up, viewport, orthographic);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(view, ec))
+    throw OptionsError("view '" + view + "': expected 'front', 'side', 'top' or an existing camera file");
   return io::readCamera(std::filesystem::path(view));
 }
 

@@ -28,11 +28,27 @@ void OrbitCamera::setDistance(double d) {
 double OrbitCamera::sceneRadius() const { return scene_.empty() ? 1.0 : std::max(0.5 * scene_.diagonal(), 1e-9); }
 
 void OrbitCamera::fit() {
-  if (!scene_.empty()) target_ = scene_.center();
-  double r = sceneRadius() * (1.0 + options_.fitMargin);
   double aspect = viewport_.width / viewport_.height;
-  double halfAngle = std::atan(std::tan(options_.fovYDeg * M_PI / 360.0) * std::min(1.0, aspect));
-  setDistance(r / std::sin(halfAngle));
+  double tanHalf = std::tan(options_.fovYDeg * M_PI / 360.0);
+  if (scene_.empty()) {
+    setDistance(1.0 / tanHalf);
+    return;
+  }
+  target_ = scene_.center();
+  // The box's corners in the eye axes: its half-extents across and along the view.
+  geom::Mat3 m = orientation_.toRotationMatrix();
+  double halfW = 0, halfH = 0, halfD = 0;
+  for (int i = 0; i < 8; ++i) {
+    Vec3 corner((i & 1) ? scene_.max.x() : scene_.min.x(), (i & 2) ? scene_.max.y() : scene_.min.y(),
+                (i & 4) ? scene_.max.z() : scene_.min.z());
+    Vec3 e = m.transpose() * (corner - target_);
+    halfW = std::max(halfW, std::abs(e.x()));
+    halfH = std::max(halfH, std::abs(e.y()));
+    halfD = std::max(halfD, std::abs(e.z()));
+  }
+  double h = std::max({halfH, halfW / aspect, 1e-9}) * (1.0 + options_.fitMargin);
+  // Perspective: the box's front face (halfD nearer than the target) must fit too.
+  setDistance(h / tanHalf + (ortho_ ? 0.0 : halfD));
 }
 
 void OrbitCamera::preset(geom::PresetView view, geom::UpAxis up) {

@@ -108,7 +108,7 @@ TEST(SkeletonIo, RejectsBadInput) {
   expectError(replaced(ok, "\"center\":[0,1,0]", "\"center\":[0,1]"), "branches[0].sections[1].center");
   expectError(replaced(ok, "\"axis\":[0,1,0]}]", "\"axis\":[0,0,0]}]"), "unit vector");
   expectError(replaced(ok, ",\"level\":0", ""), "missing field \"level\"");
-  expectError(replaced(ok, "\"parent\":-1", "\"parent\":0"), "root");
+  expectError(replaced(ok, "\"parent\":-1", "\"parent\":0"), "parent 0 does not come before");
   expectError(replaced(ok, "\"id\":0", "\"id\":0.5"), "expected an integer");
   expectError(replaced(ok, ",{\"center\":[0,1,0],\"radius\":0.05,\"axis\":[0,1,0]}", ""), "expected >= 2");
 }

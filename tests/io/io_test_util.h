@@ -8,7 +8,9 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <initializer_list>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,35 @@ void expectError(F&& f, std::initializer_list<std::string> parts) {
   } catch (const E& e) {
     std::string msg = e.what();
     for (const auto& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "message: " << msg << "\nmissing: " << p;
+  }
+}
+
+/// Feeds `read` every truncation of `bytes` (up to `maxTruncations`, evenly spread) and
+/// `mutations` copies with a few random bytes changed (fixed seed). Each call must either return
+/// or throw InputError; anything else (a crash, another exception type) fails the test. Run under
+/// ASan this also checks that no reader reads out of bounds.
+inline void expectOnlyInputErrors(const std::string& bytes, const std::function<void(const std::string&)>& read,
+                                  int mutations = 300, std::size_t maxTruncations = 200) {
+  auto tryOne = [&](const std::string& b, const std::string& what) {
+    try {
+      read(b);
+    } catch (const InputError&) {
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << what << ": unexpected exception " << e.what();
+    }
+  };
+  std::size_t step = std::max<std::size_t>(1, bytes.size() / maxTruncations);
+  for (std::size_t n = 0; n < bytes.size(); n += step) tryOne(bytes.substr(0, n), "truncated at " + std::to_string(n));
+  std::mt19937 rng(1234);
+  const char kSpecial[] = {'\0', '\n', ' ', '-', '9', 'e', '\xff', '/', '.', 'n'};
+  for (int i = 0; i < mutations; ++i) {
+    std::string b = bytes;
+    int changes = 1 + static_cast<int>(rng() % 4);
+    for (int k = 0; k < changes && !b.empty(); ++k) {
+      std::size_t at = rng() % b.size();
+      b[at] = (rng() % 2) ? static_cast<char>(rng() & 0xff) : kSpecial[rng() % sizeof(kSpecial)];
+    }
+    tryOne(b, "mutation " + std::to_string(i));
   }
 }
 

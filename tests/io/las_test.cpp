@@ -175,5 +175,15 @@ TEST(Las, RealArchiTreeMatchesItsHeader) {
   EXPECT_NEAR(b.extent().z(), 6.20, 0.01);
 }
 
+TEST(Las, DamagedFilesGiveInputErrorsOnly) {
+  for (int fmt : {0, 6}) {
+    LasSpec s;
+    s.versionMinor = fmt == 0 ? 2 : 4;
+    s.pointFormat = fmt;
+    s.points = somePoints();
+    testing::expectOnlyInputErrors(buildLas(s), [](const std::string& b) { lasFrom(b); }, 1000);
+  }
+}
+
 }  // namespace
 }  // namespace treesketch::io

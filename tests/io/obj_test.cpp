@@ -120,5 +120,10 @@ TEST(Obj, RealBranchMeshesHaveTheirDocumentedCounts) {
   }
 }
 
+TEST(Obj, DamagedFilesGiveInputErrorsOnly) {
+  std::string text = "# c\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 1\nvt 0 1\nf 1/1/1 2/2/2 3/3/3 4/4/4\nf -1 -2 -3\n";
+  testing::expectOnlyInputErrors(text, [](const std::string& b) { objFrom(b); }, 1000);
+}
+
 }  // namespace
 }  // namespace treesketch::io

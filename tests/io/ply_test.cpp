@@ -148,7 +148,7 @@ TEST(Ply, AsciiMeshWithPolygonsCrlfHeaderAndColors) {
       "3 0 1 2 0\r\n4 0 1 2 3 0\r\n5 0 1 4 3 5 1\r\n";
   geom::TriMesh m = meshFrom(s);
   ASSERT_EQ(m.vertices.size(), 6u);
-  EXPECT_EQ(m.vertices[5], geom::Vec3(-1, 0.5, 0.1f));
+  EXPECT_EQ(m.vertices[5], geom::Vec3(-1, 0.5, 0.1));  // ascii values are read as written
   ASSERT_EQ(m.triangles.size(), 1u + 2u + 3u);
   EXPECT_EQ(m.triangles[1], (std::array<std::uint32_t, 3>{0, 1, 2}));
   EXPECT_EQ(m.triangles[2], (std::array<std::uint32_t, 3>{0, 2, 3}));
@@ -281,6 +281,35 @@ TEST(Ply, WritersRejectBadData) {
   m.vertices = {geom::Vec3(0, 0, 0)};
   m.triangles = {{0, 0, 1}};
   expectError<OptionsError>([&] { writePlyMesh(out, m); }, {"vertex 1"});
+}
+
+TEST(Ply, DamagedFilesGiveInputErrorsOnly) {
+  geom::TriMesh m;
+  for (int i = 0; i < 12; ++i) {
+    m.vertices.emplace_back(i, i % 3, i % 5);
+    m.colors.push_back({1, 2, 3});
+    m.quality.push_back(i);
+  }
+  for (std::uint32_t i = 0; i + 2 < 12; ++i) m.triangles.push_back({i, i + 1, i + 2});
+  std::stringstream binary;
+  writePlyMesh(binary, m);
+  auto readBoth = [](const std::string& b) {
+    try {
+      meshFrom(b);
+    } catch (const InputError&) {
+    }
+    CloudReadOptions any;
+    any.minPoints = 0;
+    cloudFrom(b, any);
+  };
+  testing::expectOnlyInputErrors(binary.str(), readBoth);
+  std::string ascii = faceFile("3 0 1 2\n4 0 1 2 3\n", 2);
+  testing::expectOnlyInputErrors(ascii, readBoth);
+  std::stringstream cloud;
+  writePlyPointCloud(cloud, randomCloud(10, true));
+  std::string big = cloud.str();
+  big.replace(big.find("binary_little_endian"), 20, "binary_big_endian   ");
+  testing::expectOnlyInputErrors(big, readBoth);
 }
 
 }  // namespace

@@ -128,5 +128,10 @@ TEST(Xyz, RealRTwigCloud) {
   EXPECT_LT(c.bounds().max.z(), 259.0);
 }
 
+TEST(Xyz, DamagedFilesGiveInputErrorsOnly) {
+  std::string text = "x,y,z\n0 0 0\n1.5,2,3\n4;5;6 7\n-1e3 2e-3 +7\n8 9 10\n";
+  testing::expectOnlyInputErrors(text, [](const std::string& b) { readText(b); }, 1000);
+}
+
 }  // namespace
 }  // namespace treesketch::io

@@ -73,14 +73,17 @@ void checkUniform(const geom::PointCloud& cloud, const geom::Camera& cam, int co
     EXPECT_GE(n.screen.x(), cam.viewport.x);
     EXPECT_LE(n.screen.x(), cam.viewport.x + cam.viewport.width);
     if (i > 0) EXPECT_LT(n.screen.y(), sk.node(order[i - 1]).screen.y());  // going up the screen
-    // Maximal sizes: every point of the cloud within lineEpsilon of the line.
+    // Maximal sizes: every point of the slice within lineEpsilon of the line, and not much more.
     NodeGeometry g = sk.geometry(order[i]);
     double far = 0;
     for (const Vec3& p : cloud.positions) {
       Vec3 r = p - g.linePoint;
+      if (std::abs(r.dot(g.planeNormal)) > n.params.sliceHalfThickness) continue;
       far = std::max(far, (r - g.lineDir * g.lineDir.dot(r)).norm());
     }
+    EXPECT_GT(far, 0.0);
     EXPECT_GE(n.params.lineEpsilon, far);
+    EXPECT_LT(n.params.lineEpsilon, far * 1.001);
     EXPECT_EQ(n.params.lineEpsilonStep, n.params.lineEpsilon);
   }
 }

@@ -5,7 +5,7 @@
 // that their common bounding-box centre is at the origin, converts each ray into that frame, and
 // converts the hit back. The hit point is then recomputed in double precision as
 // origin + t * dir, with t taken from the ray's intersection with the hit triangle's plane
-// (double-precision vertices). Real-world coordinates (UTM eastings ~ 5e5 m) thus keep their
+// (kept in double precision). Real-world coordinates (UTM eastings ~ 5e5 m) thus keep their
 // precision; what float still limits is *which* triangle is reported for a ray that grazes an
 // edge or a silhouette within ~1e-7 x (scene size + ray length) of it.
 #pragma once
@@ -52,7 +52,7 @@ struct RayHit {
 /// all queries are const and thread-safe. Move-only.
 class RayScene {
  public:
-  /// Builds the BVH over `meshes` (copied; the caller may drop them). The geometry of mesh i
+  /// Builds the BVH over `meshes` (the scene keeps its own copy; the caller may drop them). The geometry of mesh i
   /// reports meshIndex i. Empty meshes are allowed (they are never hit); a scene of only empty
   /// meshes, or no meshes, misses every ray. Throws OptionsError when a mesh is inconsistent
   /// (index out of range) or has a non-finite vertex; throws std::runtime_error with Embree's

@@ -31,13 +31,15 @@ struct CircleFitOptions {
   /// Probability that at least one sample is outlier-free. Thesis appendix B: 0.999.
   double probability = 0.999;
   /// Absolute inlier threshold on |distance to centre − radius|, world units. Design choice:
-  /// 0.01 (about 2σ of the 5 mm range noise of a terrestrial scanner). The thesis used the
-  /// estimator's delta of 0.5 scene units.
+  /// 0.01 (about 2σ of the 5 mm range noise of a terrestrial scanner; metres). The thesis used
+  /// the estimator's delta of 0.5 scene units. Clouds in other units need their own value.
   double inlierThreshold = 0.01;
-  /// Relative inlier threshold (fraction of the candidate radius). The threshold used is
-  /// max(inlierThreshold, inlierThresholdRelative · radius), so large trunks tolerate bark
-  /// roughness and small branches keep an absolute floor. Set to 0 for a purely absolute test.
-  double inlierThresholdRelative = 0.05;
+  /// Optional relative mode: the threshold becomes max(inlierThreshold, inlierThresholdRelative ·
+  /// candidate radius), so wide trunks tolerate bark roughness. Off (0) by default: a band that
+  /// widens with the radius favours huge circles through scattered outliers (their band covers
+  /// more points), which made RANSAC pick them in tests with 30 % outliers. Use small values
+  /// (≤ 0.02) together with maxRadius.
+  double inlierThresholdRelative = 0.0;
   /// Minimum support: at least this many inliers... (design choice)
   int minInliers = 8;
   /// ...and at least this fraction of the input points (design choice: 0.1).

@@ -22,6 +22,12 @@ struct ScanRay {
 /// Makes ray number `index` (0-based) of a pattern. Must be a pure function of the index: it is
 /// called concurrently from several threads, in no particular order.
 using RayGenerator = std::function<ScanRay(std::uint64_t index)>;
+/// Makes rays first .. first+count-1 into out[0 .. count-1] (count <= kRayBatch): the same
+/// contract as RayGenerator, for patterns that are cheaper to step from ray to ray than to
+/// compute from scratch (the built-in patterns use it).
+using RayBatchGenerator = std::function<void(std::uint64_t first, std::size_t count, ScanRay* out)>;
+/// Rays per RayBatchGenerator call at most.
+inline constexpr std::size_t kRayBatch = 256;
 
 struct CastOptions {
   /// Standard deviation of Gaussian range noise added along each ray (scene units, e.g. metres).
@@ -60,6 +66,9 @@ struct ScanResult {
 /// done, rayCount). rayCount 0 gives an empty cloud. Throws OptionsError for a negative or
 /// non-finite rangeNoise.
 ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, const RayGenerator& generator,
+                       const CastOptions& options = {}, const ProgressFn& progress = {});
+/// Same, with rays made in batches.
+ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, const RayBatchGenerator& generator,
                        const CastOptions& options = {}, const ProgressFn& progress = {});
 
 }  // namespace treesketch::scan

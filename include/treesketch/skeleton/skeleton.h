@@ -49,7 +49,7 @@ struct SkeletonOptions {
   /// Forks: the fork node and the raw nodes within forkZoneRadii × radius + one level set below
   /// it are moved onto the line of the parent chain below that zone (their level sets include the
   /// children's bases, which pull the centroids sideways).
-  double forkZoneRadii = 2.0;
+  double forkZoneRadii = 3.5;
 
   /// Simplification of each chain between forks and ends (Douglas–Peucker): a node is dropped
   /// when it lies closer than max(collinearToleranceRadii × radius, collinearToleranceVoxels ×

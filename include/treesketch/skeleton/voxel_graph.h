@@ -80,10 +80,10 @@ struct VoxelGraph {
 
 /// Voxel size the automatic rule picks for this cloud (see VoxelGraphOptions::voxelSize), world
 /// units. Returns options.voxelSize when it is > 0, and 1 for an empty or single-point cloud.
-double chooseVoxelSize(const geom::PointCloud& cloud, const VoxelGraphOptions& options);
+double chooseVoxelSize(const geom::PointCloud& cloud, const VoxelGraphOptions& options = {});
 
 /// Builds the graph (voxels, features, edges, bridges). An empty cloud gives an empty graph.
 /// Throws OptionsError for negative sizes or NaN/Inf coordinates.
-VoxelGraph buildVoxelGraph(const geom::PointCloud& cloud, const VoxelGraphOptions& options);
+VoxelGraph buildVoxelGraph(const geom::PointCloud& cloud, const VoxelGraphOptions& options = {});
 
 }  // namespace treesketch::skeleton

@@ -39,11 +39,12 @@ SamplingParams defaultSamplingFor(const geom::BBox& cloudBounds, const SamplingS
 ///  - "maximal sampling sizes": sliceHalfThickness = half the band height in world units (the
 ///    slices tile the height; the pixel size is taken at the depth of the cloud's bbox centre,
 ///    exact for an orthographic camera), lineEpsilon = the largest distance from the node's line
-///    to a corner of the cloud's bbox (every point of the cloud is within it: the test points
-///    are the whole slice), lineEpsilonStep = lineEpsilon.
+///    of a point in its slice, plus 1e-9 relative (the test points are the whole slice at once;
+///    a slice without points takes the largest distance from the line to a bbox corner),
+///    lineEpsilonStep = lineEpsilon.
 /// sketch.defaults = defaultSamplingFor(cloud bounds), sketch.up = `up`; the camera is the
 /// sketch's camera 0. Throws OptionsError for nodeCount < 1, an empty cloud, a degenerate
-/// camera or no point in front of the camera. Cost: one pass over the cloud.
+/// camera or no point in front of the camera. Cost: nodeCount + 1 passes over the cloud.
 Sketch uniformAutoSketch(const geom::PointCloud& cloud, const geom::Camera& camera, int nodeCount, geom::UpAxis up);
 
 }  // namespace treesketch::sketch

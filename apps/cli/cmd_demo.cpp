@@ -1,0 +1,175 @@
+// `treesketch demo [--out DIR] [--seed S] [--subdiv K]`: the whole pipeline on a built-in tree,
+// with no input file. Each step is one function below, run in order by runDemo; later pipeline
+// stages (reconstruct, compare) are added as further steps that read and extend DemoState.
+//   1. generate  — the procedural tree (gen/): skeleton, branch mesh, leaf quads
+//   2. reference — write tree_branches.obj, tree_leaves.obj, tree_skeleton.json
+//   3. scan      — the thesis's sphere scanner over branches + leaves (scan/)
+//   4. cloud     — write cloud.ply (with the mesh id of each point: 0 wood, 1 leaf)
+//   5. summary   — counts, wood fraction, bounds, timings -> stdout and summary.txt
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "commands.h"
+#include "treesketch/gen/skeleton_io.h"
+#include "treesketch/gen/tree_generator.h"
+#include "treesketch/io/mesh_io.h"
+#include "treesketch/io/point_cloud_io.h"
+#include "treesketch/scan/sphere_scan.h"
+#include "treesketch/util/atomic_file.h"
+#include "treesketch/util/error.h"
+#include "treesketch/util/progress.h"
+
+namespace treesketch::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DemoArgs {
+  std::string out = "out/demo";
+  std::uint64_t seed = 1;
+  int subdiv = 6;  // thesis §4.2: 6 subdivisions = 73,728 rays
+  std::string preset = "default";
+  int detail = 1;
+};
+
+/// Everything the steps produce, passed from one step to the next.
+struct DemoState {
+  DemoArgs args;
+  fs::path dir;
+  gen::TreeOptions treeOptions;
+  gen::GeneratedTree tree;
+  scan::ScanResult scan;
+  std::vector<std::pair<std::string, double>> timings;  ///< step name, milliseconds
+  std::ostringstream summary;                           ///< filled by the steps, printed at the end
+};
+
+/// Runs `step`, recording its wall time under `name`.
+template <typename F>
+void timed(DemoState& s, const std::string& name, F&& step) {
+  auto start = std::chrono::steady_clock::now();
+  step();
+  s.timings.emplace_back(name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
+std::string formatBox(const geom::BBox& b) {
+  if (b.empty()) return "empty";
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "[%.3f %.3f %.3f] - [%.3f %.3f %.3f] m (diagonal %.3f m)", b.min.x(), b.min.y(),
+                b.min.z(), b.max.x(), b.max.y(), b.max.z(), b.diagonal());
+  return buf;
+}
+
+void prepareOutputDir(DemoState& s) {
+  s.dir = s.args.out;
+  std::error_code ec;
+  fs::create_directories(s.dir, ec);
+  if (ec || !fs::is_directory(s.dir))
+    throw OutputError(s.dir.string() + ": cannot create the output directory" + (ec ? ": " + ec.message() : ""));
+}
+
+void stepGenerate(DemoState& s) {
+  s.treeOptions = gen::presetOptions(s.args.preset);
+  s.treeOptions.seed = s.args.seed;
+  s.treeOptions.detail = s.args.detail;
+  s.tree = gen::generateTree(s.treeOptions);
+  const gen::Skeleton& sk = s.tree.skeleton;
+  int perLevel[5] = {0, 0, 0, 0, 0};
+  for (const auto& b : sk.branches) ++perLevel[std::min(b.level, 4)];
+  s.summary << "tree: preset " << s.args.preset << ", seed " << s.args.seed << ", detail " << s.args.detail << ", up "
+            << geom::toString(sk.up) << "\n";
+  s.summary << "  branches: " << sk.branches.size() << " (per level:";
+  for (int l = 0; l <= sk.maxLevel() && l < 5; ++l) s.summary << " " << perLevel[l];
+  s.summary << "), sections " << sk.sectionCount() << ", total length " << gen::totalLength(sk) << " m\n";
+  s.summary << "  trunk base radius " << sk.branches[0].sections[0].radius << " m, wood volume "
+            << gen::woodVolume(sk) << " m^3\n";
+  s.summary << "  branch mesh: " << s.tree.branches.mesh.vertices.size() << " vertices, "
+            << s.tree.branches.mesh.triangles.size() << " triangles, area " << s.tree.branches.mesh.area() << " m^2\n";
+  s.summary << "  leaf mesh: " << s.tree.leaves.triangles.size() / 2 << " quads, area " << s.tree.leaves.area()
+            << " m^2\n";
+  s.summary << "  bounds (branches): " << formatBox(s.tree.branches.mesh.bounds()) << "\n";
+}
+
+void stepWriteReference(DemoState& s) {
+  io::writeMesh(s.dir / "tree_branches.obj", s.tree.branches.mesh);
+  io::writeMesh(s.dir / "tree_leaves.obj", s.tree.leaves);
+  gen::writeSkeletonJson(s.dir / "tree_skeleton.json", s.tree.skeleton);
+}
+
+void stepScan(DemoState& s) {
+  scan::SphereScanOptions o;
+  o.subdivisions = s.args.subdiv;
+  o.seed = s.args.seed;
+  o.recordMesh = true;
+  ProgressBar bar("scan", ProgressBar::stderrIsTerminal());
+  std::vector<geom::TriMesh> meshes{s.tree.branches.mesh};
+  if (!s.tree.leaves.empty()) meshes.push_back(s.tree.leaves);
+  s.scan = scan::sphereScan(meshes, o, bar.callback());
+  const scan::ScanStats& st = s.scan.stats;
+  s.summary << "scan: sphere pattern, subdivisions " << s.args.subdiv << ", " << st.raysCast << " rays, " << st.hits
+            << " points (" << (st.raysCast ? 100.0 * st.hits / st.raysCast : 0.0) << "% hit)\n";
+  s.summary << "  wood fraction " << st.fraction(0) << " (" << (st.hitsPerMesh.empty() ? 0 : st.hitsPerMesh[0])
+            << " points on branches, " << (st.hitsPerMesh.size() > 1 ? st.hitsPerMesh[1] : 0) << " on leaves)\n";
+  s.summary << "  bounds (cloud): " << formatBox(s.scan.cloud.bounds()) << "\n";
+}
+
+void stepWriteCloud(DemoState& s) { io::writePointCloud(s.dir / "cloud.ply", s.scan.cloud); }
+
+void stepSummary(DemoState& s) {
+  std::ostringstream text;
+  text << "treesketch demo -> " << s.dir.string() << "\n" << s.summary.str() << "timings:\n";
+  double total = 0;
+  for (const auto& [name, ms] : s.timings) {
+    char line[120];
+    std::snprintf(line, sizeof line, "  %-10s %10.1f ms\n", name.c_str(), ms);
+    text << line;
+    total += ms;
+  }
+  char line[120];
+  std::snprintf(line, sizeof line, "  %-10s %10.1f ms\n", "total", total);
+  text << line;
+  text << "files: tree_branches.obj tree_leaves.obj tree_skeleton.json cloud.ply summary.txt\n";
+  const std::string str = text.str();
+  writeFileAtomically(s.dir / "summary.txt", [&](std::ostream& out) { out << str; }, false);
+  std::fputs(str.c_str(), stdout);
+}
+
+void runDemo(const DemoArgs& args) {
+  DemoState s;
+  s.args = args;
+  s.summary.precision(4);
+  prepareOutputDir(s);
+  timed(s, "generate", [&] { stepGenerate(s); });
+  timed(s, "reference", [&] { stepWriteReference(s); });
+  timed(s, "scan", [&] { stepScan(s); });
+  timed(s, "cloud", [&] { stepWriteCloud(s); });
+  // [later steps: reconstruct, compare]
+  stepSummary(s);
+}
+
+}  // namespace
+
+void registerDemo(CLI::App& app, Action& action) {
+  auto* sub = app.add_subcommand("demo", "Generate a tree, scan it and write everything to a folder (no input needed)");
+  auto a = std::make_shared<DemoArgs>();
+  sub->add_option("--out", a->out, "Output directory (created if missing)")->capture_default_str();
+  sub->add_option("--seed", a->seed, "Random seed of the tree and the scan")->capture_default_str();
+  sub->add_option("--subdiv", a->subdiv, "Scanner sphere subdivisions k: 18*4^k rays (thesis: 6-8)")
+      ->check(CLI::Range(1, 10))
+      ->capture_default_str();
+  sub->add_option("--preset", a->preset, "Tree preset: default, conifer or sparse")
+      ->check(CLI::IsMember(gen::presetNames()))
+      ->capture_default_str();
+  sub->add_option("--detail", a->detail, "Mesh detail multiplier (triangles ~ detail^2)")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  sub->callback([a, &action] { action = [a] { runDemo(*a); }; });
+}
+
+}  // namespace treesketch::cli

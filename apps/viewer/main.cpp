@@ -1,0 +1,394 @@
+// treesketch-gui: the interactive sketching tool (`treesketch gui` runs it). A GLFW window with an
+// OpenGL 3.3 core context (through GLEW) and Dear ImGui panels over a viewer::ViewerState, which
+// holds everything the tool knows and does; this file only opens the window, loads the input
+// (scanning a mesh first, with progress), forwards mouse and keys, draws, and runs --script
+// sessions headless.
+#include <GL/glew.h>
+// GLEW must come before GLFW's GL header.
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "panels.h"
+#include "renderer.h"
+#include "screenshot.h"
+#include "treesketch/io/file_info.h"
+#include "treesketch/scan/sphere_scan.h"
+#include "treesketch/util/error.h"
+#include "treesketch/viewer/action_script.h"
+#include "treesketch/viewer/demo_scene.h"
+#include "treesketch/viewer/viewer_state.h"
+
+namespace fs = std::filesystem;
+using namespace treesketch;
+
+namespace {
+
+constexpr int kExitOk = 0, kExitFailed = 1, kExitUsage = 2, kExitInput = 3;
+
+struct Args {
+  std::string input;  ///< empty: the demo tree
+  std::string sketchPath, scriptPath, autosavePath;
+  geom::UpAxis up = geom::UpAxis::Y;
+  viewer::DemoSceneOptions demo;
+  int width = 1280, height = 800;
+};
+
+void usage(std::ostream& out) {
+  out << "usage: treesketch-gui [CLOUD | MESH] [--sketch SKETCH.json] [--script ACTIONS.json]\n"
+         "                      [--up y|z] [--autosave PATH] [--demo PRESET] [--demo-rays N]\n"
+         "                      [--width W] [--height H]\n"
+         "Opens the interactive sketching tool on a point cloud (.ply .xyz .txt .csv .pts .las) or on a\n"
+         "mesh (.obj, PLY with faces; scanned first with the sphere scanner's defaults). Without an input\n"
+         "it opens the built-in demo tree. --script runs a scripted session and exits (0: every action\n"
+         "succeeded, 1: some failed).\n";
+}
+
+Args parseArgs(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    std::string s = argv[i];
+    auto value = [&](const char* name) -> std::string {
+      if (i + 1 >= argc) throw OptionsError(std::string(name) + " needs a value");
+      return argv[++i];
+    };
+    auto integer = [&](const char* name) -> long long {
+      std::string v = value(name);
+      char* end = nullptr;
+      long long n = std::strtoll(v.c_str(), &end, 10);
+      if (v.empty() || *end != '\0' || n <= 0) throw OptionsError(std::string(name) + ": expected a positive integer");
+      return n;
+    };
+    if (s == "-h" || s == "--help") {
+      usage(std::cout);
+      std::exit(kExitOk);
+    } else if (s == "--sketch") a.sketchPath = value("--sketch");
+    else if (s == "--script") a.scriptPath = value("--script");
+    else if (s == "--autosave") a.autosavePath = value("--autosave");
+    else if (s == "--up") a.up = geom::parseUpAxis(value("--up"));
+    else if (s == "--demo") a.demo.preset = value("--demo");
+    else if (s == "--demo-rays") a.demo.rays = static_cast<std::uint64_t>(integer("--demo-rays"));
+    else if (s == "--width") a.width = static_cast<int>(integer("--width"));
+    else if (s == "--height") a.height = static_cast<int>(integer("--height"));
+    else if (!s.empty() && s[0] == '-') throw OptionsError("unknown option " + s);
+    else if (a.input.empty()) a.input = s;
+    else throw OptionsError("only one input file may be given");
+  }
+  return a;
+}
+
+/// Loads the input on a worker thread so the window can show progress.
+struct Loader {
+  std::atomic<std::uint64_t> done{0}, total{0};
+  std::atomic<bool> finished{false};
+  std::atomic<const char*> stage{"loading"};
+  std::string error;
+  geom::PointCloud cloud;
+  std::thread thread;
+
+  void start(const Args& args) {
+    thread = std::thread([this, args] {
+      ProgressFn progress = [this](std::uint64_t d, std::uint64_t t) {
+        done = d;
+        total = t;
+      };
+      try {
+        if (args.input.empty()) {
+          stage = "scanning the demo tree";
+          cloud = viewer::demoTreeCloud(args.demo, progress);
+        } else {
+          io::FileInfo info = io::inspectFile(args.input);
+          if (info.isMesh) {
+            stage = "scanning the mesh";
+            cloud = scan::sphereScan(std::vector<geom::TriMesh>{info.mesh}, {}, progress).cloud;
+            if (cloud.empty()) throw InputError(args.input + ": the scan of this mesh hit nothing");
+          } else {
+            cloud = std::move(info.cloud);
+          }
+        }
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+      finished = true;
+    });
+  }
+  ~Loader() {
+    if (thread.joinable()) thread.join();
+  }
+};
+
+const char* keyName(int key) {
+  static char letter[2] = {0, 0};
+  if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) {
+    letter[0] = static_cast<char>('a' + (key - GLFW_KEY_A));
+    return letter;
+  }
+  if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) {
+    letter[0] = static_cast<char>('0' + (key - GLFW_KEY_0));
+    return letter;
+  }
+  switch (key) {
+    case GLFW_KEY_DELETE: return "delete";
+    case GLFW_KEY_BACKSPACE: return "backspace";
+    case GLFW_KEY_ESCAPE: return "escape";
+    default: return nullptr;
+  }
+}
+
+int toMods(int glfwMods) {
+  int m = viewer::kModNone;
+  if (glfwMods & GLFW_MOD_SHIFT) m |= viewer::kModShift;
+  if (glfwMods & GLFW_MOD_CONTROL) m |= viewer::kModCtrl;
+  if (glfwMods & GLFW_MOD_ALT) m |= viewer::kModAlt;
+  return m;
+}
+
+class App {
+ public:
+  App(const Args& args, GLFWwindow* window) : args_(args), window_(window) {
+    panel_.sketchPath = args.sketchPath.empty() ? "sketch.json" : args.sketchPath;
+    panel_.inputName = args.input.empty() ? "demo tree (" + args.demo.preset + ")" : args.input;
+    renderer_ = std::make_unique<gui::Renderer>();
+  }
+
+  viewer::ViewerState& state() { return state_; }
+
+  /// Draws one frame; writes `shot` (if given) from the back buffer before swapping.
+  void frame(const fs::path* shot = nullptr) {
+    int ww, wh, fbw, fbh;
+    glfwGetWindowSize(window_, &ww, &wh);
+    glfwGetFramebufferSize(window_, &fbw, &fbh);
+    state_.setViewport(gui::Layout::sceneViewport(ww, wh));
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (loading()) drawLoading(ww, wh);
+    else {
+      gui::drawPanels(state_, panel_, ww, wh);
+      gui::drawMarkers(state_);
+    }
+    ImGui::Render();
+    glViewport(0, 0, fbw, fbh);
+    glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (!loading()) renderer_->draw(state_, fbh);
+    glViewport(0, 0, fbw, fbh);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (shot) gui::writeScreenshot(*shot, fbw, fbh);
+    if (panel_.screenshotRequested) {
+      panel_.screenshotRequested = false;
+      try {
+        gui::writeScreenshot(panel_.screenshotPath, fbw, fbh);
+        state_.info("screenshot written to " + panel_.screenshotPath);
+      } catch (const std::exception& e) {
+        state_.error(std::string("screenshot: ") + e.what());
+      }
+    }
+    glfwSwapBuffers(window_);
+  }
+
+  /// Starts loading the input; frames show progress until finish() succeeds.
+  void startLoading() { loader_.start(args_); }
+  bool loading() const { return !loaded_; }
+  /// Takes the loaded cloud into the state once the worker is done. Returns false while loading;
+  /// sets `failed` when the input could not be read.
+  bool pollLoaded(bool* failed) {
+    *failed = false;
+    if (loaded_) return true;
+    if (!loader_.finished) return false;
+    loader_.thread.join();
+    loaded_ = true;
+    if (!loader_.error.empty()) {
+      state_.error("open: " + loader_.error);
+      *failed = true;
+      return true;
+    }
+    state_.setCloud(std::move(loader_.cloud), args_.up, args_.input.empty() ? fs::path() : fs::path(args_.input));
+    if (args_.input.empty()) state_.setAutosavePath("treesketch_demo.autosave.sketch.json");
+    if (!args_.autosavePath.empty()) state_.setAutosavePath(args_.autosavePath);
+    if (!args_.sketchPath.empty() && fs::exists(args_.sketchPath)) state_.loadSketch(args_.sketchPath);
+    return true;
+  }
+
+  // ---- input forwarding (GLFW callbacks, chained before ImGui's) --------------------------------
+  void onMouseButton(int button, int action, int mods) {
+    viewer::MouseButton b = button == GLFW_MOUSE_BUTTON_RIGHT    ? viewer::MouseButton::Right
+                            : button == GLFW_MOUSE_BUTTON_MIDDLE ? viewer::MouseButton::Middle
+                                                                 : viewer::MouseButton::Left;
+    if (button > GLFW_MOUSE_BUTTON_MIDDLE || loading()) return;
+    double x, y;
+    glfwGetCursorPos(window_, &x, &y);
+    if (action == GLFW_PRESS) {
+      if (ImGui::GetIO().WantCaptureMouse) return;
+      sceneButton_[button] = true;
+      state_.mouseDown({x, y}, b, toMods(mods));
+    } else if (action == GLFW_RELEASE && sceneButton_[button]) {
+      sceneButton_[button] = false;
+      state_.mouseUp({x, y}, b, toMods(mods));
+    }
+  }
+  void onCursor(double x, double y) {
+    if (!loading()) state_.mouseMove({x, y});
+  }
+  void onScroll(double dy) {
+    if (!loading() && !ImGui::GetIO().WantCaptureMouse) state_.scroll(dy);
+  }
+  void onKey(int key, int action, int mods) {
+    if (action == GLFW_RELEASE || loading() || ImGui::GetIO().WantCaptureKeyboard) return;
+    if (const char* name = keyName(key)) state_.keyPress(name, toMods(mods));
+  }
+
+ private:
+  void drawLoading(int ww, int wh) {
+    ImGui::SetNextWindowPos(ImVec2(ww * 0.5f, wh * 0.5f), 0, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSize(ImVec2(420, 0));
+    ImGui::Begin("Loading", nullptr, ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove);
+    ImGui::TextUnformatted(panel_.inputName.c_str());
+    std::uint64_t t = loader_.total, d = loader_.done;
+    float f = t > 0 ? static_cast<float>(static_cast<double>(d) / static_cast<double>(t)) : 0.0f;
+    ImGui::TextUnformatted(loader_.stage.load());
+    ImGui::ProgressBar(f);
+    ImGui::End();
+  }
+
+  Args args_;
+  GLFWwindow* window_;
+  viewer::ViewerState state_;
+  gui::PanelState panel_;
+  std::unique_ptr<gui::Renderer> renderer_;
+  Loader loader_;
+  bool loaded_ = false;
+  bool sceneButton_[3] = {false, false, false};
+};
+
+App* appOf(GLFWwindow* w) { return static_cast<App*>(glfwGetWindowUserPointer(w)); }
+
+int run(const Args& args) {
+  viewer::ActionScript script;
+  if (!args.scriptPath.empty()) script = viewer::parseActionScript(fs::path(args.scriptPath));
+  int width = args.scriptPath.empty() ? args.width : script.windowWidth;
+  int height = args.scriptPath.empty() ? args.height : script.windowHeight;
+
+  glfwSetErrorCallback([](int code, const char* text) { std::fprintf(stderr, "treesketch-gui: GLFW %d: %s\n", code, text); });
+  if (!glfwInit()) {
+    std::cerr << "treesketch-gui: error: cannot open a window (no display? set DISPLAY, or run under xvfb-run)\n";
+    return kExitFailed;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GL_TRUE);
+  glfwWindowHint(GLFW_RESIZABLE, args.scriptPath.empty() ? GLFW_TRUE : GLFW_FALSE);
+  GLFWwindow* window = glfwCreateWindow(width, height, "treesketch", nullptr, nullptr);
+  if (!window) {
+    std::cerr << "treesketch-gui: error: cannot create an OpenGL 3.3 core window\n";
+    glfwTerminate();
+    return kExitFailed;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(args.scriptPath.empty() ? 1 : 0);
+  glewExperimental = GL_TRUE;
+  GLenum glewStatus = glewInit();
+  glGetError();  // GLEW may leave GL_INVALID_ENUM behind on core profiles
+  if (glewStatus != GLEW_OK && glewStatus != 4 /* GLEW_ERROR_NO_GLX_DISPLAY on Wayland-only builds */) {
+    std::cerr << "treesketch-gui: error: GLEW: " << reinterpret_cast<const char*>(glewGetErrorString(glewStatus))
+              << "\n";
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return kExitFailed;
+  }
+
+  int code = kExitOk;
+  {
+    App app(args, window);
+    glfwSetWindowUserPointer(window, &app);
+    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int b, int a, int m) { appOf(w)->onMouseButton(b, a, m); });
+    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { appOf(w)->onCursor(x, y); });
+    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) { appOf(w)->onScroll(dy); });
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int k, int, int a, int m) { appOf(w)->onKey(k, a, m); });
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains to the callbacks above
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+
+    app.startLoading();
+    bool failed = false;
+    while (!app.pollLoaded(&failed) && !glfwWindowShouldClose(window)) {
+      glfwPollEvents();
+      app.frame();
+      std::this_thread::sleep_for(std::chrono::milliseconds(15));
+    }
+    if (!args.scriptPath.empty()) {
+      if (failed) {
+        std::cerr << "treesketch-gui: error: " << app.state().lastMessage().text << "\n";
+        code = kExitInput;
+      } else {
+        viewer::ScriptHooks hooks;
+        hooks.frame = [&] {
+          glfwPollEvents();
+          app.frame();
+        };
+        hooks.screenshot = [&](const fs::path& p) { app.frame(&p); };
+        hooks.sketchPath = args.sketchPath;
+        hooks.log = [](const viewer::ScriptAction&, const std::string& what) {
+          std::cerr << "treesketch-gui: " << what << "\n";
+        };
+        viewer::ScriptReport report = viewer::runActionScript(app.state(), script, hooks);
+        for (const std::string& f : report.failures) std::cerr << "treesketch-gui: failed: " << f << "\n";
+        std::cerr << "treesketch-gui: " << report.actionsRun << " actions, " << report.failures.size()
+                  << " failed; last rebuild " << app.state().lastRebuildMs() << " ms\n";
+        code = report.ok() ? kExitOk : kExitFailed;
+      }
+    } else {
+      while (!glfwWindowShouldClose(window)) {
+        glfwPollEvents();
+        app.frame();
+      }
+    }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  try {
+    args = parseArgs(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "treesketch-gui: error: " << e.what() << "\n";
+    usage(std::cerr);
+    return kExitUsage;
+  }
+  try {
+    return run(args);
+  } catch (const InputError& e) {
+    std::cerr << "treesketch-gui: error: " << e.what() << "\n";
+    return kExitInput;
+  } catch (const OptionsError& e) {
+    std::cerr << "treesketch-gui: error: " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "treesketch-gui: error: " << e.what() << "\n";
+    return kExitFailed;
+  }
+}

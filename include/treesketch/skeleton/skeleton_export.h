@@ -1,0 +1,32 @@
+// Writing a skeleton model: a cylinder table (CSV, one row per parent→child segment, TreeQSM-
+// style columns) and an OBJ polyline (`v` per node, `l` per segment). Both are written
+// atomically (util/atomic_file.h): a failed write leaves no partial file.
+#pragma once
+
+#include <filesystem>
+#include <ostream>
+#include <vector>
+
+#include "treesketch/skeleton/skeleton.h"
+
+namespace treesketch::skeleton {
+
+/// Header line of the cylinder table.
+inline constexpr const char* kCylinderCsvHeader =
+    "id,parent,start_x,start_y,start_z,end_x,end_y,end_z,radius,length,branch_order";
+
+/// One row per non-root node i: the segment from its parent's
+/// position to its own, radius = the node's radius, length in world units, branch order of the
+/// node. Cylinder ids are the node indices; `parent` is the parent node's cylinder id, or -1 when
+/// the parent is the root (which has no cylinder). Numbers with 9 significant digits. Empty or
+/// single-node skeleton → header only.
+void writeCylinderCsv(std::ostream& out, const std::vector<SkeletonNode>& nodes);
+/// Same, to a file (atomic). Throws OutputError when it cannot be written.
+void writeCylinderCsv(const std::filesystem::path& path, const std::vector<SkeletonNode>& nodes);
+
+/// OBJ polyline: a comment line, `v x y z` for every node in order, `l p c` (1-based) for every
+/// parent→child link.
+void writeSkeletonObj(std::ostream& out, const std::vector<SkeletonNode>& nodes);
+void writeSkeletonObj(const std::filesystem::path& path, const std::vector<SkeletonNode>& nodes);
+
+}  // namespace treesketch::skeleton

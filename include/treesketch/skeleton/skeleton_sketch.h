@@ -1,0 +1,96 @@
+// From a skeleton to an editable sketch and a tree model: every skeleton node becomes a point
+// node of a sketch::Sketch (plane normal = local branch direction, sampling sizes scaled to the
+// local radius), each node is fitted with the fit module's slice + RANSAC circle (the same as a
+// user's node), and the radii are regularised along the branches (robust smoothing, no child
+// thicker than its parent, optional pipe model). The sketch is what `treesketch reconstruct` and
+// the viewer take as is; the user refines it from there.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "treesketch/fit/node_fit.h"
+#include "treesketch/geom/point_cloud.h"
+#include "treesketch/geom/tri_mesh.h"
+#include "treesketch/skeleton/skeleton.h"
+#include "treesketch/sketch/sketch.h"
+#include "treesketch/util/progress.h"
+
+namespace treesketch::skeleton {
+
+/// Sampling sizes of the sketch nodes, from each node's radius estimate r and the voxel size v.
+struct SkeletonSketchOptions {
+  /// Slice half-thickness ε = max(sliceRadii × r, sliceVoxels × v): thin enough to follow a
+  /// bending branch, thick enough to hold a few dozen points.
+  double sliceRadii = 0.6;
+  double sliceVoxels = 0.75;
+  /// Initial test radius lineEpsilon = lineRadii × r + lineVoxels × v: the whole circle plus the
+  /// skeleton's position error, and little of a neighbouring branch.
+  double lineRadii = 1.6;
+  double lineVoxels = 1.0;
+  /// lineEpsilon growth step after a failed fit = stepRadii × r + stepVoxels × v.
+  double stepRadii = 0.5;
+  double stepVoxels = 0.5;
+};
+
+/// Rules applied to the fitted radii, each with a default.
+struct RadiusRules {
+  /// A fit is rejected (its radius interpolated instead) when its radius exceeds
+  /// maxRadiusRatio × the skeleton's estimate + one voxel, or its centre is further than
+  /// maxCentreShiftRadii × estimate + one voxel from the skeleton node, or its RMS residual
+  /// exceeds maxRelativeRms × its radius + 0.25 voxel.
+  double maxRadiusRatio = 2.0;
+  double maxCentreShiftRadii = 1.5;
+  double maxRelativeRms = 0.35;
+  /// Running median over this many nodes along each branch (odd; 1 = off).
+  int medianWindow = 5;
+  /// No node thicker than its parent (along a branch: radii never grow towards the tip).
+  bool childNotThicker = true;
+  /// Pipe model at forks (Shinozaki et al. 1964): r_parent^e = Σ r_child^e, applied by growing a
+  /// fork's radius when its children need more (never shrinking it). Off by default: the fits
+  /// measure radii, the rule only fills in where they are unreliable.
+  bool pipeModel = false;
+  double pipeExponent = 2.0;
+};
+
+/// Builds the sketch: node i of `skeleton.nodes` becomes sketch node id i (point node at the
+/// node's position, normal = its direction), with sampling sizes from its radius. sketch.up =
+/// skeleton.up; sketch.defaults = the root's sizes. Empty skeleton → empty sketch.
+sketch::Sketch skeletonToSketch(const Skeleton& skeleton, const SkeletonSketchOptions& options = {});
+
+/// Regularises radii along the skeleton's branches. `fitted[i]` is node i's fitted radius and
+/// `valid[i]` whether to trust it; invalid ones are interpolated along the branch by arc length
+/// from valid neighbours (or take the skeleton's estimate when the branch has none). Returns one
+/// radius per node, > 0. Throws OptionsError when the sizes differ or an option is out of range.
+std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, const std::vector<double>& fitted,
+                                    const std::vector<char>& valid, const RadiusRules& rules = {});
+
+struct AutoSkeletonOptions {
+  SkeletonOptions skeleton;
+  SkeletonSketchOptions sketch;
+  fit::NodeFitOptions fit;
+  RadiusRules radii;
+  /// Node i is fitted with seed `seed + i`.
+  std::uint64_t seed = 1;
+  /// Vertices per ring of the swept mesh.
+  int ringVertices = 16;
+};
+
+struct AutoSkeletonResult {
+  Skeleton skeleton;
+  sketch::Sketch sketch;
+  std::vector<fit::NodeResult> fits;  ///< per skeleton node (= sketch id)
+  std::vector<char> fitAccepted;      ///< the fit passed the RadiusRules checks
+  /// The final model: skeleton.nodes with positions moved to the accepted fit centres and radii
+  /// regularised (what the writers and the sweep take).
+  std::vector<SkeletonNode> model;
+  geom::TriMesh mesh;  ///< tubes swept through `model`
+  double skeletonMs = 0, fitMs = 0, sweepMs = 0;
+};
+
+/// One shot: extractSkeleton, skeletonToSketch, fit every node (TBB, in parallel), regularise
+/// the radii, sweep. Empty cloud → empty result. Throws OptionsError for bad options or NaN input.
+AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoSkeletonOptions& options = {},
+                                      const ProgressFn& progress = {});
+
+}  // namespace treesketch::skeleton

@@ -1,0 +1,153 @@
+#include "treesketch/fit/cloud_index.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <random>
+
+#include "fit/synthetic_cylinder.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::fit {
+namespace {
+
+using geom::Vec3;
+
+geom::PointCloud randomCloud(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  geom::PointCloud cloud;
+  test::addOutliers(cloud, 15000, Vec3(-2, 0, -1), Vec3(3, 6, 2), rng);
+  test::CylinderSpec c;
+  c.base = Vec3(0.5, 0, 0.2);
+  c.radius = 0.4;
+  c.length = 5;
+  c.points = 10000;
+  test::addCylinder(cloud, c, rng);
+  // Points exactly on cell boundaries and duplicates.
+  for (int i = 0; i < 200; ++i) cloud.positions.push_back(Vec3(-2 + 0.025 * i, 0.0, 2.0));
+  cloud.positions.push_back(cloud.positions[17]);
+  cloud.positions.push_back(Vec3(3, 6, 2));
+  return cloud;
+}
+
+Vec3 randomUnit(std::mt19937_64& rng) {
+  std::normal_distribution<double> nd;
+  Vec3 v(nd(rng), nd(rng), nd(rng));
+  return v.normalized();
+}
+
+TEST(CloudIndex, IndexedSlicesEqualBruteForceOnRandomRegions) {
+  geom::PointCloud cloud = randomCloud(1);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  cloud.positions.push_back(Vec3(nan, 1, 1));  // never returned
+  CloudIndex index(cloud);
+  EXPECT_EQ(index.size(), cloud.size() - 1);
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> u01(0, 1);
+  std::size_t nonEmpty = 0;
+  for (int q = 0; q < 120; ++q) {
+    SliceRegion r;
+    r.kind = SliceRegion::Kind(q % 3);
+    r.planePoint = Vec3(-2 + 5 * u01(rng), 6 * u01(rng), -1 + 3 * u01(rng));
+    // Every third plane axis-aligned (the dominant-axis column walk's edge case).
+    r.planeNormal = q % 4 == 0 ? Vec3::Unit(q % 3) : randomUnit(rng);
+    r.halfThickness = 0.01 + 0.2 * u01(rng);
+    r.linePoint = r.planePoint + 0.3 * u01(rng) * r.planeNormal.cross(randomUnit(rng));
+    Vec3 d = randomUnit(rng);
+    r.lineDir = (d - d.dot(r.planeNormal) * r.planeNormal).normalized();  // L in the plane, as sketches
+    if (q % 5 == 0) r.lineDir = randomUnit(rng);                        // ... or not
+    r.radius = 0.05 + 1.5 * u01(rng);
+    std::vector<Vec3> pos;
+    auto fast = index.query(r, &pos);
+    auto slow = sliceBruteForce(cloud, r);
+    ASSERT_EQ(fast, slow) << "query " << q;
+    EXPECT_EQ(index.queryBruteForce(r), slow);
+    EXPECT_EQ(index.count(r), slow.size());
+    ASSERT_EQ(pos.size(), fast.size());
+    for (std::size_t i = 0; i < fast.size(); ++i) EXPECT_EQ(pos[i], cloud.positions[fast[i]]);
+    nonEmpty += !slow.empty();
+  }
+  EXPECT_GT(nonEmpty, 60u);  // the comparison is not vacuous
+}
+
+TEST(CloudIndex, CoarseAndFineGridsGiveTheSameAnswer) {
+  geom::PointCloud cloud = randomCloud(2);
+  CloudIndexOptions coarse, fine;
+  coarse.pointsPerCell = 500;
+  fine.pointsPerCell = 0.5;
+  CloudIndex a(cloud, coarse), b(cloud, fine);
+  EXPECT_GT(a.cellSize(), b.cellSize());
+  SliceRegion r;
+  r.kind = SliceRegion::Kind::Cylinder;
+  r.planePoint = Vec3(0.5, 2, 0.2);
+  r.planeNormal = Vec3(0.1, 1, 0.05).normalized();
+  r.linePoint = r.planePoint;
+  r.lineDir = r.planeNormal.cross(Vec3::UnitX()).normalized();
+  r.radius = 0.5;
+  EXPECT_EQ(a.query(r), b.query(r));
+  EXPECT_EQ(a.query(r), sliceBruteForce(cloud, r));
+}
+
+TEST(CloudIndex, EmptyAndFlatClouds) {
+  geom::PointCloud empty;
+  CloudIndex e(empty);
+  SliceRegion r;
+  EXPECT_TRUE(e.query(r).empty());
+  EXPECT_EQ(e.count(r), 0u);
+
+  geom::PointCloud flat;
+  for (int i = 0; i < 50; ++i)
+    for (int j = 0; j < 50; ++j) flat.positions.push_back(Vec3(0.02 * i, 0.02 * j, 0.0));
+  CloudIndex f(flat);
+  r.planePoint = Vec3(0.5, 0, 0);
+  r.planeNormal = Vec3::UnitX();
+  r.halfThickness = 0.011;
+  auto got = f.query(r);
+  EXPECT_EQ(got, sliceBruteForce(flat, r));
+  EXPECT_EQ(got.size(), 50u);  // the column x = 0.5 (i = 25)
+}
+
+TEST(CloudIndex, RegionCoversCloud) {
+  geom::PointCloud cloud;
+  cloud.positions = {Vec3(0, 0, 0), Vec3(1, 1, 1)};
+  CloudIndex index(cloud);
+  SliceRegion r;
+  r.kind = SliceRegion::Kind::Ball;
+  r.linePoint = Vec3(0.5, 0.5, 0.5);
+  r.radius = 0.8;  // half-diagonal is 0.866
+  EXPECT_FALSE(index.regionCoversCloud(r));
+  r.radius = 0.9;
+  EXPECT_TRUE(index.regionCoversCloud(r));
+  r.kind = SliceRegion::Kind::Cylinder;
+  r.lineDir = Vec3(1, 1, 1).normalized();
+  r.radius = 0.01;  // the diagonal itself: all corners... except those off the diagonal
+  EXPECT_FALSE(index.regionCoversCloud(r));
+  r.kind = SliceRegion::Kind::Slab;
+  EXPECT_TRUE(index.regionCoversCloud(r));
+}
+
+TEST(CloudIndex, InvalidRegionsThrow) {
+  geom::PointCloud cloud;
+  cloud.positions = {Vec3(0, 0, 0), Vec3(1, 1, 1)};
+  CloudIndex index(cloud);
+  SliceRegion r;
+  r.halfThickness = 0;
+  EXPECT_THROW(index.query(r), OptionsError);
+  r = {};
+  r.planeNormal = Vec3(0, 2, 0);
+  EXPECT_THROW(index.query(r), OptionsError);
+  r = {};
+  r.kind = SliceRegion::Kind::Cylinder;
+  r.lineDir = Vec3::Zero();
+  r.radius = 1;
+  EXPECT_THROW(sliceBruteForce(cloud, r), OptionsError);
+  r = {};
+  r.planePoint.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(index.count(r), OptionsError);
+  CloudIndexOptions bad;
+  bad.pointsPerCell = 0;
+  EXPECT_THROW(CloudIndex(cloud, bad), OptionsError);
+}
+
+}  // namespace
+}  // namespace treesketch::fit

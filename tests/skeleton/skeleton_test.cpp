@@ -1,0 +1,160 @@
+#include "treesketch/skeleton/skeleton.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "synthetic_tree.h"
+#include "treesketch/util/error.h"
+
+using namespace treesketch;
+using geom::Vec3;
+
+namespace {
+
+/// Distance of node positions to the true axes, as a fraction of the nearest cylinder's radius.
+double worstRelativeOffset(const std::vector<test::Cyl>& cyls, const std::vector<skeleton::SkeletonNode>& nodes,
+                           bool forks) {
+  double worst = 0;
+  for (const auto& n : nodes) {
+    if ((n.children.size() >= 2) != forks) continue;
+    double best = 1e300, radius = 1;
+    for (const auto& c : cyls) {
+      const double d = test::distanceToSegment(n.position, c.a, c.b);
+      if (d < best) {
+        best = d;
+        radius = c.radius;
+      }
+    }
+    worst = std::max(worst, best / radius);
+  }
+  return worst;
+}
+
+/// Scattered small square "leaves" (planar patches of points, random orientation) around the
+/// tips of the given cylinders.
+geom::PointCloud leafClutter(const std::vector<test::Cyl>& cyls, int leavesPerTip, double spread, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  geom::PointCloud leaves;
+  for (const auto& c : cyls) {
+    for (int l = 0; l < leavesPerTip; ++l) {
+      const Vec3 centre = c.b + spread * Vec3(uni(rng), uni(rng), uni(rng));
+      const Vec3 normal = Vec3(uni(rng), uni(rng), uni(rng)).normalized();
+      const Vec3 u = geom::anyPerpendicular(normal), v = normal.cross(u);
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j) leaves.positions.push_back(centre + 0.015 * (i - 2.5) * u + 0.015 * (j - 2.5) * v);
+    }
+  }
+  return leaves;
+}
+
+}  // namespace
+
+TEST(Skeleton, EmptyAndTinyClouds) {
+  const auto empty = skeleton::extractSkeleton(geom::PointCloud{});
+  EXPECT_TRUE(empty.nodes.empty());
+  geom::PointCloud one;
+  one.positions = {Vec3(1, 2, 3)};
+  const auto s = skeleton::extractSkeleton(one);
+  ASSERT_EQ(s.nodes.size(), 1u);
+  EXPECT_TRUE(s.nodes[0].position.isApprox(Vec3(1, 2, 3)));
+}
+
+TEST(Skeleton, RejectsBadOptions) {
+  geom::PointCloud cloud;
+  cloud.positions = {Vec3(0, 0, 0), Vec3(0, 1, 0)};
+  skeleton::SkeletonOptions o;
+  o.binWidthVoxels = 0;
+  EXPECT_THROW(skeleton::extractSkeleton(cloud, o), OptionsError);
+  o = {};
+  o.radiusMedianWindow = 0;
+  EXPECT_THROW(skeleton::extractSkeleton(cloud, o), OptionsError);
+}
+
+TEST(Skeleton, YTreeHasOneForkTwoEndsAndNodesOnTheAxes) {
+  const auto cyls = test::yTree();
+  const auto cloud = test::sampleCylinders(cyls, 0.02, 0.003, 7);
+  const auto s = skeleton::extractSkeleton(cloud);
+  EXPECT_EQ(skeleton::countBranchPoints(s.nodes), 1u);
+  EXPECT_EQ(skeleton::countEnds(s.nodes), 2u);
+  EXPECT_LT(worstRelativeOffset(cyls, s.nodes, false), 0.35);
+  EXPECT_LT(worstRelativeOffset(cyls, s.nodes, true), 1.0);
+  // Root at the base, parents first, unit directions, radii of the right size.
+  EXPECT_LT(s.nodes[0].position.y(), 0.1);
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+    EXPECT_LT(s.nodes[i].parent, static_cast<std::int32_t>(i));
+    EXPECT_NEAR(s.nodes[i].direction.norm(), 1.0, 1e-9);
+    EXPECT_GT(s.nodes[i].radius, 0.03);
+    EXPECT_LT(s.nodes[i].radius, 0.25);
+  }
+  // The two branches get order 1 for one of them.
+  int side = 0;
+  for (const auto& n : s.nodes) side += n.branchOrder == 1 && n.children.empty();
+  EXPECT_EQ(side, 1);
+  // Plain data of every stage.
+  EXPECT_EQ(s.levels.distance.size(), s.graph.size());
+  EXPECT_GT(s.rawNodes.size(), s.nodes.size());
+}
+
+TEST(Skeleton, ThreeLevelTree) {
+  const auto cyls = test::threeLevelTree();
+  const auto cloud = test::sampleCylinders(cyls, 0.02, 0.003, 11);
+  const auto s = skeleton::extractSkeleton(cloud);
+  EXPECT_EQ(skeleton::countBranchPoints(s.nodes), 4u);
+  EXPECT_EQ(skeleton::countEnds(s.nodes), 5u);
+  EXPECT_LT(worstRelativeOffset(cyls, s.nodes, false), 0.35);
+  EXPECT_LT(worstRelativeOffset(cyls, s.nodes, true), 1.0);
+  int maxOrder = 0;
+  for (const auto& n : s.nodes) maxOrder = std::max(maxOrder, n.branchOrder);
+  EXPECT_EQ(maxOrder, 2);
+}
+
+TEST(Skeleton, OcclusionGapIsBridged) {
+  const auto cyls = test::yTree();
+  auto cloud = test::sampleCylinders(cyls, 0.02, 0.003, 5);
+  // Remove a 0.12-long stretch of the left branch (around its middle).
+  const Vec3 a = cyls[1].a, b = cyls[1].b, axis = (b - a).normalized();
+  const Vec3 mid = 0.5 * (a + b);
+  geom::PointCloud cut;
+  for (const auto& p : cloud.positions)
+    if (!(std::abs((p - mid).dot(axis)) < 0.06 && test::distanceToSegment(p, a, b) < 0.2)) cut.positions.push_back(p);
+  ASSERT_LT(cut.size(), cloud.size());
+  const auto s = skeleton::extractSkeleton(cut);
+  EXPECT_GE(s.graph.bridges.size(), 1u);
+  EXPECT_EQ(skeleton::countBranchPoints(s.nodes), 1u);
+  EXPECT_EQ(skeleton::countEnds(s.nodes), 2u);
+  // The left branch's tip is reached.
+  double nearest = 1e300;
+  for (const auto& n : s.nodes) nearest = std::min(nearest, (n.position - b).norm());
+  EXPECT_LT(nearest, 0.3);
+  // Without bridging the cut-off part is lost.
+  skeleton::SkeletonOptions o;
+  o.graph.maxGapVoxels = 0;
+  const auto unbridged = skeleton::extractSkeleton(cut, o);
+  nearest = 1e300;
+  for (const auto& n : unbridged.nodes) nearest = std::min(nearest, (n.position - b).norm());
+  EXPECT_GT(nearest, 0.5);
+}
+
+TEST(Skeleton, LeafClutterDoesNotGrowBranches) {
+  const auto cyls = test::yTree();
+  auto cloud = test::sampleCylinders(cyls, 0.02, 0.003, 7);
+  const std::vector<test::Cyl> tips = {cyls[1], cyls[2]};
+  cloud.append(leafClutter(tips, 40, 0.35, 9));
+  const auto s = skeleton::extractSkeleton(cloud);
+  EXPECT_EQ(skeleton::countBranchPoints(s.nodes), 1u);
+  EXPECT_EQ(skeleton::countEnds(s.nodes), 2u);
+}
+
+TEST(Skeleton, Deterministic) {
+  const auto cloud = test::sampleCylinders(test::threeLevelTree(), 0.02, 0.003, 2);
+  const auto s1 = skeleton::extractSkeleton(cloud);
+  const auto s2 = skeleton::extractSkeleton(cloud);
+  ASSERT_EQ(s1.nodes.size(), s2.nodes.size());
+  for (std::size_t i = 0; i < s1.nodes.size(); ++i) {
+    EXPECT_EQ(s1.nodes[i].parent, s2.nodes[i].parent);
+    EXPECT_EQ(s1.nodes[i].position, s2.nodes[i].position);
+    EXPECT_EQ(s1.nodes[i].radius, s2.nodes[i].radius);
+  }
+}

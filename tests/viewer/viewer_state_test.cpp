@@ -1,0 +1,313 @@
+#include "treesketch/viewer/viewer_state.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "test_support.h"
+#include "treesketch/gen/random.h"
+#include "treesketch/io/sketch_file.h"
+
+namespace treesketch::viewer {
+namespace {
+
+using geom::Vec2;
+using geom::Vec3;
+using sketch::kNoNode;
+
+constexpr double kRadius = 0.2;
+
+/// A vertical trunk: points on a cylinder of radius 0.2 around the Y axis, y in [0, 4].
+geom::PointCloud trunk(int n = 20000, std::uint64_t seed = 7) {
+  gen::Rng rng(seed);
+  geom::PointCloud cloud;
+  for (int i = 0; i < n; ++i) {
+    double a = rng.uniform(0, 2 * M_PI);
+    cloud.positions.emplace_back(kRadius * std::cos(a), rng.uniform(0, 4), kRadius * std::sin(a));
+  }
+  return cloud;
+}
+
+struct Fixture {
+  ViewerState state;
+  Fixture() {
+    state.setViewport(geom::Viewport{0, 0, 800, 600});
+    EXPECT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
+  }
+  Vec2 screenOf(const Vec3& p) const { return state.camera().project(p).head<2>(); }
+};
+
+TEST(ViewerState, EmptyCloudIsAnErrorNotAnException) {
+  ViewerState s;
+  EXPECT_FALSE(s.setCloud(geom::PointCloud{}, geom::UpAxis::Y));
+  EXPECT_EQ(s.errorCount(), 1u);
+  EXPECT_TRUE(s.lastMessage().error);
+  EXPECT_FALSE(s.addNodeAt(Vec2(10, 10)));
+  EXPECT_FALSE(s.autoSketchUniform());
+}
+
+TEST(ViewerState, ClicksAddAChainOfNodesThatFitTheTrunk) {
+  Fixture f;
+  Vec2 a = f.screenOf(Vec3(0, 1, 0)), b = f.screenOf(Vec3(0, 2, 0)), c = f.screenOf(Vec3(0, 3, 0));
+  f.state.clickAt(a);
+  f.state.clickAt(b);
+  f.state.clickAt(c);
+  const sketch::Sketch& sk = f.state.sketch();
+  ASSERT_EQ(sk.size(), 3u);
+  EXPECT_EQ(sk.node(0).parent, kNoNode);
+  EXPECT_EQ(sk.node(1).parent, 0);
+  EXPECT_EQ(sk.node(2).parent, 1);
+  EXPECT_NEAR((sk.node(1).screen - b).norm(), 0.0, 1e-12);
+  EXPECT_EQ(f.state.active(), 2);
+  EXPECT_EQ(f.state.selected(), 2);
+  EXPECT_EQ(sk.cameras().size(), 1u);
+  EXPECT_EQ(f.state.fittedCount(), 3u);
+  NodeFitView fit = f.state.nodeFit(1);
+  ASSERT_EQ(fit.status, NodeStatus::Fitted);
+  EXPECT_NEAR(fit.circle.radius, kRadius, 0.02);
+  EXPECT_NEAR(fit.circle.centre.y(), 2.0, 0.05);
+  EXPECT_NEAR(std::hypot(fit.circle.centre.x(), fit.circle.centre.z()), 0.0, 0.03);
+  EXPECT_FALSE(f.state.mesh().empty());
+  EXPECT_GE(f.state.lastRebuildMs(), 0.0);
+  EXPECT_EQ(f.state.errorCount(), 0u);
+}
+
+TEST(ViewerState, ClickOnANodeSelectsItAndMakesItActive) {
+  Fixture f;
+  Vec2 a = f.screenOf(Vec3(0, 1, 0)), b = f.screenOf(Vec3(0, 2, 0));
+  f.state.clickAt(a);
+  f.state.clickAt(b);
+  f.state.clickAt(a + Vec2(3, 0));  // within the pick radius of node 0
+  EXPECT_EQ(f.state.sketch().size(), 2u);
+  EXPECT_EQ(f.state.selected(), 0);
+  EXPECT_EQ(f.state.active(), 0);
+  f.state.clickAt(f.screenOf(Vec3(0, 3, 0)));  // a branch from node 0
+  EXPECT_EQ(f.state.sketch().node(2).parent, 0);
+  EXPECT_EQ(f.state.nodeAt(Vec2(700, 20)), kNoNode);
+}
+
+TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
+  Fixture f;
+  for (double y : {0.5, 1.5, 2.5, 3.5}) f.state.clickAt(f.screenOf(Vec3(0, y, 0)));
+  ASSERT_TRUE(f.state.selectNode(1));
+  EXPECT_TRUE(f.state.deleteSelected(false));
+  EXPECT_EQ(f.state.sketch().size(), 3u);
+  EXPECT_EQ(f.state.sketch().node(2).parent, 0);
+  EXPECT_EQ(f.state.selected(), 0);
+  EXPECT_TRUE(f.state.undo());
+  EXPECT_EQ(f.state.sketch().size(), 4u);
+  EXPECT_EQ(f.state.sketch().node(2).parent, 1);
+  ASSERT_TRUE(f.state.selectNode(1));
+  EXPECT_TRUE(f.state.keyPress("shift+delete"));
+  EXPECT_EQ(f.state.sketch().size(), 1u);
+  EXPECT_TRUE(f.state.keyPress("ctrl+z"));
+  EXPECT_EQ(f.state.sketch().size(), 4u);
+  EXPECT_TRUE(f.state.keyPress("y", kModCtrl));
+  EXPECT_EQ(f.state.sketch().size(), 1u);
+  EXPECT_TRUE(f.state.redo() == false);  // nothing left to redo: an info message, no error
+  EXPECT_EQ(f.state.errorCount(), 0u);
+  f.state.selectNode(kNoNode);
+  EXPECT_FALSE(f.state.deleteSelected(false));  // nothing selected: an error message
+  EXPECT_EQ(f.state.errorCount(), 1u);
+  EXPECT_EQ(f.state.sketch().size(), 1u);
+}
+
+TEST(ViewerState, DragMovesANodeAsOneUndoStep) {
+  Fixture f;
+  Vec2 a = f.screenOf(Vec3(0, 1, 0)), b = f.screenOf(Vec3(0, 2, 0));
+  f.state.clickAt(a);
+  f.state.clickAt(b);
+  std::size_t undoBefore = f.state.history().undoCount();
+  Vec2 to = f.screenOf(Vec3(0, 2.5, 0));
+  f.state.dragTo(b, to);
+  EXPECT_EQ(f.state.sketch().size(), 2u);
+  EXPECT_NEAR((f.state.sketch().node(1).screen - to).norm(), 0.0, 1e-9);
+  EXPECT_EQ(f.state.history().undoCount(), undoBefore + 1);
+  EXPECT_NEAR(f.state.nodeFit(1).circle.centre.y(), 2.5, 0.05);
+  f.state.undo();
+  EXPECT_NEAR((f.state.sketch().node(1).screen - b).norm(), 0.0, 1e-9);
+}
+
+TEST(ViewerState, SliderChangesMergeAndBadValuesAreRejected) {
+  Fixture f;
+  f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
+  std::size_t undoBefore = f.state.history().undoCount();
+  EXPECT_TRUE(f.state.setSliceHalfThickness(0.03));
+  EXPECT_TRUE(f.state.setSliceHalfThickness(0.04));
+  EXPECT_TRUE(f.state.setSliceHalfThickness(0.05));
+  EXPECT_EQ(f.state.history().undoCount(), undoBefore + 1);
+  EXPECT_DOUBLE_EQ(f.state.sketch().node(0).params.sliceHalfThickness, 0.05);
+  f.state.finishEdit();
+  EXPECT_TRUE(f.state.setLineEpsilon(0.3));
+  EXPECT_EQ(f.state.history().undoCount(), undoBefore + 2);
+  EXPECT_FALSE(f.state.setSliceHalfThickness(-1));
+  EXPECT_FALSE(f.state.setLineEpsilon(std::nan("")));
+  EXPECT_DOUBLE_EQ(f.state.sketch().node(0).params.sliceHalfThickness, 0.05);
+  EXPECT_EQ(f.state.errorCount(), 2u);
+  // No selection: the sizes of new nodes.
+  f.state.selectNode(kNoNode);
+  EXPECT_TRUE(f.state.setSliceHalfThickness(0.02));
+  EXPECT_DOUBLE_EQ(f.state.sketch().defaults.sliceHalfThickness, 0.02);
+}
+
+TEST(ViewerState, NodesKeepTheirCameraAcrossViews) {
+  Fixture f;
+  Vec2 a = f.screenOf(Vec3(0, 1, 0));
+  f.state.clickAt(a);
+  f.state.presetView(geom::PresetView::Side);
+  f.state.clickAt(f.screenOf(Vec3(0, 2.5, 0)));
+  const sketch::Sketch& sk = f.state.sketch();
+  ASSERT_EQ(sk.size(), 2u);
+  EXPECT_EQ(sk.cameras().size(), 2u);
+  EXPECT_NE(sk.node(0).camera, sk.node(1).camera);
+  EXPECT_NEAR((sk.node(0).screen - a).norm(), 0.0, 1e-12);  // unchanged by the view change
+  std::vector<NodeMarker> markers = f.state.nodeMarkers();
+  ASSERT_EQ(markers.size(), 2u);
+  EXPECT_FALSE(markers[0].inCurrentView);
+  EXPECT_TRUE(markers[1].inCurrentView);
+  // Node 0's marker sits where its fitted centre projects in the side view.
+  Vec2 expected = f.screenOf(f.state.nodeFit(0).circle.centre);
+  EXPECT_NEAR((markers[0].screen - expected).norm(), 0.0, 1e-6);
+  EXPECT_EQ(f.state.fittedCount(), 2u);
+  // Moving node 0 in the side view keeps its own camera.
+  EXPECT_TRUE(f.state.moveNodeTo(0, f.screenOf(Vec3(0, 1.5, 0))));
+  EXPECT_EQ(f.state.sketch().node(0).camera, sk.node(0).camera);
+  EXPECT_NEAR(f.state.nodeFit(0).circle.centre.y(), 1.5, 0.05);
+}
+
+TEST(ViewerState, SelectedNodeShowsItsSamplingRegionAndSlice) {
+  Fixture f;
+  f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
+  SamplingRegion r = f.state.samplingRegion();
+  ASSERT_TRUE(r.valid);
+  EXPECT_TRUE(r.geometry.hasLine);
+  std::vector<std::uint32_t> slice = f.state.highlightedSlicePoints();
+  ASSERT_FALSE(slice.empty());
+  for (std::uint32_t i : slice) {
+    double d = std::abs((f.state.cloud().positions[i] - r.geometry.planePoint).dot(r.geometry.planeNormal));
+    EXPECT_LT(d, r.sliceHalfThickness);
+  }
+  EXPECT_FALSE(f.state.highlightedInliers().empty());
+  EXPECT_GT(f.state.sceneLines().size(), 20u);  // circle + slab + cylinder
+  f.state.selectNode(kNoNode);
+  EXPECT_FALSE(f.state.samplingRegion().valid);
+  EXPECT_TRUE(f.state.highlightedSlicePoints().empty());
+}
+
+TEST(ViewerState, ColourModes) {
+  Fixture f;
+  EXPECT_EQ(f.state.pointColors().size(), f.state.cloud().size());
+  std::uint64_t v = f.state.colorsVersion();
+  f.state.setColorMode(ColorMode::Plain);
+  EXPECT_EQ(f.state.pointColors()[0], f.state.options().plainColor);
+  EXPECT_GT(f.state.colorsVersion(), v);
+  f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
+  f.state.setColorMode(ColorMode::CircleDistance);
+  const auto& colors = f.state.pointColors();
+  // Trunk points near y = 2 lie on the fitted circle: the ramp's start; the ends are far.
+  int near = 0, onCircle = 0;
+  for (std::size_t i = 0; i < colors.size(); ++i) {
+    if (std::abs(f.state.cloud().positions[i].y() - 2.0) < 0.005) {
+      ++near;
+      onCircle += colors[i] == rampColor(0.0) || colors[i][2] > 60;
+    }
+  }
+  EXPECT_GT(near, 0);
+  EXPECT_EQ(onCircle, near);
+}
+
+TEST(ViewerState, FailingActionsReportAndKeepTheSketch) {
+  test::TempDir dir;
+  Fixture f;
+  f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
+  EXPECT_FALSE(f.state.loadSketch(dir / "missing.json"));
+  EXPECT_FALSE(f.state.saveSketch(dir / "no_such_dir" / "s.json"));
+  test::writeText(dir / "bad.json", "{not json");
+  EXPECT_FALSE(f.state.loadSketch(dir / "bad.json"));
+  EXPECT_EQ(f.state.sketch().size(), 1u);
+  EXPECT_EQ(f.state.errorCount(), 3u);
+  EXPECT_TRUE(f.state.exportMesh(dir / "m.obj"));
+  EXPECT_FALSE(f.state.exportMesh(dir / "m.xyz"));  // unsupported extension
+  EXPECT_EQ(f.state.errorCount(), 4u);
+  EXPECT_TRUE(std::filesystem::exists(dir / "m.obj"));
+  // Save and load round trip.
+  EXPECT_TRUE(f.state.saveSketch(dir / "s.json"));
+  f.state.clickAt(f.screenOf(Vec3(0, 3, 0)));
+  EXPECT_TRUE(f.state.loadSketch(dir / "s.json"));
+  EXPECT_EQ(f.state.sketch().size(), 1u);
+  EXPECT_TRUE(f.state.undo());  // loading is undoable
+  EXPECT_EQ(f.state.sketch().size(), 2u);
+}
+
+TEST(ViewerState, ExportWithNoFittedNodeIsAnError) {
+  test::TempDir dir;
+  Fixture f;
+  EXPECT_FALSE(f.state.exportMesh(dir / "m.obj"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "m.obj"));
+}
+
+TEST(ViewerState, ReconstructionFailureBecomesAMessage) {
+  struct Throwing : ViewerReconstruction {
+    geom::TriMesh m;
+    void update(const sketch::Sketch&) override { throw std::runtime_error("boom"); }
+    NodeFitView nodeFit(sketch::NodeId) const override { return {}; }
+    std::vector<std::uint32_t> slicePoints(sketch::NodeId) const override { return {}; }
+    std::vector<std::uint32_t> inlierPoints(sketch::NodeId) const override { return {}; }
+    const geom::TriMesh& mesh() const override { return m; }
+  };
+  ViewerState s({}, [](const geom::PointCloud&) { return std::make_unique<Throwing>(); });
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.setCloud(trunk(500), geom::UpAxis::Y);
+  std::size_t before = s.errorCount();
+  EXPECT_NO_THROW(s.clickAt(Vec2(400, 300)));
+  EXPECT_EQ(s.sketch().size(), 1u);
+  EXPECT_GT(s.errorCount(), before);
+  EXPECT_NE(s.lastMessage().text.find("boom"), std::string::npos);
+}
+
+TEST(ViewerState, AutosavesBesideTheCloudOnEveryEdit) {
+  test::TempDir dir;
+  ViewerState s;
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(s.setCloud(trunk(2000), geom::UpAxis::Y, dir / "tree.xyz"));
+  EXPECT_EQ(s.autosavePath(), dir / "tree.autosave.sketch.json");
+  s.clickAt(s.camera().project(Vec3(0, 1, 0)).head<2>());
+  s.clickAt(s.camera().project(Vec3(0, 2, 0)).head<2>());
+  sketch::Sketch saved = io::readSketch(s.autosavePath());
+  EXPECT_EQ(saved.size(), 2u);
+  s.undo();
+  EXPECT_EQ(io::readSketch(s.autosavePath()).size(), 1u);
+}
+
+TEST(ViewerState, UniformAutoSketchAndViewKeys) {
+  Fixture f;
+  EXPECT_TRUE(f.state.autoSketchUniform(5));
+  EXPECT_EQ(f.state.sketch().size(), 5u);
+  EXPECT_GE(f.state.fittedCount(), 3u);
+  EXPECT_TRUE(f.state.keyPress("o"));
+  EXPECT_TRUE(f.state.orbit().orthographic());
+  EXPECT_TRUE(f.state.keyPress("3"));
+  EXPECT_NEAR((f.state.camera().forward() - Vec3(0, -1, 0)).norm(), 0.0, 1e-9);
+  EXPECT_FALSE(f.state.keyPress("q"));
+  EXPECT_TRUE(f.state.undo());
+  EXPECT_TRUE(f.state.sketch().empty());
+}
+
+TEST(ViewerState, OrbitAndPanGesturesDoNotEditTheSketch) {
+  Fixture f;
+  f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
+  geom::Mat4 view = f.state.camera().view;
+  f.state.dragTo(Vec2(400, 300), Vec2(500, 320), MouseButton::Right);
+  EXPECT_FALSE(f.state.camera().view.isApprox(view));
+  f.state.dragTo(Vec2(400, 300), Vec2(450, 300), MouseButton::Middle);
+  f.state.scroll(2);
+  EXPECT_EQ(f.state.sketch().size(), 1u);
+  EXPECT_EQ(f.state.history().undoCount(), 1u);
+  // Presses outside the viewport are ignored.
+  f.state.clickAt(Vec2(-5, 900));
+  EXPECT_EQ(f.state.sketch().size(), 1u);
+}
+
+}  // namespace
+}  // namespace treesketch::viewer
