@@ -23,7 +23,6 @@
 
 #include "treesketch/accel/ray_scene.h"
 #include "treesketch/gen/tree_generator.h"
-#include "treesketch/scan/counter_rng.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/scan/tls_scan.h"
 
@@ -59,32 +58,23 @@ scan::SphereScanOptions thesisOptions() {
   return o;
 }
 
-// The sphere scanner's rays, recomputed here exactly as sphere_scan.cpp makes them (origin on the
-// octahedron grid, aim at the centre, jitter uniform in a cap from counter streams 0 and 1).
+// The sphere scanner's rays (scan::sphereScanRay: exactly what sphereScan casts), as float rays
+// in the raw scene's frame.
 std::vector<RTCRay> scannerRays(const Vec3& embreeOffset) {
   const TriMesh& m = treeMesh();
   const scan::SphereScanOptions o = thesisOptions();
-  const std::uint64_t n = scan::sphereGridSize(o), count = 8 * n * n;
-  const Vec3 centre = m.bounds().center();
-  const double radius = o.radiusFactor * m.bounds().diagonal();
-  const double cosJ = std::cos(o.jitterDeg * std::numbers::pi / 180.0);
+  const std::uint64_t count = scan::sphereRayCount(o);
   std::vector<RTCRay> rays(count);
   for (std::uint64_t i = 0; i < count; ++i) {
-    const Vec3 u = scan::sphereGridDirection(n, i);
-    Vec3 d = -u;
-    const double cosA = 1.0 - scan::counterUniform(o.seed, i, 0) * (1.0 - cosJ);
-    const double sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
-    const double phi = 2.0 * std::numbers::pi * scan::counterUniform(o.seed, i, 1);
-    const Vec3 e1 = treesketch::geom::anyPerpendicular(d), e2 = d.cross(e1);
-    d = cosA * d + sinA * (std::cos(phi) * e1 + std::sin(phi) * e2);
-    const Vec3 org = centre + radius * u - embreeOffset;
+    const accel::Ray a = scan::sphereScanRay(o, m.bounds(), i);
+    const Vec3 org = a.origin - embreeOffset;
     RTCRay& r = rays[i];
     r.org_x = static_cast<float>(org.x());
     r.org_y = static_cast<float>(org.y());
     r.org_z = static_cast<float>(org.z());
-    r.dir_x = static_cast<float>(d.x());
-    r.dir_y = static_cast<float>(d.y());
-    r.dir_z = static_cast<float>(d.z());
+    r.dir_x = static_cast<float>(a.dir.x());
+    r.dir_y = static_cast<float>(a.dir.y());
+    r.dir_z = static_cast<float>(a.dir.z());
     r.tnear = 0.0f;
     r.tfar = INFINITY;
     r.time = 0.0f;

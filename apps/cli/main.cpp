@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Action action;
   // [register subcommands here, one line each]
+  registerCompare(app, action);
   registerDemo(app, action);
   registerGui(app, action);
   registerInfo(app, action);

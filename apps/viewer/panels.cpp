@@ -36,7 +36,7 @@ void samplingControls(viewer::ViewerState& state) {
   const sketch::Sketch& sk = state.sketch();
   bool haveNode = state.selected() != sketch::kNoNode && sk.contains(state.selected());
   sketch::SamplingParams p = haveNode ? sk.node(state.selected()).params : sk.defaults;
-  double diag = std::max(state.cloud().bounds().diagonal(), 1e-6);
+  double diag = std::max(state.bounds().diagonal(), 1e-6);
   double slice = p.sliceHalfThickness, line = p.lineEpsilon;
   if (sizeSlider("slice half-thickness", &slice, 1e-4 * diag, 0.1 * diag)) state.setSliceHalfThickness(slice);
   if (ImGui::IsItemDeactivatedAfterEdit()) state.finishEdit();

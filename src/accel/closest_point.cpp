@@ -10,6 +10,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
@@ -570,11 +571,16 @@ void runBatch(const std::vector<Vec3>& points, const ClosestPointOptions& option
   }
   std::atomic<std::uint64_t> done{0};
   const std::size_t block = static_cast<std::size_t>(std::max(1, options.blockSize));
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, block), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::int64_t warm = -1;
-    for (std::size_t i = r.begin(); i < r.end(); ++i) warm = answerOne(order[i], warm);
-    if (progress) progress(done += r.size(), n);
-  });
+  // simple_partitioner splits the range the same way on every run, so the warm starts, hence the
+  // tie-breaks between equally close triangles, hence the results are reproducible bit for bit.
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, n, block),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        std::int64_t warm = -1;
+        for (std::size_t i = r.begin(); i < r.end(); ++i) warm = answerOne(order[i], warm);
+        if (progress) progress(done += r.size(), n);
+      },
+      tbb::simple_partitioner());
 }
 
 }  // namespace

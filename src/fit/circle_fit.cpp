@@ -135,6 +135,8 @@ void checkOptions(const CircleFitOptions& o) {
   if (!(o.minInlierFraction >= 0.0 && o.minInlierFraction <= 1.0)) bad("minInlierFraction must be in [0, 1]");
   if (!(o.minRadius >= 0.0) || !(o.maxRadius > o.minRadius)) bad("radius bounds must satisfy 0 <= min < max");
   if (o.maxIterations < 1 || o.minIterations < 0) bad("iteration bounds must be positive");
+  if (!(o.minArcDegrees >= 0.0 && o.minArcDegrees <= 360.0)) bad("minArcDegrees must be in [0, 360]");
+  if (!(o.arcBinDegrees > 0.0 && o.arcBinDegrees <= 360.0)) bad("arcBinDegrees must be in (0, 360]");
   if (o.maxScoringPoints < 0 || o.refineIterations < 0 || o.refineRounds < 0) bad("counts must be >= 0");
 }
 
@@ -162,6 +164,32 @@ struct Scorer {
     for (std::size_t i = 0; i < n; ++i)
       if (std::abs((pts[i] - c).norm() - r) <= t) out.push_back(std::uint32_t(i));
     return out;
+  }
+  // Angular coverage (degrees) of the points of `idx` within the threshold of the circle: the
+  // bins holding at least half the median count of the occupied bins (so that a few scattered
+  // clutter points do not count as arc).
+  double coverage(const std::vector<std::uint32_t>& idx, const Vec2& c, double r) const {
+    const int bins = std::max(1, int(std::ceil(360.0 / opt.arcBinDegrees)));
+    std::vector<int> hit(std::size_t(bins), 0);
+    double t = threshold(r);
+    for (auto i : idx) {
+      Vec2 d = pts[i] - c;
+      if (!(std::abs(d.norm() - r) <= t)) continue;
+      double deg = std::atan2(d.y(), d.x()) * (180.0 / M_PI) + 180.0;
+      ++hit[std::min(bins - 1, int(deg / opt.arcBinDegrees))];
+    }
+    std::vector<int> occupied;
+    for (int h : hit)
+      if (h > 0) occupied.push_back(h);
+    if (occupied.empty()) return 0.0;
+    std::nth_element(occupied.begin(), occupied.begin() + occupied.size() / 2, occupied.end());
+    double floor = 0.5 * occupied[occupied.size() / 2];
+    int covered = 0;
+    for (int h : hit) covered += h > 0 && h >= floor;
+    return std::min(360.0, covered * opt.arcBinDegrees);
+  }
+  bool enoughArc(const std::vector<std::uint32_t>& idx, const Vec2& c, double r) const {
+    return opt.minArcDegrees <= 0.0 || coverage(idx, c, r) >= opt.minArcDegrees;
   }
   bool admissible(const Vec2& c, double r) const {
     return r >= opt.minRadius && r <= opt.maxRadius && opt.centreRegion.contains(c);
@@ -220,7 +248,8 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
     if (!circleFrom3(points[sample[a]], points[sample[b]], points[sample[c]], &centre, &r)) continue;
     if (!scorer.admissible(centre, r)) continue;
     auto [count, sum] = scorer.score(sample, centre, r);
-    if (count > bestCount || (count == bestCount && count > 0 && sum < bestSum)) {
+    if ((count > bestCount || (count == bestCount && count > 0 && sum < bestSum)) &&
+        scorer.enoughArc(sample, centre, r)) {
       bestCount = count;
       bestSum = sum;
       bestC = centre;
@@ -236,7 +265,8 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   }
   res.iterations = it;
   if (bestCount < 3) {
-    res.reason = "no admissible 3-point circle (points collinear, or outside the radius bounds or centre region)";
+    res.reason = "no admissible 3-point circle (collinear points, or outside the radius bounds, the centre "
+                 "region or the minimum arc)";
     return res;
   }
 
@@ -250,7 +280,7 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
     if (!fitCircleLeastSquares(points, inl, options.refineIterations, &c2, &r2)) break;
     if (!scorer.admissible(c2, r2)) break;  // keep the last admissible circle
     auto inl2 = scorer.inliers(n, c2, r2);
-    if (inl2.size() < 3) break;
+    if (inl2.size() < 3 || !scorer.enoughArc(inl2, c2, r2)) break;
     bool same = inl2 == inl;
     c = c2;
     r = r2;
@@ -260,6 +290,10 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   if (inl.size() < needed) {
     res.reason = "best circle has too few inliers (" + std::to_string(inl.size()) + " < " + std::to_string(needed) +
                  " of " + std::to_string(n) + ")";
+    return res;
+  }
+  if (!scorer.enoughArc(inl, c, r)) {
+    res.reason = "the inliers cover only " + std::to_string(int(scorer.coverage(inl, c, r))) + " degrees of the circle";
     return res;
   }
   double ss = 0.0;

@@ -221,6 +221,7 @@ std::size_t cappedReserve(std::uint64_t count, const Cursor& c, const PlyElement
 
 void skipElement(Cursor& c, const PlyElement& e) {
   c.beginElement(e);
+  if (e.properties.empty()) return;  // records of nothing: there is nothing to skip, whatever the count
   std::size_t rs = c.ascii() ? 0 : fixedRecordSize(e);
   if (rs > 0) {
     c.requireRecords(e.count, rs);
@@ -516,7 +517,7 @@ geom::TriMesh parsePlyMesh(std::string_view data, const std::string& source) {
     throw InputError(source + ": " + std::to_string(ve.count) + " vertices, at most 2^32-1 are supported");
   Cursor c(data, h, source);
   geom::TriMesh mesh;
-  bool haveVertices = false;
+  bool haveVertices = false, haveFaces = false;
   for (const auto& e : h.elements) {
     if (&e == &ve) {
       VertexData v = readVertices(c, e, false, true);
@@ -526,10 +527,11 @@ geom::TriMesh parsePlyMesh(std::string_view data, const std::string& source) {
       haveVertices = true;
     } else if (&e == fe) {
       readFaces(c, e, li, static_cast<std::size_t>(ve.count), mesh.triangles);
-      if (haveVertices) break;
+      haveFaces = true;
     } else {
       skipElement(c, e);
     }
+    if (haveVertices && haveFaces) break;  // later elements (edges, materials) are not needed
   }
   if (mesh.triangles.empty()) throw InputError(source + ": PLY mesh has no faces, expected at least one triangle");
   return mesh;

@@ -31,7 +31,9 @@ int splitFields(const char* b, const char* e, std::string_view* fields, int maxF
 
 geom::PointCloud parseXyz(std::string_view data, const std::string& source, const CloudReadOptions& options) {
   geom::PointCloud cloud;
-  cloud.positions.reserve(static_cast<std::size_t>(std::count(data.begin(), data.end(), '\n')) + 1);
+  // One point a line, and a point line takes at least 6 bytes ("0 0 0\n").
+  std::size_t lines = static_cast<std::size_t>(std::count(data.begin(), data.end(), '\n')) + 1;
+  cloud.positions.reserve(std::min(lines, data.size() / 6 + 1));
   const char* p = data.data();
   const char* end = p + data.size();
   std::size_t lineNo = 0;

@@ -16,8 +16,11 @@ using geom::Vec3;
 
 constexpr int kMaxSubdivisions = 12;                  // 18 * 4^12 = 302 M rays
 constexpr std::uint64_t kMaxGrid = 3ull << (kMaxSubdivisions - 1);
-// counter_rng streams for the jitter (noise uses its own, see pattern_cast.cpp).
-constexpr std::uint32_t kJitterStream = 0;
+// counter_rng streams for the jitter: 2 per rejection attempt from here on (the range noise uses
+// streams 8 and 9, see pattern_cast.cpp).
+constexpr std::uint32_t kJitterStream = 16;
+// Rejection attempts before giving up on a jitter sample (each succeeds with probability pi/4).
+constexpr int kMaxJitterAttempts = 64;
 
 void checkOptions(const SphereScanOptions& o) {
   if (!std::isfinite(o.radius)) throw OptionsError("sphere scan: radius must be finite");
@@ -111,7 +114,67 @@ inline void orthonormalBasis(const Vec3& d, Vec3& e1, Vec3& e2) {
   e2 = Vec3(b, sign + d.y() * d.y() * a, -d.y());
 }
 
+// A direction uniform in the spherical cap of cosine cosJitter around unit d, drawn from
+// (seed, index). Marsaglia's trick: a point (x, y) uniform in the unit disc has s = x^2 + y^2
+// uniform in [0, 1] and an angle independent of s, so s gives the cap's cosine
+// (1 - s (1 - cosJitter), uniform as the cap's area requires) and (x, y) / sqrt(s) its azimuth:
+// no trigonometry per ray.
+Vec3 jitterInCap(const Vec3& d, double cosJitter, std::uint64_t seed, std::uint64_t index) {
+  for (int attempt = 0; attempt < kMaxJitterAttempts; ++attempt) {
+    const std::uint32_t stream = kJitterStream + 2 * static_cast<std::uint32_t>(attempt);
+    const double x = 2.0 * counterUniform(seed, index, stream) - 1.0;
+    const double y = 2.0 * counterUniform(seed, index, stream + 1) - 1.0;
+    const double s = x * x + y * y;
+    if (s > 1.0 || s == 0.0) continue;
+    const double cosA = 1.0 - s * (1.0 - cosJitter);
+    const double sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
+    const double inv = sinA / std::sqrt(s);
+    Vec3 e1, e2;
+    orthonormalBasis(d, e1, e2);
+    return cosA * d + (inv * x) * e1 + (inv * y) * e2;
+  }
+  return d;  // probability (1 - pi/4)^64 ~ 1e-43
+}
+
 }  // namespace
+
+namespace {
+
+// The pattern's geometry for given options and scene bounds.
+struct SpherePattern {
+  std::uint64_t n = 1;
+  Vec3 centre = Vec3::Zero();
+  double radius = 1.0;
+  double cosJitter = 1.0;
+  std::uint64_t seed = 1;
+
+  SpherePattern(const SphereScanOptions& options, const geom::BBox& box)
+      : n(sphereGridSize(options)),
+        centre(box.center()),
+        radius(options.radius > 0.0 ? options.radius : options.radiusFactor * box.diagonal()),
+        cosJitter(std::cos(options.jitterDeg * std::numbers::pi / 180.0)),
+        seed(options.seed) {}
+
+  accel::Ray ray(std::uint64_t index, const GridCell& cell) const {
+    const Vec3 u = cellDirection(n, cell);
+    accel::Ray r;
+    r.origin = centre + radius * u;
+    r.dir = cosJitter < 1.0 ? jitterInCap(-u, cosJitter, seed, index) : Vec3(-u);
+    return r;
+  }
+};
+
+}  // namespace
+
+accel::Ray sphereScanRay(const SphereScanOptions& options, const geom::BBox& bounds, std::uint64_t index) {
+  checkOptions(options);
+  if (bounds.empty()) throw OptionsError("sphere scan: empty bounds, no centre to aim at");
+  const SpherePattern pattern(options, bounds);
+  if (index >= 8 * pattern.n * pattern.n)
+    throw OptionsError("sphere scan: ray " + std::to_string(index) + " of " +
+                       std::to_string(8 * pattern.n * pattern.n));
+  return pattern.ray(index, gridCell(pattern.n, index));
+}
 
 ScanResult sphereScan(const accel::RayScene& scene, const SphereScanOptions& options, const ProgressFn& progress) {
   checkOptions(options);
@@ -123,29 +186,12 @@ ScanResult sphereScan(const accel::RayScene& scene, const SphereScanOptions& opt
   const geom::BBox& box = scene.bounds();
   if (box.empty()) return castPattern(scene, 0, RayBatchGenerator{}, cast, progress);
 
-  const Vec3 centre = box.center();
-  const double radius = options.radius > 0.0 ? options.radius : options.radiusFactor * box.diagonal();
-  const double cosJitter = std::cos(options.jitterDeg * std::numbers::pi / 180.0);
-  const std::uint64_t seed = options.seed;
-  const RayBatchGenerator generator = [=](std::uint64_t first, std::size_t count, ScanRay* out) {
-    GridCell cell = gridCell(n, first);
-    for (std::size_t k = 0; k < count; ++k, nextCell(n, cell)) {
-      const std::uint64_t i = first + k;
-      const Vec3 u = cellDirection(n, cell);
-      ScanRay& sr = out[k];
-      sr.ray = accel::Ray{};
-      sr.ray.origin = centre + radius * u;
-      Vec3 d = -u;
-      if (cosJitter < 1.0) {  // uniform direction in the cap of half-angle jitterDeg around d
-        const double cosA = 1.0 - counterUniform(seed, i, kJitterStream) * (1.0 - cosJitter);
-        const double sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
-        const double phi = 2.0 * std::numbers::pi * counterUniform(seed, i, kJitterStream + 1);
-        Vec3 e1, e2;
-        orthonormalBasis(d, e1, e2);
-        d = cosA * d + sinA * (std::cos(phi) * e1 + std::sin(phi) * e2);
-      }
-      sr.ray.dir = d;
-      sr.station = -1;
+  const SpherePattern pattern(options, box);
+  const RayBatchGenerator generator = [&pattern](std::uint64_t first, std::size_t count, ScanRay* out) {
+    GridCell cell = gridCell(pattern.n, first);
+    for (std::size_t k = 0; k < count; ++k, nextCell(pattern.n, cell)) {
+      out[k].ray = pattern.ray(first + k, cell);
+      out[k].station = -1;
     }
   };
   return castPattern(scene, 8 * n * n, generator, cast, progress);

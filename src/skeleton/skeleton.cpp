@@ -30,6 +30,9 @@ void checkOptions(const SkeletonOptions& o) {
   nonNegative(o.minBranchLinearity, "minBranchLinearity");
   nonNegative(o.minEndSupportFraction, "minEndSupportFraction");
   nonNegative(o.forkZoneRadii, "forkZoneRadii");
+  nonNegative(o.thinRadiusVoxels, "thinRadiusVoxels");
+  nonNegative(o.maxRingVariation, "maxRingVariation");
+  nonNegative(o.minTubularFraction, "minTubularFraction");
   nonNegative(o.collinearToleranceRadii, "collinearToleranceRadii");
   nonNegative(o.collinearToleranceVoxels, "collinearToleranceVoxels");
   positive(o.maxSegmentRadii, "maxSegmentRadii");
@@ -313,16 +316,24 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
       node.direction = safeNormalized(sum, up);
     }
   }
-  // Radius: mean distance of the piece's voxels to the axis through the centroid.
-  std::vector<double> radiusSum(nodes.size(), 0.0);
+  // Radius: mean distance of the piece's voxels to the axis through the centroid; their
+  // coefficient of variation tells a ring (branch) from a blob (foliage).
+  std::vector<double> radiusSum(nodes.size(), 0.0), radiusSq(nodes.size(), 0.0);
   for (std::size_t v = 0; v < n; ++v) {
     const std::int32_t id = lv.vertexNode[v];
     if (id < 0) continue;
     const Vec3 d = g.positions[v] - nodes[id].position;
-    radiusSum[id] += (d - d.dot(nodes[id].direction) * nodes[id].direction).norm();
+    const double r = (d - d.dot(nodes[id].direction) * nodes[id].direction).norm();
+    radiusSum[id] += r;
+    radiusSq[id] += r * r;
   }
-  for (std::size_t i = 0; i < nodes.size(); ++i)
-    nodes[i].radius = std::max(radiusSum[i] / count[i], 0.25 * g.voxelSize);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const double mean = radiusSum[i] / count[i];
+    const double var = std::max(radiusSq[i] / count[i] - mean * mean, 0.0);
+    nodes[i].radius = std::max(mean, 0.25 * g.voxelSize);
+    nodes[i].ringVariation = static_cast<float>(mean > 0 ? std::sqrt(var) / mean : 0.0);
+    nodes[i].tubular = mean <= options.thinRadiusVoxels * g.voxelSize || nodes[i].ringVariation <= options.maxRingVariation;
+  }
   return nodes;
 }
 
@@ -357,13 +368,15 @@ std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw,
     radius[i] = window[window.size() / 2];
   }
 
-  // Subtree linearity (support-weighted), bottom-up.
-  std::vector<double> linSum(n), supSum(n);
+  // Subtree linearity and tubular fraction (support-weighted), bottom-up.
+  std::vector<double> linSum(n), tubSum(n), supSum(n);
   for (std::size_t i = n; i-- > 0;) {
     linSum[i] += raw[i].linearity * raw[i].support;
+    tubSum[i] += raw[i].tubular ? raw[i].support : 0;
     supSum[i] += raw[i].support;
     if (raw[i].parent >= 0) {
       linSum[raw[i].parent] += linSum[i];
+      tubSum[raw[i].parent] += tubSum[i];
       supSum[raw[i].parent] += supSum[i];
     }
   }
@@ -381,7 +394,8 @@ std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw,
       }
       const double length = reach[c] + (raw[c].position - raw[i].position).norm();
       const double lin = supSum[c] > 0 ? linSum[c] / supSum[c] : 0.0;
-      kept[c] = length >= spur && lin >= options.minBranchLinearity;
+      const double tub = supSum[c] > 0 ? tubSum[c] / supSum[c] : 0.0;
+      kept[c] = length >= spur && lin >= options.minBranchLinearity && tub >= options.minTubularFraction;
     }
     for (std::int32_t c : raw[i].children)
       if (kept[c] && raw[c].children.empty() && raw[c].support < options.minEndSupportFraction * raw[i].support)

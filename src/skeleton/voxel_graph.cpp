@@ -38,6 +38,8 @@ void checkOptions(const VoxelGraphOptions& o) {
   if (!(o.maxGapVoxels >= 0)) throw OptionsError("skeleton graph: maxGapVoxels must be >= 0");
   if (!(o.freeGapVoxels >= 0)) throw OptionsError("skeleton graph: freeGapVoxels must be >= 0");
   if (o.reach < 1 || o.reach > 3) throw OptionsError("skeleton graph: reach must be 1, 2 or 3");
+  if (!(o.minBridgeLinearity >= 0) || o.minBridgeLinearity > 1)
+    throw OptionsError("skeleton graph: minBridgeLinearity must be in [0, 1]");
   if (o.maxVoxels < 1) throw OptionsError("skeleton graph: maxVoxels must be >= 1");
 }
 
@@ -337,6 +339,8 @@ void bridgePieces(VoxelGraph& g, const VoxelGraphOptions& o) {
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
       eig.computeDirect(cov);
       const Vec3 axis = eig.eigenvectors().col(2);
+      const double l1 = std::max(eig.eigenvalues()(2), 1e-30), l2 = std::max(eig.eigenvalues()(1), 0.0);
+      if ((l1 - l2) / l1 < o.minBridgeLinearity) continue;
       const Vec3 gap = (g.positions[c.from] - g.positions[c.to]) / c.length;
       if (std::abs(axis.dot(gap)) < coneCos) continue;
     }

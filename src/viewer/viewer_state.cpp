@@ -11,6 +11,8 @@
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/scan/sphere_scan.h"
+#include "treesketch/skeleton/skeleton.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/sketch/auto_sketch.h"
 #include "treesketch/util/error.h"
 
@@ -174,14 +176,15 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     sourcePath_ = sourcePath;
     sketch_ = sketch::Sketch{};
     sketch_.up = up;
-    sketch_.defaults = sketch::defaultSamplingFor(cloud_.bounds());
+    bounds_ = cloud_.bounds();
+    sketch_.defaults = sketch::defaultSamplingFor(bounds_);
     undo_.clear();
     lastEditKey_.clear();
     selected_ = active_ = kNoNode;
     if (!sourcePath.empty()) {
       autosavePath_ = sourcePath.parent_path() / (sourcePath.stem().string() + ".autosave.sketch.json");
     }
-    orbit_.setSceneBounds(cloud_.bounds());
+    orbit_.setSceneBounds(bounds_);
     orbit_.preset(geom::PresetView::Front, up_);
     colorsStale_ = true;
     resetReconstruction();
@@ -333,7 +336,7 @@ Vec3 ViewerState::anchor(NodeId id) const {
   if (f.status == NodeStatus::Fitted) return f.circle.centre;
   sketch::NodeGeometry g = sketch_.geometry(id);
   if (!g.hasLine) return g.planePoint;
-  Vec3 c = cloud_.empty() ? g.linePoint : cloud_.bounds().center();
+  Vec3 c = cloud_.empty() ? g.linePoint : bounds_.center();
   return g.linePoint + (c - g.linePoint).dot(g.lineDir) * g.lineDir;
 }
 
@@ -470,8 +473,19 @@ bool ViewerState::autoSketchUniform(int nodes) {
 }
 
 bool ViewerState::autoSketchSkeleton() {
-  error("automatic skeleton sketch: not available in this build");
-  return false;
+  if (cloud_.empty()) {
+    error("automatic skeleton sketch: open a point cloud first");
+    return false;
+  }
+  return edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
+    skeleton::SkeletonOptions options;
+    options.up = up_;
+    skeleton::Skeleton skel = skeleton::extractSkeleton(cloud_, options);
+    if (skel.nodes.empty()) throw OptionsError("no skeleton found in this cloud");
+    sketch_ = skeleton::skeletonToSketch(skel);
+    selected_ = kNoNode;
+    active_ = sketch_.root();
+  });
 }
 
 bool ViewerState::saveSketch(const std::filesystem::path& path) {
@@ -635,7 +649,7 @@ const std::vector<Rgb>& ViewerState::pointColors() {
           NodeFitView f = recon_->nodeFit(id);
           if (f.status == NodeStatus::Fitted) circles.push_back(f.circle);
         }
-        double scale = options_.distanceColorScale * std::max(cloud_.bounds().diagonal(), 1e-12);
+        double scale = options_.distanceColorScale * std::max(bounds_.diagonal(), 1e-12);
         colors_ = circleDistanceColors(cloud_, circles, scale);
         break;
       }
@@ -726,7 +740,7 @@ std::vector<Line3> ViewerState::sceneLines() const {
   // The slab: two squares at ±ε around the node's region, joined at the corners.
   Vec3 u = g.hasLine ? g.lineDir.normalized() : geom::anyPerpendicular(n);
   Vec3 v = n.cross(u).normalized();
-  geom::BBox box = cloud_.bounds();
+  const geom::BBox& box = bounds_;
   double half = std::max(1.5 * r.lineEpsilon, 0.05 * box.diagonal());
   Vec3 corners[4] = {centre + half * (u + v), centre + half * (-u + v), centre + half * (-u - v),
                      centre + half * (u - v)};

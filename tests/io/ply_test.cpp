@@ -217,6 +217,18 @@ TEST(Ply, RejectsBadHeaders) {
   expectError([] { cloudFrom("ply\nformat ascii 1.0\nbogus line\nend_header\n"); }, {"mem.ply:3:", "bogus"});
 }
 
+TEST(Ply, ElementsWithoutPropertiesAreSkippedWhateverTheirCount) {
+  for (const char* fmt : {"ascii", "binary_little_endian"}) {
+    std::string s = std::string("ply\nformat ") + fmt +
+                    " 1.0\nelement nothing 1000000000000\nelement vertex 4\nproperty uchar x\nproperty uchar y\n"
+                    "property uchar z\nend_header\n";
+    s += std::string(fmt) == "ascii" ? "1 2 3\n4 5 6\n7 8 9\n10 11 12\n" : "\x01\x02\x03\x04\x05\x06\x07\x08\x09\x0a\x0b\x0c";
+    geom::PointCloud c = cloudFrom(s);
+    ASSERT_EQ(c.size(), 4u) << fmt;
+    EXPECT_EQ(c.positions[3], geom::Vec3(10, 11, 12)) << fmt;
+  }
+}
+
 TEST(Ply, RejectsTruncatedAndBadAsciiData) {
   expectError([] { cloudFrom(kAsciiHead + "end_header\n0 0 0\n1 1 1\n2 2\n"); }, {"mem.ply:", "truncated", "'vertex' record 2"});
   expectError([] { cloudFrom(kAsciiHead + "end_header\n0 0 0\n1 1 1\n2 2 2\n3 zz 3\n"); }, {"mem.ply:11:", "'zz'"});

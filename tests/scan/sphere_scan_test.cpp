@@ -155,6 +155,30 @@ TEST(SphereScan, RadiusAndCentre) {
   EXPECT_NEAR((mean / 288.0 - c).norm(), 0.0, 1e-9);
 }
 
+TEST(SphereScan, RaysAreJitteredWithinTheCapAndAimedAtTheCentre) {
+  geom::BBox box;
+  box.add(Vec3(-1, 0, -1));
+  box.add(Vec3(1, 4, 1));
+  scan::SphereScanOptions o = withSubdiv(3);
+  o.jitterDeg = 5.0;
+  double maxAngle = 0.0, sumCos = 0.0;
+  const std::uint64_t count = scan::sphereRayCount(o);
+  for (std::uint64_t i = 0; i < count; ++i) {
+    const accel::Ray r = scan::sphereScanRay(o, box, i);
+    EXPECT_NEAR((r.origin - box.center()).norm(), box.diagonal(), 1e-9);  // radiusFactor 1
+    EXPECT_NEAR(r.dir.norm(), 1.0, 1e-12);
+    const double c = std::clamp(r.dir.dot((box.center() - r.origin).normalized()), -1.0, 1.0);
+    maxAngle = std::max(maxAngle, std::acos(c));
+    sumCos += c;
+  }
+  EXPECT_LE(maxAngle, 5.0 * M_PI / 180.0 + 1e-9);
+  EXPECT_GT(maxAngle, 4.5 * M_PI / 180.0);
+  // Uniform over the cap: the mean cosine is the cap's middle, (1 + cos 5 deg) / 2.
+  EXPECT_NEAR(sumCos / count, 0.5 * (1.0 + std::cos(5.0 * M_PI / 180.0)), 1.5e-4);  // 4.5 standard errors; uniform-in-angle would be 6e-4 off
+  EXPECT_THROW(scan::sphereScanRay(o, box, count), OptionsError);
+  EXPECT_THROW(scan::sphereScanRay(o, geom::BBox{}, 0), OptionsError);
+}
+
 TEST(SphereScan, BadOptionsAndEmptyScene) {
   const std::vector<TriMesh> meshes = {tt::makeBox(Vec3(-1, -1, -1), Vec3(1, 1, 1))};
   scan::SphereScanOptions o = withSubdiv(1);

@@ -106,12 +106,13 @@ TEST(UniformAutoSketch, OrthographicSlicesTileTheHeight) {
     EXPECT_NEAR(std::abs(sk.geometry(id).planeNormal.y()), 1.0, 1e-9);
   }
   // Together the slabs cover every point.
+  std::vector<NodeGeometry> geoms;
+  for (NodeId id : sk.ids()) geoms.push_back(sk.geometry(id));
   for (const Vec3& p : cloud.positions) {
     bool covered = false;
-    for (NodeId id : sk.ids()) {
-      NodeGeometry g = sk.geometry(id);
-      covered |= std::abs((p - g.planePoint).dot(g.planeNormal)) <= sk.node(id).params.sliceHalfThickness + 1e-9;
-    }
+    for (std::size_t k = 0; k < geoms.size(); ++k)
+      covered |= std::abs((p - geoms[k].planePoint).dot(geoms[k].planeNormal)) <=
+                 sk.node(sk.ids()[k]).params.sliceHalfThickness + 1e-9;
     ASSERT_TRUE(covered) << p.transpose();
   }
 }

@@ -294,6 +294,23 @@ TEST(ViewerState, UniformAutoSketchAndViewKeys) {
   EXPECT_TRUE(f.state.sketch().empty());
 }
 
+TEST(ViewerState, SkeletonAutoSketchGivesPointNodesAlongTheTrunk) {
+  Fixture f;
+  ASSERT_TRUE(f.state.autoSketchSkeleton()) << f.state.lastMessage().text;
+  const sketch::Sketch& sk = f.state.sketch();
+  ASSERT_GE(sk.size(), 2u);
+  for (const auto& [id, node] : sk.nodes()) {
+    EXPECT_FALSE(node.isScreenNode());
+    EXPECT_NEAR(std::hypot(node.point.x(), node.point.z()), 0.0, 0.1);  // on the trunk's axis
+  }
+  EXPECT_GE(f.state.fittedCount(), sk.size() / 2);
+  // Point nodes can be dragged in the view too.
+  sketch::NodeId id = sk.root();
+  Vec3 before = sk.node(id).point;
+  EXPECT_TRUE(f.state.moveNodeTo(id, f.screenOf(before) + Vec2(0, -10)));
+  EXPECT_GT(f.state.sketch().node(id).point.y(), before.y());
+}
+
 TEST(ViewerState, OrbitAndPanGesturesDoNotEditTheSketch) {
   Fixture f;
   f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));

@@ -44,6 +44,13 @@ struct CircleFitOptions {
   int minInliers = 8;
   /// ...and at least this fraction of the input points (design choice: 0.1).
   double minInlierFraction = 0.1;
+  /// Minimum angular coverage of the inliers around the centre, degrees, counted in bins of
+  /// arcBinDegrees that hold at least half the median count of the occupied bins (design choice:
+  /// 90°). A scan sees one side of a branch (arcs of 120–180°), but
+  /// a small circle grazing the inside of a wide trunk's arc, or a circle threaded through a few
+  /// clutter points, gathers its inliers on a short arc of itself: this rejects those. 0 = off.
+  double minArcDegrees = 90.0;
+  double arcBinDegrees = 10.0;
   /// Accepted radius range, world units.
   double minRadius = 0.0;
   double maxRadius = std::numeric_limits<double>::infinity();

@@ -56,6 +56,13 @@ std::uint64_t sphereRayCount(const SphereScanOptions& options);
 /// Unit direction from the centre to origin number `index` (< 8 n^2) of an n-grid.
 geom::Vec3 sphereGridDirection(std::uint64_t n, std::uint64_t index);
 
+/// Ray number `index` of the sphere pattern for a scene with bounding box `bounds` (world
+/// coordinates), exactly as sphereScan casts it: origin centre + radius * grid direction, unit
+/// direction towards the centre, jittered uniformly within a cap of half-angle jitterDeg
+/// (drawn from (seed, index)). Throws OptionsError for invalid options, empty bounds or
+/// index >= sphereRayCount(options).
+accel::Ray sphereScanRay(const SphereScanOptions& options, const geom::BBox& bounds, std::uint64_t index);
+
 /// Scans `scene` with the sphere pattern centred on the scene's bounding-box centre. Returns the
 /// nearest hits (world coordinates, ray order, misses dropped) and stats. An empty scene gives an
 /// empty cloud with raysCast = 0. Throws OptionsError for invalid options (radius or jitter not

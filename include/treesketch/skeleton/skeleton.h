@@ -45,6 +45,13 @@ struct SkeletonOptions {
   /// Foliage: a side sub-tree whose nodes' mean linearity (VoxelGraph::linearity, support-weighted)
   /// is below this is dropped as leaves (0 keeps everything). Leaves are planar or scattered.
   double minBranchLinearity = 0.0;
+  /// Foliage by cross-section: a level-set piece is tubular when it is thin (mean distance to its
+  /// axis ≤ thinRadiusVoxels voxels) or a ring (coefficient of variation of those distances ≤
+  /// maxRingVariation; a noisy ring is ~0.1-0.3, a cluster of leaves a blob, ~0.5+). A side
+  /// sub-tree whose tubular share (by support) is below minTubularFraction is dropped.
+  double thinRadiusVoxels = 0.5;
+  double maxRingVariation = 0.4;
+  double minTubularFraction = 0.8;
 
   /// Forks: the fork node and the raw nodes within forkZoneRadii × radius + one level set below
   /// it are moved onto the line of the parent chain below that zone (their level sets include the
@@ -75,6 +82,8 @@ struct SkeletonNode {
   std::int32_t level = 0;     ///< level-set index
   std::int32_t support = 0;   ///< input points in the piece(s) the node stands for
   float linearity = 0;        ///< support-weighted mean linearity of the piece's voxels
+  float ringVariation = 0;    ///< std / mean of the voxels' distances to the axis (ring ~ low)
+  bool tubular = true;        ///< thin or ring-like (see SkeletonOptions::maxRingVariation)
   std::int32_t branchOrder = 0;  ///< 0 = trunk; +1 at every fork for the side (non-main) child
   std::int32_t raw = -1;      ///< simplified nodes: the raw node it came from
 };

@@ -152,6 +152,8 @@ class ViewerState {
   /// are scanned first with the sphere scanner's defaults; `progress` reports the scan.
   bool openFile(const std::filesystem::path& path, geom::UpAxis up, const ProgressFn& progress = {});
   const geom::PointCloud& cloud() const { return cloud_; }
+  /// The cloud's bounding box (computed once per cloud).
+  const geom::BBox& bounds() const { return bounds_; }
   /// Increases whenever a new cloud is set.
   std::uint64_t cloudVersion() const { return cloudVersion_; }
   geom::UpAxis up() const { return up_; }
@@ -213,7 +215,8 @@ class ViewerState {
   bool clearSketch();
   /// Replaces the sketch by the thesis's uniform automatic sketch (nodes at regular heights).
   bool autoSketchUniform(int nodes = 12);
-  /// Replaces the sketch by the automatic skeleton sketch (branching); false when unavailable.
+  /// Replaces the sketch by the automatic skeleton sketch (skeleton::extractSkeleton then
+  /// skeletonToSketch: point nodes along the branches, with their own sampling sizes).
   bool autoSketchSkeleton();
   /// Ends the current merge of consecutive edits (call when a slider is released).
   void finishEdit() { lastEditKey_.clear(); }
@@ -283,6 +286,7 @@ class ViewerState {
   ViewerOptions options_;
   ReconstructionFactory factory_;
   geom::PointCloud cloud_;
+  geom::BBox bounds_;
   geom::UpAxis up_ = geom::UpAxis::Y;
   std::filesystem::path sourcePath_;
   std::filesystem::path autosavePath_;
