@@ -10,6 +10,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <sys/resource.h>
+
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -28,6 +30,22 @@ using treesketch::geom::TriMesh;
 using treesketch::geom::Vec3;
 
 constexpr std::size_t kQueries = 1'000'000;
+
+// Process CPU time (all threads), seconds. The machine is shared: wall-clock throughput depends on
+// the load, so each benchmark also reports items per CPU-second ("per_core"): on two idle cores
+// with perfect scaling the wall-clock rate would be twice that.
+double processCpuSeconds() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return r.ru_utime.tv_sec + r.ru_stime.tv_sec + 1e-6 * (r.ru_utime.tv_usec + r.ru_stime.tv_usec);
+}
+
+struct CpuCounter {
+  double start = processCpuSeconds();
+  void report(benchmark::State& state, double items) {
+    state.counters["per_core"] = benchmark::Counter(items / (processCpuSeconds() - start));
+  }
+};
 
 const TriMesh& target() {
   static const TriMesh mesh = [] {
@@ -92,10 +110,12 @@ void BM_TreesketchQueryAll(benchmark::State& state) {
   treesketch::accel::MeshClosestPoint index(target(), o);
   const auto& q = queries();
   double sum = 0;
+  CpuCounter cpu;
   for (auto _ : state) {
     auto hits = index.queryAll(q);
     sum += hits[17].distance;
   }
+  cpu.report(state, static_cast<double>(state.iterations() * q.size()));
   benchmark::DoNotOptimize(sum);
   state.SetItemsProcessed(state.iterations() * q.size());
 }
@@ -160,6 +180,7 @@ void BM_EmbreePointQuery(benchmark::State& state) {
   EmbreeTarget et(target());
   const auto& q = queries();
   std::vector<double> out(q.size());
+  CpuCounter cpu;
   for (auto _ : state) {
     std::vector<std::uint32_t> order;
     if (state.range(0)) order = treesketch::accel::mortonOrder(q);
@@ -180,6 +201,7 @@ void BM_EmbreePointQuery(benchmark::State& state) {
       }
     });
   }
+  cpu.report(state, static_cast<double>(state.iterations() * q.size()));
   benchmark::DoNotOptimize(out.data());
   state.SetItemsProcessed(state.iterations() * q.size());
 }

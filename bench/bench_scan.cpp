@@ -64,9 +64,10 @@ std::vector<RTCRay> scannerRays(const Vec3& embreeOffset) {
   const TriMesh& m = treeMesh();
   const scan::SphereScanOptions o = thesisOptions();
   const std::uint64_t count = scan::sphereRayCount(o);
+  const treesketch::geom::BBox bounds = m.bounds();
   std::vector<RTCRay> rays(count);
   for (std::uint64_t i = 0; i < count; ++i) {
-    const accel::Ray a = scan::sphereScanRay(o, m.bounds(), i);
+    const accel::Ray a = scan::sphereScanRay(o, bounds, i);
     const Vec3 org = a.origin - embreeOffset;
     RTCRay& r = rays[i];
     r.org_x = static_cast<float>(org.x());
@@ -99,8 +100,8 @@ struct RawScene {
     rtcSetSceneBuildQuality(scene, quality);
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(g, quality);
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                           3 * sizeof(float), m.vertices.size()));
+    auto* vb = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.vertices.size()));
     auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                               3 * sizeof(unsigned), m.triangles.size()));
     for (std::size_t v = 0; v < m.vertices.size(); ++v)
@@ -132,25 +133,26 @@ void BM_RawEmbreeIntersect1(benchmark::State& state) {
   std::atomic<std::uint64_t> hits{0};
   for (auto _ : state) {
     hits = 0;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
-      std::uint64_t h = 0;
-      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        RTCRayHit rh;
-        rh.ray = rays[i];
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(raw.scene, &ctx, &rh);
-        h += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-      }
-      hits += h;
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        RTCIntersectContext ctx;
+                        rtcInitIntersectContext(&ctx);
+                        std::uint64_t h = 0;
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                          RTCRayHit rh;
+                          rh.ray = rays[i];
+                          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                          rtcIntersect1(raw.scene, &ctx, &rh);
+                          h += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+                        }
+                        hits += h;
+                      });
     benchmark::DoNotOptimize(hits.load());
   }
   state.SetLabel(qualityName(static_cast<int>(state.range(1))));
-  state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays.size()) * state.iterations(),
-                                                    benchmark::Counter::kIsRate);
+  state.counters["rays_per_s"] =
+      benchmark::Counter(static_cast<double>(rays.size()) * state.iterations(), benchmark::Counter::kIsRate);
   state.counters["hit_frac"] = static_cast<double>(hits.load()) / static_cast<double>(rays.size());
 }
 BENCHMARK(BM_RawEmbreeIntersect1)
@@ -176,8 +178,8 @@ void BM_RaySceneIntersectAll(benchmark::State& state) {
     const std::vector<accel::RayHit> hits = scene.intersectAll(rays);
     benchmark::DoNotOptimize(hits.data());
   }
-  state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays.size()) * state.iterations(),
-                                                    benchmark::Counter::kIsRate);
+  state.counters["rays_per_s"] =
+      benchmark::Counter(static_cast<double>(rays.size()) * state.iterations(), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_RaySceneIntersectAll)->Arg(1)->Arg(2)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond);
 

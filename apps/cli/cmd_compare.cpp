@@ -92,6 +92,8 @@ void printRow(const char* name, const compare::DistanceReport& r) {
 void runCompare(const CompareArgs& args) {
   if (!args.range.empty() && args.range.size() != 2)
     throw OptionsError("--range takes two values: MIN MAX (metres)");
+  if (args.range.size() == 2 && !(args.range[0] <= args.range[1]))
+    throw OptionsError("--range: MIN must not exceed MAX");
   if (!args.json.empty()) checkNotAnInput(args.json, {args.a, args.b});
   if (!args.errorMesh.empty()) {
     checkNotAnInput(args.errorMesh, {args.a, args.b});

@@ -89,7 +89,8 @@ void runScan(const ScanArgs& a) {
 }  // namespace
 
 void registerScan(CLI::App& app, Action& action) {
-  auto* sub = app.add_subcommand("scan", "Virtual LIDAR: scan meshes into a point cloud (thesis sphere or TLS stations)");
+  auto* sub =
+      app.add_subcommand("scan", "Virtual LIDAR: scan meshes into a point cloud (thesis sphere or TLS stations)");
   auto a = std::make_shared<ScanArgs>();
   sub->add_option("meshes", a->meshes, "Mesh files (.obj .ply); with several, the first is counted as wood")
       ->required();
@@ -104,7 +105,7 @@ void registerScan(CLI::App& app, Action& action) {
   sub->add_option("--radius", a->radius, "sphere: radius in mesh units (default: 1 x bbox diagonal)");
   sub->add_option("--jitter", a->jitter, "sphere: half-angle of the random aim jitter, degrees")->capture_default_str();
   auto* noise = sub->add_option("--noise", a->noise,
-                  "Gaussian range noise sigma, mesh units (default: 0 for sphere, 0.002 for tls)");
+                                "Gaussian range noise sigma, mesh units (default: 0 for sphere, 0.002 for tls)");
   sub->add_option("--seed", a->seed, "Random seed (jitter, noise)")->capture_default_str();
   sub->add_option("--up", a->up, "tls: up axis, y or z")->capture_default_str();
   sub->add_option("--stations", a->stations, "tls: number of stations on a ring around the tree")

@@ -22,6 +22,7 @@ enum ExitCode : int {
 // [declare register functions here, one line each]
 void registerCompare(CLI::App& app, Action& action);
 void registerDemo(CLI::App& app, Action& action);
+void registerEvaluate(CLI::App& app, Action& action);
 void registerGui(CLI::App& app, Action& action);
 void registerInfo(CLI::App& app, Action& action);
 void registerReconstruct(CLI::App& app, Action& action);

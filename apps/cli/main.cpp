@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   // [register subcommands here, one line each]
   registerCompare(app, action);
   registerDemo(app, action);
+  registerEvaluate(app, action);
   registerGui(app, action);
   registerInfo(app, action);
   registerReconstruct(app, action);

@@ -182,7 +182,7 @@ class App {
     glViewport(0, 0, fbw, fbh);
     glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (!loading()) renderer_->draw(state_, fbh);
+    if (!loading()) renderer_->draw(state_, fbh, ww > 0 ? static_cast<double>(fbw) / ww : 1.0);
     glViewport(0, 0, fbw, fbh);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (shot) gui::writeScreenshot(*shot, fbw, fbh);
@@ -217,6 +217,7 @@ class App {
     state_.setCloud(std::move(loader_.cloud), args_.up, args_.input.empty() ? fs::path() : fs::path(args_.input));
     if (args_.input.empty()) state_.setAutosavePath("treesketch_demo.autosave.sketch.json");
     if (!args_.autosavePath.empty()) state_.setAutosavePath(args_.autosavePath);
+    state_.setSketchPath(panel_.sketchPath);
     if (!args_.sketchPath.empty() && fs::exists(args_.sketchPath)) state_.loadSketch(args_.sketchPath);
     return true;
   }

@@ -138,7 +138,7 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   ImGui::Text("%zu points, %zu nodes", state.cloud().size(), state.sketch().size());
 
   if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::InputText("sketch", &panel.sketchPath);
+    if (ImGui::InputText("sketch", &panel.sketchPath)) state.setSketchPath(panel.sketchPath);
     if (ImGui::Button("Load sketch")) state.loadSketch(panel.sketchPath);
     ImGui::SameLine();
     if (ImGui::Button("Save sketch")) state.saveSketch(panel.sketchPath);

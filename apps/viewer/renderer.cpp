@@ -210,11 +210,12 @@ void Renderer::uploadHighlights(const viewer::ViewerState& state) {
   glBufferData(GL_ARRAY_BUFFER, pos.size() * sizeof(float), pos.data(), GL_DYNAMIC_DRAW);
 }
 
-void Renderer::draw(viewer::ViewerState& state, int framebufferHeight) {
+void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale) {
   geom::Camera cam = state.camera();
   const geom::Viewport& vp = cam.viewport;
-  glViewport(static_cast<GLint>(vp.x), static_cast<GLint>(framebufferHeight - vp.y - vp.height),
-             static_cast<GLsizei>(vp.width), static_cast<GLsizei>(vp.height));
+  double k = pixelScale > 0 ? pixelScale : 1.0;
+  glViewport(static_cast<GLint>(vp.x * k), static_cast<GLint>(framebufferHeight - (vp.y + vp.height) * k),
+             static_cast<GLsizei>(vp.width * k), static_cast<GLsizei>(vp.height * k));
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_PROGRAM_POINT_SIZE);
   glClear(GL_DEPTH_BUFFER_BIT);
@@ -236,17 +237,17 @@ void Renderer::draw(viewer::ViewerState& state, int framebufferHeight) {
   GLint size = glGetUniformLocation(pointProgram_, "uPointSize");
   if (d.showCloud) {
     glUniform4f(tint, 0, 0, 0, 0);
-    glUniform1f(size, d.pointSize);
+    glUniform1f(size, static_cast<float>(d.pointSize * k));
     glBindVertexArray(cloudVao_);
     glDrawArrays(GL_POINTS, 0, cloudCount_);
   }
   if (sliceCount_ + inlierCount_ > 0) {
     glBindVertexArray(hlVao_);
     glDepthFunc(GL_LEQUAL);
-    glUniform1f(size, d.pointSize + 2.0f);
+    glUniform1f(size, static_cast<float>((d.pointSize + 2.0) * k));
     glUniform4f(tint, 0.2f, 0.85f, 1.0f, 1.0f);  // slice points: cyan
     glDrawArrays(GL_POINTS, 0, sliceCount_);
-    glUniform1f(size, d.pointSize + 3.0f);
+    glUniform1f(size, static_cast<float>((d.pointSize + 3.0) * k));
     glUniform4f(tint, 1.0f, 0.15f, 0.15f, 1.0f);  // circle inliers: red
     glDrawArrays(GL_POINTS, sliceCount_, inlierCount_);
     glDepthFunc(GL_LESS);

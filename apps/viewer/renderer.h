@@ -19,9 +19,10 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  /// Draws the scene into the state's viewport; `framebufferHeight` flips the viewport's
-  /// top-left origin into OpenGL's bottom-left one.
-  void draw(viewer::ViewerState& state, int framebufferHeight);
+  /// Draws the scene into the state's viewport (window pixels); `framebufferHeight` flips the
+  /// viewport's top-left origin into OpenGL's bottom-left one and `pixelScale` converts window
+  /// pixels to framebuffer pixels (1 except on high-DPI screens).
+  void draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale = 1.0);
 
  private:
   void uploadCloud(viewer::ViewerState& state);

@@ -11,7 +11,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -107,13 +106,13 @@ Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 
 namespace {
 
-std::uint64_t spreadBits21(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
+// Spreads the low 16 bits of x so that bit i lands on bit 3i.
+std::uint64_t spreadBits16(std::uint64_t x) {
+  x &= 0xffff;
+  x = (x | x << 16) & 0x0000ff0000ffULL;
+  x = (x | x << 8) & 0x00f00f00f00fULL;
+  x = (x | x << 4) & 0x0c30c30c30c3ULL;
+  x = (x | x << 2) & 0x249249249249ULL;
   return x;
 }
 
@@ -124,25 +123,47 @@ std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& points) {
   geom::BBox box;
   for (const auto& p : points)
     if (p.allFinite()) box.add(p);
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+  // 16 bits per axis (48-bit codes): cells of 1/65536 of the box, far finer than the spacing of
+  // any sample set this orders.
+  struct Key {
+    std::uint64_t code;
+    std::uint32_t index;
+  };
+  std::vector<Key> keys(n), tmp(n);
   const Vec3 ext = box.extent();
   const double maxExt = std::max({ext.x(), ext.y(), ext.z(), 1e-300});
-  const double scale = (double((1u << 21) - 1)) / maxExt;
+  const double scale = 65535.0 / maxExt;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) {
       std::uint64_t code = 0;
       if (points[i].allFinite() && !box.empty()) {
         std::uint64_t q[3];
         for (int k = 0; k < 3; ++k)
-          q[k] = static_cast<std::uint64_t>(std::clamp((points[i][k] - box.min[k]) * scale, 0.0, 2097151.0));
-        code = spreadBits21(q[0]) | spreadBits21(q[1]) << 1 | spreadBits21(q[2]) << 2;
+          q[k] = static_cast<std::uint64_t>(std::clamp((points[i][k] - box.min[k]) * scale, 0.0, 65535.0));
+        code = spreadBits16(q[0]) | spreadBits16(q[1]) << 1 | spreadBits16(q[2]) << 2;
       }
       keys[i] = {code, static_cast<std::uint32_t>(i)};
     }
   });
-  tbb::parallel_sort(keys.begin(), keys.end());
+  // Least-significant-digit radix sort, 4 passes of 12 bits; stable, so equal codes keep input
+  // order and the result is deterministic.
+  constexpr int kBits = 12, kBuckets = 1 << kBits;
+  std::vector<std::size_t> count(kBuckets);
+  for (int pass = 0; pass < 4; ++pass) {
+    const int shift = pass * kBits;
+    std::fill(count.begin(), count.end(), 0);
+    for (const Key& k : keys) ++count[(k.code >> shift) & (kBuckets - 1)];
+    std::size_t sum = 0;
+    for (auto& c : count) {
+      const std::size_t x = c;
+      c = sum;
+      sum += x;
+    }
+    for (const Key& k : keys) tmp[count[(k.code >> shift) & (kBuckets - 1)]++] = k;
+    keys.swap(tmp);
+  }
   std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = keys[i].second;
+  for (std::size_t i = 0; i < n; ++i) order[i] = keys[i].index;
   return order;
 }
 
@@ -255,10 +276,28 @@ struct MeshClosestPoint::Impl {
                           const std::vector<geom::BBox>& boxes, std::size_t begin, std::size_t end);
   void layoutSlots(const geom::TriMesh& mesh, const std::vector<std::uint32_t>& ids);
   std::uint32_t collapse(std::uint32_t binaryNode);
-  /// Closest point with a starting bound: best2 (squared distance, metres²) and its slot (-1 for
-  /// none) and point. Returns the slot of the best triangle.
-  std::int64_t search(const Vec3& q, double& best2, std::int64_t bestSlot, Vec3& bestPoint) const;
   ClosestHit answer(const Vec3& q, double maxDistance, std::int64_t warmSlot) const;
+
+  /// Best-so-far of one query: squared distance (metres²), slot (-1 none), point, and the float
+  /// pruning limit derived from them.
+  struct Best {
+    double d2;
+    std::int64_t slot;
+    Vec3 point;
+    float limit2;
+  };
+  double marginFor(const Vec3& rel) const { return 4e-6 * (scale + rel.cwiseAbs().maxCoeff()); }
+  static float limitOf(double d2, double margin) {
+    if (!std::isfinite(d2)) return std::numeric_limits<float>::infinity();
+    const double l = std::sqrt(d2) + margin;
+    return static_cast<float>(l * l);
+  }
+  /// Tests the triangles of the leaf at `slot` (`count` of them) against q, updating `best`.
+  void testLeaf(std::uint32_t slot, std::uint32_t count, const Vec3& q, V4 qx, V4 qy, V4 qz, double margin,
+                Best& best) const;
+  /// Improves `best` (a starting bound: +inf, the search distance or a warm start's answer) to
+  /// the closest triangle of the mesh.
+  void search(const Vec3& q, Best& best) const;
 };
 
 void MeshClosestPoint::Impl::build(const geom::TriMesh& mesh) {
@@ -438,22 +477,16 @@ void MeshClosestPoint::Impl::layoutSlots(const geom::TriMesh& mesh, const std::v
   }
 }
 
-std::int64_t MeshClosestPoint::Impl::search(const Vec3& q, double& best2, std::int64_t bestSlot,
-                                            Vec3& bestPoint) const {
-  if (nodes4.empty()) return bestSlot;
+void MeshClosestPoint::Impl::search(const Vec3& q, Best& best) const {
+  if (nodes4.empty()) return;
   const Vec3 rel = q - origin;
   const float qx = static_cast<float>(rel.x()), qy = static_cast<float>(rel.y()), qz = static_cast<float>(rel.z());
   const V4 vqx = splat(qx), vqy = splat(qy), vqz = splat(qz);
   // Float distances may be short of the true ones by rounding: a box or triangle is skipped only
   // when it is farther than the best distance plus a margin well above float error at this scale
   // (float carries ~6e-8 relative; the margin is ~100 times that).
-  const double margin = 4e-6 * (scale + rel.cwiseAbs().maxCoeff());
-  auto limitOf = [margin](double b2) {
-    if (!std::isfinite(b2)) return std::numeric_limits<float>::infinity();
-    double l = std::sqrt(b2) + margin;
-    return static_cast<float>(l * l);
-  };
-  float limit2 = limitOf(best2);
+  const double margin = marginFor(rel);
+  best.limit2 = limitOf(best.d2, margin);
 
   // Stack of boxes still to visit, with their squared distance at push time: leaves (count > 0)
   // and 4-wide nodes. Nearer boxes are pushed last, so they are opened first. It never overflows:
@@ -466,25 +499,10 @@ std::int64_t MeshClosestPoint::Impl::search(const Vec3& q, double& best2, std::i
   int top = 1;
   while (top > 0) {
     --top;
-    if (stackD2[top] > limit2) continue;
+    if (stackD2[top] > best.limit2) continue;
     const std::uint32_t index = stackIndex[top], count = stackCount[top];
     if (count > 0) {
-      for (std::uint32_t s = index, e = index + count; s < e; s += 4) {
-        const V4 d2f = packetDistance2(packets[s / 4], vqx, vqy, vqz);
-        const std::uint32_t lanes = std::min<std::uint32_t>(4, e - s);
-        for (std::uint32_t lane = 0; lane < lanes; ++lane) {
-          if (d2f[lane] > limit2) continue;
-          const Tri& t = tris[s + lane];
-          const Vec3 c = closestPointOnTriangle(q, t.a, t.b, t.c);
-          const double d2 = (c - q).squaredNorm();
-          if (d2 < best2 || (bestSlot < 0 && d2 <= best2)) {
-            best2 = d2;
-            bestSlot = s + lane;
-            bestPoint = c;
-            limit2 = limitOf(best2);
-          }
-        }
-      }
+      testLeaf(index, count, q, vqx, vqy, vqz, margin, best);
       continue;
     }
     const Node4& n = nodes4[index];
@@ -492,7 +510,7 @@ std::int64_t MeshClosestPoint::Impl::search(const Vec3& q, double& best2, std::i
     int order[4];
     int k = 0;
     for (int i = 0; i < 4; ++i) {
-      if (!(d[i] <= limit2)) continue;
+      if (!(d[i] <= best.limit2)) continue;
       // Insertion by decreasing distance: the nearest ends last, on top of the stack.
       int j = k++;
       while (j > 0 && d[order[j - 1]] < d[i]) {
@@ -510,30 +528,44 @@ std::int64_t MeshClosestPoint::Impl::search(const Vec3& q, double& best2, std::i
       ++top;
     }
   }
-  return bestSlot;
+}
+
+void MeshClosestPoint::Impl::testLeaf(std::uint32_t slot, std::uint32_t count, const Vec3& q, V4 qx, V4 qy, V4 qz,
+                                      double margin, Best& best) const {
+  for (std::uint32_t s = slot, e = slot + count; s < e; s += 4) {
+    const V4 d2f = packetDistance2(packets[s / 4], qx, qy, qz);
+    const std::uint32_t lanes = std::min<std::uint32_t>(4, e - s);
+    for (std::uint32_t lane = 0; lane < lanes; ++lane) {
+      if (d2f[lane] > best.limit2) continue;
+      const Tri& t = tris[s + lane];
+      const Vec3 c = closestPointOnTriangle(q, t.a, t.b, t.c);
+      const double d2 = (c - q).squaredNorm();
+      if (d2 < best.d2 || (best.slot < 0 && d2 <= best.d2)) {
+        best.d2 = d2;
+        best.slot = s + lane;
+        best.point = c;
+        best.limit2 = limitOf(d2, margin);
+      }
+    }
+  }
 }
 
 ClosestHit MeshClosestPoint::Impl::answer(const Vec3& q, double maxDistance, std::int64_t warmSlot) const {
   ClosestHit hit;
   if (tris.empty() || !q.allFinite() || !(maxDistance >= 0)) return hit;
-  double best2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : std::numeric_limits<double>::infinity();
-  std::int64_t bestSlot = -1;
-  Vec3 bestPoint = Vec3::Zero();
+  Best best{std::isfinite(maxDistance) ? maxDistance * maxDistance : std::numeric_limits<double>::infinity(), -1,
+            Vec3::Zero(), 0.0f};
   if (warmSlot >= 0) {
     const Tri& t = tris[warmSlot];
-    Vec3 c = closestPointOnTriangle(q, t.a, t.b, t.c);
-    double d2 = (c - q).squaredNorm();
-    if (d2 <= best2) {
-      best2 = d2;
-      bestSlot = warmSlot;
-      bestPoint = c;
-    }
+    const Vec3 c = closestPointOnTriangle(q, t.a, t.b, t.c);
+    const double d2 = (c - q).squaredNorm();
+    if (d2 <= best.d2) best = {d2, warmSlot, c, 0.0f};
   }
-  bestSlot = search(q, best2, bestSlot, bestPoint);
-  if (bestSlot < 0) return hit;
-  hit.point = bestPoint;
-  hit.distance = std::sqrt(best2);
-  hit.index = bestSlot;  // a slot; mapped to the input triangle by the caller
+  search(q, best);
+  if (best.slot < 0) return hit;
+  hit.point = best.point;
+  hit.distance = std::sqrt(best.d2);
+  hit.index = best.slot;  // a slot; mapped to the input triangle by the caller
   return hit;
 }
 
@@ -591,8 +623,9 @@ std::vector<ClosestHit> MeshClosestPoint::queryAll(const std::vector<Vec3>& poin
     throw OptionsError("closest point: too many queries (" + std::to_string(points.size()) + ")");
   std::vector<ClosestHit> hits(points.size());
   const Impl& im = *impl_;
-  const bool warmStart = im.options.warmStart;
-  runBatch(points, im.options, progress, [&](std::uint32_t qi, std::int64_t warm) {
+  const ClosestPointOptions& o = im.options;
+  const bool warmStart = o.warmStart;
+  runBatch(points, o, progress, [&](std::uint32_t qi, std::int64_t warm) {
     ClosestHit h = im.answer(points[qi], maxDistance, warmStart ? warm : -1);
     std::int64_t leaf = h.index;
     if (h.found()) h.index = im.triId[leaf];

@@ -31,7 +31,8 @@ void embreeErrorCallback(void* /*userPtr*/, RTCError code, const char* str) {
 void throwOnEmbreeError(RTCDevice device, const char* what) {
   RTCError err = rtcGetDeviceError(device);
   if (err == RTC_ERROR_NONE) return;
-  std::string msg = tLastEmbreeError.empty() ? "Embree error " + std::to_string(static_cast<int>(err)) : tLastEmbreeError;
+  std::string msg =
+      tLastEmbreeError.empty() ? "Embree error " + std::to_string(static_cast<int>(err)) : tLastEmbreeError;
   tLastEmbreeError.clear();
   if (err == RTC_ERROR_OUT_OF_MEMORY) throw std::bad_alloc();
   throw std::runtime_error(std::string(what) + ": " + msg);
@@ -39,9 +40,12 @@ void throwOnEmbreeError(RTCDevice device, const char* what) {
 
 RTCBuildQuality toEmbree(BuildQuality q) {
   switch (q) {
-    case BuildQuality::Low: return RTC_BUILD_QUALITY_LOW;
-    case BuildQuality::Medium: return RTC_BUILD_QUALITY_MEDIUM;
-    case BuildQuality::High: return RTC_BUILD_QUALITY_HIGH;
+    case BuildQuality::Low:
+      return RTC_BUILD_QUALITY_LOW;
+    case BuildQuality::Medium:
+      return RTC_BUILD_QUALITY_MEDIUM;
+    case BuildQuality::High:
+      return RTC_BUILD_QUALITY_HIGH;
   }
   return RTC_BUILD_QUALITY_MEDIUM;
 }
@@ -162,8 +166,8 @@ RayScene::RayScene(const std::vector<geom::TriMesh>& meshes, const RaySceneOptio
     RTCGeometry g = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
     throwOnEmbreeError(s.device, "ray scene: new geometry");
     rtcSetGeometryBuildQuality(g, toEmbree(options.quality));
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                           3 * sizeof(float), m.vertices.size()));
+    auto* vb = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.vertices.size()));
     auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                               3 * sizeof(unsigned), m.triangles.size()));
     if (!vb || !ib) {
@@ -201,11 +205,12 @@ std::vector<RayHit> RayScene::intersectAll(const std::vector<Ray>& rays, const P
   const std::uint64_t total = rays.size();
   std::atomic<std::uint64_t> done{0};
   const Impl& s = *impl_;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      hits[i] = s.trace(rays[i].origin, rays[i].dir, rays[i].tnear, rays[i].tfar);
-    if (progress) progress(done.fetch_add(r.size()) + r.size(), total);
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        hits[i] = s.trace(rays[i].origin, rays[i].dir, rays[i].tnear, rays[i].tfar);
+                      if (progress) progress(done.fetch_add(r.size()) + r.size(), total);
+                    });
   return hits;
 }
 

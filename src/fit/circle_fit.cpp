@@ -109,8 +109,9 @@ bool fitCircleLeastSquares(const std::vector<Vec2>& pts, const std::vector<std::
       if (cost2 < cost) {
         c = c2;
         r = r2;
-        improved = cost - cost2 > 1e-15 * (1.0 + cost);
         cost = cost2;
+        // Converged when the step moves the circle by less than 1e-9 of its radius.
+        improved = t * step.norm() > 1e-9 * r;
         break;
       }
     }
@@ -166,8 +167,8 @@ struct Scorer {
     return out;
   }
   // Angular coverage (degrees) of the points of `idx` within the threshold of the circle: the
-  // bins holding at least half the median count of the occupied bins (so that a few scattered
-  // clutter points do not count as arc).
+  // bins holding at least a quarter of the fullest bin's count (so that a few scattered clutter
+  // points do not count as arc).
   double coverage(const std::vector<std::uint32_t>& idx, const Vec2& c, double r) const {
     const int bins = std::max(1, int(std::ceil(360.0 / opt.arcBinDegrees)));
     std::vector<int> hit(std::size_t(bins), 0);
@@ -178,12 +179,7 @@ struct Scorer {
       double deg = std::atan2(d.y(), d.x()) * (180.0 / M_PI) + 180.0;
       ++hit[std::min(bins - 1, int(deg / opt.arcBinDegrees))];
     }
-    std::vector<int> occupied;
-    for (int h : hit)
-      if (h > 0) occupied.push_back(h);
-    if (occupied.empty()) return 0.0;
-    std::nth_element(occupied.begin(), occupied.begin() + occupied.size() / 2, occupied.end());
-    double floor = 0.5 * occupied[occupied.size() / 2];
+    const double floor = 0.25 * *std::max_element(hit.begin(), hit.end());
     int covered = 0;
     for (int h : hit) covered += h > 0 && h >= floor;
     return std::min(360.0, covered * opt.arcBinDegrees);
@@ -192,7 +188,7 @@ struct Scorer {
     return opt.minArcDegrees <= 0.0 || coverage(idx, c, r) >= opt.minArcDegrees;
   }
   bool admissible(const Vec2& c, double r) const {
-    return r >= opt.minRadius && r <= opt.maxRadius && opt.centreRegion.contains(c);
+    return r >= opt.minRadius && r <= opt.maxRadius;
   }
 };
 
@@ -265,8 +261,8 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   }
   res.iterations = it;
   if (bestCount < 3) {
-    res.reason = "no admissible 3-point circle (collinear points, or outside the radius bounds, the centre "
-                 "region or the minimum arc)";
+    res.reason = "no admissible 3-point circle (collinear points, or outside the radius bounds or the minimum "
+                 "arc)";
     return res;
   }
 
@@ -290,6 +286,10 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   if (inl.size() < needed) {
     res.reason = "best circle has too few inliers (" + std::to_string(inl.size()) + " < " + std::to_string(needed) +
                  " of " + std::to_string(n) + ")";
+    return res;
+  }
+  if (!options.centreRegion.contains(c)) {
+    res.reason = "the best circle's centre lies outside the centre region";
     return res;
   }
   if (!scorer.enoughArc(inl, c, r)) {

@@ -24,6 +24,11 @@ Reconstruction::Reconstruction(const geom::PointCloud& cloud, const Reconstructi
   timings_.indexMs = msSince(t0);
 }
 
+void Reconstruction::reset() {
+  entries_.clear();
+  sweeper_ = sweep::TubeSweeper(options_.sweep);
+}
+
 const fit::NodeResult* Reconstruction::result(NodeId id) const {
   auto it = entries_.find(id);
   return it == entries_.end() ? nullptr : &it->second.result;

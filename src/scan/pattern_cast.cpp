@@ -54,31 +54,33 @@ ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, con
   std::atomic<std::uint64_t> done{0};
   const double sigma = options.rangeNoise;
 
-  tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, chunkCount, 1), [&](const tbb::blocked_range<std::uint64_t>& r) {
-    for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
-      ChunkOut& out = chunks[c];
-      out.hitsPerMesh.assign(scene.meshCount(), 0);
-      const std::uint64_t first = c * kRaysPerChunk;
-      const std::uint64_t last = std::min(rayCount, first + kRaysPerChunk);
-      ScanRay batch[kRayBatch];
-      for (std::uint64_t b = first; b < last; b += kRayBatch) {
-        const auto count = static_cast<std::size_t>(std::min<std::uint64_t>(kRayBatch, last - b));
-        generator(b, count, batch);
-        for (std::size_t k = 0; k < count; ++k) {
-          const ScanRay& sr = batch[k];
-          const accel::RayHit hit = scene.intersect(sr.ray);
-          if (!hit.hit()) continue;
-          geom::Vec3 p = hit.point;
-          if (sigma > 0.0) p += (sigma * counterGaussian(options.seed, b + k, kNoiseStream)) * sr.ray.dir.normalized();
-          out.positions.push_back(p);
-          ++out.hitsPerMesh[static_cast<std::size_t>(hit.meshIndex)];
-          if (options.recordMesh) out.meshId.push_back(hit.meshIndex);
-          if (options.recordStation) out.station.push_back(sr.station);
+  tbb::parallel_for(
+      tbb::blocked_range<std::uint64_t>(0, chunkCount, 1), [&](const tbb::blocked_range<std::uint64_t>& r) {
+        for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
+          ChunkOut& out = chunks[c];
+          out.hitsPerMesh.assign(scene.meshCount(), 0);
+          const std::uint64_t first = c * kRaysPerChunk;
+          const std::uint64_t last = std::min(rayCount, first + kRaysPerChunk);
+          ScanRay batch[kRayBatch];
+          for (std::uint64_t b = first; b < last; b += kRayBatch) {
+            const auto count = static_cast<std::size_t>(std::min<std::uint64_t>(kRayBatch, last - b));
+            generator(b, count, batch);
+            for (std::size_t k = 0; k < count; ++k) {
+              const ScanRay& sr = batch[k];
+              const accel::RayHit hit = scene.intersect(sr.ray);
+              if (!hit.hit()) continue;
+              geom::Vec3 p = hit.point;
+              if (sigma > 0.0)
+                p += (sigma * counterGaussian(options.seed, b + k, kNoiseStream)) * sr.ray.dir.normalized();
+              out.positions.push_back(p);
+              ++out.hitsPerMesh[static_cast<std::size_t>(hit.meshIndex)];
+              if (options.recordMesh) out.meshId.push_back(hit.meshIndex);
+              if (options.recordStation) out.station.push_back(sr.station);
+            }
+          }
+          if (progress) progress(done.fetch_add(last - first) + (last - first), rayCount);
         }
-      }
-      if (progress) progress(done.fetch_add(last - first) + (last - first), rayCount);
-    }
-  });
+      });
 
   // Join the chunks in order.
   std::size_t total = 0;

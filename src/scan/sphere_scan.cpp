@@ -14,7 +14,7 @@ namespace {
 
 using geom::Vec3;
 
-constexpr int kMaxSubdivisions = 12;                  // 18 * 4^12 = 302 M rays
+constexpr int kMaxSubdivisions = 12;  // 18 * 4^12 = 302 M rays
 constexpr std::uint64_t kMaxGrid = 3ull << (kMaxSubdivisions - 1);
 // counter_rng streams for the jitter: 2 per rejection attempt from here on (the range noise uses
 // streams 8 and 9, see pattern_cast.cpp).

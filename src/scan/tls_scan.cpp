@@ -36,8 +36,7 @@ void checkOptions(const TlsScanOptions& o) {
     throw OptionsError("TLS scan: radius factor must be > 0, got " + std::to_string(o.radiusFactor));
   if (!(o.rangeNoise >= 0.0) || !std::isfinite(o.rangeNoise))
     throw OptionsError("TLS scan: range noise must be a finite number >= 0, got " + std::to_string(o.rangeNoise));
-  if (!(o.maxRange > 0.0))
-    throw OptionsError("TLS scan: maximum range must be > 0, got " + std::to_string(o.maxRange));
+  if (!(o.maxRange > 0.0)) throw OptionsError("TLS scan: maximum range must be > 0, got " + std::to_string(o.maxRange));
 }
 
 // Horizontal axes (e1, e2) with e1 x e2 = up.
@@ -73,8 +72,8 @@ std::uint64_t tlsRaysPerStation(const TlsScanOptions& o) {
 }
 
 std::uint64_t tlsRayCount(const TlsScanOptions& o) {
-  const std::uint64_t stations = o.stations.empty() ? static_cast<std::uint64_t>(std::max(o.stationCount, 0))
-                                                    : o.stations.size();
+  const std::uint64_t stations =
+      o.stations.empty() ? static_cast<std::uint64_t>(std::max(o.stationCount, 0)) : o.stations.size();
   const std::uint64_t perStation = tlsRaysPerStation(o);
   if (static_cast<double>(perStation) * static_cast<double>(stations) > static_cast<double>(kMaxRays))
     throw OptionsError("TLS scan: too many rays (" + std::to_string(stations) + " stations)");
@@ -84,7 +83,8 @@ std::uint64_t tlsRayCount(const TlsScanOptions& o) {
 std::vector<Vec3> tlsStationPositions(const TlsScanOptions& o, const geom::BBox& bounds) {
   checkOptions(o);
   if (!o.stations.empty()) return o.stations;
-  if (bounds.empty()) throw OptionsError("TLS scan: the scene is empty, so there is no centre to place stations around");
+  if (bounds.empty())
+    throw OptionsError("TLS scan: the scene is empty, so there is no centre to place stations around");
   Vec3 e1, e2;
   horizontalAxes(o.up, e1, e2);
   const Vec3 upv = geom::upVector(o.up);

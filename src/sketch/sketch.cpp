@@ -258,34 +258,41 @@ void Sketch::setParent(NodeId id, NodeId newParent) {
   nodes_.at(newParent).children.push_back(id);
 }
 
-NodeGeometry Sketch::geometry(NodeId id) const {
-  const Node& n = node(id);
+NodeGeometry Sketch::lineOf(const Node& n) const {
   NodeGeometry g;
   if (!n.isScreenNode()) {
-    g.hasLine = false;
-    g.linePoint = n.point;
-    g.planePoint = n.point;
+    g.linePoint = g.planePoint = n.point;
     g.planeNormal = n.normal.normalized();
     return g;
   }
   if (n.camera >= static_cast<int>(cameras_.size()))
-    throw OptionsError(nodeName(id) + ": camera " + std::to_string(n.camera) + " does not exist");
+    throw OptionsError(nodeName(n.id) + ": camera " + std::to_string(n.camera) + " does not exist");
   const geom::Camera& cam = cameras_[n.camera];
   Vec3 nearP = cam.unproject(n.screen, 0.0);
   Vec3 farP = cam.unproject(n.screen, 1.0);
-  Vec3 a = (farP - nearP).normalized();
   g.hasLine = true;
-  g.linePoint = nearP;
-  g.lineDir = a;
-  g.planePoint = nearP;
+  g.linePoint = g.planePoint = nearP;
+  g.lineDir = (farP - nearP).normalized();
+  if (!g.lineDir.allFinite()) throw OptionsError(nodeName(n.id) + ": cannot unproject (degenerate camera)");
+  return g;
+}
+
+NodeGeometry Sketch::geometry(NodeId id) const {
+  const Node& n = node(id);
+  NodeGeometry g = lineOf(n);
+  if (!n.isScreenNode()) return g;
+  const geom::Camera& cam = cameras_[n.camera];
+  const Vec3 nearP = g.linePoint;
+  const Vec3 a = g.lineDir;
 
   // 1. Thesis rule, N = (A × A_parent) × A, oriented from the parent towards this node (root: up).
+  // Only the parent's line is needed here (no recursion up the tree); its normal only in rule 3.
   Vec3 up = geom::upVector(this->up);
   Vec3 aParent = -up;
   const Node* parent = n.parent == kNoNode ? nullptr : &node(n.parent);
   NodeGeometry pg;
   if (parent) {
-    pg = geometry(n.parent);
+    pg = lineOf(*parent);
     aParent = pg.hasLine ? pg.lineDir : Vec3::Zero();  // a point parent has no view ray
   }
   Vec3 normal = Vec3::Zero();
@@ -309,7 +316,18 @@ NodeGeometry Sketch::geometry(NodeId id) const {
     Vec3 world = stroke.x() * cam.right() - stroke.y() * cam.up();
     if (world.allFinite()) normal = perpendicularPart(world, a);
     // 3. Zero stroke (node drawn on top of its parent): keep the parent's orientation.
-    if (normal.isZero()) normal = perpendicularPart(pg.planeNormal, a);
+    // Skip ancestors stacked on the same pixel, so a long stack does not recurse deeply.
+    if (normal.isZero()) {
+      NodeId anc = n.parent;
+      for (std::size_t guard = 0; guard < nodes_.size(); ++guard) {
+        const Node& an = node(anc);
+        if (an.parent == kNoNode || !an.isScreenNode()) break;
+        const Node& ap = node(an.parent);
+        if (!(ap.isScreenNode() && ap.camera == an.camera && ap.screen == an.screen)) break;
+        anc = an.parent;
+      }
+      normal = perpendicularPart(geometry(anc).planeNormal, a);
+    }
   }
   // 4. Root under a top view (or nothing else worked): the camera's screen-up.
   if (normal.isZero()) normal = perpendicularPart(cam.up(), a);
@@ -363,15 +381,15 @@ void Sketch::validate() const {
     }
   }
   if (theRoot == kNoNode) throw OptionsError("sketch: no root (every node has a parent: a cycle)");
-  // No cycles: every node must reach the root by following parents.
-  for (const auto& [id, n] : nodes_) {
-    std::size_t steps = 0;
-    NodeId a = id;
-    while (a != kNoNode) {
-      if (++steps > nodes_.size())
+  // No cycles: with the child lists checked above, each node sits in exactly one child list, so
+  // a walk down from the root visits a tree; a node it misses is on (or under) a parent cycle.
+  std::vector<NodeId> reached = topologicalOrder();
+  if (reached.size() != nodes_.size()) {
+    std::vector<NodeId> sorted = reached;
+    std::sort(sorted.begin(), sorted.end());
+    for (const auto& [id, n] : nodes_)
+      if (!std::binary_search(sorted.begin(), sorted.end(), id))
         throw OptionsError(nodeName(id) + ": its parents form a cycle (it never reaches the root)");
-      a = nodes_.at(a).parent;
-    }
   }
 }
 

@@ -244,7 +244,9 @@ bool ViewerState::sameAsCurrent(const geom::Camera& cam) const {
 void ViewerState::endEdit() {
   fixSelection();
   rebuild();
-  autosave();
+  // A drag is one edit: it is saved once, when the button is released.
+  if (gesture_ == Gesture::DragNode) autosavePending_ = true;
+  else autosave();
 }
 
 void ViewerState::fixSelection() {
@@ -572,6 +574,10 @@ void ViewerState::mouseUp(const Vec2& pos, MouseButton button, int mods) {
     if ((pos - pressPos_).norm() < options_.dragThresholdPx) addNodeAt(pos);
   } else if (g == Gesture::DragNode) {
     lastEditKey_.clear();
+    if (autosavePending_) {
+      autosavePending_ = false;
+      autosave();
+    }
   }
 }
 
@@ -609,8 +615,8 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
   } else if (key == "y" && ctrl) {
     redo();
   } else if (key == "s" && ctrl) {
-    if (autosavePath_.empty()) error("save: no sketch path (use the Save button)");
-    else saveSketch(autosavePath_);
+    if (sketchPath_.empty()) error("save: no sketch path (type one in the panel and use Save)");
+    else saveSketch(sketchPath_);
   } else if (key == "escape") {
     selectNode(kNoNode);
   } else if (key == "f") {

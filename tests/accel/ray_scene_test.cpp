@@ -38,10 +38,10 @@ TEST(RayScene, HitsSingleTriangleAtKnownPoint) {
 
 TEST(RayScene, MissesAndRangeLimits) {
   const RayScene scene(tt::makeBox(Vec3(-1, -1, -1), Vec3(1, 1, 1)));
-  EXPECT_FALSE(scene.intersect(Vec3(0, 0, 5), Vec3(0, 0, 1)).hit());   // pointing away
-  EXPECT_FALSE(scene.intersect(Vec3(3, 0, 5), Vec3(0, 0, -1)).hit());  // passes beside
+  EXPECT_FALSE(scene.intersect(Vec3(0, 0, 5), Vec3(0, 0, 1)).hit());             // pointing away
+  EXPECT_FALSE(scene.intersect(Vec3(3, 0, 5), Vec3(0, 0, -1)).hit());            // passes beside
   EXPECT_FALSE(scene.intersect(Vec3(0, 0, 5), Vec3(0, 0, -1), 0.0, 3.9).hit());  // tfar short of the box
-  const RayHit far = scene.intersect(Vec3(0, 0, 5), Vec3(0, 0, -1), 4.5);  // tnear skips the top face
+  const RayHit far = scene.intersect(Vec3(0, 0, 5), Vec3(0, 0, -1), 4.5);        // tnear skips the top face
   ASSERT_TRUE(far.hit());
   EXPECT_NEAR(far.point.z(), -1.0, 1e-12);
   // Degenerate rays miss rather than throw.

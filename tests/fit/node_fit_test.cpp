@@ -101,7 +101,6 @@ TEST(FitNode, LineEpsilonGrowsUntilTheBranchIsFound) {
   EXPECT_GT(r.growthSteps, 0);
   EXPECT_NEAR(r.lineEpsilon, 0.1 + 0.2 * r.growthSteps, 1e-12);
   EXPECT_TRUE(r.sliceComputed);  // computed once, at the first failure
-  std::printf("DEBUG eps %g steps %d test %zu inl %zu slice %zu c %g %g %g r %g\n", r.lineEpsilon, r.growthSteps, r.testIndices.size(), r.inlierIndices.size(), r.sliceIndices.size(), r.centre.x(), r.centre.y(), r.centre.z(), r.radius);
   EXPECT_LT((r.centre - Vec3(1.0, 1.0, -0.5)).norm(), 0.02 * t.radius);
   EXPECT_LT(std::abs(r.radius - t.radius), 0.02 * t.radius);
 }

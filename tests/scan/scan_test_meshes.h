@@ -20,7 +20,8 @@ inline TriMesh makeBox(const Vec3& lo, const Vec3& hi, int skipFace = -1) {
   TriMesh m;
   for (int i = 0; i < 8; ++i)
     m.vertices.emplace_back((i & 1) ? hi.x() : lo.x(), (i & 2) ? hi.y() : lo.y(), (i & 4) ? hi.z() : lo.z());
-  const std::uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  const std::uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                     {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
   for (int f = 0; f < 6; ++f) {
     if (f == skipFace) continue;
     m.triangles.push_back({faces[f][0], faces[f][1], faces[f][2]});

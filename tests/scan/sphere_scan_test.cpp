@@ -68,7 +68,8 @@ TEST(SphereScan, OriginsAreDistinctUnitVectorsSpreadOverTheSphere) {
 }
 
 TEST(SphereScan, HitsLieOnTheSurface) {
-  std::vector<TriMesh> meshes = {tt::makeTube(Vec3(0, 0, 0), 0.2, 3.0, 20), tt::makeTube(Vec3(0.3, 0, 1), 0.1, 1.5, 10)};
+  std::vector<TriMesh> meshes = {tt::makeTube(Vec3(0, 0, 0), 0.2, 3.0, 20),
+                                 tt::makeTube(Vec3(0.3, 0, 1), 0.1, 1.5, 10)};
   scan::SphereScanOptions o = withSubdiv(4);  // 4608 rays
   o.jitterDeg = 10.0;
   o.recordMesh = true;
@@ -174,7 +175,8 @@ TEST(SphereScan, RaysAreJitteredWithinTheCapAndAimedAtTheCentre) {
   EXPECT_LE(maxAngle, 5.0 * M_PI / 180.0 + 1e-9);
   EXPECT_GT(maxAngle, 4.5 * M_PI / 180.0);
   // Uniform over the cap: the mean cosine is the cap's middle, (1 + cos 5 deg) / 2.
-  EXPECT_NEAR(sumCos / count, 0.5 * (1.0 + std::cos(5.0 * M_PI / 180.0)), 1.5e-4);  // 4.5 standard errors; uniform-in-angle would be 6e-4 off
+  // Tolerance: 4.5 standard errors; a jitter uniform in angle (not area) would be 6e-4 off.
+  EXPECT_NEAR(sumCos / count, 0.5 * (1.0 + std::cos(5.0 * M_PI / 180.0)), 1.5e-4);
   EXPECT_THROW(scan::sphereScanRay(o, box, count), OptionsError);
   EXPECT_THROW(scan::sphereScanRay(o, geom::BBox{}, 0), OptionsError);
 }

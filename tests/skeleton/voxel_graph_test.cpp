@@ -54,8 +54,10 @@ TEST(VoxelGraph, VoxelsEdgesAndFeatures) {
     if (g.positions[i].x() < 1) {
       EXPECT_GT(g.linearity[i], 0.9f);
       EXPECT_GT(std::abs(g.principal[i].y()), 0.95f);
-    } else {
+    } else if (g.positions[i].x() > 5.06 && g.positions[i].x() < 5.14 && g.positions[i].z() > 0.06 &&
+               g.positions[i].z() < 0.14) {
       EXPECT_GT(g.planarity[i], 0.5f);
+      EXPECT_LT(g.scattering[i], 0.05f);
     }
   }
   // Edges are symmetric and no longer than the 26-neighbourhood allows.

@@ -160,6 +160,21 @@ TEST(SketchGeometry, PointNodesAndChildrenOfPointNodes) {
   EXPECT_NEAR((sk.geometry(same).planeNormal - Vec3(0, 1, 0)).norm(), 0.0, 1e-6);
 }
 
+TEST(SketchGeometry, LongChainsAndStacksStayCheap) {
+  Sketch sk;
+  geom::Camera cam = frontCamera(true);
+  int c = sk.addCamera(cam);
+  NodeId prev = sk.addScreenNode(kNoNode, c, Vec2(400, 500));
+  NodeId first = sk.addScreenNode(prev, c, Vec2(400, 400));
+  prev = first;
+  for (int i = 0; i < 20000; ++i) prev = sk.addScreenNode(prev, c, Vec2(400, 400));  // all on one pixel
+  NodeGeometry g = sk.geometry(prev);
+  EXPECT_NEAR((g.planeNormal - sk.geometry(first).planeNormal).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(g.planeNormal.y(), 1.0, 1e-9);
+  EXPECT_NO_THROW(sk.validate());
+  EXPECT_EQ(sk.topologicalOrder().size(), sk.size());
+}
+
 // A small tree: 0 -> 1 -> {2 -> 4, 3}
 Sketch smallTree() {
   Sketch sk;

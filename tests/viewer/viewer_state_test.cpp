@@ -278,6 +278,19 @@ TEST(ViewerState, AutosavesBesideTheCloudOnEveryEdit) {
   EXPECT_EQ(saved.size(), 2u);
   s.undo();
   EXPECT_EQ(io::readSketch(s.autosavePath()).size(), 1u);
+  // Ctrl+S saves to the sketch path, once one is set.
+  EXPECT_TRUE(s.keyPress("ctrl+s"));
+  EXPECT_TRUE(s.lastMessage().error);
+  s.setSketchPath(dir / "mine.json");
+  EXPECT_TRUE(s.keyPress("s", kModCtrl));
+  EXPECT_EQ(io::readSketch(dir / "mine.json").size(), 1u);
+  // A drag is saved when the button is released.
+  Vec2 from = s.sketch().node(0).screen, to = from + Vec2(0, -20);
+  s.mouseDown(from, MouseButton::Left);
+  s.mouseMove(from + Vec2(0, -10));
+  EXPECT_NEAR((io::readSketch(s.autosavePath()).node(0).screen - from).norm(), 0.0, 1e-9);
+  s.mouseUp(to, MouseButton::Left);
+  EXPECT_NEAR((io::readSketch(s.autosavePath()).node(0).screen - to).norm(), 0.0, 1e-9);
 }
 
 TEST(ViewerState, UniformAutoSketchAndViewKeys) {
@@ -324,6 +337,25 @@ TEST(ViewerState, OrbitAndPanGesturesDoNotEditTheSketch) {
   // Presses outside the viewport are ignored.
   f.state.clickAt(Vec2(-5, 900));
   EXPECT_EQ(f.state.sketch().size(), 1u);
+}
+
+}  // namespace
+}  // namespace treesketch::viewer
+
+namespace treesketch::viewer {
+namespace {
+
+TEST(ViewerState, OrthographicViewSketchesToo) {
+  ViewerState s;
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
+  s.setOrthographic(true);
+  s.presetView(geom::PresetView::Front);
+  for (double y : {1.0, 2.0, 3.0}) s.clickAt(s.camera().project(Vec3(0, y, 0)).head<2>());
+  ASSERT_EQ(s.sketch().size(), 3u);
+  EXPECT_TRUE(s.sketch().cameras()[0].isOrthographic());
+  EXPECT_EQ(s.fittedCount(), 3u);
+  EXPECT_NEAR(s.nodeFit(2).circle.radius, kRadius, 0.02);
 }
 
 }  // namespace

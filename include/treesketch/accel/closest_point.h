@@ -44,7 +44,7 @@ struct ClosestPointOptions {
   /// Queries handed to one task of a batch; the warm start restarts at each block. Larger blocks
   /// keep more coherence, smaller ones balance the two cores better.
   int blockSize = 512;
-  /// Sort batch queries by 3D Morton code (21 bits per axis) before answering them, so
+  /// Sort batch queries by 3D Morton code (16 bits per axis) before answering them, so
   /// consecutive queries are close and the previous answer bounds the next one tightly.
   bool mortonOrder = true;
   /// Start each query with the distance to the previous query's closest triangle as its search
@@ -110,8 +110,8 @@ class CloudClosestPoint {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Indices 0..n-1 of `points` sorted by their 3D Morton code (21 bits per axis over the points'
-/// bounding box): consecutive indices are close in space. Exposed for tests and benchmarks.
+/// Indices 0..n-1 of `points` sorted by their 3D Morton code (16 bits per axis over the points'
+/// bounding box; NaN/Inf points first): consecutive indices are close in space. Exposed for tests and benchmarks.
 std::vector<std::uint32_t> mortonOrder(const std::vector<geom::Vec3>& points);
 
 }  // namespace treesketch::accel

@@ -41,10 +41,10 @@ struct Ray {
 
 /// The nearest intersection of a ray with the scene.
 struct RayHit {
-  double t = 0.0;                       ///< ray parameter: point = origin + t * dir
+  double t = 0.0;                         ///< ray parameter: point = origin + t * dir
   geom::Vec3 point = geom::Vec3::Zero();  ///< world coordinates, double precision
-  std::int32_t meshIndex = -1;          ///< index of the input mesh hit; -1 = miss
-  std::uint32_t primId = 0;             ///< triangle index within that mesh
+  std::int32_t meshIndex = -1;            ///< index of the input mesh hit; -1 = miss
+  std::uint32_t primId = 0;               ///< triangle index within that mesh
   bool hit() const { return meshIndex >= 0; }
 };
 

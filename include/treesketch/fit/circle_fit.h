@@ -13,9 +13,12 @@
 
 namespace treesketch::fit {
 
-/// An optional constraint on where a circle's centre may lie (plane coordinates): within
-/// `maxDistance` of a line (hasLine) or of a point. Used by the node fit so that RANSAC only
-/// considers circles whose centre is inside the node's test region (see node_fit.h).
+/// An optional check of where the circle's centre may lie (plane coordinates): within
+/// `maxDistance` of a line (hasLine) or of a point. It is applied to the final circle only: RANSAC
+/// picks the best-supported circle regardless, and the fit fails if that circle's centre is
+/// outside. (Constraining the candidates instead made RANSAC settle for junk circles through a
+/// sliver of the true branch while the true circle was excluded.) Used by the node fit's sanity
+/// rule (see node_fit.h).
 struct CentreRegion {
   bool active = false;
   bool hasLine = false;
@@ -45,8 +48,7 @@ struct CircleFitOptions {
   /// ...and at least this fraction of the input points (design choice: 0.1).
   double minInlierFraction = 0.1;
   /// Minimum angular coverage of the inliers around the centre, degrees, counted in bins of
-  /// arcBinDegrees that hold at least half the median count of the occupied bins (design choice:
-  /// 90°). A scan sees one side of a branch (arcs of 120–180°), but
+  /// arcBinDegrees that hold at least a quarter of the fullest bin's count (design choice: 90°). A scan sees one side of a branch (arcs of 120–180°), but
   /// a small circle grazing the inside of a wide trunk's arc, or a circle threaded through a few
   /// clutter points, gathers its inliers on a short arc of itself: this rejects those. 0 = off.
   double minArcDegrees = 90.0;
@@ -80,8 +82,8 @@ struct CircleFitResult {
 };
 
 /// Fits a circle to 2D points (plane coordinates, world units). Returns ok=false with a reason
-/// for fewer than 3 points, all-collinear/duplicate input, or no circle with enough support inside
-/// the radius bounds and centre region. NaN/Inf points are never counted as inliers. Throws
+/// for fewer than 3 points, all-collinear/duplicate input, no circle with enough support and arc
+/// inside the radius bounds, or a best circle centred outside the centre region. NaN/Inf points are never counted as inliers. Throws
 /// OptionsError for invalid options (probability outside (0,1), negative thresholds...).
 CircleFitResult fitCircleRansac(const std::vector<geom::Vec2>& points, const CircleFitOptions& options = {});
 

@@ -67,10 +67,11 @@ std::vector<std::uint32_t> nodeSlice(const CloudIndex& index, const sketch::Node
 /// lineEpsilon; project them to 2D on an orthonormal basis of the plane (u along L's direction
 /// for screen nodes); RANSAC; on failure lineEpsilon += lineEpsilonStep and retry, until a circle
 /// is found or the test points are the whole slice (then the node is Skipped with a reason).
-/// Sanity rule (design choice): the circle's centre must lie within the current lineEpsilon of
-/// L (screen nodes, distance measured in the plane) or of planePoint (point nodes): a circle
-/// centred outside the test region belongs to some other surface than the branch the user
-/// pointed at. The radius is NOT limited by lineEpsilon: a line through a trunk's centre with a
+/// Sanity rule (design choice): the best circle's centre must lie within the current lineEpsilon
+/// of L (screen nodes, distance measured in the plane) or of planePoint (point nodes); otherwise
+/// that attempt counts as a failure and lineEpsilon grows. A circle centred outside the test
+/// region is not the branch the user pointed at (or is, but seen through a sliver: growing then
+/// takes in more of it). The radius is NOT limited by lineEpsilon: a line through a trunk's centre with a
 /// small tolerance sees the near and far arcs of a wider circle, which is a valid fit.
 /// params.enabled = false gives status Disabled without touching the cloud.
 /// Throws OptionsError for non-positive or non-finite sampling sizes, a zero normal/direction.

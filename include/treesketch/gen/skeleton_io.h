@@ -10,7 +10,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "nlohmann/json_fwd.hpp"
+#include <nlohmann/json_fwd.hpp>
 #include "treesketch/gen/skeleton.h"
 
 namespace treesketch::gen {

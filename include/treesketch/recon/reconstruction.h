@@ -48,6 +48,9 @@ class Reconstruction {
   /// Throws OptionsError for an invalid sketch (see Sketch::validate).
   std::vector<NodeId> update(const sketch::Sketch& sketch);
 
+  /// Forgets every fit and the mesh (keeps the index): the next update fits every node.
+  void reset();
+
   const geom::TriMesh& mesh() const { return sweeper_.mesh(); }
   /// The last fit of node `id`; nullptr if the node is unknown.
   const fit::NodeResult* result(NodeId id) const;

@@ -51,7 +51,7 @@ struct SkeletonOptions {
   /// sub-tree whose tubular share (by support) is below minTubularFraction is dropped.
   double thinRadiusVoxels = 0.5;
   double maxRingVariation = 0.4;
-  double minTubularFraction = 0.8;
+  double minTubularFraction = 0.6;
 
   /// Forks: the fork node and the raw nodes within forkZoneRadii × radius + one level set below
   /// it are moved onto the line of the parent chain below that zone (their level sets include the

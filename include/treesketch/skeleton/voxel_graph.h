@@ -42,10 +42,10 @@ struct VoxelGraphOptions {
   /// `coneRadiusVoxels`), degrees. Xu et al. 2007 use a 45° cone.
   double coneAngleDeg = 45.0;
   double freeGapVoxels = 2.5;
-  double coneRadiusVoxels = 4.0;
+  double coneRadiusVoxels = 12.0;
   /// ...and the piece is elongated there: linearity (l1-l2)/l1 of those voxels at least this (a
   /// cut-off branch is a tube; a leaf or a clump of leaves is flat or round).
-  double minBridgeLinearity = 0.6;
+  double minBridgeLinearity = 0.4;
   /// Pieces with fewer points than this are never bridged (isolated noise).
   int minBridgePoints = 3;
 };

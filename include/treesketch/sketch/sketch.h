@@ -151,6 +151,8 @@ class Sketch {
  private:
   NodeId attachNew(NodeId parent, Node node);
   Node& mutableNode(NodeId id);
+  /// A node's line (screen node) or point and normal (point node); no plane normal for screen nodes.
+  NodeGeometry lineOf(const Node& node) const;
 
   std::map<NodeId, Node> nodes_;
   std::vector<geom::Camera> cameras_;

@@ -161,6 +161,9 @@ class ViewerState {
   /// Where the sketch is autosaved after every edit (empty: never).
   void setAutosavePath(const std::filesystem::path& path) { autosavePath_ = path; }
   const std::filesystem::path& autosavePath() const { return autosavePath_; }
+  /// Where Ctrl+S saves the sketch (empty: Ctrl+S reports that a path is needed).
+  void setSketchPath(const std::filesystem::path& path) { sketchPath_ = path; }
+  const std::filesystem::path& sketchPath() const { return sketchPath_; }
 
   // ---- view -------------------------------------------------------------------------------------
   /// The 3D view's rectangle in window pixels (top-left origin).
@@ -192,7 +195,7 @@ class ViewerState {
               int mods = kModNone, int steps = 8);
   /// A key press by name: "delete"/"backspace" (delete selected, children re-attached; with Shift
   /// the subtree too), "ctrl+z"-style names are accepted (mods parsed from the prefix), "z" with
-  /// Ctrl (undo), "y" with Ctrl or "z" with Ctrl+Shift (redo), "s" with Ctrl (save), "escape"
+  /// Ctrl (undo), "y" with Ctrl or "z" with Ctrl+Shift (redo), "s" with Ctrl (save to sketchPath()), "escape"
   /// (deselect), "f" (fit), "o" (ortho/perspective), "1"/"2"/"3" (front/side/top view),
   /// "a" (uniform automatic sketch), "w" (cycle mesh style), "c" (cycle colour mode). Returns false
   /// for a key with no binding.
@@ -290,6 +293,7 @@ class ViewerState {
   geom::UpAxis up_ = geom::UpAxis::Y;
   std::filesystem::path sourcePath_;
   std::filesystem::path autosavePath_;
+  std::filesystem::path sketchPath_;
   sketch::Sketch sketch_;
   std::unique_ptr<ViewerReconstruction> recon_;
   OrbitCamera orbit_;
@@ -305,6 +309,7 @@ class ViewerState {
   geom::Vec2 lastPos_ = geom::Vec2::Zero();
   sketch::NodeId gestureNode_ = sketch::kNoNode;
   std::uint64_t dragSerial_ = 0;
+  bool autosavePending_ = false;
 
   std::vector<Rgb> colors_;
   ColorMode colorsMode_ = ColorMode::Height;

@@ -1,0 +1,80 @@
+// treesketch evaluate: the thesis's experiment (chapter 5) in one command.
+#include <iostream>
+
+#include "commands.h"
+#include "treesketch/eval/evaluation.h"
+#include "treesketch/eval/tree_suite.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::cli {
+
+void registerEvaluate(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand(
+      "evaluate",
+      "Scan test trees (with and without leaves), reconstruct them with several sketch methods and compare each "
+      "result with the branch mesh (Hausdorff, both directions); writes table.md, results.csv and SVG plots");
+  struct Opts {
+    std::string trees;
+    int builtin = 3;
+    std::string out = "out/evaluate";
+    std::vector<std::string> patterns{"sphere"};
+    std::vector<std::string> methods;
+    std::vector<int> sweep;
+    bool noSweep = false;
+    bool noLeafOn = false, noLeafOff = false;
+    eval::EvalOptions e;
+  };
+  auto o = std::make_shared<Opts>();
+  cmd->add_option("--trees", o->trees,
+                  "Folder of third-party trees (<name>.branches.obj, <name>.leaves.obj, <name>.json), e.g. "
+                  "../shared/data/trees; default: the built-in generator's trees");
+  cmd->add_option("--builtin", o->builtin, "How many built-in trees when --trees is not given")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 30));
+  cmd->add_option("--out", o->out, "Output folder")->capture_default_str();
+  cmd->add_option("--pattern", o->patterns, "Scan patterns: sphere, tls (several allowed)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"sphere", "tls"}));
+  cmd->add_option("--rays", o->e.sphereRays, "Sphere pattern: ray count")->capture_default_str();
+  cmd->add_option("--tls-points", o->e.tlsTargetPoints, "TLS pattern: aim for about this many points")
+      ->capture_default_str();
+  cmd->add_option("--tls-stations", o->e.tlsStations, "TLS pattern: stations on a ring")->capture_default_str();
+  cmd->add_option("--methods", o->methods, "Methods: uniform, user, ideal, skeleton (default: all built in)");
+  cmd->add_option("--uniform-nodes", o->e.uniformNodes, "Nodes of the uniform automatic sketch (thesis: 18)")
+      ->capture_default_str();
+  cmd->add_option("--user-nodes", o->e.userNodes, "Node budget of the simulated user")->capture_default_str();
+  cmd->add_option("--sweep", o->sweep, "Node counts for the RMS-vs-nodes sweep (default 5 10 20 40 80)");
+  cmd->add_flag("--no-sweep", o->noSweep, "Skip the node-count sweep");
+  cmd->add_flag("--no-leaf-on", o->noLeafOn, "Skip the leaf-on scans");
+  cmd->add_flag("--no-leaf-off", o->noLeafOff, "Skip the leaf-off scans");
+  cmd->add_option("--view", o->e.view, "View of the sketches: front, side, top")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"front", "side", "top"}));
+  cmd->add_option("--pixel-noise", o->e.pixelNoise, "Simulated user's hand jitter, pixels")->capture_default_str();
+  cmd->add_option("--samples", o->e.samples, "Comparison samples per direction (0: MeshLab's default)")
+      ->capture_default_str();
+  cmd->add_option("--seed", o->e.seed, "Seed of scans, sketches and sampling")->capture_default_str();
+  cmd->callback([cmd, o, &action] {
+    (void)cmd;
+    action = [o] {
+      eval::EvalOptions e = o->e;
+      e.patterns = o->patterns;
+      if (!o->methods.empty()) e.methods = o->methods;
+      else e.methods = eval::methodNames();
+      if (!o->sweep.empty()) e.nodeSweep = o->sweep;
+      if (o->noSweep) e.nodeSweep.clear();
+      e.leafOn = !o->noLeafOn;
+      e.leafOff = !o->noLeafOff;
+      if (!e.leafOn && !e.leafOff) throw OptionsError("--no-leaf-on and --no-leaf-off leave nothing to evaluate");
+      e.log = [](const std::string& line) { std::cerr << line << "\n"; };
+      std::vector<eval::TreeCase> trees =
+          o->trees.empty() ? eval::builtinTrees(o->builtin) : eval::loadTreeFolder(o->trees);
+      std::vector<eval::EvalRow> rows = eval::runEvaluation(trees, e);
+      eval::writeReport(o->out, rows);
+      std::cout << eval::markdownTable(rows);
+      std::cout << "wrote " << o->out << "/table.md, results.csv and fig_5_12/5_13/5_14 SVG plots\n";
+    };
+  });
+}
+
+}  // namespace treesketch::cli

@@ -1,0 +1,157 @@
+// Reconstruction speed on a 1,179,648-point synthetic tree (the thesis's largest cloud size,
+// 8 sphere subdivisions) with a 30-node sketch:
+//  - full reconstruction with the slice index vs the thesis's brute-force scan per node;
+//  - one edited node (re-fit + re-sweep) vs a full reconstruction;
+//  - building the index (done once when a cloud is loaded).
+// The tree: a trunk (radius 0.3, 8 m) and four branches (radius 0.1, 3 m) as noisy cylinders
+// (σ = 3 mm), plus 20 % clutter points in the crown's box. Sketch: point nodes on the known axes,
+// normals along the axes (10 on the trunk, 5 per branch).
+// Run: build-fit/bench_reconstruct [--benchmark_filter=...]
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "treesketch/recon/reconstruction.h"
+
+namespace {
+
+using treesketch::geom::Vec3;
+namespace recon = treesketch::recon;
+namespace sketch = treesketch::sketch;
+
+constexpr std::size_t kPoints = 1179648;
+
+struct Branch {
+  Vec3 base, axis;
+  double radius, length;
+};
+
+struct Scene {
+  treesketch::geom::PointCloud cloud;
+  sketch::Sketch sketch;
+  std::vector<sketch::NodeId> ids;
+};
+
+const Scene& scene() {
+  static const Scene s = [] {
+    Scene sc;
+    std::vector<Branch> branches = {{Vec3(0, 0, 0), Vec3(0, 1, 0), 0.3, 8.0}};
+    const double azimuth[4] = {0.3, 1.9, 3.4, 5.0};
+    const double height[4] = {3.0, 4.5, 6.0, 7.0};
+    for (int b = 0; b < 4; ++b) {
+      Vec3 dir(std::cos(azimuth[b]), 1.0, std::sin(azimuth[b]));
+      branches.push_back({Vec3(0, height[b], 0), dir.normalized(), 0.1, 3.0});
+    }
+    double area = 0;
+    for (const auto& b : branches) area += 2 * M_PI * b.radius * b.length;
+    const std::size_t clutter = kPoints / 5;
+    std::mt19937_64 rng(2012);
+    std::uniform_real_distribution<double> u01(0, 1);
+    std::normal_distribution<double> noise(0, 0.003);
+    auto& pts = sc.cloud.positions;
+    pts.reserve(kPoints);
+    for (std::size_t bi = 0; bi < branches.size(); ++bi) {
+      const auto& b = branches[bi];
+      std::size_t n = bi + 1 == branches.size() ? kPoints - clutter - pts.size()
+                                                : std::size_t((kPoints - clutter) * 2 * M_PI * b.radius * b.length / area);
+      Vec3 e1 = treesketch::geom::anyPerpendicular(b.axis), e2 = b.axis.cross(e1);
+      for (std::size_t i = 0; i < n; ++i) {
+        double t = u01(rng) * b.length, th = u01(rng) * 2 * M_PI, r = b.radius + noise(rng);
+        pts.push_back(b.base + t * b.axis + r * (std::cos(th) * e1 + std::sin(th) * e2));
+      }
+    }
+    while (pts.size() < kPoints) pts.push_back(Vec3(-3 + 6 * u01(rng), 2 + 8 * u01(rng), -3 + 6 * u01(rng)));
+
+    sketch::SamplingParams p;
+    p.sliceHalfThickness = 0.02;
+    p.lineEpsilon = 0.4;
+    p.lineEpsilonStep = 0.2;
+    sketch::NodeId prev = sketch::kNoNode;
+    std::vector<sketch::NodeId> trunk;
+    for (int i = 0; i < 10; ++i) {
+      prev = sc.sketch.addPointNode(prev, Vec3(0, 0.4 + 0.8 * i, 0), Vec3::UnitY(), p);
+      trunk.push_back(prev);
+    }
+    sketch::SamplingParams pb = p;
+    pb.lineEpsilon = 0.2;
+    for (int b = 1; b <= 4; ++b) {
+      // Parent: the trunk node just below the branch base.
+      prev = trunk[std::size_t(std::floor((branches[b].base.y() - 0.4) / 0.8))];
+      for (int i = 0; i < 5; ++i)
+        prev = sc.sketch.addPointNode(prev, branches[b].base + (0.5 + 0.6 * i) * branches[b].axis, branches[b].axis, pb);
+    }
+    sc.ids = sc.sketch.ids();
+    return sc;
+  }();
+  return s;
+}
+
+recon::ReconstructionOptions options(bool bruteForce, bool parallel) {
+  recon::ReconstructionOptions o;
+  o.fit.bruteForce = bruteForce;
+  o.parallel = parallel;
+  return o;
+}
+
+void reportFits(benchmark::State& state, const recon::Reconstruction& rec) {
+  int fitted = 0;
+  for (const auto& [id, r] : rec.results()) fitted += r->status == treesketch::fit::NodeStatus::Fitted;
+  state.counters["nodes"] = double(rec.results().size());
+  state.counters["fitted"] = fitted;
+}
+
+// Full reconstruction (every node fitted + swept) with a prebuilt index.
+void fullReconstruct(benchmark::State& state, bool bruteForce) {
+  const Scene& sc = scene();
+  const bool parallel = state.range(0) != 0;
+  recon::Reconstruction rec(sc.cloud, options(bruteForce, parallel));
+  for (auto _ : state) {
+    rec.reset();
+    rec.update(sc.sketch);
+    benchmark::DoNotOptimize(rec.mesh().triangles.data());
+    state.PauseTiming();
+    reportFits(state, rec);
+    state.ResumeTiming();
+  }
+}
+void BM_FullReconstructIndexed(benchmark::State& state) { fullReconstruct(state, false); }
+void BM_FullReconstructBruteForce(benchmark::State& state) { fullReconstruct(state, true); }
+BENCHMARK(BM_FullReconstructIndexed)->Arg(0)->Arg(1)->ArgName("parallel")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FullReconstructBruteForce)->Arg(0)->Arg(1)->ArgName("parallel")->Unit(benchmark::kMillisecond)->Iterations(5);
+
+// One edited node (its slice thickness toggles): re-fit one node + re-sweep, as the GUI does.
+void BM_EditOneNode(benchmark::State& state) {
+  const Scene& sc = scene();
+  sketch::Sketch sk = sc.sketch;
+  recon::Reconstruction rec(sc.cloud, options(false, true));
+  rec.update(sk);
+  const sketch::NodeId id = sc.ids[std::size_t(state.range(0))];
+  sketch::SamplingParams p = sk.node(id).params;
+  bool flip = false;
+  std::size_t refits = 0;
+  for (auto _ : state) {
+    flip = !flip;
+    p.sliceHalfThickness = flip ? 0.021 : 0.02;
+    sk.setParams(id, p);
+    refits += rec.update(sk).size();
+    benchmark::DoNotOptimize(rec.mesh().triangles.data());
+  }
+  state.counters["refits_per_edit"] = double(refits) / double(state.iterations());
+  reportFits(state, rec);
+}
+BENCHMARK(BM_EditOneNode)->Arg(0)->Arg(5)->Arg(17)->ArgName("node")->Unit(benchmark::kMillisecond);
+
+void BM_BuildIndex(benchmark::State& state) {
+  const Scene& sc = scene();
+  for (auto _ : state) {
+    treesketch::fit::CloudIndex index(sc.cloud);
+    benchmark::DoNotOptimize(index.size());
+  }
+}
+BENCHMARK(BM_BuildIndex)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,199 @@
+#include "treesketch/recon/reconstruction.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "fit/synthetic_cylinder.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::recon {
+namespace {
+
+using geom::Vec2;
+using geom::Vec3;
+
+// A vertical trunk (axis x = 0.5, z = 0, radius 0.25, y 0..3) with a branch leaning in x from
+// (0.5, 2, 0), plus 30 % outliers.
+geom::PointCloud treeCloud() {
+  std::mt19937_64 rng(21);
+  geom::PointCloud cloud;
+  test::CylinderSpec trunk;
+  trunk.base = Vec3(0.5, 0, 0);
+  trunk.radius = 0.25;
+  trunk.length = 3.0;
+  trunk.points = 12000;
+  test::addCylinder(cloud, trunk, rng);
+  test::addOutliers(cloud, 5000, Vec3(-1, 0, -1), Vec3(2, 3.5, 1), rng);
+  return cloud;
+}
+
+sketch::SamplingParams params() {
+  sketch::SamplingParams p;
+  p.sliceHalfThickness = 0.05;
+  p.lineEpsilon = 0.4;
+  p.lineEpsilonStep = 0.25;
+  return p;
+}
+
+// Four point nodes up the trunk.
+sketch::Sketch trunkSketch() {
+  sketch::Sketch s;
+  sketch::NodeId prev = sketch::kNoNode;
+  for (int i = 0; i < 4; ++i) prev = s.addPointNode(prev, Vec3(0.52, 0.5 + 0.6 * i, 0.03), Vec3::UnitY(), params());
+  return s;
+}
+
+ReconstructionOptions serial() {
+  ReconstructionOptions o;
+  o.parallel = false;
+  return o;
+}
+
+TEST(Reconstruction, TrunkChainFitsEveryNode) {
+  geom::PointCloud cloud = treeCloud();
+  sketch::Sketch s = trunkSketch();
+  Reconstruction rec(cloud);
+  auto changed = rec.update(s);
+  EXPECT_EQ(changed.size(), 4u);
+  EXPECT_EQ(rec.fitCount(), 4u);
+  for (auto id : s.ids()) {
+    const fit::NodeResult* r = rec.result(id);
+    ASSERT_NE(r, nullptr);
+    ASSERT_EQ(r->status, fit::NodeStatus::Fitted) << r->reason;
+    EXPECT_LT((r->centre - Vec3(0.5, s.node(id).point.y(), 0)).norm(), 0.02 * 0.25);
+    EXPECT_LT(std::abs(r->radius - 0.25), 0.02 * 0.25);
+  }
+  // 4 rings of 16 + 2 cap centres; 3 bands + 2 caps.
+  EXPECT_EQ(rec.mesh().vertices.size(), 4u * 16 + 2);
+  EXPECT_EQ(rec.mesh().triangles.size(), 3u * 32 + 2 * 16);
+  EXPECT_EQ(rec.sweeper().segmentKeys().size(), 3u);
+  EXPECT_GE(rec.lastUpdateMs(), 0.0);
+  EXPECT_EQ(rec.result(99), nullptr);
+}
+
+TEST(Reconstruction, EditsRefitOnlyTheTouchedNodes) {
+  geom::PointCloud cloud = treeCloud();
+  sketch::Sketch s = trunkSketch();
+  Reconstruction rec(cloud, serial());
+  rec.update(s);
+  ASSERT_EQ(rec.fitCount(), 4u);
+  EXPECT_TRUE(rec.update(s).empty());  // no change: no fit
+  EXPECT_EQ(rec.fitCount(), 4u);
+
+  auto ids = s.ids();
+  sketch::SamplingParams p = params();
+  p.sliceHalfThickness = 0.08;
+  s.setParams(ids[1], p);  // params change
+  EXPECT_EQ(rec.update(s), std::vector<sketch::NodeId>{ids[1]});
+  EXPECT_EQ(rec.fitCount(), 5u);
+  std::size_t bandsBefore = rec.sweeper().segmentBuilds();
+
+  s.movePointNode(ids[2], Vec3(0.48, 1.8, -0.02), Vec3::UnitY());  // move
+  EXPECT_EQ(rec.update(s), std::vector<sketch::NodeId>{ids[2]});
+  EXPECT_EQ(rec.fitCount(), 6u);
+  EXPECT_EQ(rec.sweeper().segmentBuilds(), bandsBefore + 2);  // its two bands only
+  EXPECT_NEAR(rec.result(ids[2])->centre.y(), 1.8, 1e-9);
+
+  s.removeNode(ids[1], false);  // delete: children re-attached, nothing to fit
+  EXPECT_TRUE(rec.update(s).empty());
+  EXPECT_EQ(rec.fitCount(), 6u);
+  EXPECT_EQ(rec.result(ids[1]), nullptr);
+  EXPECT_EQ(rec.sweeper().segmentKeys().size(), 2u);
+
+  // The incremental state equals a fresh one-shot reconstruction.
+  ReconstructionResult fresh = reconstruct(cloud, s, serial());
+  for (auto id : s.ids()) {
+    EXPECT_EQ(fresh.results.at(id).centre, rec.result(id)->centre);
+    EXPECT_EQ(fresh.results.at(id).radius, rec.result(id)->radius);
+  }
+  EXPECT_EQ(fresh.mesh.triangles, rec.mesh().triangles);
+  EXPECT_EQ(fresh.mesh.vertices, rec.mesh().vertices);
+}
+
+TEST(Reconstruction, MovingAScreenNodeRefitsItsChildren) {
+  geom::PointCloud cloud = treeCloud();
+  geom::BBox box = cloud.bounds();
+  geom::Camera cam = geom::presetCamera(geom::PresetView::Front, box, geom::UpAxis::Y, {0, 0, 800, 800}, false);
+  sketch::Sketch s;
+  int c = s.addCamera(cam);
+  auto screenOf = [&](const Vec3& p) { return Vec2(cam.project(p).head<2>()); };
+  auto a = s.addScreenNode(sketch::kNoNode, c, screenOf(Vec3(0.5, 0.5, 0)), params());
+  auto b = s.addScreenNode(a, c, screenOf(Vec3(0.5, 1.3, 0)), params());
+  auto d = s.addScreenNode(b, c, screenOf(Vec3(0.5, 2.1, 0)), params());
+  auto e = s.addScreenNode(d, c, screenOf(Vec3(0.5, 2.8, 0)), params());
+  Reconstruction rec(cloud, serial());
+  rec.update(s);
+  for (auto id : {a, b, d, e}) {
+    ASSERT_EQ(rec.result(id)->status, fit::NodeStatus::Fitted) << rec.result(id)->reason;
+    EXPECT_NEAR(rec.result(id)->radius, 0.25, 0.02 * 0.25);
+    EXPECT_NEAR(rec.result(id)->centre.z(), 0.0, 0.02 * 0.25);  // the data give the depth
+  }
+  // Moving b changes b's line and its child d's plane (N uses the parent's ray); e is untouched.
+  s.moveNode(b, screenOf(Vec3(0.52, 1.35, 0)));
+  auto changed = rec.update(s);
+  std::sort(changed.begin(), changed.end());
+  EXPECT_EQ(changed, (std::vector<sketch::NodeId>{b, d}));
+  EXPECT_EQ(rec.fitCount(), 6u);
+}
+
+TEST(Reconstruction, SkippedAndDisabledNodesAreBridged) {
+  geom::PointCloud cloud = treeCloud();
+  sketch::Sketch s;
+  auto n0 = s.addPointNode(sketch::kNoNode, Vec3(0.5, 0.5, 0), Vec3::UnitY(), params());
+  auto n1 = s.addPointNode(n0, Vec3(0.5, 10.0, 0), Vec3::UnitY(), params());  // above the cloud
+  sketch::SamplingParams off = params();
+  off.enabled = false;
+  auto n2 = s.addPointNode(n1, Vec3(0.5, 1.5, 0), Vec3::UnitY(), off);
+  auto n3 = s.addPointNode(n2, Vec3(0.5, 2.5, 0), Vec3::UnitY(), params());
+  Reconstruction rec(cloud);
+  rec.update(s);
+  EXPECT_EQ(rec.result(n1)->status, fit::NodeStatus::Skipped);
+  EXPECT_FALSE(rec.result(n1)->reason.empty());
+  EXPECT_EQ(rec.result(n2)->status, fit::NodeStatus::Disabled);
+  std::vector<sweep::SegmentKey> expected = {{n0, n3}};
+  EXPECT_EQ(rec.sweeper().segmentKeys(), expected);
+  EXPECT_EQ(rec.mesh().triangles.size(), 32u + 2 * 16);
+}
+
+TEST(Reconstruction, DeterministicAndOrderIndependent) {
+  geom::PointCloud cloud = treeCloud();
+  sketch::Sketch s = trunkSketch();
+  ReconstructionOptions par;
+  par.seed = 7;
+  ReconstructionOptions ser = par;
+  ser.parallel = false;
+  ReconstructionResult a = reconstruct(cloud, s, par), b = reconstruct(cloud, s, ser);
+  for (auto id : s.ids()) {
+    EXPECT_EQ(a.results.at(id).centre, b.results.at(id).centre);
+    EXPECT_EQ(a.results.at(id).inlierIndices, b.results.at(id).inlierIndices);
+  }
+  EXPECT_EQ(a.mesh.vertices, b.mesh.vertices);
+  EXPECT_EQ(a.order, s.topologicalOrder());
+}
+
+TEST(Reconstruction, EmptyAndInvalidInput) {
+  geom::PointCloud cloud = treeCloud();
+  sketch::Sketch empty;
+  ReconstructionResult r = reconstruct(cloud, empty);
+  EXPECT_TRUE(r.results.empty());
+  EXPECT_TRUE(r.mesh.empty());
+
+  sketch::Sketch bad;
+  sketch::Node orphan;
+  orphan.id = 3;
+  orphan.parent = 7;  // does not exist
+  orphan.normal = Vec3::UnitY();
+  bad.insertRaw(orphan);
+  Reconstruction rec(cloud);
+  EXPECT_THROW(rec.update(bad), OptionsError);
+
+  geom::PointCloud none;
+  sketch::Sketch s = trunkSketch();
+  ReconstructionResult nothing = reconstruct(none, s);
+  for (const auto& [id, res] : nothing.results) EXPECT_EQ(res.status, fit::NodeStatus::Skipped);
+  EXPECT_TRUE(nothing.mesh.empty());
+}
+
+}  // namespace
+}  // namespace treesketch::recon

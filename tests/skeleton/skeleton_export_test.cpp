@@ -1,0 +1,78 @@
+#include "treesketch/skeleton/skeleton_export.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "synthetic_tree.h"
+#include "test_support.h"
+#include "treesketch/util/error.h"
+
+using namespace treesketch;
+
+TEST(SkeletonExport, CsvAndObjParseBack) {
+  const auto cloud = test::sampleCylinders(test::threeLevelTree(), 0.02, 0.003, 4);
+  const auto s = skeleton::extractSkeleton(cloud);
+  ASSERT_GT(s.nodes.size(), 5u);
+  test::TempDir dir;
+  skeleton::writeCylinderCsv(dir / "cyl.csv", s.nodes);
+  skeleton::writeSkeletonObj(dir / "skel.obj", s.nodes);
+
+  std::istringstream csv(test::readText(dir / "cyl.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, skeleton::kCylinderCsvHeader);
+  std::size_t rows = 0;
+  while (std::getline(csv, line)) {
+    std::istringstream row(line);
+    std::vector<double> v;
+    std::string cell;
+    while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 11u);
+    const auto id = static_cast<std::size_t>(v[0]);
+    ASSERT_LT(id, s.nodes.size());
+    const auto& n = s.nodes[id];
+    const auto& p = s.nodes[n.parent];
+    EXPECT_EQ(static_cast<int>(v[1]), p.parent < 0 ? -1 : n.parent);
+    EXPECT_NEAR(v[2], p.position.x(), 1e-6);
+    EXPECT_NEAR(v[6], n.position.y(), 1e-6);
+    EXPECT_NEAR(v[8], n.radius, 1e-6);
+    EXPECT_NEAR(v[9], (n.position - p.position).norm(), 1e-6);
+    EXPECT_EQ(static_cast<int>(v[10]), n.branchOrder);
+    ++rows;
+  }
+  EXPECT_EQ(rows, s.nodes.size() - 1);
+
+  std::istringstream obj(test::readText(dir / "skel.obj"));
+  std::size_t vs = 0, ls = 0;
+  while (std::getline(obj, line)) {
+    std::istringstream in(line);
+    std::string tag;
+    in >> tag;
+    if (tag == "v") {
+      double x, y, z;
+      ASSERT_TRUE(in >> x >> y >> z);
+      EXPECT_NEAR(y, s.nodes[vs].position.y(), 1e-6);
+      ++vs;
+    } else if (tag == "l") {
+      int a, b;
+      ASSERT_TRUE(in >> a >> b);
+      EXPECT_EQ(s.nodes[b - 1].parent, a - 1);
+      ++ls;
+    }
+  }
+  EXPECT_EQ(vs, s.nodes.size());
+  EXPECT_EQ(ls, s.nodes.size() - 1);
+}
+
+TEST(SkeletonExport, UnwritablePathThrowsAndLeavesNothing) {
+  test::TempDir dir;
+  const auto bad = dir / "missing_dir" / "cyl.csv";
+  EXPECT_THROW(skeleton::writeCylinderCsv(bad, {}), OutputError);
+  EXPECT_THROW(skeleton::writeSkeletonObj(dir / "missing_dir" / "s.obj", {}), OutputError);
+  EXPECT_FALSE(std::filesystem::exists(bad));
+  // Empty skeleton: header only.
+  skeleton::writeCylinderCsv(dir / "empty.csv", {});
+  EXPECT_EQ(test::readText(dir / "empty.csv"), std::string(skeleton::kCylinderCsvHeader) + "\n");
+}

@@ -1,0 +1,121 @@
+#include "treesketch/skeleton/skeleton_sketch.h"
+
+#include <gtest/gtest.h>
+
+#include "synthetic_tree.h"
+#include "treesketch/util/error.h"
+
+using namespace treesketch;
+using geom::Vec3;
+
+namespace {
+skeleton::SkeletonNode chainNode(int parent, double y, double radius) {
+  skeleton::SkeletonNode n;
+  n.parent = parent;
+  n.position = Vec3(0, y, 0);
+  n.radius = radius;
+  return n;
+}
+std::vector<skeleton::SkeletonNode> linkUp(std::vector<skeleton::SkeletonNode> nodes) {
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (nodes[i].parent >= 0) nodes[nodes[i].parent].children.push_back(static_cast<std::int32_t>(i));
+  return nodes;
+}
+}  // namespace
+
+TEST(SkeletonSketch, RegularizeInterpolatesSmoothsAndCaps) {
+  // A chain of 7 nodes; node 3 failed, node 5 is an outlier thicker than its parent.
+  std::vector<skeleton::SkeletonNode> nodes;
+  for (int i = 0; i < 7; ++i) nodes.push_back(chainNode(i - 1, i, 0.5));
+  nodes = linkUp(nodes);
+  std::vector<double> fitted = {0.30, 0.28, 0.26, 0, 0.22, 0.40, 0.18};
+  std::vector<char> valid = {1, 1, 1, 0, 1, 1, 1};
+  skeleton::RadiusRules rules;
+  rules.medianWindow = 1;
+  rules.childNotThicker = false;
+  auto r = skeleton::regularizeRadii(nodes, fitted, valid, rules);
+  EXPECT_NEAR(r[3], 0.24, 1e-12);  // linear between 0.26 and 0.22
+  EXPECT_NEAR(r[5], 0.40, 1e-12);
+  rules.childNotThicker = true;
+  r = skeleton::regularizeRadii(nodes, fitted, valid, rules);
+  EXPECT_NEAR(r[5], 0.22, 1e-12);
+  rules.medianWindow = 3;
+  r = skeleton::regularizeRadii(nodes, fitted, valid, rules);
+  EXPECT_NEAR(r[5], 0.22, 1e-12);  // median of (0.22, 0.40, 0.18)
+  for (std::size_t i = 1; i < r.size(); ++i) EXPECT_LE(r[i], r[i - 1]);
+  // No valid fit at all: the skeleton's estimates are kept.
+  r = skeleton::regularizeRadii(nodes, fitted, std::vector<char>(7, 0), rules);
+  for (double x : r) EXPECT_EQ(x, 0.5);
+  EXPECT_THROW(skeleton::regularizeRadii(nodes, {0.1}, valid, rules), OptionsError);
+  rules.medianWindow = 0;
+  EXPECT_THROW(skeleton::regularizeRadii(nodes, fitted, valid, rules), OptionsError);
+}
+
+TEST(SkeletonSketch, PipeModelGrowsForks) {
+  // Root -> fork (radius 0.1) with two children of radius 0.1 each: pipe model gives sqrt(0.02).
+  std::vector<skeleton::SkeletonNode> nodes = {chainNode(-1, 0, 0.1), chainNode(0, 1, 0.1), chainNode(1, 2, 0.1),
+                                               chainNode(1, 2, 0.1)};
+  nodes[3].branchOrder = 1;
+  nodes = linkUp(nodes);
+  skeleton::RadiusRules rules;
+  rules.medianWindow = 1;
+  rules.pipeModel = true;
+  rules.childNotThicker = false;
+  const auto r = skeleton::regularizeRadii(nodes, {0.1, 0.1, 0.1, 0.1}, {1, 1, 1, 1}, rules);
+  EXPECT_NEAR(r[1], std::sqrt(0.02), 1e-12);
+  EXPECT_NEAR(r[2], 0.1, 1e-12);
+}
+
+TEST(SkeletonSketch, SketchFromSkeletonIsValid) {
+  const auto cloud = test::sampleCylinders(test::yTree(), 0.02, 0.003, 7);
+  const auto s = skeleton::extractSkeleton(cloud);
+  const auto sk = skeleton::skeletonToSketch(s);
+  ASSERT_EQ(sk.size(), s.nodes.size());
+  EXPECT_NO_THROW(sk.validate());
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+    const auto& node = sk.node(static_cast<sketch::NodeId>(i));
+    EXPECT_FALSE(node.isScreenNode());
+    EXPECT_EQ(node.parent, s.nodes[i].parent < 0 ? sketch::kNoNode : s.nodes[i].parent);
+    EXPECT_GT(node.params.lineEpsilon, s.nodes[i].radius);
+  }
+  EXPECT_TRUE(skeleton::skeletonToSketch(skeleton::Skeleton{}).empty());
+}
+
+TEST(SkeletonSketch, AutoSketchFitsRadiiAndRegularises) {
+  const auto cyls = test::yTree();
+  const auto cloud = test::sampleCylinders(cyls, 0.02, 0.003, 7);
+  const auto res = skeleton::autoSkeletonSketch(cloud);
+  ASSERT_FALSE(res.model.empty());
+  ASSERT_EQ(res.fits.size(), res.model.size());
+  EXPECT_FALSE(res.mesh.empty());
+  int checked = 0, accepted = 0;
+  for (std::size_t i = 0; i < res.model.size(); ++i) {
+    const auto& n = res.model[i];
+    accepted += res.fitAccepted[i];
+    if (n.parent >= 0) EXPECT_LE(n.radius, res.model[n.parent].radius);  // no child thicker
+    // Radii within 10 % away from the fork (y in [2.6, 3.6]) and the tips.
+    const double y = n.position.y();
+    if (y > 2.6 && y < 3.6) continue;
+    if (n.children.empty()) continue;
+    double best = 1e300, radius = 0;
+    for (const auto& c : cyls) {
+      const double d = test::distanceToSegment(n.position, c.a, c.b);
+      if (d < best) {
+        best = d;
+        radius = c.radius;
+      }
+    }
+    EXPECT_NEAR(n.radius, radius, 0.1 * radius) << "node " << i;
+    EXPECT_LT(best, 0.25 * radius) << "node " << i;
+    ++checked;
+  }
+  EXPECT_GE(checked, 8);
+  EXPECT_GE(accepted, static_cast<int>(res.model.size()) * 3 / 4);
+}
+
+TEST(SkeletonSketch, EmptyCloud) {
+  const auto res = skeleton::autoSkeletonSketch(geom::PointCloud{});
+  EXPECT_TRUE(res.model.empty());
+  EXPECT_TRUE(res.sketch.empty());
+  EXPECT_TRUE(res.mesh.empty());
+}
