@@ -96,8 +96,17 @@ recon::ReconstructionOptions options(bool bruteForce, bool parallel) {
 }
 
 void reportFits(benchmark::State& state, const recon::Reconstruction& rec) {
-  int fitted = 0;
-  for (const auto& [id, r] : rec.results()) fitted += r->status == treesketch::fit::NodeStatus::Fitted;
+  int fitted = 0, growth = 0;
+  double testPts = 0, iters = 0;
+  for (const auto& [id, r] : rec.results()) {
+    fitted += r->status == treesketch::fit::NodeStatus::Fitted;
+    growth += r->growthSteps;
+    testPts += double(r->testIndices.size());
+    iters += r->iterations;
+  }
+  state.counters["growth_steps"] = growth;
+  state.counters["test_pts_per_node"] = testPts / double(rec.results().size());
+  state.counters["ransac_iters_per_node"] = iters / double(rec.results().size());
   state.counters["nodes"] = double(rec.results().size());
   state.counters["fitted"] = fitted;
 }

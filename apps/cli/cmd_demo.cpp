@@ -5,7 +5,13 @@
 //   2. reference — write tree_branches.obj, tree_leaves.obj, tree_skeleton.json
 //   3. scan      — the thesis's sphere scanner over branches + leaves (scan/)
 //   4. cloud     — write cloud.ply (with the mesh id of each point: 0 wood, 1 leaf)
-//   5. summary   — counts, wood fraction, bounds, timings -> stdout and summary.txt
+//   5. sketch, reconstruct — a simulated user's sketch on the true skeleton (front view, pixel
+//                  jitter) and the thesis's uniform automatic sketch; both reconstructed
+//                  (sketch_*.json, recon_*.obj)
+//   6. compare   — each reconstruction against the branch mesh, both directions (Hausdorff,
+//                  as MeshLab/Metro); error mesh of the user's reconstruction (error_user.ply)
+//   7. summary   — counts, wood fraction, bounds, the comparison table, timings -> stdout and
+//                  summary.txt
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -16,7 +22,12 @@
 #include <vector>
 
 #include "commands.h"
+#include "treesketch/compare/error_mesh.h"
+#include "treesketch/compare/hausdorff.h"
+#include "treesketch/eval/evaluation.h"
+#include "treesketch/eval/tree_suite.h"
 #include "treesketch/gen/skeleton_io.h"
+#include "treesketch/io/sketch_file.h"
 #include "treesketch/gen/tree_generator.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
@@ -37,6 +48,15 @@ struct DemoArgs {
   int subdiv = 6;  // thesis §4.2: 6 subdivisions = 73,728 rays
   std::string preset = "default";
   int detail = 1;
+  int userNodes = 30;     ///< simulated user's node budget
+  int uniformNodes = 18;  ///< thesis Table 5.2
+};
+
+/// One reconstruction of the demo tree and its comparison with the branch mesh.
+struct DemoMethod {
+  std::string name;
+  eval::MethodOutput output;
+  compare::BothReport report;
 };
 
 /// Everything the steps produce, passed from one step to the next.
@@ -46,6 +66,7 @@ struct DemoState {
   gen::TreeOptions treeOptions;
   gen::GeneratedTree tree;
   scan::ScanResult scan;
+  std::vector<DemoMethod> methods;
   std::vector<std::pair<std::string, double>> timings;  ///< step name, milliseconds
   std::ostringstream summary;                           ///< filled by the steps, printed at the end
 };
@@ -121,6 +142,56 @@ void stepScan(DemoState& s) {
 
 void stepWriteCloud(DemoState& s) { io::writePointCloud(s.dir / "cloud.ply", s.scan.cloud); }
 
+void stepReconstruct(DemoState& s) {
+  eval::TreeCase tc = eval::treeCaseFromGenerated("demo", s.tree);
+  eval::EvalOptions eo;
+  eo.seed = s.args.seed;
+  for (const std::string name : {"user", "uniform"}) {
+    int nodes = name == "uniform" ? s.args.uniformNodes : s.args.userNodes;
+    DemoMethod m;
+    m.name = name;
+    m.output = eval::runMethod(name, eval::MethodInput{tc, s.scan.cloud, eo, nodes});
+    io::writeSketch(s.dir / ("sketch_" + name + ".json"), m.output.sketch);
+    io::writeMesh(s.dir / ("recon_" + name + ".obj"), m.output.mesh);
+    s.methods.push_back(std::move(m));
+  }
+}
+
+void stepCompare(DemoState& s) {
+  compare::CompareOptions co;
+  co.sampling.seed = s.args.seed;
+  co.keepSamples = true;
+  const geom::TriMesh& original = s.tree.branches.mesh;
+  const double diag = original.bounds().diagonal();
+  char line[256];
+  s.summary << "reconstruction and comparison with the branch mesh (Hausdorff, % of its bbox diagonal " << diag
+            << " m):\n";
+  std::snprintf(line, sizeof line, "  %-8s %6s %6s %9s | %-25s | %-25s\n", "sketch", "nodes", "fitted", "ms",
+                "backward max/mean/RMS %", "forward max/mean/RMS %");
+  s.summary << line;
+  for (auto& m : s.methods) {
+    if (m.output.mesh.empty()) {
+      s.summary << "  " << m.name << ": no circle fitted, nothing to compare\n";
+      continue;
+    }
+    m.report = compare::compareBoth(original, m.output.mesh, co);
+    auto pct = [&](double v) { return 100.0 * v / diag; };
+    const auto& b = m.report.backward;
+    const auto& f = m.report.forward;
+    std::snprintf(line, sizeof line, "  %-8s %6d %6d %9.1f | %7.3f %7.3f %7.3f       | %7.3f %7.3f %7.3f\n",
+                  m.name.c_str(), m.output.nodes, m.output.fitted, m.output.ms, pct(b.max), pct(b.mean), pct(b.rms),
+                  pct(f.max), pct(f.mean), pct(f.rms));
+    s.summary << line;
+    if (m.name == "user") {
+      std::vector<double> vd = compare::vertexDistancesFromReport(m.report.forward, original.vertices.size());
+      compare::ErrorMeshOptions eo;
+      io::writeMesh(s.dir / "error_user.ply", compare::makeErrorMesh(original, vd, eo));
+    }
+  }
+  s.summary << "  (backward: reconstruction sampled against the original; forward: the original against the "
+               "reconstruction)\n";
+}
+
 void stepSummary(DemoState& s) {
   std::ostringstream text;
   text << "treesketch demo -> " << s.dir.string() << "\n" << s.summary.str() << "timings:\n";
@@ -134,7 +205,8 @@ void stepSummary(DemoState& s) {
   char line[120];
   std::snprintf(line, sizeof line, "  %-10s %10.1f ms\n", "total", total);
   text << line;
-  text << "files: tree_branches.obj tree_leaves.obj tree_skeleton.json cloud.ply summary.txt\n";
+  text << "files: tree_branches.obj tree_leaves.obj tree_skeleton.json cloud.ply sketch_user.json sketch_uniform.json "
+          "recon_user.obj recon_uniform.obj error_user.ply summary.txt\n";
   const std::string str = text.str();
   writeFileAtomically(s.dir / "summary.txt", [&](std::ostream& out) { out << str; }, false);
   std::fputs(str.c_str(), stdout);
@@ -149,7 +221,8 @@ void runDemo(const DemoArgs& args) {
   timed(s, "reference", [&] { stepWriteReference(s); });
   timed(s, "scan", [&] { stepScan(s); });
   timed(s, "cloud", [&] { stepWriteCloud(s); });
-  // [later steps: reconstruct, compare]
+  timed(s, "sketch+fit", [&] { stepReconstruct(s); });
+  timed(s, "compare", [&] { stepCompare(s); });
   stepSummary(s);
 }
 
@@ -168,6 +241,12 @@ void registerDemo(CLI::App& app, Action& action) {
       ->capture_default_str();
   sub->add_option("--detail", a->detail, "Mesh detail multiplier (triangles ~ detail^2)")
       ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  sub->add_option("--user-nodes", a->userNodes, "Node budget of the simulated user's sketch")
+      ->check(CLI::Range(2, 10000))
+      ->capture_default_str();
+  sub->add_option("--uniform-nodes", a->uniformNodes, "Nodes of the uniform automatic sketch (thesis: 18)")
+      ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   sub->callback([a, &action] { action = [a] { runDemo(*a); }; });
 }

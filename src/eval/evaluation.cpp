@@ -94,6 +94,7 @@ MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud&
   recon::ReconstructionResult r = recon::reconstruct(cloud, sk, ro);
   MethodOutput out;
   out.mesh = std::move(r.mesh);
+  out.sketch = sk;
   out.nodes = static_cast<int>(sk.size());
   for (const auto& [id, res] : r.results)
     if (res.status == fit::NodeStatus::Fitted) ++out.fitted;

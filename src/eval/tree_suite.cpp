@@ -13,6 +13,27 @@ namespace treesketch::eval {
 namespace fs = std::filesystem;
 using geom::Vec3;
 
+TreeCase treeCaseFromGenerated(const std::string& name, const gen::GeneratedTree& tree) {
+  TreeCase tc;
+  tc.name = name;
+  tc.branches = tree.branches.mesh;
+  tc.leaves = tree.leaves;
+  tc.up = tree.skeleton.up;
+  for (const auto& b : tree.skeleton.branches) {
+    sketch::BranchPolyline pl;
+    std::vector<double> radii;
+    for (const auto& s : b.sections) {
+      pl.points.push_back(s.center);
+      radii.push_back(s.radius);
+    }
+    pl.parent = b.parent;
+    pl.parentVertex = b.parentSection < 0 ? 0 : static_cast<std::size_t>(b.parentSection);
+    tc.axes.push_back(std::move(pl));
+    tc.axisRadii.push_back(std::move(radii));
+  }
+  return tc;
+}
+
 std::vector<TreeCase> builtinTrees(int count) {
   static const char* kPresets[] = {"default", "sparse", "conifer"};
   std::vector<TreeCase> trees;
@@ -20,25 +41,8 @@ std::vector<TreeCase> builtinTrees(int count) {
     std::string preset = kPresets[i % 3];
     gen::TreeOptions options = gen::presetOptions(preset);
     options.seed = static_cast<std::uint64_t>(i + 1);
-    gen::GeneratedTree tree = gen::generateTree(options);
-    TreeCase tc;
-    tc.name = "builtin_" + preset + "_s" + std::to_string(options.seed);
-    tc.branches = tree.branches.mesh;
-    tc.leaves = tree.leaves;
-    tc.up = options.up;
-    for (const auto& b : tree.skeleton.branches) {
-      sketch::BranchPolyline pl;
-      std::vector<double> radii;
-      for (const auto& s : b.sections) {
-        pl.points.push_back(s.center);
-        radii.push_back(s.radius);
-      }
-      pl.parent = b.parent;
-      pl.parentVertex = b.parentSection < 0 ? 0 : static_cast<std::size_t>(b.parentSection);
-      tc.axes.push_back(std::move(pl));
-      tc.axisRadii.push_back(std::move(radii));
-    }
-    trees.push_back(std::move(tc));
+    trees.push_back(treeCaseFromGenerated("builtin_" + preset + "_s" + std::to_string(options.seed),
+                                          gen::generateTree(options)));
   }
   return trees;
 }

@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -61,13 +62,17 @@ bool kasaFit(const std::vector<Vec2>& pts, const std::vector<std::uint32_t>& idx
   return true;
 }
 
-double geometricCost(const std::vector<Vec2>& pts, const std::vector<std::uint32_t>& idx, const Vec2& c, double r) {
-  double cost = 0.0;
-  for (auto i : idx) {
-    double e = (pts[i] - c).norm() - r;
-    cost += e * e;
-  }
-  return cost;
+// atan2 in degrees within ±0.3° (a rational approximation of atan on [0, 1]), in [0, 360).
+double fastAngleDeg(double y, double x) {
+  double ax = std::abs(x), ay = std::abs(y);
+  double mx = std::max(ax, ay);
+  if (mx == 0.0) return 0.0;
+  double z = std::min(ax, ay) / mx;
+  double a = z * (M_PI / 4 + 0.273 * (1.0 - z));  // atan(z), |error| < 0.004 rad
+  if (ay > ax) a = M_PI / 2 - a;
+  if (x < 0) a = M_PI - a;
+  if (y < 0) a = 2 * M_PI - a;
+  return a * (180.0 / M_PI);
 }
 
 }  // namespace
@@ -83,39 +88,46 @@ bool fitCircleLeastSquares(const std::vector<Vec2>& pts, const std::vector<std::
     c = *centre;
     r = *radius;
   }
-  double cost = geometricCost(pts, idx, c, r);
+  // Gauss–Newton on the geometric residuals |p − c| − r. Each pass evaluates the cost at the
+  // current circle with the normal equations; a step that raised the cost is undone.
+  Vec2 prevC = c;
+  double prevR = r, prevCost = std::numeric_limits<double>::infinity();
   for (int it = 0; it < iterations; ++it) {
-    Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d jtr = Eigen::Vector3d::Zero();
+    // J row = (−dx/n, −dy/n, −1); accumulate the 6 distinct entries of JᵀJ and Jᵀr.
+    double sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, cnt = 0, rx = 0, ry = 0, rr = 0, cost = 0.0;
+    const double cx = c.x(), cy = c.y();
     for (auto i : idx) {
-      Vec2 d = pts[i] - c;
-      double n = d.norm();
+      double dx = pts[i].x() - cx, dy = pts[i].y() - cy;
+      double n = std::sqrt(dx * dx + dy * dy);
       if (n <= 0.0) continue;
-      Eigen::Vector3d j(-d.x() / n, -d.y() / n, -1.0);
-      double res = n - r;
-      jtj += j * j.transpose();
-      jtr += j * res;
+      double ux = dx / n, uy = dy / n, res = n - r;
+      cost += res * res;
+      sxx += ux * ux;
+      sxy += ux * uy;
+      syy += uy * uy;
+      sx += ux;
+      sy += uy;
+      cnt += 1.0;
+      rx += ux * res;
+      ry += uy * res;
+      rr += res;
     }
+    Eigen::Matrix3d jtj;
+    jtj << sxx, sxy, sx, sxy, syy, sy, sx, sy, cnt;
+    Eigen::Vector3d jtr(-rx, -ry, -rr);
+    if (!(cost <= prevCost)) {
+      c = prevC;
+      r = prevR;
+      break;
+    }
+    prevC = c;
+    prevR = r;
+    prevCost = cost;
     Eigen::Vector3d step = jtj.ldlt().solve(-jtr);
-    if (!step.allFinite()) break;
-    // Step halving keeps the geometric cost decreasing (a damped Gauss–Newton).
-    double t = 1.0;
-    bool improved = false;
-    for (int h = 0; h < 10; ++h, t *= 0.5) {
-      Vec2 c2 = c + t * step.head<2>();
-      double r2 = r + t * step[2];
-      if (!(r2 > 0.0)) continue;
-      double cost2 = geometricCost(pts, idx, c2, r2);
-      if (cost2 < cost) {
-        c = c2;
-        r = r2;
-        cost = cost2;
-        // Converged when the step moves the circle by less than 1e-9 of its radius.
-        improved = t * step.norm() > 1e-9 * r;
-        break;
-      }
-    }
-    if (!improved) break;
+    if (!step.allFinite() || !(r + step[2] > 0.0)) break;
+    c += step.head<2>();
+    r += step[2];
+    if (step.norm() <= 1e-7 * r) break;  // converged: the circle moved by < 1e-7 of its radius
   }
   if (!c.allFinite() || !std::isfinite(r)) return false;
   *centre = c;
@@ -176,7 +188,7 @@ struct Scorer {
     for (auto i : idx) {
       Vec2 d = pts[i] - c;
       if (!(std::abs(d.norm() - r) <= t)) continue;
-      double deg = std::atan2(d.y(), d.x()) * (180.0 / M_PI) + 180.0;
+      double deg = fastAngleDeg(d.y(), d.x());
       ++hit[std::min(bins - 1, int(deg / opt.arcBinDegrees))];
     }
     const double floor = 0.25 * *std::max_element(hit.begin(), hit.end());

@@ -83,6 +83,7 @@ struct EvalRow {
 /// What a method returns: the reconstructed mesh, the sketch node counts and its time.
 struct MethodOutput {
   geom::TriMesh mesh;
+  sketch::Sketch sketch;  ///< the sketch the mesh was built from (what a user would refine)
   int nodes = 0;
   int fitted = 0;
   double ms = 0.0;

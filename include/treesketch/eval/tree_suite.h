@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "treesketch/gen/tree_generator.h"
 #include "treesketch/geom/tri_mesh.h"
 #include "treesketch/geom/types.h"
 #include "treesketch/sketch/polyline_sketch.h"
@@ -23,6 +24,9 @@ struct TreeCase {
   std::vector<std::vector<double>> axisRadii;   ///< radius at each axis vertex (same shape as axes)
   geom::UpAxis up = geom::UpAxis::Y;
 };
+
+/// A generated tree as a test case (axes = the skeleton's branch centre lines).
+TreeCase treeCaseFromGenerated(const std::string& name, const gen::GeneratedTree& tree);
 
 /// `count` trees from the built-in generator: presets "default", "sparse", "conifer" cycling,
 /// seeds 1, 2, 3...; with leaves. Deterministic.
