@@ -9,10 +9,9 @@
 //   build-xxx/bench_compare --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
+#include <sys/resource.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-
-#include <sys/resource.h>
 
 #include <cmath>
 #include <cstdio>
@@ -52,16 +51,21 @@ struct CpuCounter {
 
 const TriMesh& target() {
   static const TriMesh mesh = [] {
+    // The default tree at detail 2 (~77k triangles), with more vertices per ring until it has
+    // ~100k triangles.
     treesketch::gen::TreeOptions o = treesketch::gen::presetOptions("default");
     o.leaves = false;
+    o.detail = 2;
+    const std::vector<treesketch::gen::LevelOptions> base = o.levels;
     TriMesh m;
-    for (int detail = 1; detail <= 12; ++detail) {
-      o.detail = detail;
+    for (double f = 1.0; f < 3.0; f += 0.05) {
+      for (std::size_t l = 0; l < base.size(); ++l)
+        o.levels[l].segments = std::max(3, static_cast<int>(std::lround(base[l].segments * f)));
       m = treesketch::gen::generateTree(o).branches.mesh;
-      if (m.triangles.size() >= 90'000) break;
+      if (m.triangles.size() >= 95'000) break;
     }
-    std::fprintf(stderr, "target: generated tree, detail %d, %zu triangles, %zu vertices, diagonal %.3f m\n",
-                 o.detail, m.triangles.size(), m.vertices.size(), m.bounds().diagonal());
+    std::fprintf(stderr, "target: generated tree, detail %d, %zu triangles, %zu vertices, diagonal %.3f m\n", o.detail,
+                 m.triangles.size(), m.vertices.size(), m.bounds().diagonal());
     return m;
   }();
   return mesh;
@@ -131,9 +135,15 @@ void BM_TreesketchQueryAll(benchmark::State& state) {
 }
 // Args: Morton order, warm start, displacement of the queries in thousandths of the diagonal.
 BENCHMARK(BM_TreesketchQueryAll)
-    ->Args({1, 1, 10})->Args({1, 0, 10})->Args({0, 1, 10})->Args({0, 0, 10})
-    ->Args({1, 1, 0})->Args({1, 1, 1})->Args({1, 1, 30})
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Args({1, 1, 10})
+    ->Args({1, 0, 10})
+    ->Args({0, 1, 10})
+    ->Args({0, 0, 10})
+    ->Args({1, 1, 0})
+    ->Args({1, 1, 1})
+    ->Args({1, 1, 30})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // ---- raw Embree point query --------------------------------------------------------------------
 
@@ -147,8 +157,8 @@ struct EmbreeTarget {
     if (!device) throw std::runtime_error("embree device");
     scene = rtcNewScene(device);
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), m.vertices.size()));
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.vertices.size()));
     for (std::size_t i = 0; i < m.vertices.size(); ++i)
       for (int k = 0; k < 3; ++k) v[3 * i + k] = static_cast<float>(m.vertices[i][k]);
     auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
@@ -220,8 +230,13 @@ void BM_EmbreePointQuery(benchmark::State& state) {
 }
 // Args: Morton order, displacement of the queries in thousandths of the diagonal.
 BENCHMARK(BM_EmbreePointQuery)
-    ->Args({0, 10})->Args({1, 10})->Args({1, 0})->Args({1, 1})->Args({1, 30})
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Args({0, 10})
+    ->Args({1, 10})
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({1, 30})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 #ifdef TS_HAVE_COMPARE
 // The whole one-direction comparison (sampling + queries + statistics) of the displaced samples'

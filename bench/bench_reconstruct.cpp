@@ -152,6 +152,26 @@ void BM_EditOneNode(benchmark::State& state) {
 }
 BENCHMARK(BM_EditOneNode)->Arg(0)->Arg(5)->Arg(17)->ArgName("node")->Unit(benchmark::kMillisecond);
 
+// The pieces of one trunk node's fit: the test-region query, the whole fit, the thesis's scan.
+void BM_NodePieces(benchmark::State& state) {
+  const Scene& sc = scene();
+  static const treesketch::fit::CloudIndex index(sc.cloud);
+  const sketch::NodeId id = sc.ids[3];
+  const auto g = sc.sketch.geometry(id);
+  const auto& p = sc.sketch.node(id).params;
+  const int what = int(state.range(0));
+  for (auto _ : state) {
+    if (what == 0) {
+      benchmark::DoNotOptimize(index.query(treesketch::fit::testRegion(g, p, p.lineEpsilon)).size());
+    } else if (what == 1) {
+      benchmark::DoNotOptimize(treesketch::fit::fitNode(index, g, p).radius);
+    } else {
+      benchmark::DoNotOptimize(index.queryBruteForce(treesketch::fit::slabRegion(g, p)).size());
+    }
+  }
+}
+BENCHMARK(BM_NodePieces)->Arg(0)->Arg(1)->Arg(2)->ArgName("query_fit_scan")->Unit(benchmark::kMicrosecond);
+
 void BM_BuildIndex(benchmark::State& state) {
   const Scene& sc = scene();
   for (auto _ : state) {

@@ -90,15 +90,15 @@ void printRow(const char* name, const compare::DistanceReport& r) {
 }
 
 void runCompare(const CompareArgs& args) {
-  if (!args.range.empty() && args.range.size() != 2)
-    throw OptionsError("--range takes two values: MIN MAX (metres)");
+  if (!args.range.empty() && args.range.size() != 2) throw OptionsError("--range takes two values: MIN MAX (metres)");
   if (args.range.size() == 2 && !(args.range[0] <= args.range[1]))
     throw OptionsError("--range: MIN must not exceed MAX");
   if (!args.json.empty()) checkNotAnInput(args.json, {args.a, args.b});
   if (!args.errorMesh.empty()) {
     checkNotAnInput(args.errorMesh, {args.a, args.b});
     if (lowerExtension(args.errorMesh) != ".ply")
-      throw OptionsError("--error-mesh " + args.errorMesh + ": must be a .ply file (OBJ cannot hold colour and quality)");
+      throw OptionsError("--error-mesh " + args.errorMesh +
+                         ": must be a .ply file (OBJ cannot hold colour and quality)");
   }
 
   const geom::TriMesh a = io::readMesh(args.a);
@@ -155,13 +155,16 @@ void runCompare(const CompareArgs& args) {
     j["a"] = args.a;
     j["b"] = args.b;
     j["seed"] = args.seed;
-    writeFileAtomically(args.json, [&](std::ostream& out) { out << j.dump(2) << "\n"; }, false);
+    writeFileAtomically(
+        args.json, [&](std::ostream& out) { out << j.dump(2) << "\n"; }, false);
   }
   if (!args.errorMesh.empty()) {
     // A's vertex samples give their distances; the vertices not sampled are measured now.
     std::vector<double> d = compare::vertexDistancesFromReport(f, a.vertices.size());
-    if (b.isMesh) compare::fillVertexDistances(a, b.mesh, f.maxDistance, d);
-    else compare::fillVertexDistances(a, b.cloud, f.maxDistance, d);
+    if (b.isMesh)
+      compare::fillVertexDistances(a, b.mesh, f.maxDistance, d);
+    else
+      compare::fillVertexDistances(a, b.cloud, f.maxDistance, d);
     compare::ErrorMeshOptions eo;
     if (args.range.size() == 2) {
       eo.rangeMin = args.range[0];

@@ -12,6 +12,8 @@
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/recon/reconstruction.h"
+#include "treesketch/skeleton/skeleton_export.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
 
@@ -24,6 +26,8 @@ struct ReconstructArgs {
   int ring = 16;
   double inlierThreshold = -1.0;  // < 0: library default
   std::uint64_t seed = 1;
+  bool autoSkeleton = false;        // --auto: sketch from the cloud's skeleton (skeleton module)
+  std::string up = "y", cylinders;  // --up, --cylinders (with --auto)
 };
 
 nlohmann::json vec(const geom::Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
@@ -70,7 +74,40 @@ nlohmann::json reportJson(const ReconstructArgs& a, const recon::ReconstructionR
   return root;
 }
 
+/// --auto: skeleton → sketch → fits → regularised radii → mesh; the sketch is saved to --sketch
+/// (when given) for refining, the cylinder table to --cylinders.
+void runAutoReconstruct(const ReconstructArgs& a) {
+  checkNotAnInput(a.output, {a.cloud});
+  if (!a.sketch.empty()) checkNotAnInput(a.sketch, {a.cloud});
+  if (!a.report.empty()) throw OptionsError("--report is not available with --auto");
+  try {
+    io::meshFormatFromPath(a.output);
+  } catch (const InputError& e) {
+    throw OptionsError(std::string("-o: ") + e.what());
+  }
+  skeleton::AutoSkeletonOptions opt;
+  opt.skeleton.up = geom::parseUpAxis(a.up);
+  opt.seed = a.seed;
+  opt.ringVertices = a.ring;
+  if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;
+  geom::PointCloud cloud = io::readPointCloud(a.cloud);
+  if (cloud.empty()) throw InputError(a.cloud + ": the cloud has no points");
+  skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(cloud, opt);
+  if (r.mesh.empty()) throw InputError(a.cloud + ": no skeleton found; no mesh written");
+  io::writeMesh(a.output, r.mesh);
+  if (!a.sketch.empty()) io::writeSketch(std::filesystem::path(a.sketch), r.sketch);
+  if (!a.cylinders.empty()) skeleton::writeCylinderCsv(a.cylinders, r.model);
+  std::size_t accepted = 0;
+  for (char c : r.fitAccepted) accepted += c != 0;
+  std::printf("reconstruct --auto: %zu skeleton nodes (%zu forks), %zu fits accepted; %zu vertices, %zu triangles; "
+              "skeleton %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
+              r.model.size(), skeleton::countBranchPoints(r.model), accepted, r.mesh.vertices.size(),
+              r.mesh.triangles.size(), r.skeletonMs, r.fitMs, r.sweepMs, a.output.c_str());
+}
+
 void runReconstruct(const ReconstructArgs& a) {
+  if (a.autoSkeleton) return runAutoReconstruct(a);
+  if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
   checkNotAnInput(a.output, {a.cloud, a.sketch});
   if (!a.report.empty()) checkNotAnInput(a.report, {a.cloud, a.sketch});
   try {
@@ -115,7 +152,11 @@ void registerReconstruct(CLI::App& app, Action& action) {
   auto* sub = app.add_subcommand("reconstruct", "Fit a circle at every sketch node and sweep the tube mesh");
   auto a = std::make_shared<ReconstructArgs>();
   sub->add_option("cloud", a->cloud, "Point cloud (.ply .xyz .txt .csv .pts .las)")->required();
-  sub->add_option("--sketch", a->sketch, "Sketch file (.json)")->required();
+  sub->add_option("--sketch", a->sketch, "Sketch file (.json); with --auto, where to save the automatic sketch");
+  sub->add_flag("--auto", a->autoSkeleton, "Sketch automatically from the cloud's branching skeleton");
+  sub->add_option("--up", a->up, "With --auto: world up axis, y or z (default y)")
+      ->check(CLI::IsMember({"y", "z", "Y", "Z"}));
+  sub->add_option("--cylinders", a->cylinders, "With --auto: also write the cylinder table (.csv)");
   sub->add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
   sub->add_option("--report", a->report, "Write a JSON report of every node's fit");
   sub->add_option("--ring", a->ring, "Vertices per ring (default 16)")->check(CLI::Range(3, 4096));

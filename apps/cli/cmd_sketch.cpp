@@ -12,6 +12,7 @@
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/sketch/auto_sketch.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/sketch/view_camera.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
@@ -34,6 +35,13 @@ const std::map<std::string, AutoSketchMethod>& autoSketchMethods() {
   static const std::map<std::string, AutoSketchMethod> methods = {
       {"uniform",
        [](const AutoSketchInput& in) { return sketch::uniformAutoSketch(in.cloud, in.camera, in.nodes, in.up); }},
+      // The branching skeleton found from the cloud (skeleton module); --nodes and --view are not used.
+      {"skeleton",
+       [](const AutoSketchInput& in) {
+         skeleton::SkeletonOptions o;
+         o.up = in.up;
+         return skeleton::skeletonToSketch(skeleton::extractSkeleton(in.cloud, o));
+       }},
   };
   return methods;
 }

@@ -171,7 +171,7 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   if (ImGui::CollapsingHeader("Help", panel.showHelp ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextDisabled(
-        "Left click: add a node (child of the active one) / select a node. Left drag on a node: move it. "
+        "Left click: add a node (child of the active one) / select a node and make it active (Ctrl: only select). Left drag on a node: move it. "
         "Right drag: orbit. Middle or Shift+right drag: pan. Wheel: zoom. Delete: remove node "
         "(Shift: with subtree). Ctrl+Z / Ctrl+Y: undo / redo. 1 2 3: front, side, top. F: fit. O: ortho.");
     ImGui::PopTextWrapPos();

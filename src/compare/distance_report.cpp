@@ -63,14 +63,12 @@ nlohmann::json toJson(const DistanceReport& r) {
                   {"face", r.faceSamples}};
   j["diagonal"] = number(r.diagonal);
   j["maxDistance"] = number(r.maxDistance);
-  for (auto [name, value] : {std::pair<const char*, double>{"min", r.min}, {"max", r.max}, {"mean", r.mean},
-                             {"rms", r.rms}}) {
+  for (auto [name, value] :
+       {std::pair<const char*, double>{"min", r.min}, {"max", r.max}, {"mean", r.mean}, {"rms", r.rms}}) {
     j[name] = number(value);
     j[std::string(name) + "Percent"] = number(r.percent(value));
   }
-  j["histogram"] = {{"min", number(r.histogram.min)},
-                    {"max", number(r.histogram.max)},
-                    {"counts", r.histogram.counts}};
+  j["histogram"] = {{"min", number(r.histogram.min)}, {"max", number(r.histogram.max)}, {"counts", r.histogram.counts}};
   if (!r.distances.empty()) {
     nlohmann::json d = nlohmann::json::array(), k = nlohmann::json::array();
     for (double x : r.distances) d.push_back(number(x));

@@ -52,9 +52,12 @@ geom::TriMesh makeErrorMesh(const geom::TriMesh& mesh, const std::vector<double>
   for (std::size_t i = 0; i < vertexDistance.size(); ++i) {
     const double d = vertexDistance[i];
     double t;
-    if (!std::isfinite(d)) t = 1;
-    else if (hi > lo) t = (d - lo) / (hi - lo);
-    else t = d <= lo ? 0 : 1;
+    if (!std::isfinite(d))
+      t = 1;
+    else if (hi > lo)
+      t = (d - lo) / (hi - lo);
+    else
+      t = d <= lo ? 0 : 1;
     out.colors[i] = rampColor(t);
   }
   return out;

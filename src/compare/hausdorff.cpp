@@ -57,8 +57,7 @@ double searchDistance(const CompareOptions& o, double diagonal) {
 }
 
 template <class Index>
-DistanceReport measure(const SurfaceSamples& samples, double diagonal, const Index& index,
-                       const CompareOptions& o) {
+DistanceReport measure(const SurfaceSamples& samples, double diagonal, const Index& index, const CompareOptions& o) {
   const double maxDistance = searchDistance(o, diagonal);
   std::vector<accel::ClosestHit> hits = index.queryAll(samples.points, maxDistance, o.progress);
   std::vector<double> d(hits.size());

@@ -16,9 +16,12 @@ using geom::Vec3;
 
 const char* toString(SampleKind kind) {
   switch (kind) {
-    case SampleKind::Vertex: return "vertex";
-    case SampleKind::Edge: return "edge";
-    case SampleKind::Face: return "face";
+    case SampleKind::Vertex:
+      return "vertex";
+    case SampleKind::Edge:
+      return "edge";
+    case SampleKind::Face:
+      return "face";
   }
   return "?";
 }
@@ -29,7 +32,8 @@ namespace {
 // not, so the conversions are done here.
 struct Rng {
   std::mt19937_64 engine;
-  Rng(std::uint64_t seed, std::uint64_t stream) : engine(seed * 0x9E3779B97F4A7C15ULL + stream * 0xD1B54A32D192ED03ULL) {}
+  Rng(std::uint64_t seed, std::uint64_t stream)
+      : engine(seed * 0x9E3779B97F4A7C15ULL + stream * 0xD1B54A32D192ED03ULL) {}
   /// Uniform in [0, 1).
   double uniform() { return static_cast<double>(engine() >> 11) * 0x1.0p-53; }
   /// Uniform in [0, n), n > 0 (modulo bias below 2^-40 for n < 2^24: negligible here).
@@ -62,7 +66,8 @@ void sampleVertices(const geom::TriMesh& mesh, std::uint64_t count, std::uint64_
   std::vector<std::int64_t> pool;
   for (std::size_t i = 0; i < used.size(); ++i)
     if (used[i]) pool.push_back(static_cast<std::int64_t>(i));
-  for (std::int64_t v : chooseSubset(std::move(pool), count, seed)) addSample(out, mesh.vertices[v], SampleKind::Vertex, v);
+  for (std::int64_t v : chooseSubset(std::move(pool), count, seed))
+    addSample(out, mesh.vertices[v], SampleKind::Vertex, v);
   out.vertexSamples = out.points.size();
 }
 

@@ -127,7 +127,7 @@ bool fitCircleLeastSquares(const std::vector<Vec2>& pts, const std::vector<std::
     if (!step.allFinite() || !(r + step[2] > 0.0)) break;
     c += step.head<2>();
     r += step[2];
-    if (step.norm() <= 1e-7 * r) break;  // converged: the circle moved by < 1e-7 of its radius
+    if (step.norm() <= 1e-6 * r) break;  // converged: the circle moved by < 1e-6 of its radius
   }
   if (!c.allFinite() || !std::isfinite(r)) return false;
   *centre = c;
@@ -150,8 +150,10 @@ void checkOptions(const CircleFitOptions& o) {
   if (o.maxIterations < 1 || o.minIterations < 0) bad("iteration bounds must be positive");
   if (!(o.minArcDegrees >= 0.0 && o.minArcDegrees <= 360.0)) bad("minArcDegrees must be in [0, 360]");
   if (!(o.arcBinDegrees > 0.0 && o.arcBinDegrees <= 360.0)) bad("arcBinDegrees must be in (0, 360]");
-  if (o.maxScoringPoints < 0 || o.refineIterations < 0 || o.refineRounds < 0) bad("counts must be >= 0");
+  if (o.maxScoringPoints < 0 || o.maxRefinePoints < 0 || o.refineIterations < 0 || o.refineRounds < 0) bad("counts must be >= 0");
 }
+
+constexpr std::size_t kCoveragePoints = 256;
 
 struct Scorer {
   const std::vector<Vec2>& pts;
@@ -185,8 +187,10 @@ struct Scorer {
     const int bins = std::max(1, int(std::ceil(360.0 / opt.arcBinDegrees)));
     std::vector<int> hit(std::size_t(bins), 0);
     double t = threshold(r);
-    for (auto i : idx) {
-      Vec2 d = pts[i] - c;
+    // A strided subsample of at most kCoveragePoints points is plenty for 10° bins.
+    const std::size_t stride = std::max<std::size_t>(1, idx.size() / kCoveragePoints);
+    for (std::size_t k = 0; k < idx.size(); k += stride) {
+      Vec2 d = pts[idx[k]] - c;
       if (!(std::abs(d.norm() - r) <= t)) continue;
       double deg = fastAngleDeg(d.y(), d.x());
       ++hit[std::min(bins - 1, int(deg / opt.arcBinDegrees))];
@@ -285,10 +289,17 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   for (int round = 0; round < options.refineRounds; ++round) {
     Vec2 c2 = c;
     double r2 = r;
-    if (!fitCircleLeastSquares(points, inl, options.refineIterations, &c2, &r2)) break;
+    const std::vector<std::uint32_t>* fitSet = &inl;
+    std::vector<std::uint32_t> strided;
+    if (options.maxRefinePoints > 0 && inl.size() > std::size_t(options.maxRefinePoints)) {
+      const double step = double(inl.size()) / double(options.maxRefinePoints);
+      for (int k = 0; k < options.maxRefinePoints; ++k) strided.push_back(inl[std::size_t(k * step)]);
+      fitSet = &strided;
+    }
+    if (!fitCircleLeastSquares(points, *fitSet, options.refineIterations, &c2, &r2)) break;
     if (!scorer.admissible(c2, r2)) break;  // keep the last admissible circle
     auto inl2 = scorer.inliers(n, c2, r2);
-    if (inl2.size() < 3 || !scorer.enoughArc(inl2, c2, r2)) break;
+    if (inl2.size() < 3) break;
     bool same = inl2 == inl;
     c = c2;
     r = r2;

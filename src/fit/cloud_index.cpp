@@ -184,14 +184,15 @@ void CloudIndex::forEachCandidateCell(const SliceRegion& region, Visit&& visit) 
 
 namespace {
 
-std::vector<std::uint32_t> finish(std::vector<std::pair<std::uint32_t, std::uint32_t>>& hits,
-                                  const std::vector<Vec3>& sorted, std::vector<Vec3>* positions) {
+// Hits as (original id << 32 | sorted slot): sorting the keys orders by original id.
+std::vector<std::uint32_t> finish(std::vector<std::uint64_t>& hits, const std::vector<Vec3>& sorted,
+                                  std::vector<Vec3>* positions) {
   std::sort(hits.begin(), hits.end());
   std::vector<std::uint32_t> out(hits.size());
-  for (std::size_t i = 0; i < hits.size(); ++i) out[i] = hits[i].first;
+  for (std::size_t i = 0; i < hits.size(); ++i) out[i] = std::uint32_t(hits[i] >> 32);
   if (positions) {
     positions->resize(hits.size());
-    for (std::size_t i = 0; i < hits.size(); ++i) (*positions)[i] = sorted[hits[i].second];
+    for (std::size_t i = 0; i < hits.size(); ++i) (*positions)[i] = sorted[std::uint32_t(hits[i])];
   }
   return out;
 }
@@ -200,19 +201,19 @@ std::vector<std::uint32_t> finish(std::vector<std::pair<std::uint32_t, std::uint
 
 std::vector<std::uint32_t> CloudIndex::query(const SliceRegion& region, std::vector<Vec3>* positions) const {
   region.validate();
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> hits;
+  std::vector<std::uint64_t> hits;
   forEachCandidateCell(region, [&](std::size_t cell) {
     for (std::uint32_t s = cellStart_[cell]; s < cellStart_[cell + 1]; ++s)
-      if (region.contains(sorted_[s])) hits.emplace_back(ids_[s], s);
+      if (region.contains(sorted_[s])) hits.push_back(std::uint64_t(ids_[s]) << 32 | s);
   });
   return finish(hits, sorted_, positions);
 }
 
 std::vector<std::uint32_t> CloudIndex::queryBruteForce(const SliceRegion& region, std::vector<Vec3>* positions) const {
   region.validate();
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> hits;
+  std::vector<std::uint64_t> hits;
   for (std::size_t s = 0; s < sorted_.size(); ++s)
-    if (region.contains(sorted_[s])) hits.emplace_back(ids_[s], std::uint32_t(s));
+    if (region.contains(sorted_[s])) hits.push_back(std::uint64_t(ids_[s]) << 32 | s);
   return finish(hits, sorted_, positions);
 }
 

@@ -25,8 +25,10 @@ std::string describe(const PlyElement& e) {
   for (std::size_t i = 0; i < e.properties.size(); ++i) {
     const PlyProperty& p = e.properties[i];
     if (i) s += ", ";
-    if (p.isList) s += std::string("list ") + toString(p.countType) + " " + toString(p.type) + " " + p.name;
-    else s += std::string(toString(p.type)) + " " + p.name;
+    if (p.isList)
+      s += std::string("list ") + toString(p.countType) + " " + toString(p.type) + " " + p.name;
+    else
+      s += std::string(toString(p.type)) + " " + p.name;
   }
   return s + ")";
 }

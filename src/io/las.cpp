@@ -16,8 +16,8 @@ namespace {
 // Byte offsets in the public header block.
 constexpr std::size_t kOffVersionMajor = 24, kOffVersionMinor = 25, kOffSystemId = 26, kOffSoftware = 58,
                       kOffHeaderSize = 94, kOffPointDataOffset = 96, kOffNumVlrs = 100, kOffPointFormat = 104,
-                      kOffRecordLength = 105, kOffLegacyCount = 107, kOffScale = 131, kOffOffset = 155,
-                      kOffMaxX = 179, kOffPointCount64 = 247;
+                      kOffRecordLength = 105, kOffLegacyCount = 107, kOffScale = 131, kOffOffset = 155, kOffMaxX = 179,
+                      kOffPointCount64 = 247;
 constexpr std::size_t kHeaderSize12 = 227, kHeaderSize13 = 235, kHeaderSize14 = 375;
 
 std::string fixedString(std::string_view data, std::size_t off, std::size_t n) {
@@ -44,11 +44,12 @@ std::uint16_t lasMinRecordLength(int pointFormat) {
 LasHeader parseLasHeader(std::string_view data, const std::string& source) {
   if (data.empty()) throw InputError(source + ": file is empty, expected a LAS file starting with 'LASF'");
   if (data.size() < 4 || data.substr(0, 4) != "LASF")
-    throw InputError(atOffset(source, 0, "bad signature " + detail::quoted(data.substr(0, 4)) +
-                                             ", expected 'LASF' (not a LAS file)"));
+    throw InputError(atOffset(
+        source, 0, "bad signature " + detail::quoted(data.substr(0, 4)) + ", expected 'LASF' (not a LAS file)"));
   if (data.size() < kHeaderSize12)
-    throw InputError(atOffset(source, data.size(), "truncated header: " + std::to_string(data.size()) +
-                                                       " bytes, expected at least " + std::to_string(kHeaderSize12)));
+    throw InputError(atOffset(source, data.size(),
+                              "truncated header: " + std::to_string(data.size()) + " bytes, expected at least " +
+                                  std::to_string(kHeaderSize12)));
   LasHeader h;
   h.versionMajor = static_cast<std::uint8_t>(data[kOffVersionMajor]);
   h.versionMinor = static_cast<std::uint8_t>(data[kOffVersionMinor]);
@@ -65,13 +66,14 @@ LasHeader parseLasHeader(std::string_view data, const std::string& source) {
                               "header size " + std::to_string(h.headerSize) + " too small for LAS 1." +
                                   std::to_string(h.versionMinor) + ", expected at least " + std::to_string(need)));
   if (data.size() < h.headerSize)
-    throw InputError(atOffset(source, data.size(), "truncated header: expected " + std::to_string(h.headerSize) +
-                                                       " bytes of header"));
+    throw InputError(atOffset(source, data.size(),
+                              "truncated header: expected " + std::to_string(h.headerSize) + " bytes of header"));
   h.offsetToPointData = detail::loadLE<std::uint32_t>(data.data() + kOffPointDataOffset);
   h.numVlrs = detail::loadLE<std::uint32_t>(data.data() + kOffNumVlrs);
   std::uint8_t fmt = static_cast<std::uint8_t>(data[kOffPointFormat]);
-  if (fmt & 0xC0) throw InputError(lazNotSupportedMessage(source) + " (point format byte " + std::to_string(fmt) +
-                                   " has the compression bit set)");
+  if (fmt & 0xC0)
+    throw InputError(lazNotSupportedMessage(source) + " (point format byte " + std::to_string(fmt) +
+                     " has the compression bit set)");
   if (fmt > 10)
     throw InputError(atOffset(source, kOffPointFormat,
                               "unsupported point data record format " + std::to_string(fmt) + ", expected 0 to 10"));
@@ -79,8 +81,8 @@ LasHeader parseLasHeader(std::string_view data, const std::string& source) {
   h.recordLength = detail::loadLE<std::uint16_t>(data.data() + kOffRecordLength);
   if (h.recordLength < lasMinRecordLength(fmt))
     throw InputError(atOffset(source, kOffRecordLength,
-                              "point record length " + std::to_string(h.recordLength) + " is too short for point format " +
-                                  std::to_string(fmt) + ", expected at least " +
+                              "point record length " + std::to_string(h.recordLength) +
+                                  " is too short for point format " + std::to_string(fmt) + ", expected at least " +
                                   std::to_string(lasMinRecordLength(fmt))));
   h.legacyPointCount = detail::loadLE<std::uint32_t>(data.data() + kOffLegacyCount);
   h.pointCount = h.legacyPointCount;
@@ -97,8 +99,7 @@ LasHeader parseLasHeader(std::string_view data, const std::string& source) {
   for (int k = 0; k < 3; ++k) {
     if (!std::isfinite(h.scale[k]) || h.scale[k] == 0)
       throw InputError(atOffset(source, kOffScale + 8 * k, "scale factor must be finite and non-zero"));
-    if (!std::isfinite(h.offset[k]))
-      throw InputError(atOffset(source, kOffOffset + 8 * k, "offset must be finite"));
+    if (!std::isfinite(h.offset[k])) throw InputError(atOffset(source, kOffOffset + 8 * k, "offset must be finite"));
   }
   if (h.offsetToPointData < h.headerSize)
     throw InputError(atOffset(source, kOffPointDataOffset,
@@ -126,8 +127,8 @@ geom::PointCloud parseLas(std::string_view data, const std::string& source, cons
   LasHeader h = parseLasHeader(data, source);
   if (headerOut) *headerOut = h;
   if (h.offsetToPointData > data.size())
-    throw InputError(atOffset(source, data.size(), "truncated: point data should start at byte " +
-                                                       std::to_string(h.offsetToPointData)));
+    throw InputError(atOffset(source, data.size(),
+                              "truncated: point data should start at byte " + std::to_string(h.offsetToPointData)));
   std::size_t avail = (data.size() - h.offsetToPointData) / h.recordLength;
   if (h.pointCount > avail)
     throw InputError(atOffset(source, h.offsetToPointData + avail * h.recordLength,

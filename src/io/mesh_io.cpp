@@ -30,8 +30,10 @@ void writeMesh(const std::filesystem::path& path, const geom::TriMesh& mesh) {
 }
 
 void writeMesh(std::ostream& out, MeshFormat format, const geom::TriMesh& mesh) {
-  if (format == MeshFormat::Obj) writeObj(out, mesh);
-  else writePlyMesh(out, mesh);
+  if (format == MeshFormat::Obj)
+    writeObj(out, mesh);
+  else
+    writePlyMesh(out, mesh);
 }
 
 }  // namespace treesketch::io

@@ -25,11 +25,11 @@ inline std::string_view nextWord(const char*& p, const char* e) {
 }
 
 bool isIgnorable(std::string_view k) {
-  static const char* kIgnored[] = {"vt",    "vn",   "vp",   "usemtl", "mtllib", "g",     "o",      "s",
-                                   "l",     "p",    "cstype", "deg",  "bmat",   "step",  "curv",   "curv2",
-                                   "surf",  "parm", "trim", "hole",   "scrv",   "sp",    "end",    "con",
-                                   "mg",    "bevel", "c_interp", "d_interp", "lod", "maplib", "usemap",
-                                   "shadow_obj", "trace_obj", "ctech", "stech"};
+  static const char* kIgnored[] = {"vt",   "vn",     "vp",     "usemtl",     "mtllib",    "g",        "o",
+                                   "s",    "l",      "p",      "cstype",     "deg",       "bmat",     "step",
+                                   "curv", "curv2",  "surf",   "parm",       "trim",      "hole",     "scrv",
+                                   "sp",   "end",    "con",    "mg",         "bevel",     "c_interp", "d_interp",
+                                   "lod",  "maplib", "usemap", "shadow_obj", "trace_obj", "ctech",    "stech"};
   for (const char* s : kIgnored)
     if (k == s) return true;
   return false;
@@ -47,7 +47,9 @@ ObjData parseObj(std::string_view data, const std::string& source, ObjStats* sta
   const char* p = data.data();
   const char* end = p + data.size();
   std::size_t lineNo = 0;
-  auto shown = [](const char* b, const char* e) { return detail::quoted(std::string_view(b, static_cast<std::size_t>(e - b))); };
+  auto shown = [](const char* b, const char* e) {
+    return detail::quoted(std::string_view(b, static_cast<std::size_t>(e - b)));
+  };
   while (p < end) {
     const char* nl = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
     const char* le = nl ? nl : end;
@@ -93,19 +95,23 @@ ObjData parseObj(std::string_view data, const std::string& source, ObjStats* sta
                                       std::to_string(nv) + " or -1..-" + std::to_string(nv) +
                                       " (vertices defined so far)"));
         auto cur = static_cast<std::uint32_t>(zeroBased);
-        if (corners == 0) first = cur;
-        else if (corners >= 2) out.triangles.push_back({first, prev, cur});
+        if (corners == 0)
+          first = cur;
+        else if (corners >= 2)
+          out.triangles.push_back({first, prev, cur});
         prev = cur;
         ++corners;
       }
       if (corners < 3)
-        throw InputError(atLine(source, lineNo, "face with " + std::to_string(corners) + " corners, expected at least 3"));
+        throw InputError(
+            atLine(source, lineNo, "face with " + std::to_string(corners) + " corners, expected at least 3"));
       if (corners > 3) ++stats.nonTriangles;
     } else if (isIgnorable(key)) {
       ++stats.ignoredLines;
     } else {
-      throw InputError(atLine(source, lineNo, "unknown OBJ keyword " + detail::quoted(key) +
-                                                  ", expected v, f, vt, vn, g, o, s, usemtl, mtllib, l or a comment"));
+      throw InputError(atLine(source, lineNo,
+                              "unknown OBJ keyword " + detail::quoted(key) +
+                                  ", expected v, f, vt, vn, g, o, s, usemtl, mtllib, l or a comment"));
     }
   }
   if (statsOut) *statsOut = stats;
@@ -176,7 +182,8 @@ void writeObj(std::ostream& out, const geom::TriMesh& mesh) {
 }
 
 void writeObj(const std::filesystem::path& path, const geom::TriMesh& mesh) {
-  writeFileAtomically(path, [&](std::ostream& out) { writeObj(out, mesh); }, true);
+  writeFileAtomically(
+      path, [&](std::ostream& out) { writeObj(out, mesh); }, true);
 }
 
 }  // namespace treesketch::io

@@ -20,13 +20,17 @@ using detail::quoted;
 std::size_t typeSize(PlyType t) {
   switch (t) {
     case PlyType::Int8:
-    case PlyType::UInt8: return 1;
+    case PlyType::UInt8:
+      return 1;
     case PlyType::Int16:
-    case PlyType::UInt16: return 2;
+    case PlyType::UInt16:
+      return 2;
     case PlyType::Int32:
     case PlyType::UInt32:
-    case PlyType::Float32: return 4;
-    case PlyType::Float64: return 8;
+    case PlyType::Float32:
+      return 4;
+    case PlyType::Float64:
+      return 8;
   }
   return 1;
 }
@@ -39,9 +43,9 @@ bool parseType(std::string_view s, PlyType& t) {
     const char* b;
     PlyType t;
   };
-  static const Name kNames[] = {{"char", "int8", PlyType::Int8},       {"uchar", "uint8", PlyType::UInt8},
-                                {"short", "int16", PlyType::Int16},    {"ushort", "uint16", PlyType::UInt16},
-                                {"int", "int32", PlyType::Int32},      {"uint", "uint32", PlyType::UInt32},
+  static const Name kNames[] = {{"char", "int8", PlyType::Int8},        {"uchar", "uint8", PlyType::UInt8},
+                                {"short", "int16", PlyType::Int16},     {"ushort", "uint16", PlyType::UInt16},
+                                {"int", "int32", PlyType::Int32},       {"uint", "uint32", PlyType::UInt32},
                                 {"float", "float32", PlyType::Float32}, {"double", "float64", PlyType::Float64}};
   for (const auto& n : kNames) {
     if (s == n.a || s == n.b) {
@@ -102,14 +106,22 @@ class Cursor {
     const char* q = data_.data() + pos_;
     pos_ += sz;
     switch (t) {
-      case PlyType::Int8: return static_cast<std::int8_t>(*q);
-      case PlyType::UInt8: return static_cast<std::uint8_t>(*q);
-      case PlyType::Int16: return detail::load<std::int16_t>(q, big_);
-      case PlyType::UInt16: return detail::load<std::uint16_t>(q, big_);
-      case PlyType::Int32: return detail::load<std::int32_t>(q, big_);
-      case PlyType::UInt32: return detail::load<std::uint32_t>(q, big_);
-      case PlyType::Float32: return detail::load<float>(q, big_);
-      case PlyType::Float64: return detail::load<double>(q, big_);
+      case PlyType::Int8:
+        return static_cast<std::int8_t>(*q);
+      case PlyType::UInt8:
+        return static_cast<std::uint8_t>(*q);
+      case PlyType::Int16:
+        return detail::load<std::int16_t>(q, big_);
+      case PlyType::UInt16:
+        return detail::load<std::uint16_t>(q, big_);
+      case PlyType::Int32:
+        return detail::load<std::int32_t>(q, big_);
+      case PlyType::UInt32:
+        return detail::load<std::uint32_t>(q, big_);
+      case PlyType::Float32:
+        return detail::load<float>(q, big_);
+      case PlyType::Float64:
+        return detail::load<double>(q, big_);
     }
     return 0;
   }
@@ -133,14 +145,14 @@ class Cursor {
   }
 
   void skipProperty(const PlyProperty& p) {
-    if (p.isList) skipValues(p.type, listCount(p.countType));
-    else skipValues(p.type, 1);
+    if (p.isList)
+      skipValues(p.type, listCount(p.countType));
+    else
+      skipValues(p.type, 1);
   }
 
   /// Binary only: skips `n` records of `recordSize` bytes.
-  void skipBytes(std::uint64_t n, std::size_t recordSize) {
-    pos_ += static_cast<std::size_t>(n) * recordSize;
-  }
+  void skipBytes(std::uint64_t n, std::size_t recordSize) { pos_ += static_cast<std::size_t>(n) * recordSize; }
 
   /// Binary, fixed-size records: throws unless `count` records of `recordSize` bytes follow.
   void requireRecords(std::uint64_t count, std::size_t recordSize) {
@@ -264,15 +276,24 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
     const PlyProperty& p = e.properties[i];
     if (p.isList) continue;
     Role r = kNone;
-    if (p.name == "x") r = kX;
-    else if (p.name == "y") r = kY;
-    else if (p.name == "z") r = kZ;
-    else if (cloudAttributes && p.name == "station") r = kStation;
-    else if (cloudAttributes && p.name == "mesh") r = kMesh;
-    else if (meshAttributes && (p.name == "red" || p.name == "r")) r = kRed;
-    else if (meshAttributes && (p.name == "green" || p.name == "g")) r = kGreen;
-    else if (meshAttributes && (p.name == "blue" || p.name == "b")) r = kBlue;
-    else if (meshAttributes && p.name == "quality") r = kQuality;
+    if (p.name == "x")
+      r = kX;
+    else if (p.name == "y")
+      r = kY;
+    else if (p.name == "z")
+      r = kZ;
+    else if (cloudAttributes && p.name == "station")
+      r = kStation;
+    else if (cloudAttributes && p.name == "mesh")
+      r = kMesh;
+    else if (meshAttributes && (p.name == "red" || p.name == "r"))
+      r = kRed;
+    else if (meshAttributes && (p.name == "green" || p.name == "g"))
+      r = kGreen;
+    else if (meshAttributes && (p.name == "blue" || p.name == "b"))
+      r = kBlue;
+    else if (meshAttributes && p.name == "quality")
+      r = kQuality;
     if (r != kNone && has[r]) r = kNone;  // a repeated name: the first one counts
     roles[i] = r;
     has[r] = true;
@@ -299,16 +320,35 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
       }
       double v = c.scalar(p.type);
       switch (roles[k]) {
-        case kX: pt.x() = v; break;
-        case kY: pt.y() = v; break;
-        case kZ: pt.z() = v; break;
-        case kStation: out.station.push_back(toInt32(c, v, "station")); break;
-        case kMesh: out.meshId.push_back(toInt32(c, v, "mesh")); break;
-        case kRed: rgb[0] = toColor(v, p.type); break;
-        case kGreen: rgb[1] = toColor(v, p.type); break;
-        case kBlue: rgb[2] = toColor(v, p.type); break;
-        case kQuality: out.quality.push_back(v); break;
-        case kNone: break;
+        case kX:
+          pt.x() = v;
+          break;
+        case kY:
+          pt.y() = v;
+          break;
+        case kZ:
+          pt.z() = v;
+          break;
+        case kStation:
+          out.station.push_back(toInt32(c, v, "station"));
+          break;
+        case kMesh:
+          out.meshId.push_back(toInt32(c, v, "mesh"));
+          break;
+        case kRed:
+          rgb[0] = toColor(v, p.type);
+          break;
+        case kGreen:
+          rgb[1] = toColor(v, p.type);
+          break;
+        case kBlue:
+          rgb[2] = toColor(v, p.type);
+          break;
+        case kQuality:
+          out.quality.push_back(v);
+          break;
+        case kNone:
+          break;
       }
     }
     if (!pt.allFinite()) c.failAtRecord("non-finite vertex coordinate (NaN or Inf), expected finite x, y, z");
@@ -382,23 +422,34 @@ const PlyElement* PlyHeader::find(std::string_view n) const {
 
 const char* toString(PlyFormat f) {
   switch (f) {
-    case PlyFormat::Ascii: return "ascii";
-    case PlyFormat::BinaryLittleEndian: return "binary_little_endian";
-    case PlyFormat::BinaryBigEndian: return "binary_big_endian";
+    case PlyFormat::Ascii:
+      return "ascii";
+    case PlyFormat::BinaryLittleEndian:
+      return "binary_little_endian";
+    case PlyFormat::BinaryBigEndian:
+      return "binary_big_endian";
   }
   return "?";
 }
 
 const char* toString(PlyType t) {
   switch (t) {
-    case PlyType::Int8: return "char";
-    case PlyType::UInt8: return "uchar";
-    case PlyType::Int16: return "short";
-    case PlyType::UInt16: return "ushort";
-    case PlyType::Int32: return "int";
-    case PlyType::UInt32: return "uint";
-    case PlyType::Float32: return "float";
-    case PlyType::Float64: return "double";
+    case PlyType::Int8:
+      return "char";
+    case PlyType::UInt8:
+      return "uchar";
+    case PlyType::Int16:
+      return "short";
+    case PlyType::UInt16:
+      return "ushort";
+    case PlyType::Int32:
+      return "int";
+    case PlyType::UInt32:
+      return "uint";
+    case PlyType::Float32:
+      return "float";
+    case PlyType::Float64:
+      return "double";
   }
   return "?";
 }
@@ -430,10 +481,14 @@ PlyHeader parsePlyHeader(std::string_view data, const std::string& source) {
       h.comments.emplace_back(rest);
     } else if (key == "format") {
       if (w.size() != 3) fail("expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'");
-      if (w[1] == "ascii") h.format = PlyFormat::Ascii;
-      else if (w[1] == "binary_little_endian") h.format = PlyFormat::BinaryLittleEndian;
-      else if (w[1] == "binary_big_endian") h.format = PlyFormat::BinaryBigEndian;
-      else fail("unsupported PLY format " + quoted(w[1]) + ", expected ascii, binary_little_endian or binary_big_endian");
+      if (w[1] == "ascii")
+        h.format = PlyFormat::Ascii;
+      else if (w[1] == "binary_little_endian")
+        h.format = PlyFormat::BinaryLittleEndian;
+      else if (w[1] == "binary_big_endian")
+        h.format = PlyFormat::BinaryBigEndian;
+      else
+        fail("unsupported PLY format " + quoted(w[1]) + ", expected ascii, binary_little_endian or binary_big_endian");
       if (w[2].substr(0, 2) != "1." && w[2] != "1") fail("unsupported PLY version " + quoted(w[2]) + ", expected 1.0");
       haveFormat = true;
     } else if (key == "element") {
@@ -451,12 +506,16 @@ PlyHeader parsePlyHeader(std::string_view data, const std::string& source) {
         if (w.size() != 5) fail("expected 'property list <count type> <item type> <name>'");
         if (!parseType(w[2], p.countType) || !isIntegerType(p.countType))
           fail("list count type " + quoted(w[2]) + " is not an integer PLY type");
-        if (!parseType(w[3], p.type)) fail("unknown PLY type " + quoted(w[3]) + ", expected char, uchar, short, ushort, int, uint, float, double (or int8 ... float64)");
+        if (!parseType(w[3], p.type))
+          fail("unknown PLY type " + quoted(w[3]) +
+               ", expected char, uchar, short, ushort, int, uint, float, double (or int8 ... float64)");
         p.isList = true;
         p.name = std::string(w[4]);
       } else {
         if (w.size() != 3) fail("expected 'property <type> <name>'");
-        if (!parseType(w[1], p.type)) fail("unknown PLY type " + quoted(w[1]) + ", expected char, uchar, short, ushort, int, uint, float, double (or int8 ... float64)");
+        if (!parseType(w[1], p.type))
+          fail("unknown PLY type " + quoted(w[1]) +
+               ", expected char, uchar, short, ushort, int, uint, float, double (or int8 ... float64)");
         p.name = std::string(w[2]);
       }
       h.elements.back().properties.push_back(std::move(p));
@@ -548,7 +607,9 @@ geom::PointCloud readPlyPointCloud(const std::filesystem::path& path, const Clou
 geom::TriMesh readPlyMesh(std::istream& in, const std::string& source) {
   return parsePlyMesh(detail::readAll(in, source), source);
 }
-geom::TriMesh readPlyMesh(const std::filesystem::path& path) { return parsePlyMesh(detail::readFile(path), path.string()); }
+geom::TriMesh readPlyMesh(const std::filesystem::path& path) {
+  return parsePlyMesh(detail::readFile(path), path.string());
+}
 
 namespace {
 
@@ -590,10 +651,12 @@ void writePlyMesh(std::ostream& out, const geom::TriMesh& mesh) {
   mesh.checkConsistent();
   bool col = !mesh.colors.empty(), qual = !mesh.quality.empty();
   std::string buf = "ply\nformat binary_little_endian 1.0\ncomment written by treesketch\nelement vertex " +
-                    std::to_string(mesh.vertices.size()) + "\nproperty double x\nproperty double y\nproperty double z\n";
+                    std::to_string(mesh.vertices.size()) +
+                    "\nproperty double x\nproperty double y\nproperty double z\n";
   if (col) buf += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   if (qual) buf += "property float quality\n";
-  buf += "element face " + std::to_string(mesh.triangles.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  buf += "element face " + std::to_string(mesh.triangles.size()) +
+         "\nproperty list uchar int vertex_indices\nend_header\n";
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const geom::Vec3& p = mesh.vertices[i];
     if (!p.allFinite()) throw OutputError("ply writer: vertex " + std::to_string(i) + " has a non-finite coordinate");

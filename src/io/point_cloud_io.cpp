@@ -26,9 +26,12 @@ CloudFormat cloudFormatFromPath(const std::filesystem::path& path) {
 geom::PointCloud readPointCloud(std::istream& in, const std::string& source, CloudFormat format,
                                 const CloudReadOptions& options) {
   switch (format) {
-    case CloudFormat::Ply: return readPlyPointCloud(in, source, options);
-    case CloudFormat::Xyz: return readXyz(in, source, options);
-    case CloudFormat::Las: return readLas(in, source, options);
+    case CloudFormat::Ply:
+      return readPlyPointCloud(in, source, options);
+    case CloudFormat::Xyz:
+      return readXyz(in, source, options);
+    case CloudFormat::Las:
+      return readLas(in, source, options);
     case CloudFormat::Obj: {
       geom::PointCloud c = readObjVertices(in, source);
       checkCloudSize(c, source, options.minPoints);
@@ -41,10 +44,14 @@ geom::PointCloud readPointCloud(std::istream& in, const std::string& source, Clo
 geom::PointCloud readPointCloud(const std::filesystem::path& path, const CloudReadOptions& options) {
   CloudFormat f = cloudFormatFromPath(path);
   switch (f) {
-    case CloudFormat::Ply: return readPlyPointCloud(path, options);
-    case CloudFormat::Xyz: return readXyz(path, options);
-    case CloudFormat::Las: return readLas(path, options);
-    case CloudFormat::Obj: break;
+    case CloudFormat::Ply:
+      return readPlyPointCloud(path, options);
+    case CloudFormat::Xyz:
+      return readXyz(path, options);
+    case CloudFormat::Las:
+      return readLas(path, options);
+    case CloudFormat::Obj:
+      break;
   }
   std::string data = detail::readFile(path);
   std::istringstream in(std::move(data));

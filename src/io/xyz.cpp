@@ -46,7 +46,7 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
     p = nl ? nl + 1 : end;
     ++lineNo;
     int n = splitFields(lineStart, lineEnd, f, 3);
-    if (n == 0) continue;                                                     // blank line
+    if (n == 0) continue;                                                             // blank line
     if (f[0][0] == '#' || (f[0].size() >= 2 && f[0].substr(0, 2) == "//")) continue;  // comment
     double v[3];
     bool numeric = n == 3;
@@ -56,12 +56,20 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
         ++headerLines;
         continue;
       }
-      throw InputError(atLine(source, lineNo,
-                              "expected 'x y z' (3 numbers separated by spaces, commas or semicolons), got " +
-                                  detail::quoted(std::string_view(lineStart, static_cast<std::size_t>(lineEnd - lineStart)))));
+      throw InputError(
+          atLine(source, lineNo,
+                 "expected 'x y z' (3 numbers separated by spaces, commas or semicolons), got " +
+                     detail::quoted(std::string_view(lineStart, static_cast<std::size_t>(lineEnd - lineStart)))));
     }
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
       throw InputError(atLine(source, lineNo, "non-finite coordinate (NaN or Inf), expected finite numbers"));
+    if (cloud.empty()) {
+      // "1,5;2,5;3,5" would silently read as 1 5 2: refuse decimal commas on the first point line.
+      std::string_view line(lineStart, static_cast<std::size_t>(lineEnd - lineStart));
+      if (line.find(';') != std::string_view::npos && line.find(',') != std::string_view::npos)
+        throw InputError(
+            atLine(source, lineNo, "line mixes ';' and ',' (decimal commas?); expected '.' as the decimal separator"));
+    }
     cloud.positions.emplace_back(v[0], v[1], v[2]);
   }
   if (cloud.empty()) {

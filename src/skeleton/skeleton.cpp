@@ -220,14 +220,37 @@ GeodesicLevels computeGeodesicLevels(const VoxelGraph& g, const SkeletonOptions&
   lv.vertexNode.assign(n, -1);
   if (n == 0) return lv;
 
+  // The tree: the connected set (bridges included) holding the most points.
+  std::vector<std::int32_t> label(n, -1);
+  std::vector<std::int64_t> labelPoints;
+  std::vector<std::uint32_t> stack;
+  for (std::size_t s = 0; s < n; ++s) {
+    if (label[s] >= 0) continue;
+    const auto id = static_cast<std::int32_t>(labelPoints.size());
+    labelPoints.push_back(0);
+    label[s] = id;
+    stack.assign(1, static_cast<std::uint32_t>(s));
+    while (!stack.empty()) {
+      const std::uint32_t v = stack.back();
+      stack.pop_back();
+      labelPoints[id] += g.pointCount[v];
+      for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k)
+        if (label[g.targets[k]] < 0) {
+          label[g.targets[k]] = id;
+          stack.push_back(g.targets[k]);
+        }
+    }
+  }
+  const auto mainLabel = static_cast<std::int32_t>(
+      std::max_element(labelPoints.begin(), labelPoints.end()) - labelPoints.begin());
   double lowest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i)
-    if (g.piece[i] == 0) lowest = std::min(lowest, geom::height(g.positions[i], options.up));
+    if (label[i] == mainLabel) lowest = std::min(lowest, geom::height(g.positions[i], options.up));
   const double rootTop = lowest + options.rootHeightVoxels * g.voxelSize;
   using Item = std::pair<double, std::uint32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
   for (std::size_t i = 0; i < n; ++i) {
-    if (g.piece[i] == 0 && geom::height(g.positions[i], options.up) <= rootTop) {
+    if (label[i] == mainLabel && geom::height(g.positions[i], options.up) <= rootTop) {
       lv.rootVertices.push_back(static_cast<std::uint32_t>(i));
       lv.distance[i] = 0;
       queue.emplace(0.0, static_cast<std::uint32_t>(i));

@@ -122,11 +122,16 @@ void Sketch::insertRaw(const Node& node) {
   Node n = node;
   n.children.clear();
   // Children inserted before their parent are collected here (in id order); later ones append.
-  for (const auto& [id, other] : nodes_)
-    if (other.parent == n.id) n.children.push_back(id);
+  // The scan only runs while such waiting children may exist (readers insert parents first).
+  if (waitingChildren_ > 0) {
+    for (const auto& [id, other] : nodes_)
+      if (other.parent == n.id) n.children.push_back(id);
+    waitingChildren_ -= std::min(waitingChildren_, n.children.size());
+  }
   if (n.parent != kNoNode) {
     auto it = nodes_.find(n.parent);
     if (it != nodes_.end()) it->second.children.push_back(n.id);
+    else ++waitingChildren_;
   }
   nextId_ = std::max(nextId_, n.id + 1);
   nodes_.emplace(n.id, std::move(n));

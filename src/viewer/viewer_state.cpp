@@ -528,6 +528,7 @@ void ViewerState::mouseDown(const Vec2& pos, MouseButton button, int mods) {
   if (pos.x() < vp.x || pos.y() < vp.y || pos.x() > vp.x + vp.width || pos.y() > vp.y + vp.height) return;
   pressPos_ = lastPos_ = pos;
   gestureButton_ = button;
+  gestureMods_ = mods;
   if (button == MouseButton::Left && !(mods & kModAlt)) {
     gestureNode_ = nodeAt(pos);
     gesture_ = gestureNode_ != kNoNode ? Gesture::PendingNode : Gesture::PendingAdd;
@@ -569,7 +570,13 @@ void ViewerState::mouseUp(const Vec2& pos, MouseButton button, int mods) {
   Gesture g = gesture_;
   gesture_ = Gesture::None;
   if (g == Gesture::PendingNode) {
-    selectNode(gestureNode_);
+    if (gestureMods_ & kModCtrl) {
+      // Ctrl+click: inspect a node without changing where new nodes attach.
+      selected_ = gestureNode_;
+      ++sceneVersion_;
+    } else {
+      selectNode(gestureNode_);
+    }
   } else if (g == Gesture::PendingAdd) {
     if ((pos - pressPos_).norm() < options_.dragThresholdPx) addNodeAt(pos);
   } else if (g == Gesture::DragNode) {

@@ -89,9 +89,8 @@ TEST_F(CompareCli, BadInputsAndOptionsGiveDistinctExitCodes) {
       << out;
   EXPECT_EQ(runCli("compare " + path("a.obj") + " " + path("b.obj") + " --error-mesh " + path("e.obj"), &out), 2)
       << out;
-  EXPECT_EQ(runCli("compare " + path("a.obj") + " " + path("b.obj") + " --range 2 1 --error-mesh " + path("e.ply"),
-                   &out),
-            2)
+  EXPECT_EQ(
+      runCli("compare " + path("a.obj") + " " + path("b.obj") + " --range 2 1 --error-mesh " + path("e.ply"), &out), 2)
       << out;
   EXPECT_EQ(runCli("compare " + path("a.obj") + " " + path("b.obj") + " --json " + path("b.obj"), &out), 4) << out;
   EXPECT_EQ(runCli("compare " + path("a.obj"), &out), 2) << out;

@@ -45,9 +45,7 @@ TEST(DistanceReport, AllEqualAndAllDropped) {
   EXPECT_TRUE(std::isnan(zeroDiag.percent(1.0)));
 }
 
-TEST(DistanceReport, BadBinsThrow) {
-  EXPECT_THROW(summarizeDistances({1.0}, 1.0, 0), OptionsError);
-}
+TEST(DistanceReport, BadBinsThrow) { EXPECT_THROW(summarizeDistances({1.0}, 1.0, 0), OptionsError); }
 
 TEST(DistanceReport, JsonHasCountsStatisticsPercentagesAndHistogram) {
   DistanceReport r = summarizeDistances({1, 3}, 50.0, 2);

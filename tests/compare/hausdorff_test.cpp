@@ -92,8 +92,10 @@ TEST(Hausdorff, EverySampleMatchesBruteForce) {
   for (std::size_t i = 0; i < s.size(); ++i) {
     double best = std::numeric_limits<double>::infinity();
     for (const auto& t : b.triangles)
-      best = std::min(best, (accel::closestPointOnTriangle(s.points[i], b.vertices[t[0]], b.vertices[t[1]],
-                                                           b.vertices[t[2]]) - s.points[i]).norm());
+      best = std::min(
+          best, (accel::closestPointOnTriangle(s.points[i], b.vertices[t[0]], b.vertices[t[1]], b.vertices[t[2]]) -
+                 s.points[i])
+                    .norm());
     EXPECT_NEAR(r.distances[i], best, 1e-9 * best + 1e-15) << i;
   }
 }

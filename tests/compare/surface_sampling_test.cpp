@@ -88,8 +88,10 @@ TEST(SurfaceSampling, EdgeSamplesAreEvenlySpacedAndAvoidVertices) {
   for (const auto& p : s.points) {
     EXPECT_EQ(p.z(), 0.0);
     for (const auto& v : m.vertices) EXPECT_GE((p - v).norm(), 0.5 - 1e-12);
-    if (std::abs(p.y()) < 1e-12) ++onX;
-    else if (std::abs(p.x()) < 1e-12) ++onY;
+    if (std::abs(p.y()) < 1e-12)
+      ++onX;
+    else if (std::abs(p.x()) < 1e-12)
+      ++onY;
     else {
       EXPECT_NEAR(p.x() / 3 + p.y() / 4, 1.0, 1e-12);
       ++onHyp;

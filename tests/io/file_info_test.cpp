@@ -62,8 +62,9 @@ TEST(FileInfo, DescribesEachFormat) {
 TEST(InfoCli, BadFileExitsWithInputCodeAndOneLineNamingIt) {
   test::TempDir dir;
   auto bad = dir / "bad.ply";
-  test::writeText(bad, "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
-                       "property float z\nend_header\n0 0 0\n1 1\n");
+  test::writeText(bad,
+                  "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+                  "property float z\nend_header\n0 0 0\n1 1\n");
   std::string out;
   EXPECT_EQ(test::runCli("info '" + bad.string() + "'", &out), 3);
   EXPECT_NE(out.find(bad.string()), std::string::npos) << out;

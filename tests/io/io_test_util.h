@@ -91,9 +91,9 @@ inline std::string buildLas(const LasSpec& s) {
   int headerSize = s.versionMinor >= 4 ? 375 : s.versionMinor == 3 ? 235 : 227;
   int declaredHeader = s.headerSizeOverride ? s.headerSizeOverride : headerSize;
   std::string h = "LASF";
-  put<std::uint16_t>(h, 0);       // file source id
-  put<std::uint16_t>(h, 0);       // global encoding
-  h.append(16, '\0');             // GUID
+  put<std::uint16_t>(h, 0);  // file source id
+  put<std::uint16_t>(h, 0);  // global encoding
+  h.append(16, '\0');        // GUID
   h += static_cast<char>(1);
   h += static_cast<char>(s.versionMinor);
   std::string sys = "treesketch test";
@@ -109,7 +109,7 @@ inline std::string buildLas(const LasSpec& s) {
   put<std::uint32_t>(h, s.vlrBytes ? 1 : 0);
   h += static_cast<char>(s.pointFormat);
   put<std::uint16_t>(h, static_cast<std::uint16_t>(recLen));
-  std::int64_t legacy = s.legacyCount >= 0 ? s.legacyCount
+  std::int64_t legacy = s.legacyCount >= 0                            ? s.legacyCount
                         : (s.versionMinor >= 4 && s.pointFormat >= 6) ? 0
                                                                       : static_cast<std::int64_t>(s.points.size());
   put<std::uint32_t>(h, static_cast<std::uint32_t>(legacy));
@@ -132,7 +132,8 @@ inline std::string buildLas(const LasSpec& s) {
   if (s.versionMinor >= 4) {
     put<std::uint64_t>(h, 0);  // first EVLR
     put<std::uint32_t>(h, 0);  // number of EVLRs
-    put<std::uint64_t>(h, static_cast<std::uint64_t>(s.count64 >= 0 ? s.count64 : static_cast<std::int64_t>(s.points.size())));
+    put<std::uint64_t>(
+        h, static_cast<std::uint64_t>(s.count64 >= 0 ? s.count64 : static_cast<std::int64_t>(s.points.size())));
     for (int i = 0; i < 15; ++i) put<std::uint64_t>(h, 0);
   }
   h.resize(static_cast<std::size_t>(headerSize), '\0');

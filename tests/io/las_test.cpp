@@ -150,7 +150,8 @@ TEST(Las, LazIsRefusedWithADecompressionHint) {
   LasSpec s;
   s.points = somePoints();
   test::writeText(dir / "a.laz", buildLas(s));
-  expectError([&] { readLas(dir / "a.laz"); }, {"a.laz", "compressed LAS", "laszip -i in.laz -o out.las", "pdal translate"});
+  expectError([&] { readLas(dir / "a.laz"); },
+              {"a.laz", "compressed LAS", "laszip -i in.laz -o out.las", "pdal translate"});
   expectError([&] { readLasHeader(dir / "a.laz"); }, {"a.laz", "laszip"});
   test::writeText(dir / "a.las", buildLas(s));
   EXPECT_EQ(readLas(dir / "a.las").size(), 5u);
@@ -181,7 +182,8 @@ TEST(Las, DamagedFilesGiveInputErrorsOnly) {
     s.versionMinor = fmt == 0 ? 2 : 4;
     s.pointFormat = fmt;
     s.points = somePoints();
-    testing::expectOnlyInputErrors(buildLas(s), [](const std::string& b) { lasFrom(b); }, 1000);
+    testing::expectOnlyInputErrors(
+        buildLas(s), [](const std::string& b) { lasFrom(b); }, 1000);
   }
 }
 

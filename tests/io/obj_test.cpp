@@ -31,9 +31,9 @@ TEST(Obj, QuadsPolygonsSlashesNegativeIndicesAndIgnoredLines) {
       "vt 0 0\nvn 0 0 1\ng group\nusemtl m\ns off\n"
       "f 1/1/1 2/2/1 3/3/1 4/4/1\n"  // quad -> 2 triangles
       "v 0.5 2 0\n"
-      "f -5//1 -4//1 -1//1\n"        // negative: 1 2 5
+      "f -5//1 -4//1 -1//1\n"  // negative: 1 2 5
       "f 1/1 3/3 5/5\n"
-      "f 1 2 3 5 4\n"                // pentagon -> 3 triangles
+      "f 1 2 3 5 4\n"  // pentagon -> 3 triangles
       "l 1 2\n";
   ObjStats st;
   geom::TriMesh m = objFrom(text, &st);
@@ -122,7 +122,8 @@ TEST(Obj, RealBranchMeshesHaveTheirDocumentedCounts) {
 
 TEST(Obj, DamagedFilesGiveInputErrorsOnly) {
   std::string text = "# c\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 1\nvt 0 1\nf 1/1/1 2/2/2 3/3/3 4/4/4\nf -1 -2 -3\n";
-  testing::expectOnlyInputErrors(text, [](const std::string& b) { objFrom(b); }, 1000);
+  testing::expectOnlyInputErrors(
+      text, [](const std::string& b) { objFrom(b); }, 1000);
 }
 
 }  // namespace

@@ -26,14 +26,30 @@ geom::TriMesh meshFrom(const std::string& bytes) {
 /// Appends value `v` as PLY type `t`.
 void putAs(std::string& s, PlyType t, double v, bool big) {
   switch (t) {
-    case PlyType::Int8: put(s, static_cast<std::int8_t>(v), big); break;
-    case PlyType::UInt8: put(s, static_cast<std::uint8_t>(v), big); break;
-    case PlyType::Int16: put(s, static_cast<std::int16_t>(v), big); break;
-    case PlyType::UInt16: put(s, static_cast<std::uint16_t>(v), big); break;
-    case PlyType::Int32: put(s, static_cast<std::int32_t>(v), big); break;
-    case PlyType::UInt32: put(s, static_cast<std::uint32_t>(v), big); break;
-    case PlyType::Float32: put(s, static_cast<float>(v), big); break;
-    case PlyType::Float64: put(s, v, big); break;
+    case PlyType::Int8:
+      put(s, static_cast<std::int8_t>(v), big);
+      break;
+    case PlyType::UInt8:
+      put(s, static_cast<std::uint8_t>(v), big);
+      break;
+    case PlyType::Int16:
+      put(s, static_cast<std::int16_t>(v), big);
+      break;
+    case PlyType::UInt16:
+      put(s, static_cast<std::uint16_t>(v), big);
+      break;
+    case PlyType::Int32:
+      put(s, static_cast<std::int32_t>(v), big);
+      break;
+    case PlyType::UInt32:
+      put(s, static_cast<std::uint32_t>(v), big);
+      break;
+    case PlyType::Float32:
+      put(s, static_cast<float>(v), big);
+      break;
+    case PlyType::Float64:
+      put(s, v, big);
+      break;
   }
 }
 
@@ -76,8 +92,8 @@ TEST(Ply, CloudRoundTripWithoutAttributesThroughAFile) {
 }
 
 TEST(Ply, EveryScalarTypeInBothByteOrders) {
-  const PlyType types[] = {PlyType::Int8,   PlyType::UInt8,  PlyType::Int16,   PlyType::UInt16,
-                           PlyType::Int32,  PlyType::UInt32, PlyType::Float32, PlyType::Float64};
+  const PlyType types[] = {PlyType::Int8,  PlyType::UInt8,  PlyType::Int16,   PlyType::UInt16,
+                           PlyType::Int32, PlyType::UInt32, PlyType::Float32, PlyType::Float64};
   const char* aliases[] = {"int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
   for (bool big : {false, true}) {
     for (int ti = 0; ti < 8; ++ti) {
@@ -142,7 +158,8 @@ TEST(Ply, BigEndianWithMixedTypesExtraPropertiesAndElements) {
 TEST(Ply, AsciiMeshWithPolygonsCrlfHeaderAndColors) {
   std::string s =
       "ply\r\nformat ascii 1.0\r\ncomment quads and a pentagon\r\nelement vertex 6\r\nproperty float32 x\r\n"
-      "property float32 y\r\nproperty float32 z\r\nproperty uchar red\r\nproperty uchar green\r\nproperty uchar blue\r\n"
+      "property float32 y\r\nproperty float32 z\r\nproperty uchar red\r\nproperty uchar green\r\nproperty uchar "
+      "blue\r\n"
       "element face 3\r\nproperty list uint8 int32 vertex_indices\r\nproperty int flags\r\nend_header\r\n"
       "0 0 0 255 0 0\r\n1 0 0 0 255 0\r\n1 1 0 0 0 255\r\n0 1 0 1 2 3\r\n0.5 1.5 0 4 5 6\r\n-1 0.5 1e-1 7 8 9\r\n"
       "3 0 1 2 0\r\n4 0 1 2 3 0\r\n5 0 1 4 3 5 1\r\n";
@@ -196,7 +213,8 @@ TEST(Ply, MeshRoundTripWithoutAttributesThroughAFile) {
   EXPECT_TRUE(back.quality.empty());
 }
 
-const std::string kAsciiHead = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n";
+const std::string kAsciiHead =
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n";
 
 TEST(Ply, RejectsBadHeaders) {
   expectError([] { cloudFrom(""); }, {"mem.ply", "empty"});
@@ -210,8 +228,11 @@ TEST(Ply, RejectsBadHeaders) {
   expectError([] { cloudFrom("ply\nformat ascii 1.0\nproperty float x\nend_header\n"); }, {"mem.ply:3:", "before any"});
   expectError([] { cloudFrom("ply\nformat ascii 1.0\nelement vertex -3\nend_header\n"); }, {"mem.ply:3:", "count"});
   expectError([] { cloudFrom(kAsciiHead + "0 0 0\n"); }, {"end_header"});
-  expectError([] { cloudFrom("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n"); },
-              {"mem.ply", "'z'"});
+  expectError(
+      [] {
+        cloudFrom("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n");
+      },
+      {"mem.ply", "'z'"});
   expectError([] { cloudFrom("ply\nformat ascii 1.0\nelement point 1\nproperty float x\nend_header\n0\n"); },
               {"mem.ply", "no 'vertex' element"});
   expectError([] { cloudFrom("ply\nformat ascii 1.0\nbogus line\nend_header\n"); }, {"mem.ply:3:", "bogus"});
@@ -222,7 +243,8 @@ TEST(Ply, ElementsWithoutPropertiesAreSkippedWhateverTheirCount) {
     std::string s = std::string("ply\nformat ") + fmt +
                     " 1.0\nelement nothing 1000000000000\nelement vertex 4\nproperty uchar x\nproperty uchar y\n"
                     "property uchar z\nend_header\n";
-    s += std::string(fmt) == "ascii" ? "1 2 3\n4 5 6\n7 8 9\n10 11 12\n" : "\x01\x02\x03\x04\x05\x06\x07\x08\x09\x0a\x0b\x0c";
+    s += std::string(fmt) == "ascii" ? "1 2 3\n4 5 6\n7 8 9\n10 11 12\n"
+                                     : "\x01\x02\x03\x04\x05\x06\x07\x08\x09\x0a\x0b\x0c";
     geom::PointCloud c = cloudFrom(s);
     ASSERT_EQ(c.size(), 4u) << fmt;
     EXPECT_EQ(c.positions[3], geom::Vec3(10, 11, 12)) << fmt;
@@ -230,16 +252,26 @@ TEST(Ply, ElementsWithoutPropertiesAreSkippedWhateverTheirCount) {
 }
 
 TEST(Ply, RejectsTruncatedAndBadAsciiData) {
-  expectError([] { cloudFrom(kAsciiHead + "end_header\n0 0 0\n1 1 1\n2 2\n"); }, {"mem.ply:", "truncated", "'vertex' record 2"});
+  expectError([] { cloudFrom(kAsciiHead + "end_header\n0 0 0\n1 1 1\n2 2\n"); },
+              {"mem.ply:", "truncated", "'vertex' record 2"});
   expectError([] { cloudFrom(kAsciiHead + "end_header\n0 0 0\n1 1 1\n2 2 2\n3 zz 3\n"); }, {"mem.ply:11:", "'zz'"});
-  expectError([] { cloudFrom(kAsciiHead + "end_header\n0 0 0\n1 1 1\n2 nan 2\n3 3 3\n"); }, {"mem.ply:10:", "non-finite"});
-  expectError([] { cloudFrom("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                             "property float z\nend_header\n0 0 0\n1 1 1\n2 2 2\n"); },
-              {"mem.ply", "only 3 points"});
+  expectError([] { cloudFrom(kAsciiHead + "end_header\n0 0 0\n1 1 1\n2 nan 2\n3 3 3\n"); },
+              {"mem.ply:10:", "non-finite"});
+  expectError(
+      [] {
+        cloudFrom(
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nend_header\n0 0 0\n1 1 1\n2 2 2\n");
+      },
+      {"mem.ply", "only 3 points"});
   // A header claiming 10^12 vertices fails cleanly (no huge allocation).
-  expectError([] { cloudFrom("ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\n"
-                             "property float z\nend_header\n0 0 0\n"); },
-              {"mem.ply:", "truncated"});
+  expectError(
+      [] {
+        cloudFrom(
+            "ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\n"
+            "property float z\nend_header\n0 0 0\n");
+      },
+      {"mem.ply:", "truncated"});
 }
 
 std::string binaryCloudHeader(std::uint64_t n) {
@@ -260,8 +292,10 @@ TEST(Ply, RejectsTruncatedAndNonFiniteBinaryDataWithOffsets) {
 }
 
 std::string faceFile(const std::string& faces, int nFaces) {
-  return "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-         std::to_string(nFaces) + "\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" + faces;
+  return "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement "
+         "face " +
+         std::to_string(nFaces) + "\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" +
+         faces;
 }
 
 TEST(Ply, RejectsBadFaces) {
@@ -273,8 +307,9 @@ TEST(Ply, RejectsBadFaces) {
   expectError([] { meshFrom(faceFile("3 0 1 2\n", 0)); }, {"no faces"});
   expectError([] { meshFrom(kAsciiHead + "end_header\n0 0 0\n1 1 1\n2 2 2\n3 3 3\n"); }, {"no 'face' element"});
   // Binary: a face list claiming 4 billion indices stops at the end of the data.
-  std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                  "property float z\nelement face 1000000000\nproperty list uint int vertex_indices\nend_header\n";
+  std::string s =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1000000000\nproperty list uint int vertex_indices\nend_header\n";
   for (int i = 0; i < 9; ++i) put(s, static_cast<float>(i));
   put<std::uint32_t>(s, 4000000000u);
   for (int i = 0; i < 3; ++i) put<std::int32_t>(s, i);

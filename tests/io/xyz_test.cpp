@@ -81,6 +81,10 @@ TEST(Xyz, RejectsGarbageTextWithItsLine) {
   expectError([&] { readText(binary + "\n" + binary + "\n", opt); }, {"mem.xyz"});
 }
 
+TEST(Xyz, RejectsDecimalCommas) {
+  expectError([] { readText("x;y;z\n1,5;2,5;3,5\n"); }, {"mem.xyz:2:", "decimal"});
+}
+
 TEST(Xyz, RejectsNanAndInfWithTheirLine) {
   expectError([] { readText("0 0 0\n1 1 1\n2 nan 2\n3 3 3\n"); }, {"mem.xyz:3:", "non-finite"});
   expectError([] { readText("0 0 0\n1 1 1\n2 2 2\n3 3 -inf\n"); }, {"mem.xyz:4:", "non-finite"});
@@ -130,7 +134,8 @@ TEST(Xyz, RealRTwigCloud) {
 
 TEST(Xyz, DamagedFilesGiveInputErrorsOnly) {
   std::string text = "x,y,z\n0 0 0\n1.5,2,3\n4;5;6 7\n-1e3 2e-3 +7\n8 9 10\n";
-  testing::expectOnlyInputErrors(text, [](const std::string& b) { readText(b); }, 1000);
+  testing::expectOnlyInputErrors(
+      text, [](const std::string& b) { readText(b); }, 1000);
 }
 
 }  // namespace

@@ -213,6 +213,27 @@ TEST(SketchFile, RejectsWrongHeaderAndMalformedJson) {
   expectBad(truncated, {"malformed JSON", "byte offset"});
 }
 
+TEST(SketchFile, LargeSketchReadsQuickly) {
+  // 20,000 nodes in a chain with side shoots: reading must not be quadratic.
+  Sketch sk;
+  int c = sk.addCamera(geom::presetCamera(geom::PresetView::Front, [] {
+    geom::BBox b;
+    b.add(Vec3(0, 0, 0));
+    b.add(Vec3(1, 1, 1));
+    return b;
+  }(), geom::UpAxis::Y, {}, true));
+  NodeId prev = sk.addScreenNode(kNoNode, c, Vec2(0, 0));
+  for (int i = 1; i < 20000; ++i) {
+    NodeId n = sk.addScreenNode(prev, c, Vec2(i, i));
+    if (i % 2) prev = n;
+  }
+  std::stringstream ss;
+  writeSketch(ss, sk);
+  Sketch back = readSketch(ss, "mem");
+  EXPECT_EQ(back.size(), sk.size());
+  EXPECT_EQ(back.node(1).children, sk.node(1).children);
+}
+
 TEST(SketchFile, MissingFile) {
   test::TempDir dir;
   EXPECT_THROW(readSketch(dir / "nope.json"), InputError);

@@ -82,6 +82,9 @@ TEST(ViewerState, ClickOnANodeSelectsItAndMakesItActive) {
   EXPECT_EQ(f.state.sketch().size(), 2u);
   EXPECT_EQ(f.state.selected(), 0);
   EXPECT_EQ(f.state.active(), 0);
+  f.state.clickAt(b, MouseButton::Left, kModCtrl);  // Ctrl: select node 1, node 0 stays active
+  EXPECT_EQ(f.state.selected(), 1);
+  EXPECT_EQ(f.state.active(), 0);
   f.state.clickAt(f.screenOf(Vec3(0, 3, 0)));  // a branch from node 0
   EXPECT_EQ(f.state.sketch().node(2).parent, 0);
   EXPECT_EQ(f.state.nodeAt(Vec2(700, 20)), kNoNode);

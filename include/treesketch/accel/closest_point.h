@@ -28,7 +28,7 @@ geom::Vec3 closestPointOnTriangle(const geom::Vec3& p, const geom::Vec3& a, cons
 
 /// One closest-point query's answer.
 struct ClosestHit {
-  geom::Vec3 point = geom::Vec3::Zero();  ///< closest point on the target (world, metres)
+  geom::Vec3 point = geom::Vec3::Zero();                      ///< closest point on the target (world, metres)
   double distance = std::numeric_limits<double>::infinity();  ///< metres; +inf when not found
   /// Index of the target triangle (mesh) or point (cloud) holding `point`; -1 when none lies
   /// within the search distance.
@@ -53,8 +53,9 @@ struct ClosestPointOptions {
 };
 
 /// A bounding-volume hierarchy over a triangle mesh answering exact closest-point queries.
-/// Boxes are float (relative to the mesh's bounding-box centre, rounded outwards), triangle tests
-/// are double, so answers equal a brute-force search over all triangles to rounding.
+/// Boxes and a first triangle test are float (relative to the mesh's bounding-box centre, with a
+/// safety margin); the deciding triangle tests are double, so answers equal a brute-force search
+/// over all triangles to rounding (tested to 1e-9 relative, also 5e5 m from the origin).
 /// Build once, query from many threads (queries are const).
 class MeshClosestPoint {
  public:

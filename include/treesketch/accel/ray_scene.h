@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "treesketch/geom/tri_mesh.h"
@@ -22,13 +21,15 @@
 
 namespace treesketch::accel {
 
-/// Embree's BVH build quality. High builds slower (~2x) and traces somewhat faster; see
-/// bench/bench_scan.cpp for the measurement that picked the default.
+/// Embree's BVH build quality (RTC_BUILD_QUALITY_*): higher builds slower and traces faster;
+/// bench/bench_scan.cpp measures both (bench/README.md, "Scanner").
 enum class BuildQuality { Low, Medium, High };
 
 struct RaySceneOptions {
-  /// BVH quality (Embree RTC_BUILD_QUALITY_*). Default: measured in bench_scan (README "Scanner").
-  BuildQuality quality = BuildQuality::High;
+  /// BVH quality (Embree RTC_BUILD_QUALITY_*). Medium, as measured by bench_scan on a 171k-
+  /// triangle tree (bench/README.md, "Scanner"): High took 5x longer to build (263 vs 49 ms)
+  /// and traced the scanner's rays no faster.
+  BuildQuality quality = BuildQuality::Medium;
 };
 
 /// One ray in world coordinates. `dir` need not be unit length; t is measured in units of |dir|.
@@ -49,11 +50,12 @@ struct RayHit {
 };
 
 /// A committed Embree scene over one or more triangle meshes. Immutable after construction;
-/// all queries are const and thread-safe. Move-only.
+/// all queries are const and thread-safe. Move-only (a moved-from scene must not be queried).
 class RayScene {
  public:
-  /// Builds the BVH over `meshes` (the scene keeps its own copy; the caller may drop them). The geometry of mesh i
-  /// reports meshIndex i. Empty meshes are allowed (they are never hit); a scene of only empty
+  /// Builds the BVH over `meshes` (the scene keeps what it needs: float vertices in Embree and
+  /// each triangle's plane in double; the caller may drop the meshes). Mesh i reports
+  /// meshIndex i. Empty meshes are allowed (they are never hit); a scene of only empty
   /// meshes, or no meshes, misses every ray. Throws OptionsError when a mesh is inconsistent
   /// (index out of range) or has a non-finite vertex; throws std::runtime_error with Embree's
   /// message if Embree fails (e.g. out of memory).
@@ -82,7 +84,8 @@ class RayScene {
   std::size_t meshCount() const;
   /// Total number of triangles over all meshes.
   std::size_t triangleCount() const;
-  /// Bounding box of all mesh vertices (world coordinates); empty when there are none.
+  /// Bounding box of the vertices of the meshes that have triangles (world coordinates); empty
+  /// when no mesh has any.
   const geom::BBox& bounds() const;
 
  private:

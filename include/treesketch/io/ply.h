@@ -40,7 +40,7 @@ struct PlyHeader {
   PlyFormat format = PlyFormat::Ascii;
   std::vector<std::string> comments;  ///< "comment" and "obj_info" lines, without the keyword
   std::vector<PlyElement> elements;
-  std::size_t dataOffset = 0;  ///< byte offset of the first byte after "end_header\n"
+  std::size_t dataOffset = 0;   ///< byte offset of the first byte after "end_header\n"
   std::size_t headerLines = 0;  ///< number of header lines, "ply" to "end_header" inclusive
   /// The element called `name`, or nullptr.
   const PlyElement* find(std::string_view name) const;

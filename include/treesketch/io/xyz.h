@@ -16,7 +16,8 @@ namespace treesketch::io {
 /// Reads a text cloud from `in`; `source` names it in error messages. Coordinates are taken as
 /// they are (metres in the file's frame). Lines starting with '#' or "//" and blank lines are
 /// skipped anywhere; up to `options.maxHeaderLines` non-numeric lines are skipped before the
-/// first point. Decimal separators must be '.' (a "1,5" decimal comma reads as two fields).
+/// first point. Decimal separators must be '.'; a first point line mixing ';' and ',' (decimal
+/// commas, "1,5;2,5;3,5") is rejected rather than misread.
 /// Throws InputError naming the line for: a line with fewer than 3 numbers after the data
 /// started, NaN/Inf, a number out of range, no points at all, fewer than options.minPoints.
 geom::PointCloud readXyz(std::istream& in, const std::string& source, const CloudReadOptions& options = {});

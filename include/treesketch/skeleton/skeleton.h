@@ -29,7 +29,8 @@ struct SkeletonOptions {
   /// Width of one level set of the geodesic distance, in voxels (Verroust & Lazarus: a few times
   /// the point spacing).
   double binWidthVoxels = 2.0;
-  /// Root region: voxels of the main piece within this height of its lowest one, in voxels.
+  /// Root region: voxels of the tree (the connected set, bridges included, with the most points)
+  /// within this height of its lowest one, in voxels.
   double rootHeightVoxels = 1.5;
   /// Join pieces of a level set that touch the same piece below and above (arcs of one ring split
   /// by sparse sampling or a junction) instead of making them separate nodes.

@@ -65,10 +65,22 @@ sketch::Sketch skeletonToSketch(const Skeleton& skeleton, const SkeletonSketchOp
 std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, const std::vector<double>& fitted,
                                     const std::vector<char>& valid, const RadiusRules& rules = {});
 
+/// The node fit used by the automatic sketch: the fit module's defaults, except that the test
+/// region grows at most 3 times and the inlier band is wider (a skeleton node knows where its branch is; a node that fails
+/// then gets an interpolated radius instead of a circle from the whole slice).
+inline fit::NodeFitOptions autoNodeFitOptions() {
+  fit::NodeFitOptions o;
+  o.maxGrowthSteps = 3;
+  // Scanned branches are rarely perfect circles (bark, polygonal meshes): accept inliers within
+  // 15 % of the radius.
+  o.circle.inlierThresholdRelative = 0.15;
+  return o;
+}
+
 struct AutoSkeletonOptions {
   SkeletonOptions skeleton;
   SkeletonSketchOptions sketch;
-  fit::NodeFitOptions fit;
+  fit::NodeFitOptions fit = autoNodeFitOptions();
   RadiusRules radii;
   /// Node i is fitted with seed `seed + i`.
   std::uint64_t seed = 1;

@@ -157,6 +157,8 @@ class Sketch {
   std::map<NodeId, Node> nodes_;
   std::vector<geom::Camera> cameras_;
   NodeId nextId_ = 0;
+  /// insertRaw: nodes inserted before their parent (an upper bound; 0 skips the adoption scan).
+  std::size_t waitingChildren_ = 0;
 };
 
 }  // namespace treesketch::sketch

@@ -179,8 +179,8 @@ class ViewerState {
   void setColorMode(ColorMode mode);
 
   // ---- input (window pixels; what a mouse and keyboard do) -------------------------------------
-  /// Left button: press on a node picks it (release without moving selects it and makes it active;
-  /// moving drags it); press elsewhere and release adds a node there as a child of the active node
+  /// Left button: press on a node picks it (release without moving selects it and makes it active
+  /// — with Ctrl it only selects it; moving drags it); press elsewhere and release adds a node there as a child of the active node
   /// (the first node is the root). Right button drag (or Alt + left): trackball orbit. Middle
   /// button drag (or Shift + right): pan. Presses outside the viewport are ignored.
   void mouseDown(const geom::Vec2& pos, MouseButton button, int mods = kModNone);
@@ -305,6 +305,7 @@ class ViewerState {
 
   Gesture gesture_ = Gesture::None;
   MouseButton gestureButton_ = MouseButton::Left;
+  int gestureMods_ = kModNone;
   geom::Vec2 pressPos_ = geom::Vec2::Zero();
   geom::Vec2 lastPos_ = geom::Vec2::Zero();
   sketch::NodeId gestureNode_ = sketch::kNoNode;
