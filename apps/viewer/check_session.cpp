@@ -47,15 +47,24 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--sketch") sketchPath = next();
-    else if (a == "--autosave") autosavePath = next();
-    else if (a == "--mesh") meshPath = next();
-    else if (a == "--png") pngPath = next();
-    else if (a == "--nodes") nodes = std::stol(next());
-    else if (a == "--min-triangles") minTriangles = std::stol(next());
-    else if (a == "--cloud-pixels") cloudPixels = std::stol(next());
-    else if (a == "--demo-rays") demoRays = std::stoull(next());
-    else if (a == "--markers") markers = true;
+    if (a == "--sketch")
+      sketchPath = next();
+    else if (a == "--autosave")
+      autosavePath = next();
+    else if (a == "--mesh")
+      meshPath = next();
+    else if (a == "--png")
+      pngPath = next();
+    else if (a == "--nodes")
+      nodes = std::stol(next());
+    else if (a == "--min-triangles")
+      minTriangles = std::stol(next());
+    else if (a == "--cloud-pixels")
+      cloudPixels = std::stol(next());
+    else if (a == "--demo-rays")
+      demoRays = std::stoull(next());
+    else if (a == "--markers")
+      markers = true;
     else {
       std::cerr << "unknown option " << a << "\n";
       return 2;
@@ -65,7 +74,9 @@ int main(int argc, char** argv) {
     sketch::Sketch sk;
     if (!sketchPath.empty()) {
       sk = io::readSketch(sketchPath);
-      if (nodes >= 0) check(static_cast<long>(sk.size()) == nodes, "sketch has " + std::to_string(nodes) + " nodes (got " + std::to_string(sk.size()) + ")");
+      if (nodes >= 0)
+        check(static_cast<long>(sk.size()) == nodes,
+              "sketch has " + std::to_string(nodes) + " nodes (got " + std::to_string(sk.size()) + ")");
       bool chain = true;
       for (const auto& [id, n] : sk.nodes()) chain &= n.isScreenNode();
       check(chain && sk.root() != sketch::kNoNode, "sketch is one tree of screen nodes");
@@ -89,7 +100,8 @@ int main(int argc, char** argv) {
         geom::BBox box = viewer::demoTreeCloud(demo).bounds();
         geom::BBox mb = mesh.bounds();
         double slack = 0.05 * box.diagonal();
-        bool inside = (mb.min.array() >= box.min.array() - slack).all() && (mb.max.array() <= box.max.array() + slack).all();
+        bool inside =
+            (mb.min.array() >= box.min.array() - slack).all() && (mb.max.array() <= box.max.array() + slack).all();
         check(inside, "mesh lies within the demo cloud's bounding box");
       }
     }
@@ -106,7 +118,8 @@ int main(int argc, char** argv) {
         for (int y = 0; y < h - 30; ++y)
           for (int x = 345; x < w; ++x) {
             const unsigned char* p = px(x, y);
-            int diff = std::abs(p[0] - kBackground[0]) + std::abs(p[1] - kBackground[1]) + std::abs(p[2] - kBackground[2]);
+            int diff =
+                std::abs(p[0] - kBackground[0]) + std::abs(p[1] - kBackground[1]) + std::abs(p[2] - kBackground[2]);
             int chroma = std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]});
             count += diff > 40 && chroma > 30;
           }

@@ -73,17 +73,28 @@ Args parseArgs(int argc, char** argv) {
     if (s == "-h" || s == "--help") {
       usage(std::cout);
       std::exit(kExitOk);
-    } else if (s == "--sketch") a.sketchPath = value("--sketch");
-    else if (s == "--script") a.scriptPath = value("--script");
-    else if (s == "--autosave") a.autosavePath = value("--autosave");
-    else if (s == "--up") a.up = geom::parseUpAxis(value("--up"));
-    else if (s == "--demo") a.demo.preset = value("--demo");
-    else if (s == "--demo-rays") a.demo.rays = static_cast<std::uint64_t>(integer("--demo-rays"));
-    else if (s == "--width") a.width = static_cast<int>(integer("--width"));
-    else if (s == "--height") a.height = static_cast<int>(integer("--height"));
-    else if (!s.empty() && s[0] == '-') throw OptionsError("unknown option " + s);
-    else if (a.input.empty()) a.input = s;
-    else throw OptionsError("only one input file may be given");
+    } else if (s == "--sketch")
+      a.sketchPath = value("--sketch");
+    else if (s == "--script")
+      a.scriptPath = value("--script");
+    else if (s == "--autosave")
+      a.autosavePath = value("--autosave");
+    else if (s == "--up")
+      a.up = geom::parseUpAxis(value("--up"));
+    else if (s == "--demo")
+      a.demo.preset = value("--demo");
+    else if (s == "--demo-rays")
+      a.demo.rays = static_cast<std::uint64_t>(integer("--demo-rays"));
+    else if (s == "--width")
+      a.width = static_cast<int>(integer("--width"));
+    else if (s == "--height")
+      a.height = static_cast<int>(integer("--height"));
+    else if (!s.empty() && s[0] == '-')
+      throw OptionsError("unknown option " + s);
+    else if (a.input.empty())
+      a.input = s;
+    else
+      throw OptionsError("only one input file may be given");
   }
   return a;
 }
@@ -139,10 +150,14 @@ const char* keyName(int key) {
     return letter;
   }
   switch (key) {
-    case GLFW_KEY_DELETE: return "delete";
-    case GLFW_KEY_BACKSPACE: return "backspace";
-    case GLFW_KEY_ESCAPE: return "escape";
-    default: return nullptr;
+    case GLFW_KEY_DELETE:
+      return "delete";
+    case GLFW_KEY_BACKSPACE:
+      return "backspace";
+    case GLFW_KEY_ESCAPE:
+      return "escape";
+    default:
+      return nullptr;
   }
 }
 
@@ -173,7 +188,8 @@ class App {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    if (loading()) drawLoading(ww, wh);
+    if (loading())
+      drawLoading(ww, wh);
     else {
       gui::drawPanels(state_, panel_, ww, wh);
       gui::drawMarkers(state_);
@@ -281,7 +297,8 @@ int run(const Args& args) {
   int width = args.scriptPath.empty() ? args.width : script.windowWidth;
   int height = args.scriptPath.empty() ? args.height : script.windowHeight;
 
-  glfwSetErrorCallback([](int code, const char* text) { std::fprintf(stderr, "treesketch-gui: GLFW %d: %s\n", code, text); });
+  glfwSetErrorCallback(
+      [](int code, const char* text) { std::fprintf(stderr, "treesketch-gui: GLFW %d: %s\n", code, text); });
   if (!glfwInit()) {
     std::cerr << "treesketch-gui: error: cannot open a window (no display? set DISPLAY, or run under xvfb-run)\n";
     return kExitFailed;

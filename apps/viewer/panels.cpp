@@ -118,8 +118,10 @@ void messagesSection(const viewer::ViewerState& state) {
   std::size_t first = msgs.size() > 6 ? msgs.size() - 6 : 0;
   ImGui::PushTextWrapPos(0.0f);
   for (std::size_t i = first; i < msgs.size(); ++i) {
-    if (msgs[i].error) ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", msgs[i].text.c_str());
-    else ImGui::TextDisabled("%s", msgs[i].text.c_str());
+    if (msgs[i].error)
+      ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", msgs[i].text.c_str());
+    else
+      ImGui::TextDisabled("%s", msgs[i].text.c_str());
   }
   ImGui::PopTextWrapPos();
 }
@@ -129,9 +131,9 @@ void messagesSection(const viewer::ViewerState& state) {
 void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height) {
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(Layout::kPanelWidth, height - Layout::kStatusHeight));
-  ImGui::Begin("treesketch", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                   ImGuiWindowFlags_NoTitleBar);
+  ImGui::Begin(
+      "treesketch", nullptr,
+      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar);
   ImGui::PushItemWidth(150);
   ImGui::TextUnformatted("treesketch");
   ImGui::TextDisabled("%s", panel.inputName.c_str());
@@ -171,7 +173,8 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   if (ImGui::CollapsingHeader("Help", panel.showHelp ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextDisabled(
-        "Left click: add a node (child of the active one) / select a node and make it active (Ctrl: only select). Left drag on a node: move it. "
+        "Left click: add a node (child of the active one) / select a node and make it active "
+        "(Ctrl: only select). Left drag on a node: move it. "
         "Right drag: orbit. Middle or Shift+right drag: pan. Wheel: zoom. Delete: remove node "
         "(Shift: with subtree). Ctrl+Z / Ctrl+Y: undo / redo. 1 2 3: front, side, top. F: fit. O: ortho.");
     ImGui::PopTextWrapPos();
@@ -192,8 +195,10 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
               state.sketch().size(), state.fittedCount(), state.skippedCount(), state.lastRebuildMs(),
               state.orbit().orthographic() ? "orthographic" : "perspective");
   ImGui::SameLine();
-  if (last.error) ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", last.text.c_str());
-  else ImGui::TextUnformatted(last.text.c_str());
+  if (last.error)
+    ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", last.text.c_str());
+  else
+    ImGui::TextUnformatted(last.text.c_str());
   ImGui::End();
 }
 

@@ -25,10 +25,10 @@ inline constexpr unsigned char kMarkerSkipped[3] = {255, 80, 40};
 inline constexpr unsigned char kMarkerPending[3] = {200, 200, 200};
 
 struct PanelState {
-  std::string sketchPath;      ///< the Load / Save sketch path
+  std::string sketchPath;  ///< the Load / Save sketch path
   std::string meshPath = "treesketch_mesh.obj";
   std::string screenshotPath = "treesketch_screenshot.png";
-  std::string inputName;       ///< shown at the top
+  std::string inputName;  ///< shown at the top
   int autoNodes = 12;
   bool screenshotRequested = false;  ///< set by the Screenshot button; the main loop takes it
   bool showHelp = true;

@@ -51,10 +51,14 @@ class Parser {
     std::stringstream ss(s);
     std::string part;
     while (std::getline(ss, part, '+')) {
-      if (part == "shift") m |= kModShift;
-      else if (part == "ctrl") m |= kModCtrl;
-      else if (part == "alt") m |= kModAlt;
-      else if (!part.empty()) fail(index, "modifier must be shift, ctrl or alt, got '" + part + "'");
+      if (part == "shift")
+        m |= kModShift;
+      else if (part == "ctrl")
+        m |= kModCtrl;
+      else if (part == "alt")
+        m |= kModAlt;
+      else if (!part.empty())
+        fail(index, "modifier must be shift, ctrl or alt, got '" + part + "'");
     }
     return m;
   }
@@ -68,8 +72,10 @@ class Parser {
       arg = s.substr(s.find_first_not_of(' ', sp) == std::string::npos ? s.size() : s.find_first_not_of(' ', sp));
     }
     if (verb == "save" || verb == "load" || verb == "export" || verb == "screenshot") {
-      a.kind = verb == "save" ? Kind::Save : verb == "load" ? Kind::Load : verb == "export" ? Kind::Export
-                                                                                           : Kind::Screenshot;
+      a.kind = verb == "save"     ? Kind::Save
+               : verb == "load"   ? Kind::Load
+               : verb == "export" ? Kind::Export
+                                  : Kind::Screenshot;
       a.path = arg;
       if (arg.empty() && (a.kind == Kind::Export || a.kind == Kind::Screenshot)) fail(index, verb + " needs a PATH");
     } else if (verb == "key") {
@@ -134,8 +140,10 @@ class Parser {
       a.name = string(j["option"], index, "option");
       if (!j.contains("value")) fail(index, "option needs a \"value\"");
       const json& v = j["value"];
-      if (v.is_boolean()) a.text = v.get<bool>() ? "true" : "false";
-      else a.text = string(v, index, "value");
+      if (v.is_boolean())
+        a.text = v.get<bool>() ? "true" : "false";
+      else
+        a.text = string(v, index, "value");
       static const char* kOptions[] = {"colorMode", "meshStyle",   "projection", "showCloud",
                                        "showNodes", "showCircles", "showRegion"};
       bool known = false;
@@ -153,8 +161,10 @@ class Parser {
       if (b.kind != Kind::Button) fail(index, "unknown button '" + j["button"].get<std::string>() + "'");
       return b;
     } else if (j.contains("save") || j.contains("load") || j.contains("export") || j.contains("screenshot")) {
-      std::string verb = j.contains("save") ? "save" : j.contains("load") ? "load" : j.contains("export") ? "export"
-                                                                                                        : "screenshot";
+      std::string verb = j.contains("save")     ? "save"
+                         : j.contains("load")   ? "load"
+                         : j.contains("export") ? "export"
+                                                : "screenshot";
       const json& p = j[verb];
       std::string path = p.is_null() ? std::string() : string(p, index, verb);
       return fromString(path.empty() ? verb : verb + " " + path, index);
@@ -202,9 +212,12 @@ class Parser {
     if (!list->is_array()) throw InputError(source_ + ": expected a list of actions");
     for (std::size_t i = 0; i < list->size(); ++i) {
       const json& a = (*list)[i];
-      if (a.is_string()) script.actions.push_back(fromString(a.get<std::string>(), i));
-      else if (a.is_object()) script.actions.push_back(fromObject(a, i));
-      else fail(i, "expected an object or a string, got " + a.dump());
+      if (a.is_string())
+        script.actions.push_back(fromString(a.get<std::string>(), i));
+      else if (a.is_object())
+        script.actions.push_back(fromObject(a, i));
+      else
+        fail(i, "expected an object or a string, got " + a.dump());
     }
     return script;
   }
@@ -225,28 +238,41 @@ bool parseBool(const std::string& s) {
 
 void applyOption(ViewerState& state, const std::string& name, const std::string& value) {
   DisplayOptions& d = state.display();
-  if (name == "colorMode") d.colorMode = parseColorMode(value);
-  else if (name == "meshStyle") d.meshStyle = parseMeshStyle(value);
+  if (name == "colorMode")
+    d.colorMode = parseColorMode(value);
+  else if (name == "meshStyle")
+    d.meshStyle = parseMeshStyle(value);
   else if (name == "projection") {
     if (value != "ortho" && value != "orthographic" && value != "perspective")
       throw OptionsError("projection must be 'ortho' or 'perspective', got '" + value + "'");
     state.setOrthographic(value != "perspective");
-  } else if (name == "showCloud") d.showCloud = parseBool(value);
-  else if (name == "showNodes") d.showNodes = parseBool(value);
-  else if (name == "showCircles") d.showCircles = parseBool(value);
-  else if (name == "showRegion") d.showSamplingRegion = parseBool(value);
-  else throw OptionsError("unknown option '" + name + "'");
+  } else if (name == "showCloud")
+    d.showCloud = parseBool(value);
+  else if (name == "showNodes")
+    d.showNodes = parseBool(value);
+  else if (name == "showCircles")
+    d.showCircles = parseBool(value);
+  else if (name == "showRegion")
+    d.showSamplingRegion = parseBool(value);
+  else
+    throw OptionsError("unknown option '" + name + "'");
 }
 
 /// Checks one expectation; returns "" or what differs.
 std::string checkExpect(const ViewerState& state, const std::string& key, double want) {
   double got = 0;
-  if (key == "nodes") got = static_cast<double>(state.sketch().size());
-  else if (key == "fitted") got = static_cast<double>(state.fittedCount());
-  else if (key == "skipped") got = static_cast<double>(state.skippedCount());
-  else if (key == "selected") got = state.selected();
-  else if (key == "active") got = state.active();
-  else if (key == "errors") got = static_cast<double>(state.errorCount());
+  if (key == "nodes")
+    got = static_cast<double>(state.sketch().size());
+  else if (key == "fitted")
+    got = static_cast<double>(state.fittedCount());
+  else if (key == "skipped")
+    got = static_cast<double>(state.skippedCount());
+  else if (key == "selected")
+    got = state.selected();
+  else if (key == "active")
+    got = state.active();
+  else if (key == "errors")
+    got = static_cast<double>(state.errorCount());
   else if (key == "meshTriangles") {
     got = static_cast<double>(state.mesh().triangles.size());
     if (got >= want) return {};
@@ -275,20 +301,34 @@ std::string describe(const ScriptAction& a) {
     return s.str();
   };
   switch (a.kind) {
-    case Kind::Click: return "click " + pt(a.from) + " " + buttonName(a.button);
-    case Kind::Drag: return "drag " + pt(a.from) + " -> " + pt(a.to) + " " + buttonName(a.button);
-    case Kind::Scroll: return "scroll " + std::to_string(a.value);
-    case Kind::Key: return "key " + a.name;
-    case Kind::Slider: return "slider " + a.name + " = " + std::to_string(a.value);
-    case Kind::Option: return "option " + a.name + " = " + a.text;
-    case Kind::View: return "view " + a.name;
-    case Kind::Select: return "select " + std::to_string(static_cast<int>(a.value));
-    case Kind::Button: return "button " + a.name;
-    case Kind::Save: return "save " + a.path.string();
-    case Kind::Load: return "load " + a.path.string();
-    case Kind::Export: return "export " + a.path.string();
-    case Kind::Screenshot: return "screenshot " + a.path.string();
-    case Kind::Wait: return "wait " + std::to_string(a.steps);
+    case Kind::Click:
+      return "click " + pt(a.from) + " " + buttonName(a.button);
+    case Kind::Drag:
+      return "drag " + pt(a.from) + " -> " + pt(a.to) + " " + buttonName(a.button);
+    case Kind::Scroll:
+      return "scroll " + std::to_string(a.value);
+    case Kind::Key:
+      return "key " + a.name;
+    case Kind::Slider:
+      return "slider " + a.name + " = " + std::to_string(a.value);
+    case Kind::Option:
+      return "option " + a.name + " = " + a.text;
+    case Kind::View:
+      return "view " + a.name;
+    case Kind::Select:
+      return "select " + std::to_string(static_cast<int>(a.value));
+    case Kind::Button:
+      return "button " + a.name;
+    case Kind::Save:
+      return "save " + a.path.string();
+    case Kind::Load:
+      return "load " + a.path.string();
+    case Kind::Export:
+      return "export " + a.path.string();
+    case Kind::Screenshot:
+      return "screenshot " + a.path.string();
+    case Kind::Wait:
+      return "wait " + std::to_string(a.steps);
     case Kind::Expect: {
       std::string s = "expect";
       for (const auto& [k, v] : a.expect) s += " " + k + "=" + std::to_string(static_cast<long long>(v));
@@ -307,7 +347,9 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
     std::string failure;
     try {
       switch (a.kind) {
-        case Kind::Click: state.clickAt(a.from, a.button, a.mods); break;
+        case Kind::Click:
+          state.clickAt(a.from, a.button, a.mods);
+          break;
         case Kind::Drag: {
           // Move in steps, drawing a frame after each, as a real drag would.
           state.mouseDown(a.from, a.button, a.mods);
@@ -318,43 +360,65 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
           state.mouseUp(a.to, a.button, a.mods);
           break;
         }
-        case Kind::Scroll: state.scroll(a.value); break;
+        case Kind::Scroll:
+          state.scroll(a.value);
+          break;
         case Kind::Key:
           if (!state.keyPress(a.name, a.mods)) failure = "no action is bound to key '" + a.name + "'";
           break;
         case Kind::Slider:
-          if (a.name == "sliceHalfThickness") state.setSliceHalfThickness(a.value);
-          else if (a.name == "lineEpsilon") state.setLineEpsilon(a.value);
+          if (a.name == "sliceHalfThickness")
+            state.setSliceHalfThickness(a.value);
+          else if (a.name == "lineEpsilon")
+            state.setLineEpsilon(a.value);
           else if (a.name == "pointSize") {
             if (!(a.value > 0)) throw OptionsError("pointSize must be positive");
             state.display().pointSize = static_cast<float>(a.value);
           }
           break;
-        case Kind::Option: applyOption(state, a.name, a.text); break;
-        case Kind::View:
-          if (a.name == "fit") state.fitView();
-          else state.presetView(geom::parsePresetView(a.name));
+        case Kind::Option:
+          applyOption(state, a.name, a.text);
           break;
-        case Kind::Select: state.selectNode(static_cast<sketch::NodeId>(a.value)); break;
+        case Kind::View:
+          if (a.name == "fit")
+            state.fitView();
+          else
+            state.presetView(geom::parsePresetView(a.name));
+          break;
+        case Kind::Select:
+          state.selectNode(static_cast<sketch::NodeId>(a.value));
+          break;
         case Kind::Button:
-          if (a.name == "undo") state.undo();
-          else if (a.name == "redo") state.redo();
-          else if (a.name == "fit") state.fitView();
-          else if (a.name == "clear") state.clearSketch();
-          else if (a.name == "autoSketch") state.autoSketchUniform();
-          else if (a.name == "autoSkeleton") state.autoSketchSkeleton();
-          else if (a.name == "delete") state.deleteSelected(false);
-          else if (a.name == "deleteSubtree") state.deleteSelected(true);
+          if (a.name == "undo")
+            state.undo();
+          else if (a.name == "redo")
+            state.redo();
+          else if (a.name == "fit")
+            state.fitView();
+          else if (a.name == "clear")
+            state.clearSketch();
+          else if (a.name == "autoSketch")
+            state.autoSketchUniform();
+          else if (a.name == "autoSkeleton")
+            state.autoSketchSkeleton();
+          else if (a.name == "delete")
+            state.deleteSelected(false);
+          else if (a.name == "deleteSubtree")
+            state.deleteSelected(true);
           break;
         case Kind::Save:
         case Kind::Load: {
           std::filesystem::path p = a.path.empty() ? hooks.sketchPath : a.path;
           if (p.empty()) throw OptionsError("no sketch path: give one (\"save PATH\") or start with --sketch");
-          if (a.kind == Kind::Save) state.saveSketch(p);
-          else state.loadSketch(p);
+          if (a.kind == Kind::Save)
+            state.saveSketch(p);
+          else
+            state.loadSketch(p);
           break;
         }
-        case Kind::Export: state.exportMesh(a.path); break;
+        case Kind::Export:
+          state.exportMesh(a.path);
+          break;
         case Kind::Screenshot:
           if (!hooks.screenshot) throw OptionsError("screenshots need a window");
           if (hooks.frame) hooks.frame();

@@ -13,8 +13,7 @@ using geom::Vec3;
 
 Rgb rampColor(double t) {
   // Stops approximating matplotlib's viridis at 0, .25, .5, .75, 1.
-  static const double kStops[5][3] = {
-      {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
+  static const double kStops[5][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
   if (!(t >= 0.0)) t = 0.0;
   if (t > 1.0) t = 1.0;
   double x = t * 4.0;

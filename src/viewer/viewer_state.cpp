@@ -108,27 +108,36 @@ MeshStyle parseMeshStyle(const std::string& s) {
 
 const char* toString(ColorMode mode) {
   switch (mode) {
-    case ColorMode::Height: return "height";
-    case ColorMode::CircleDistance: return "distance";
-    case ColorMode::Plain: return "plain";
+    case ColorMode::Height:
+      return "height";
+    case ColorMode::CircleDistance:
+      return "distance";
+    case ColorMode::Plain:
+      return "plain";
   }
   return "?";
 }
 
 const char* toString(MeshStyle style) {
   switch (style) {
-    case MeshStyle::Solid: return "solid";
-    case MeshStyle::Wireframe: return "wireframe";
-    case MeshStyle::Hidden: return "hidden";
+    case MeshStyle::Solid:
+      return "solid";
+    case MeshStyle::Wireframe:
+      return "wireframe";
+    case MeshStyle::Hidden:
+      return "hidden";
   }
   return "?";
 }
 
 const char* toString(NodeStatus status) {
   switch (status) {
-    case NodeStatus::Pending: return "pending";
-    case NodeStatus::Fitted: return "fitted";
-    case NodeStatus::Skipped: return "skipped";
+    case NodeStatus::Pending:
+      return "pending";
+    case NodeStatus::Fitted:
+      return "fitted";
+    case NodeStatus::Skipped:
+      return "skipped";
   }
   return "?";
 }
@@ -245,8 +254,10 @@ void ViewerState::endEdit() {
   fixSelection();
   rebuild();
   // A drag is one edit: it is saved once, when the button is released.
-  if (gesture_ == Gesture::DragNode) autosavePending_ = true;
-  else autosave();
+  if (gesture_ == Gesture::DragNode)
+    autosavePending_ = true;
+  else
+    autosave();
 }
 
 void ViewerState::fixSelection() {
@@ -342,9 +353,7 @@ Vec3 ViewerState::anchor(NodeId id) const {
   return g.linePoint + (c - g.linePoint).dot(g.lineDir) * g.lineDir;
 }
 
-bool ViewerState::moveNodeTo(NodeId id, const Vec2& screen) {
-  return moveNodeImpl(id, screen, "");
-}
+bool ViewerState::moveNodeTo(NodeId id, const Vec2& screen) { return moveNodeImpl(id, screen, ""); }
 
 bool ViewerState::moveNodeImpl(NodeId id, const Vec2& screen, const std::string& key) {
   return edit("move node", "move node " + std::to_string(id), key, [&] {
@@ -374,17 +383,17 @@ bool ViewerState::deleteSelected(bool withSubtree) {
     return false;
   }
   NodeId id = selected_;
-  return edit("delete node", std::string(withSubtree ? "delete subtree " : "delete node ") + std::to_string(id),
-                        "", [&] {
-                          NodeId parent = sketch_.node(id).parent;
-                          sketch_.removeNode(id, withSubtree);
-                          if (parent != kNoNode && sketch_.contains(parent)) {
-                            selected_ = active_ = parent;
-                          } else {
-                            selected_ = kNoNode;
-                            active_ = sketch_.empty() ? kNoNode : sketch_.root();
-                          }
-                        });
+  return edit("delete node", std::string(withSubtree ? "delete subtree " : "delete node ") + std::to_string(id), "",
+              [&] {
+                NodeId parent = sketch_.node(id).parent;
+                sketch_.removeNode(id, withSubtree);
+                if (parent != kNoNode && sketch_.contains(parent)) {
+                  selected_ = active_ = parent;
+                } else {
+                  selected_ = kNoNode;
+                  active_ = sketch_.empty() ? kNoNode : sketch_.root();
+                }
+              });
 }
 
 sketch::SamplingParams ViewerState::paramsForEdit() const {
@@ -396,8 +405,10 @@ bool ViewerState::applyParams(const sketch::SamplingParams& params, const std::s
   NodeId id = (selected_ != kNoNode && sketch_.contains(selected_)) ? selected_ : kNoNode;
   std::string fullKey = key + ":" + std::to_string(id);
   return edit(label, label + (id == kNoNode ? " (new nodes)" : " of node " + std::to_string(id)), fullKey, [&] {
-    if (id == kNoNode) sketch_.defaults = params;
-    else sketch_.setParams(id, params);
+    if (id == kNoNode)
+      sketch_.defaults = params;
+    else
+      sketch_.setParams(id, params);
   });
 }
 
@@ -519,7 +530,6 @@ bool ViewerState::exportMesh(const std::filesystem::path& path) {
   });
 }
 
-
 // ---- input ---------------------------------------------------------------------------------------
 
 void ViewerState::mouseDown(const Vec2& pos, MouseButton button, int mods) {
@@ -558,7 +568,8 @@ void ViewerState::mouseMove(const Vec2& pos) {
       orbit_.pan(pos - lastPos_);
       ++sceneVersion_;
       break;
-    default: break;
+    default:
+      break;
   }
   lastPos_ = pos;
 }
@@ -608,22 +619,30 @@ void ViewerState::dragTo(const Vec2& from, const Vec2& to, MouseButton button, i
 bool ViewerState::keyPress(const std::string& keyName, int mods) {
   std::string key = lower(keyName);
   for (;;) {
-    if (key.rfind("ctrl+", 0) == 0) mods |= kModCtrl, key = key.substr(5);
-    else if (key.rfind("shift+", 0) == 0) mods |= kModShift, key = key.substr(6);
-    else if (key.rfind("alt+", 0) == 0) mods |= kModAlt, key = key.substr(4);
-    else break;
+    if (key.rfind("ctrl+", 0) == 0)
+      mods |= kModCtrl, key = key.substr(5);
+    else if (key.rfind("shift+", 0) == 0)
+      mods |= kModShift, key = key.substr(6);
+    else if (key.rfind("alt+", 0) == 0)
+      mods |= kModAlt, key = key.substr(4);
+    else
+      break;
   }
   bool ctrl = mods & kModCtrl, shift = mods & kModShift;
   if (key == "delete" || key == "backspace") {
     deleteSelected(shift);
   } else if (key == "z" && ctrl) {
-    if (shift) redo();
-    else undo();
+    if (shift)
+      redo();
+    else
+      undo();
   } else if (key == "y" && ctrl) {
     redo();
   } else if (key == "s" && ctrl) {
-    if (sketchPath_.empty()) error("save: no sketch path (type one in the panel and use Save)");
-    else saveSketch(sketchPath_);
+    if (sketchPath_.empty())
+      error("save: no sketch path (type one in the panel and use Save)");
+    else
+      saveSketch(sketchPath_);
   } else if (key == "escape") {
     selectNode(kNoNode);
   } else if (key == "f") {
@@ -654,8 +673,12 @@ const std::vector<Rgb>& ViewerState::pointColors() {
   if (colorsStale_ || colorsMode_ != display_.colorMode || colors_.size() != cloud_.size()) {
     colorsMode_ = display_.colorMode;
     switch (colorsMode_) {
-      case ColorMode::Height: colors_ = heightColors(cloud_, up_); break;
-      case ColorMode::Plain: colors_ = plainColors(cloud_, options_.plainColor); break;
+      case ColorMode::Height:
+        colors_ = heightColors(cloud_, up_);
+        break;
+      case ColorMode::Plain:
+        colors_ = plainColors(cloud_, options_.plainColor);
+        break;
       case ColorMode::CircleDistance: {
         std::vector<Circle3> circles;
         for (NodeId id : sketch_.ids()) {

@@ -1,7 +1,6 @@
 // `treesketch gui` (apps/cli/cmd_gui.cpp): the CLI runs the desktop tool from its own directory and
 // says clearly when it was not built. These cases never open a window.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <cstdlib>

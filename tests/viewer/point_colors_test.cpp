@@ -36,11 +36,11 @@ TEST(PointColors, HeightColorsFollowTheUpAxis) {
 
 TEST(PointColors, DistanceToCircleKnownValues) {
   Circle3 c{Vec3(1, 2, 3), Vec3(0, 1, 0), 2.0};
-  EXPECT_NEAR(distanceToCircle(Vec3(3, 2, 3), c), 0.0, 1e-12);   // on the curve
-  EXPECT_NEAR(distanceToCircle(Vec3(1, 2, 3), c), 2.0, 1e-12);   // the centre
+  EXPECT_NEAR(distanceToCircle(Vec3(3, 2, 3), c), 0.0, 1e-12);                   // on the curve
+  EXPECT_NEAR(distanceToCircle(Vec3(1, 2, 3), c), 2.0, 1e-12);                   // the centre
   EXPECT_NEAR(distanceToCircle(Vec3(1, 5, 3), c), std::sqrt(9.0 + 4.0), 1e-12);  // on the axis
-  EXPECT_NEAR(distanceToCircle(Vec3(6, 2, 3), c), 3.0, 1e-12);   // outside in the plane
-  EXPECT_NEAR(distanceToCircle(Vec3(3, 3, 3), c), 1.0, 1e-12);   // above the curve
+  EXPECT_NEAR(distanceToCircle(Vec3(6, 2, 3), c), 3.0, 1e-12);                   // outside in the plane
+  EXPECT_NEAR(distanceToCircle(Vec3(3, 3, 3), c), 1.0, 1e-12);                   // above the curve
 }
 
 TEST(PointColors, CircleDistanceColorsUseTheNearestCircle) {

@@ -19,8 +19,10 @@ struct VoxelGraphOptions {
   /// cloud's bounding-box diagonal and `autoSpacingFactor` × the estimated point spacing, grown
   /// until at most `maxVoxels` voxels are occupied.
   double voxelSize = 0;
-  /// Automatic voxel size as a fraction of the bbox diagonal (1/400: ~0.2 m for a 65 m tall tree;
-  /// chosen on the test trees so that a 160k-ray scan stays connected along the twigs).
+  /// Automatic voxel size as a fraction of the bbox diagonal (1/400: ~0.18 units for a 65-unit
+  /// tree). On the four test trees' 160k-ray sphere scans (leaf-off) 1/250 measured mean forward /
+  /// backward RMS of 1.64 % / 0.28 % of the diagonal (1/333 with reach 2: 1.72 % / 0.32 %); 1/400
+  /// is kept as the default because it resolves the small synthetic test trees better.
   double autoDiagonalFraction = 1.0 / 400.0;
   /// Automatic voxel size as a multiple of the point spacing (≥ 2 keeps a surface connected in the
   /// 26-neighbourhood).

@@ -37,17 +37,32 @@
 namespace treesketch::viewer {
 
 struct ScriptAction {
-  enum class Kind { Click, Drag, Scroll, Key, Slider, Option, View, Select, Button, Save, Load, Export, Screenshot,
-                    Wait, Expect };
+  enum class Kind {
+    Click,
+    Drag,
+    Scroll,
+    Key,
+    Slider,
+    Option,
+    View,
+    Select,
+    Button,
+    Save,
+    Load,
+    Export,
+    Screenshot,
+    Wait,
+    Expect
+  };
   Kind kind = Kind::Wait;
   std::size_t index = 0;  ///< position in the script (0-based), for messages
   geom::Vec2 from = geom::Vec2::Zero(), to = geom::Vec2::Zero();
   MouseButton button = MouseButton::Left;
   int mods = kModNone;
-  int steps = 8;             ///< drag: mouse moves; wait: frames
-  double value = 0.0;        ///< scroll steps, slider value, select id
-  std::string name;          ///< key, slider, option, view or button name
-  std::string text;          ///< option value (text form)
+  int steps = 8;       ///< drag: mouse moves; wait: frames
+  double value = 0.0;  ///< scroll steps, slider value, select id
+  std::string name;    ///< key, slider, option, view or button name
+  std::string text;    ///< option value (text form)
   std::filesystem::path path;
   std::vector<std::pair<std::string, double>> expect;
 };

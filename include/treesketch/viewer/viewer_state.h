@@ -179,10 +179,11 @@ class ViewerState {
   void setColorMode(ColorMode mode);
 
   // ---- input (window pixels; what a mouse and keyboard do) -------------------------------------
-  /// Left button: press on a node picks it (release without moving selects it and makes it active
-  /// — with Ctrl it only selects it; moving drags it); press elsewhere and release adds a node there as a child of the active node
-  /// (the first node is the root). Right button drag (or Alt + left): trackball orbit. Middle
-  /// button drag (or Shift + right): pan. Presses outside the viewport are ignored.
+  /// Left button: press on a node picks it (release without moving selects it and makes it
+  /// active — with Ctrl it only selects it; moving drags it); press elsewhere and release adds a
+  /// node there as a child of the active node (the first node is the root). Right button drag (or
+  /// Alt + left): trackball orbit. Middle button drag (or Shift + right): pan. Presses outside the
+  /// viewport are ignored.
   void mouseDown(const geom::Vec2& pos, MouseButton button, int mods = kModNone);
   void mouseMove(const geom::Vec2& pos);
   void mouseUp(const geom::Vec2& pos, MouseButton button, int mods = kModNone);
@@ -191,8 +192,8 @@ class ViewerState {
   /// Press and release at `pos`.
   void clickAt(const geom::Vec2& pos, MouseButton button = MouseButton::Left, int mods = kModNone);
   /// Press at `from`, move to `to` in `steps` equal moves, release.
-  void dragTo(const geom::Vec2& from, const geom::Vec2& to, MouseButton button = MouseButton::Left,
-              int mods = kModNone, int steps = 8);
+  void dragTo(const geom::Vec2& from, const geom::Vec2& to, MouseButton button = MouseButton::Left, int mods = kModNone,
+              int steps = 8);
   /// A key press by name: "delete"/"backspace" (delete selected, children re-attached; with Shift
   /// the subtree too), "ctrl+z"-style names are accepted (mods parsed from the prefix), "z" with
   /// Ctrl (undo), "y" with Ctrl or "z" with Ctrl+Shift (redo), "s" with Ctrl (save to sketchPath()), "escape"

@@ -1,0 +1,105 @@
+// Skeleton sketch speed: a 1M-point cloud of a synthetic branching tree (noisy cylinder surfaces,
+// trunk + 8 limbs + 4 twigs each, ~10 m tall) → extractSkeleton, and → autoSkeletonSketch
+// (skeleton, sketch, every node's slice + RANSAC fit, radius rules, sweep). Target: ≤ 2 s on 2 cores.
+//   build-*/bench_skeleton --benchmark_min_time=1
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+
+#include "treesketch/skeleton/skeleton_sketch.h"
+
+using namespace treesketch;
+using geom::Vec3;
+
+namespace {
+
+struct Cyl {
+  Vec3 a, b;
+  double r;
+};
+
+std::vector<Cyl> benchTree() {
+  std::vector<Cyl> cyls;
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  cyls.push_back({Vec3(0, 0, 0), Vec3(0, 10, 0), 0.3});
+  for (int i = 0; i < 8; ++i) {
+    const double h = 3.0 + 0.8 * i, phi = 2.4 * i;
+    const Vec3 base(0, h, 0);
+    const Vec3 dir = Vec3(std::cos(phi), 0.8, std::sin(phi)).normalized();
+    const double len = 4.0 - 0.3 * i;
+    cyls.push_back({base, base + len * dir, 0.15 - 0.01 * i});
+    for (int k = 0; k < 4; ++k) {
+      const Vec3 tb = base + (0.35 + 0.15 * k) * len * dir;
+      const Vec3 tdir = (dir + Vec3(uni(rng) - 0.5, 0.6, uni(rng) - 0.5)).normalized();
+      cyls.push_back({tb, tb + 1.2 * tdir, 0.05});
+    }
+  }
+  return cyls;
+}
+
+geom::PointCloud benchCloud(std::size_t target) {
+  const auto cyls = benchTree();
+  double area = 0;
+  for (const auto& c : cyls) area += 2 * M_PI * c.r * (c.b - c.a).norm();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  std::normal_distribution<double> gauss(0.0, 0.005);
+  geom::PointCloud cloud;
+  cloud.positions.reserve(target + cyls.size());
+  for (const auto& c : cyls) {
+    const double len = (c.b - c.a).norm();
+    const Vec3 axis = (c.b - c.a) / len, u = geom::anyPerpendicular(axis), v = axis.cross(u);
+    const auto count = static_cast<std::size_t>(target * 2 * M_PI * c.r * len / area);
+    for (std::size_t i = 0; i < count; ++i) {
+      const double t = uni(rng) * len, a = uni(rng) * 2 * M_PI, r = c.r + gauss(rng);
+      cloud.positions.push_back(c.a + t * axis + r * (std::cos(a) * u + std::sin(a) * v));
+    }
+  }
+  return cloud;
+}
+
+const geom::PointCloud& cloud1M() {
+  static const geom::PointCloud cloud = benchCloud(1000000);
+  return cloud;
+}
+
+void BM_ExtractSkeleton1M(benchmark::State& state) {
+  const auto& cloud = cloud1M();
+  std::size_t nodes = 0;
+  for (auto _ : state) {
+    auto s = skeleton::extractSkeleton(cloud);
+    nodes = s.nodes.size();
+    benchmark::DoNotOptimize(s);
+  }
+  state.counters["points"] = static_cast<double>(cloud.size());
+  state.counters["nodes"] = static_cast<double>(nodes);
+}
+BENCHMARK(BM_ExtractSkeleton1M)->Unit(benchmark::kMillisecond);
+
+void BM_AutoSkeletonSketch1M(benchmark::State& state) {
+  const auto& cloud = cloud1M();
+  double skel = 0, fit = 0, sweep = 0;
+  std::size_t nodes = 0, forks = 0;
+  for (auto _ : state) {
+    auto r = skeleton::autoSkeletonSketch(cloud);
+    skel = r.skeletonMs;
+    fit = r.fitMs;
+    sweep = r.sweepMs;
+    nodes = r.model.size();
+    forks = skeleton::countBranchPoints(r.model);
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["points"] = static_cast<double>(cloud.size());
+  state.counters["nodes"] = static_cast<double>(nodes);
+  state.counters["forks"] = static_cast<double>(forks);
+  state.counters["skeletonMs"] = skel;
+  state.counters["fitMs"] = fit;
+  state.counters["sweepMs"] = sweep;
+}
+BENCHMARK(BM_AutoSkeletonSketch1M)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,50 @@
+// The skeleton of a scanned built-in tree against the generator's exact skeleton.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "treesketch/gen/tree_generator.h"
+#include "treesketch/scan/sphere_scan.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
+
+using namespace treesketch;
+using geom::Vec3;
+
+namespace {
+double distanceToTrueAxes(const gen::Skeleton& truth, const Vec3& p) {
+  double best = 1e300;
+  for (const auto& b : truth.branches)
+    for (std::size_t k = 0; k + 1 < b.sections.size(); ++k) {
+      const Vec3 a = b.sections[k].center, c = b.sections[k + 1].center, ac = c - a;
+      const double t = ac.squaredNorm() > 0 ? std::clamp((p - a).dot(ac) / ac.squaredNorm(), 0.0, 1.0) : 0.0;
+      best = std::min(best, (p - (a + t * ac)).norm());
+    }
+  return best;
+}
+}  // namespace
+
+TEST(GeneratedTree, ScannedSparseTreeNodesLieNearTheTrueAxes) {
+  gen::TreeOptions to = gen::presetOptions("sparse");
+  to.leaves = false;
+  const gen::GeneratedTree tree = gen::generateTree(to);
+  scan::SphereScanOptions so;
+  so.rays = 60000;
+  const geom::PointCloud cloud = scan::sphereScan({tree.branches.mesh}, so).cloud;
+  ASSERT_GT(cloud.size(), 5000u);
+  skeleton::AutoSkeletonOptions o;
+  o.skeleton.up = to.up;
+  const auto res = skeleton::autoSkeletonSketch(cloud, o);
+  ASSERT_GT(res.model.size(), 5u);
+  const double trunkRadius = tree.skeleton.branches.front().sections.front().radius;
+  std::vector<double> d;
+  for (const auto& n : res.model) d.push_back(distanceToTrueAxes(tree.skeleton, n.position));
+  std::sort(d.begin(), d.end());
+  const double median = d[d.size() / 2], p90 = d[d.size() * 9 / 10];
+  std::printf("generated tree: %zu nodes, %zu forks (truth: %zu branches); node-to-axis median %.4f, p90 %.4f, "
+              "max %.4f (trunk radius %.4f)\n",
+              res.model.size(), skeleton::countBranchPoints(res.model), tree.skeleton.branches.size(), median, p90,
+              d.back(), trunkRadius);
+  EXPECT_LT(median, 0.5 * trunkRadius);
+  EXPECT_LT(p90, 2.0 * trunkRadius);
+  EXPECT_GE(skeleton::countBranchPoints(res.model) + 1, tree.skeleton.branches.size() / 2);
+}
