@@ -26,6 +26,7 @@ void registerEvaluate(CLI::App& app, Action& action);
 void registerGui(CLI::App& app, Action& action);
 void registerInfo(CLI::App& app, Action& action);
 void registerReconstruct(CLI::App& app, Action& action);
+void registerRender(CLI::App& app, Action& action);
 void registerScan(CLI::App& app, Action& action);
 void registerSketch(CLI::App& app, Action& action);
 

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   registerGui(app, action);
   registerInfo(app, action);
   registerReconstruct(app, action);
+  registerRender(app, action);
   registerScan(app, action);
   registerSketch(app, action);
   try {

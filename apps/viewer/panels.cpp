@@ -64,8 +64,8 @@ void selectedNodeSection(viewer::ViewerState& state) {
                                                            : ImVec4(0.8f, 0.8f, 0.8f, 1);
   ImGui::TextColored(statusColor, "%s", viewer::toString(fit.status));
   if (fit.status == NodeStatus::Fitted) {
-    ImGui::Text("circle: radius %.4f at (%.3f, %.3f, %.3f)", fit.circle.radius, fit.circle.centre.x(),
-                fit.circle.centre.y(), fit.circle.centre.z());
+    ImGui::Text("circle radius %.4f", fit.circle.radius);
+    ImGui::Text("centre (%.3f, %.3f, %.3f)", fit.circle.centre.x(), fit.circle.centre.y(), fit.circle.centre.z());
     ImGui::Text("inliers %zu of %zu test points", fit.inliers, fit.testPoints);
     ImGui::Text("lineEpsilon used: %.4f", fit.finalLineEpsilon);
   } else if (fit.status == NodeStatus::Skipped) {

@@ -187,6 +187,8 @@ geom::PointCloud scanTree(const TreeCase& tree, const std::string& pattern, bool
     scan::SphereScanOptions s;
     s.rays = o.sphereRays;
     s.seed = o.seed;
+    s.jitterDeg = o.sphereJitterDeg > 0 ? o.sphereJitterDeg
+                                        : std::atan(0.5 / s.radiusFactor) * 180.0 / M_PI;  // cone over the bbox
     s.recordMesh = true;
     return scan::sphereScan(meshes, s).cloud;
   }

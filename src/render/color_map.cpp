@@ -32,7 +32,7 @@ Rgb viridis(double t) {
 std::vector<Rgb> heightColors(const std::vector<geom::Vec3>& points, geom::UpAxis up) {
   std::vector<Rgb> colors;
   if (points.empty()) return colors;
-  double lo = geom::height(points.front(), up), hi = lo;
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
   for (const auto& p : points) {
     double h = geom::height(p, up);
     if (std::isfinite(h)) {
@@ -41,7 +41,7 @@ std::vector<Rgb> heightColors(const std::vector<geom::Vec3>& points, geom::UpAxi
     }
   }
   colors.reserve(points.size());
-  const double range = hi - lo;
+  const double range = hi > lo ? hi - lo : 0.0;
   for (const auto& p : points) colors.push_back(viridis(range > 0 ? (geom::height(p, up) - lo) / range : 0.5));
   return colors;
 }

@@ -195,16 +195,61 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
     fitted[i] = f.radius;
     res.model[i].position = f.centre;
   }
-  const std::vector<double> radii = regularizeRadii(nodes, fitted, res.fitAccepted, rules);
-  for (std::size_t i = 0; i < n; ++i) res.model[i].radius = radii[i];
+  if (options.trimUnfittedTips) {
+    // Reverse order visits children before parents.
+    std::vector<char> keep(n, 1);
+    for (std::size_t i = n; i-- > 1;) {
+      if (res.fitAccepted[i]) continue;
+      bool anyChild = false;
+      for (std::int32_t c : nodes[i].children) anyChild |= keep[c] != 0;
+      keep[i] = anyChild;
+    }
+    std::vector<std::int32_t> newIndex(n, -1);
+    std::vector<SkeletonNode> kept;
+    std::vector<fit::NodeResult> keptFits;
+    std::vector<char> keptAccepted;
+    std::vector<double> keptFitted;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!keep[i]) continue;
+      newIndex[i] = static_cast<std::int32_t>(kept.size());
+      SkeletonNode node = nodes[i];
+      node.parent = node.parent >= 0 ? newIndex[node.parent] : -1;
+      node.children.clear();
+      kept.push_back(node);
+      keptFits.push_back(std::move(res.fits[i]));
+      keptAccepted.push_back(res.fitAccepted[i]);
+      keptFitted.push_back(fitted[i]);
+    }
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      if (kept[i].parent >= 0) kept[kept[i].parent].children.push_back(static_cast<std::int32_t>(i));
+    if (kept.size() != n) {
+      std::vector<geom::Vec3> centres;
+      for (std::size_t i = 0; i < n; ++i)
+        if (keep[i]) centres.push_back(res.model[i].position);
+      Skeleton trimmed;
+      trimmed.up = res.skeleton.up;
+      trimmed.graph.voxelSize = res.skeleton.graph.voxelSize;
+      trimmed.nodes = kept;
+      res.sketch = skeletonToSketch(trimmed, options.sketch);
+      res.model = kept;
+      for (std::size_t i = 0; i < kept.size(); ++i) res.model[i].position = centres[i];
+      res.fits = std::move(keptFits);
+      res.fitAccepted = std::move(keptAccepted);
+      fitted = std::move(keptFitted);
+      res.skeleton.nodes = std::move(kept);
+    }
+  }
+  const std::size_t m = res.model.size();
+  const std::vector<double> radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, rules);
+  for (std::size_t i = 0; i < m; ++i) res.model[i].radius = radii[i];
 
-  std::vector<sweep::SweepNode> sweepNodes(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  std::vector<sweep::SweepNode> sweepNodes(m);
+  for (std::size_t i = 0; i < m; ++i) {
     auto& s = sweepNodes[i];
     s.id = static_cast<sketch::NodeId>(i);
-    s.parent = nodes[i].parent < 0 ? sketch::kNoNode : nodes[i].parent;
+    s.parent = res.model[i].parent < 0 ? sketch::kNoNode : res.model[i].parent;
     s.fitted = true;
-    s.disc = sweep::Disc{res.model[i].position, nodes[i].direction, radii[i]};
+    s.disc = sweep::Disc{res.model[i].position, res.model[i].direction, radii[i]};
   }
   sweep::SweepOptions so;
   so.ringVertices = options.ringVertices;

@@ -29,7 +29,8 @@ TEST(GeneratedTree, ScannedSparseTreeNodesLieNearTheTrueAxes) {
   const gen::GeneratedTree tree = gen::generateTree(to);
   scan::SphereScanOptions so;
   so.rays = 60000;
-  const geom::PointCloud cloud = scan::sphereScan({tree.branches.mesh}, so).cloud;
+  const std::vector<geom::TriMesh> meshes = {tree.branches.mesh};
+  const geom::PointCloud cloud = scan::sphereScan(meshes, so).cloud;
   ASSERT_GT(cloud.size(), 5000u);
   skeleton::AutoSkeletonOptions o;
   o.skeleton.up = to.up;
