@@ -35,7 +35,10 @@ void registerEvaluate(CLI::App& app, Action& action) {
   cmd->add_option("--pattern", o->patterns, "Scan patterns: sphere, tls (several allowed)")
       ->capture_default_str()
       ->check(CLI::IsMember({"sphere", "tls"}));
-  cmd->add_option("--rays", o->e.sphereRays, "Sphere pattern: ray count")->capture_default_str();
+  cmd->add_option("--points", o->e.sphereTargetPoints,
+                  "Sphere pattern: aim for about this many points (rays scaled from a pilot scan's hit rate)")
+      ->capture_default_str();
+  cmd->add_option("--rays", o->e.sphereRays, "Sphere pattern: cast exactly this many rays (overrides --points)");
   cmd->add_option("--tls-points", o->e.tlsTargetPoints, "TLS pattern: aim for about this many points")
       ->capture_default_str();
   cmd->add_option("--tls-stations", o->e.tlsStations, "TLS pattern: stations on a ring")->capture_default_str();
@@ -55,9 +58,10 @@ void registerEvaluate(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--seed", o->e.seed, "Seed of scans, sketches and sampling")->capture_default_str();
   cmd->callback([cmd, o, &action] {
-    (void)cmd;
-    action = [o] {
+    bool cmdRaysGiven = cmd->count("--rays") > 0;
+    action = [o, cmdRaysGiven] {
       eval::EvalOptions e = o->e;
+      if (cmdRaysGiven) e.sphereTargetPoints = 0;
       e.patterns = o->patterns;
       if (!o->methods.empty()) e.methods = o->methods;
       else e.methods = eval::methodNames();

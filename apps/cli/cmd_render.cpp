@@ -92,6 +92,11 @@ void runRender(const RenderArgs& a) {
   geom::BBox box = scene.bounds();
   if (box.empty()) throw OptionsError("render: the inputs hold nothing to draw");
   geom::Camera camera = render::fitCamera(box, view, up, width, height);
+  std::vector<geom::Vec3> all = scene.cloud;  // frame what is drawn, not the box's empty corners
+  for (const auto& m : scene.meshes) all.insert(all.end(), m.vertices.begin(), m.vertices.end());
+  for (const auto& l : scene.polylines) all.insert(all.end(), l.points.begin(), l.points.end());
+  for (const auto& d : scene.dots) all.push_back(d.position);
+  camera = render::tightenCamera(camera, all);
   render::Image image = render::renderScene(scene, camera, width, height);
   render::writePng(a.output, image);
   std::printf("wrote %s (%d x %d, %s view)\n", a.output.c_str(), width, height, a.view.c_str());

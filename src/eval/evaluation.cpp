@@ -187,6 +187,15 @@ geom::PointCloud scanTree(const TreeCase& tree, const std::string& pattern, bool
     scan::SphereScanOptions s;
     s.rays = o.sphereRays;
     s.seed = o.seed;
+    if (o.sphereTargetPoints > 0) {
+      scan::SphereScanOptions pilot = s;
+      pilot.rays = 100000;
+      pilot.seed = o.seed + 7919;
+      pilot.jitterDeg = o.sphereJitterDeg > 0 ? o.sphereJitterDeg : std::atan(0.5 / s.radiusFactor) * 180.0 / M_PI;
+      double hitRate = std::max<double>(scan::sphereScan(meshes, pilot).cloud.size(), 1.0) /
+                       static_cast<double>(scan::sphereRayCount(pilot));
+      s.rays = static_cast<std::uint64_t>(std::min(static_cast<double>(o.sphereTargetPoints) / hitRate, 5e7));
+    }
     s.jitterDeg = o.sphereJitterDeg > 0 ? o.sphereJitterDeg
                                         : std::atan(0.5 / s.radiusFactor) * 180.0 / M_PI;  // cone over the bbox
     s.recordMesh = true;

@@ -53,14 +53,38 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
   Vec3 thick = ext.cwiseMax(Vec3::Constant(1e-3 * diag));
   double targetCells = std::clamp(double(nFinite) / options.pointsPerCell, 1.0, double(options.maxCells));
   cell_ = std::cbrt(thick.prod() / targetCells);
-  for (;;) {
-    double total = 1.0;
-    for (int a = 0; a < 3; ++a) {
-      dims_[a] = std::max(1, int(std::ceil(ext[a] / cell_)));
-      total *= dims_[a];
+  auto fitDims = [&] {
+    for (;;) {
+      double total = 1.0;
+      for (int a = 0; a < 3; ++a) {
+        dims_[a] = std::max(1, int(std::ceil(ext[a] / cell_)));
+        total *= dims_[a];
+      }
+      if (total <= double(options.maxCells)) break;
+      cell_ *= 1.1;
     }
-    if (total <= double(options.maxCells)) break;
-    cell_ *= 1.25;
+  };
+  fitDims();
+  // Refine: occupied cells of a surface scan hold ~cell² points; shrink cells until they hold about
+  // pointsPerOccupiedCell (at most 3 passes over the points, within maxCells).
+  for (int pass = 0; pass < 3 && options.pointsPerOccupiedCell > 0.0; ++pass) {
+    const std::size_t cells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
+    std::vector<char> used(cells, 0);
+    std::size_t occupied = 0;
+    for (const auto& p : pts) {
+      if (!p.allFinite()) continue;
+      std::size_t lin = 0;
+      for (int a = 2; a >= 0; --a)
+        lin = lin * dims_[a] + std::clamp(int(std::floor((p[a] - bounds_.min[a]) / cell_)), 0, dims_[a] - 1);
+      occupied += !used[lin];
+      used[lin] = 1;
+    }
+    const double perCell = double(nFinite) / double(std::max<std::size_t>(occupied, 1));
+    if (perCell < 2.0 * options.pointsPerOccupiedCell) break;
+    const double before = cell_;
+    cell_ *= std::max(0.25, std::sqrt(options.pointsPerOccupiedCell / perCell));
+    fitDims();
+    if (cell_ >= 0.95 * before) break;  // held back by maxCells
   }
   const std::size_t nCells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
   std::vector<std::uint32_t> cellOf(pts.size(), std::uint32_t(-1));

@@ -137,6 +137,35 @@ geom::Camera fitCamera(const geom::BBox& box, RenderView view, geom::UpAxis up, 
   return geom::presetCamera(preset, b, up, {0, 0, static_cast<double>(width), static_cast<double>(height)}, true);
 }
 
+geom::Camera tightenCamera(const geom::Camera& camera, const std::vector<Vec3>& points, double margin) {
+  const geom::Mat4 viewProj = camera.projection * camera.view;
+  double xMin = HUGE_VAL, xMax = -HUGE_VAL, yMin = HUGE_VAL, yMax = -HUGE_VAL;
+  std::size_t used = 0;
+  for (const Vec3& p : points) {
+    Eigen::Vector4d c = viewProj * Eigen::Vector4d(p.x(), p.y(), p.z(), 1.0);
+    if (!c.allFinite() || c.z() + c.w() < 0 || c.w() <= 0) continue;
+    double x = c.x() / c.w(), y = c.y() / c.w();
+    xMin = std::min(xMin, x);
+    xMax = std::max(xMax, x);
+    yMin = std::min(yMin, y);
+    yMax = std::max(yMax, y);
+    ++used;
+  }
+  const double span = std::max(xMax - xMin, yMax - yMin);
+  if (used < 2 || !(span > 1e-12) || !std::isfinite(span)) return camera;
+  const double fill = 2.0 * (1.0 - 2.0 * std::clamp(margin, 0.0, 0.45));
+  const double scale = std::min(fill / std::max(xMax - xMin, 1e-12), fill / std::max(yMax - yMin, 1e-12));
+  // In clip space x' = s (x - cx w), y' = s (y - cy w), z and w unchanged: in NDC a shift of the
+  // box centre to 0 and a uniform scale, so depth and the near/far planes stay as they were.
+  const double cx = 0.5 * (xMin + xMax), cy = 0.5 * (yMin + yMax);
+  geom::Mat4 m = geom::Mat4::Identity();
+  m.row(0) = scale * Eigen::RowVector4d(1, 0, 0, -cx);
+  m.row(1) = scale * Eigen::RowVector4d(0, 1, 0, -cy);
+  geom::Camera out = camera;
+  out.projection = m * camera.projection;
+  return out;
+}
+
 std::size_t addSketch(RenderScene& scene, const sketch::Sketch& sketch, const Vec3& focus, Rgb color) {
   std::map<sketch::NodeId, Vec3> placed;
   for (sketch::NodeId id : sketch.topologicalOrder()) {

@@ -12,7 +12,7 @@ namespace {
 
 EvalOptions smallOptions() {
   EvalOptions o;
-  o.sphereRays = 100000;
+  o.sphereTargetPoints = 30000;
   o.methods = {"uniform", "ideal", "user"};
   o.nodeSweep = {5, 15};
   o.leafOff = false;

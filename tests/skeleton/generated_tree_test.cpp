@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "treesketch/gen/tree_generator.h"
 #include "treesketch/scan/sphere_scan.h"

@@ -45,11 +45,14 @@ struct SliceRegion {
 std::vector<std::uint32_t> sliceBruteForce(const geom::PointCloud& cloud, const SliceRegion& region);
 
 struct CloudIndexOptions {
-  /// Grid resolution: about one cell per this many points (over the bounding box volume; scans
-  /// cover surfaces, so occupied cells hold more). Speed design choice.
+  /// Grid resolution, first guess: one cell per this many points over the bounding box volume.
   double pointsPerCell = 2.0;
-  /// Upper bound on the number of cells (memory: 4 bytes a cell).
-  std::size_t maxCells = std::size_t(1) << 24;
+  /// Then refined so that occupied cells hold about this many points on average (scans cover
+  /// surfaces, so most cells are empty and occupied ones hold far more than pointsPerCell).
+  /// Speed design choice: 8. 0 = no refinement.
+  double pointsPerOccupiedCell = 8.0;
+  /// Upper bound on the number of cells (memory: 5 bytes a cell while building, 4 after).
+  std::size_t maxCells = std::size_t(1) << 23;
 };
 
 /// A uniform grid over the cloud. Holds its own copy of the positions (sorted by cell); results

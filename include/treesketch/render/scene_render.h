@@ -66,6 +66,13 @@ RenderView parseRenderView(const std::string& name);
 /// box or a non-positive size; a zero-size box (one point) is padded to a small cube.
 geom::Camera fitCamera(const geom::BBox& box, RenderView view, geom::UpAxis up, int width, int height);
 
+/// `camera` zoomed and shifted in the picture plane (a uniform scale and shift of normalized
+/// device coordinates, so view direction, eye and aspect ratio are unchanged) so that the screen
+/// bounding box of `points` (world) fills the picture less a `margin` fraction (clamped to
+/// [0, 0.45]) on each side, centred. Points behind the near plane are ignored; with fewer than two
+/// usable points or a zero-size screen box the camera is returned unchanged.
+geom::Camera tightenCamera(const geom::Camera& camera, const std::vector<geom::Vec3>& points, double margin = 0.04);
+
 /// Adds a sketch to `scene`: one dot per node and one line per parent link. A point node sits at
 /// its point; a screen node at the point of its view ray closest to `focus` (e.g. the cloud's
 /// bounding-box centre, world). Nodes with no usable geometry (a degenerate ray) are skipped;
