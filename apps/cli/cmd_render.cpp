@@ -71,6 +71,7 @@ void runRender(const RenderArgs& a) {
   if (!a.cloud.empty()) scene.cloud = io::readPointCloud(a.cloud).positions;
   for (const std::string& m : a.meshes) scene.meshes.push_back(io::readMesh(m));
   const bool faint = !scene.meshes.empty();  // the cloud recedes behind a reconstruction
+  scene.cloudBehindMeshes = faint;
   if (a.colorBy == "height") {
     scene.cloudColors = render::heightColors(scene.cloud, up);
     if (faint)

@@ -14,6 +14,7 @@
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/scan/tls_scan.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/sketch/auto_sketch.h"
 #include "treesketch/sketch/polyline_sketch.h"
 #include "treesketch/sketch/view_camera.h"
@@ -140,12 +141,28 @@ MethodOutput methodIdeal(const MethodInput& in) {
   return reconstructSketch(sk, in.cloud, in.options.seed, t0);
 }
 
+MethodOutput methodSkeleton(const MethodInput& in) {
+  auto t0 = Clock::now();
+  skeleton::AutoSkeletonOptions so;
+  so.skeleton.up = in.tree.up;
+  so.seed = in.options.seed;
+  skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, so);
+  MethodOutput out;
+  out.mesh = std::move(r.mesh);
+  out.sketch = std::move(r.sketch);
+  out.nodes = static_cast<int>(out.sketch.size());
+  for (char a : r.fitAccepted) out.fitted += a != 0;
+  out.ms = msSince(t0);
+  return out;
+}
+
 const std::map<std::string, Method>& registry() {
   static const std::map<std::string, Method> methods = [] {
     std::map<std::string, Method> m;
     m["uniform"] = methodUniform;
     m["user"] = methodUser;
     m["ideal"] = methodIdeal;
+    m["skeleton"] = methodSkeleton;
     return m;
   }();
   return methods;

@@ -49,7 +49,7 @@ Rasterizer::Projected Rasterizer::toScreen(const Eigen::Vector4d& c) const {
   return {(ndc.x() + 1.0) * 0.5 * vp.width, (1.0 - ndc.y()) * 0.5 * vp.height, 0.5 * (ndc.z() + 1.0)};
 }
 
-void Rasterizer::stamp(double x, double y, double depth, int size, Rgb color, bool depthTest) {
+void Rasterizer::stamp(double x, double y, double depth, int size, Rgb color, PointDepth mode) {
   if (!(depth <= 1.0)) return;  // beyond the far plane (or NaN)
   const double half = 0.5 * size;
   const int x0 = static_cast<int>(std::floor(x - half + 0.5)), y0 = static_cast<int>(std::floor(y - half + 0.5));
@@ -57,14 +57,15 @@ void Rasterizer::stamp(double x, double y, double depth, int size, Rgb color, bo
   for (int py = std::max(y0, 0); py < std::min(y0 + size, image_.height); ++py) {
     for (int px = std::max(x0, 0); px < std::min(x0 + size, image_.width); ++px) {
       float& zb = depth_[static_cast<std::size_t>(py) * image_.width + px];
-      if (depthTest && !(d < zb)) continue;
+      if (mode == PointDepth::Test && !(d < zb)) continue;
+      if (mode == PointDepth::EmptyOnly && zb < 1.0f) continue;
       zb = std::min(zb, d);
       image_.set(px, py, color);
     }
   }
 }
 
-bool Rasterizer::drawPoint(const Vec3& p, Rgb color, int sizePx, bool depthTest) {
+bool Rasterizer::drawPoint(const Vec3& p, Rgb color, int sizePx, PointDepth depth) {
   if (!p.allFinite()) return false;
   Eigen::Vector4d c = toClip(p);
   if (nearDistance(c) < 0 || c.w() <= 0) return false;
@@ -72,7 +73,7 @@ bool Rasterizer::drawPoint(const Vec3& p, Rgb color, int sizePx, bool depthTest)
   if (s.depth > 1.0) return false;
   const int size = std::clamp(sizePx, 1, 32);
   if (s.x + size < 0 || s.y + size < 0 || s.x - size > image_.width || s.y - size > image_.height) return false;
-  stamp(s.x, s.y, s.depth, size, color, depthTest);
+  stamp(s.x, s.y, s.depth, size, color, depth);
   return true;
 }
 
@@ -95,7 +96,7 @@ bool Rasterizer::drawLine(const Vec3& a, const Vec3& b, Rgb color, const LineSty
     double x = sa.x + t * (sb.x - sa.x), y = sa.y + t * (sb.y - sa.y);
     if (x < -width || y < -width || x > image_.width + width || y > image_.height + width) continue;
     double d = sa.depth + t * (sb.depth - sa.depth) - style.depthBias;
-    stamp(x, y, d, width, color, style.depthTest);
+    stamp(x, y, d, width, color, style.depthTest ? PointDepth::Test : PointDepth::Ignore);
   }
   return true;
 }

@@ -96,17 +96,23 @@ Image renderScene(const RenderScene& scene, const geom::Camera& camera, int widt
   geom::Camera cam = camera;
   cam.viewport = {0, 0, static_cast<double>(width), static_cast<double>(height)};
   Rasterizer r(cam, scene.background);
-  for (std::size_t i = 0; i < scene.cloud.size(); ++i)
-    r.drawPoint(scene.cloud[i], scene.cloudColors.empty() ? scene.cloudColor : scene.cloudColors[i], scene.pointSize);
+  auto drawCloud = [&](PointDepth mode) {
+    for (std::size_t i = 0; i < scene.cloud.size(); ++i)
+      r.drawPoint(scene.cloud[i], scene.cloudColors.empty() ? scene.cloudColor : scene.cloudColors[i], scene.pointSize,
+                  mode);
+  };
+  if (!scene.cloudBehindMeshes) drawCloud(PointDepth::Test);
   for (std::size_t i = 0; i < scene.meshes.size(); ++i)
     r.drawMesh(scene.meshes[i], i < scene.meshColors.size() ? scene.meshColors[i] : distinctColor(static_cast<int>(i)),
                scene.meshStyle);
+  if (scene.cloudBehindMeshes) drawCloud(PointDepth::EmptyOnly);
   LineStyle line;
   line.widthPx = scene.lineWidth;
   line.depthTest = !scene.linesOnTop;
   for (const auto& l : scene.polylines)
     for (std::size_t k = 0; k + 1 < l.points.size(); ++k) r.drawLine(l.points[k], l.points[k + 1], l.color, line);
-  for (const auto& d : scene.dots) r.drawPoint(d.position, d.color, scene.dotSize, !scene.linesOnTop);
+  for (const auto& d : scene.dots)
+    r.drawPoint(d.position, d.color, scene.dotSize, scene.linesOnTop ? PointDepth::Ignore : PointDepth::Test);
   return r.takeImage();
 }
 

@@ -15,7 +15,6 @@ std::vector<std::uint8_t> bytesOf(const std::string& s) { return {s.begin(), s.e
 TEST(Crc32, KnownValuesAndPieces) {
   auto v = bytesOf("123456789");
   EXPECT_EQ(crc32(v.data(), v.size()), 0xCBF43926u);  // the standard check value
-  EXPECT_EQ(crc32(v.data(), 4, 0) == crc32(v.data(), v.size()), false);
   EXPECT_EQ(crc32(v.data() + 4, 5, crc32(v.data(), 4)), 0xCBF43926u);
   EXPECT_EQ(crc32(nullptr, 0), 0u);
   std::mt19937 rng(7);

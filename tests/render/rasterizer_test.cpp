@@ -103,8 +103,13 @@ TEST(Rasterizer, PointSplatIsDepthTested) {
   r.drawTriangle({Vec3(-1, -1, 1), Vec3(1, -1, 1), Vec3(0, 1, 1)}, {kBlue, kBlue, kBlue}, flat());
   r.drawPoint(Vec3(0, 0, 0), kRed, 4);  // hidden behind the triangle
   EXPECT_EQ(r.image().at(32, 24), kBlue);
-  r.drawPoint(Vec3(0, 0, 0), kRed, 4, false);  // drawn over
+  r.drawPoint(Vec3(0, 0, 0), kRed, 4, PointDepth::EmptyOnly);  // only where nothing is drawn
+  EXPECT_EQ(r.image().at(32, 24), kBlue);
+  r.drawPoint(Vec3(0, 0, 0), kRed, 4, PointDepth::Ignore);  // drawn over
   EXPECT_EQ(r.image().at(32, 24), kRed);
+  Rasterizer empty(testCamera());
+  empty.drawPoint(Vec3(0, 0, 0), kRed, 4, PointDepth::EmptyOnly);
+  EXPECT_EQ(empty.image().at(32, 24), kRed);
 }
 
 TEST(Rasterizer, LineEndpointsLandWhereCameraProjectSays) {

@@ -9,7 +9,8 @@
 //    front view, with Gaussian pixel noise (sketch::sketchFromPolylines). Depth comes from the
 //    data, as for a real user, so branches lined up in depth can be confused (thesis §6.2).
 //  - "ideal": 3D point nodes on the true axes with exact tangents (an upper bound for any sketch).
-//  - "skeleton": treesketch's automatic branching skeleton (when built in).
+//  - "skeleton": treesketch's automatic branching skeleton (skeleton::autoSkeletonSketch): its
+//    nodes are fitted with the same slice + RANSAC machinery and radii regularised.
 // Percentages are of the *reference* (branch mesh) bounding-box diagonal in both directions, so
 // that methods are compared on one scale (MeshLab divides the backward numbers by the
 // reconstruction's own diagonal; a reconstruction with stray parts would look better there).
@@ -54,7 +55,7 @@ struct EvalOptions {
   bool leafOn = true;
   bool leafOff = true;
   /// Methods to run, see the header comment.
-  std::vector<std::string> methods = {"uniform", "user", "ideal"};
+  std::vector<std::string> methods = {"uniform", "user", "ideal", "skeleton"};
   /// Node counts: the uniform baseline (thesis Table 5.2 used 18) and the simulated user.
   int uniformNodes = 18;
   int userNodes = 30;

@@ -12,6 +12,13 @@
 
 namespace treesketch::render {
 
+/// How a point splat meets what is already drawn.
+enum class PointDepth {
+  Test,        ///< z-tested like everything else
+  Ignore,      ///< drawn over everything
+  EmptyOnly,   ///< only on pixels nothing was drawn on yet (a backdrop behind earlier meshes)
+};
+
 struct LineStyle {
   int widthPx = 1;             ///< line width in pixels, clamped to [1, 8]
   bool depthTest = true;       ///< false: drawn over everything already in the image
@@ -45,8 +52,7 @@ class Rasterizer {
 
   /// A square splat of `sizePx` pixels (clamped to [1, 32]) centred on the world point `p`.
   /// Returns false when the point is culled (behind the near plane, beyond the far plane, off screen).
-  /// depthTest false: drawn over everything already in the image.
-  bool drawPoint(const geom::Vec3& p, Rgb color, int sizePx = 1, bool depthTest = true);
+  bool drawPoint(const geom::Vec3& p, Rgb color, int sizePx = 1, PointDepth depth = PointDepth::Test);
   /// The world segment a-b. Returns false when nothing of it lies in front of the near plane.
   bool drawLine(const geom::Vec3& a, const geom::Vec3& b, Rgb color, const LineStyle& style = {});
   /// The world triangle v with a colour per vertex (interpolated), shaded as `style` says.
@@ -63,7 +69,7 @@ class Rasterizer {
   };
   Eigen::Vector4d toClip(const geom::Vec3& p) const;
   Projected toScreen(const Eigen::Vector4d& clip) const;
-  void stamp(double x, double y, double depth, int size, Rgb color, bool depthTest);
+  void stamp(double x, double y, double depth, int size, Rgb color, PointDepth mode);
 
   geom::Camera camera_;
   Eigen::Matrix4d viewProj_;

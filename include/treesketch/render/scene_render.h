@@ -27,13 +27,14 @@ struct Dot {
   Rgb color = {220, 30, 30};
 };
 
-/// What renderScene draws, back to front in this order: cloud points, meshes, then polylines and
-/// dots (over everything when linesOnTop).
+/// What renderScene draws, in this order: cloud points, meshes (or meshes, then the cloud as a
+/// backdrop when cloudBehindMeshes), then polylines and dots (over everything when linesOnTop).
 struct RenderScene {
   std::vector<geom::Vec3> cloud;          ///< world points
   std::vector<Rgb> cloudColors;           ///< one per point, or empty for cloudColor
   Rgb cloudColor = {120, 120, 120};
   int pointSize = 2;                      ///< pixels
+  bool cloudBehindMeshes = false;         ///< true: meshes first, points only on pixels no mesh covers
   std::vector<geom::TriMesh> meshes;
   std::vector<Rgb> meshColors;            ///< one per mesh, or fewer: the rest get distinctColor(i)
   TriangleStyle meshStyle;
