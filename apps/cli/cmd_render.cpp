@@ -77,7 +77,7 @@ void runRender(const RenderArgs& a) {
     if (faint)
       for (auto& c : scene.cloudColors) c = render::blend(c, {255, 255, 255}, 0.65);
   } else {
-    scene.cloudColor = faint ? render::Rgb{200, 200, 200} : render::Rgb{110, 110, 110};
+    scene.cloudColor = faint ? render::Rgb{185, 185, 185} : render::Rgb{110, 110, 110};
   }
   if (!a.skeleton.empty()) {
     for (auto& pts : render::readObjPolylines(a.skeleton)) scene.polylines.push_back({std::move(pts), {200, 20, 20}});

@@ -41,15 +41,22 @@ bool kasaFit(const std::vector<Vec2>& pts, const std::vector<std::uint32_t>& idx
   for (auto i : idx) mean += pts[i];
   mean /= double(idx.size());
   // Minimize Σ (x² + y² + D x + E y + F)² in coordinates relative to the mean.
-  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+  double sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, bx = 0, by = 0, b1 = 0;
   for (auto i : idx) {
-    Vec2 p = pts[i] - mean;
-    Eigen::Vector3d row(p.x(), p.y(), 1.0);
-    double rhs = -p.squaredNorm();
-    ata += row * row.transpose();
-    atb += row * rhs;
+    const double x = pts[i].x() - mean.x(), y = pts[i].y() - mean.y();
+    const double rhs = -(x * x + y * y);
+    sxx += x * x;
+    sxy += x * y;
+    syy += y * y;
+    sx += x;
+    sy += y;
+    bx += x * rhs;
+    by += y * rhs;
+    b1 += rhs;
   }
+  Eigen::Matrix3d ata;
+  ata << sxx, sxy, sx, sxy, syy, sy, sx, sy, double(idx.size());
+  Eigen::Vector3d atb(bx, by, b1);
   Eigen::LDLT<Eigen::Matrix3d> ldlt(ata);
   if (ldlt.info() != Eigen::Success) return false;
   Eigen::Vector3d s = ldlt.solve(atb);
@@ -159,25 +166,37 @@ struct Scorer {
   const std::vector<Vec2>& pts;
   const CircleFitOptions& opt;
   double threshold(double r) const { return std::max(opt.inlierThreshold, opt.inlierThresholdRelative * r); }
+  // |distance − r| <= t  ⇔  distance² in [max(0, r − t)², (r + t)²]: the band test without a
+  // square root (NaN compares false: never an inlier).
+  struct Band {
+    double lo2, hi2;
+    bool contains(double d2) const { return d2 >= lo2 && d2 <= hi2; }
+  };
+  Band band(double r) const {
+    double t = threshold(r);
+    double lo = std::max(0.0, r - t);
+    return {r - t > 0.0 ? lo * lo : -1.0, (r + t) * (r + t)};
+  }
   // Inlier count and residual sum over `idx`.
   std::pair<std::size_t, double> score(const std::vector<std::uint32_t>& idx, const Vec2& c, double r) const {
-    double t = threshold(r);
+    const Band b = band(r);
     std::size_t count = 0;
     double sum = 0.0;
     for (auto i : idx) {
-      double e = std::abs((pts[i] - c).norm() - r);
-      if (e <= t) {  // NaN compares false: never an inlier
+      double d2 = (pts[i] - c).squaredNorm();
+      if (b.contains(d2)) {
         ++count;
-        sum += e;
+        sum += std::abs(std::sqrt(d2) - r);
       }
     }
     return {count, sum};
   }
   std::vector<std::uint32_t> inliers(std::size_t n, const Vec2& c, double r) const {
-    double t = threshold(r);
+    const Band b = band(r);
     std::vector<std::uint32_t> out;
+    out.reserve(n);
     for (std::size_t i = 0; i < n; ++i)
-      if (std::abs((pts[i] - c).norm() - r) <= t) out.push_back(std::uint32_t(i));
+      if (b.contains((pts[i] - c).squaredNorm())) out.push_back(std::uint32_t(i));
     return out;
   }
   // Angular coverage (degrees) of the points of `idx` within the threshold of the circle: the
@@ -185,19 +204,29 @@ struct Scorer {
   // points do not count as arc).
   double coverage(const std::vector<std::uint32_t>& idx, const Vec2& c, double r) const {
     const int bins = std::max(1, int(std::ceil(360.0 / opt.arcBinDegrees)));
-    std::vector<int> hit(std::size_t(bins), 0);
-    double t = threshold(r);
+    constexpr int kStackBins = 128;
+    int stackHit[kStackBins];
+    std::vector<int> heapHit;
+    int* hit = stackHit;
+    if (bins > kStackBins) {
+      heapHit.assign(std::size_t(bins), 0);
+      hit = heapHit.data();
+    } else {
+      std::fill(stackHit, stackHit + bins, 0);
+    }
+    const Band b = band(r);
+    const double perBin = 1.0 / opt.arcBinDegrees;
     // A strided subsample of at most kCoveragePoints points is plenty for 10° bins.
     const std::size_t stride = std::max<std::size_t>(1, idx.size() / kCoveragePoints);
     for (std::size_t k = 0; k < idx.size(); k += stride) {
       Vec2 d = pts[idx[k]] - c;
-      if (!(std::abs(d.norm() - r) <= t)) continue;
+      if (!b.contains(d.squaredNorm())) continue;
       double deg = fastAngleDeg(d.y(), d.x());
-      ++hit[std::min(bins - 1, int(deg / opt.arcBinDegrees))];
+      ++hit[std::min(bins - 1, int(deg * perBin))];
     }
-    const double floor = 0.25 * *std::max_element(hit.begin(), hit.end());
+    const double floor = 0.25 * *std::max_element(hit, hit + bins);
     int covered = 0;
-    for (int h : hit) covered += h > 0 && h >= floor;
+    for (int k = 0; k < bins; ++k) covered += hit[k] > 0 && hit[k] >= floor;
     return std::min(360.0, covered * opt.arcBinDegrees);
   }
   bool enoughArc(const std::vector<std::uint32_t>& idx, const Vec2& c, double r) const {

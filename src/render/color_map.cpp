@@ -14,12 +14,8 @@ std::uint8_t toByte(double v) { return static_cast<std::uint8_t>(std::clamp(std:
 }  // namespace
 
 Rgb viridis(double t) {
-  static constexpr std::array<std::array<double, 3>, 6> kStops = {{{68, 1, 84},
-                                                                   {65, 68, 135},
-                                                                   {42, 120, 142},
-                                                                   {34, 168, 132},
-                                                                   {122, 209, 81},
-                                                                   {253, 231, 37}}};
+  static constexpr std::array<std::array<double, 3>, 6> kStops = {
+      {{68, 1, 84}, {65, 68, 135}, {42, 120, 142}, {34, 168, 132}, {122, 209, 81}, {253, 231, 37}}};
   if (std::isnan(t)) t = 0.0;
   t = std::clamp(t, 0.0, 1.0) * (kStops.size() - 1);
   std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(t), kStops.size() - 2);
@@ -47,14 +43,15 @@ std::vector<Rgb> heightColors(const std::vector<geom::Vec3>& points, geom::UpAxi
 }
 
 Rgb distinctColor(int i) {
-  static constexpr std::array<Rgb, 6> kCycle = {
-      Rgb{150, 100, 60}, Rgb{70, 110, 180}, Rgb{80, 150, 80}, Rgb{140, 90, 160}, Rgb{220, 130, 40}, Rgb{40, 150, 150}};
+  static constexpr std::array<Rgb, 6> kCycle = {Rgb{150, 100, 60}, Rgb{70, 110, 180}, Rgb{80, 150, 80},
+                                                Rgb{140, 90, 160}, Rgb{220, 130, 40}, Rgb{40, 150, 150}};
   return kCycle[static_cast<std::size_t>(std::abs(i)) % kCycle.size()];
 }
 
 Rgb blend(Rgb c, Rgb towards, double t) {
   t = std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0);
-  return {toByte(c.r + t * (towards.r - c.r)), toByte(c.g + t * (towards.g - c.g)), toByte(c.b + t * (towards.b - c.b))};
+  return {toByte(c.r + t * (towards.r - c.r)), toByte(c.g + t * (towards.g - c.g)),
+          toByte(c.b + t * (towards.b - c.b))};
 }
 
 }  // namespace treesketch::render

@@ -17,12 +17,12 @@ constexpr int kHashBits = 15;
 
 // RFC 1951 §3.2.5: length codes 257..285 and distance codes 0..29 (base value, extra bits).
 constexpr std::array<std::uint16_t, 29> kLengthBase = {3,  4,  5,  6,  7,  8,  9,  10, 11,  13,  15,  17,  19,  23, 27,
-                                                        31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
+                                                       31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
 constexpr std::array<std::uint8_t, 29> kLengthExtra = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
                                                        2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
-constexpr std::array<std::uint16_t, 30> kDistBase = {1,    2,    3,    4,    5,    7,     9,     13,    17,  25,
-                                                      33,   49,   65,   97,   129,  193,   257,   385,   513, 769,
-                                                      1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
+constexpr std::array<std::uint16_t, 30> kDistBase = {1,    2,    3,    4,    5,    7,    9,    13,    17,    25,
+                                                     33,   49,   65,   97,   129,  193,  257,  385,   513,   769,
+                                                     1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
 constexpr std::array<std::uint8_t, 30> kDistExtra = {0, 0, 0, 0, 1, 1, 2, 2,  3,  3,  4,  4,  5,  5,  6,
                                                      6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
 
@@ -67,10 +67,14 @@ class BitWriter {
 
 /// Fixed Huffman literal/length code of symbol 0..287 (RFC 1951 §3.2.6).
 void writeFixedSymbol(BitWriter& w, int sym) {
-  if (sym < 144) w.code(0x30 + sym, 8);
-  else if (sym < 256) w.code(0x190 + (sym - 144), 9);
-  else if (sym < 280) w.code(sym - 256, 7);
-  else w.code(0xC0 + (sym - 280), 8);
+  if (sym < 144)
+    w.code(0x30 + sym, 8);
+  else if (sym < 256)
+    w.code(0x190 + (sym - 144), 9);
+  else if (sym < 280)
+    w.code(sym - 256, 7);
+  else
+    w.code(0xC0 + (sym - 280), 8);
 }
 
 void writeMatch(BitWriter& w, std::size_t length, std::size_t distance) {
@@ -93,8 +97,8 @@ void deflateFixed(const std::uint8_t* data, std::size_t n, const DeflateOptions&
   std::vector<std::int64_t> head(std::size_t(1) << kHashBits, -1);
   std::vector<std::int64_t> prev(kWindow, -1);
   const std::size_t maxChain = static_cast<std::size_t>(std::max(1, opt.maxChainLength));
-  const std::size_t nice = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(opt.niceLength, 3)), kMinMatch,
-                                                   kMaxMatch);
+  const std::size_t nice =
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::max(opt.niceLength, 3)), kMinMatch, kMaxMatch);
   auto insert = [&](std::size_t pos) {
     if (pos + kMinMatch > n) return;
     std::uint32_t h = hash3(data + pos);
@@ -180,7 +184,7 @@ std::uint32_t adler32(const std::uint8_t* data, std::size_t n, std::uint32_t adl
 std::vector<std::uint8_t> zlibCompress(const std::uint8_t* data, std::size_t n, const DeflateOptions& options) {
   std::vector<std::uint8_t> out;
   out.reserve(options.compress ? n / 4 + 64 : n + n / 65535 * 5 + 16);
-  out.push_back(0x78);  // CM = 8 (deflate), CINFO = 7 (32 KiB window)
+  out.push_back(0x78);                            // CM = 8 (deflate), CINFO = 7 (32 KiB window)
   out.push_back(options.compress ? 0x9C : 0x01);  // FCHECK makes the header a multiple of 31
   if (options.compress) {
     BitWriter w(out);

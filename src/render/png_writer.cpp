@@ -41,10 +41,14 @@ void filterRow(int type, const std::uint8_t* row, const std::uint8_t* prior, std
     int b = prior ? prior[i] : 0;
     int c = (prior && i >= static_cast<std::size_t>(bpp)) ? prior[i - bpp] : 0;
     int pred = 0;
-    if (type == 1) pred = a;
-    else if (type == 2) pred = b;
-    else if (type == 3) pred = (a + b) / 2;
-    else if (type == 4) pred = paeth(a, b, c);
+    if (type == 1)
+      pred = a;
+    else if (type == 2)
+      pred = b;
+    else if (type == 3)
+      pred = (a + b) / 2;
+    else if (type == 4)
+      pred = paeth(a, b, c);
     out[i] = static_cast<std::uint8_t>(row[i] - pred);
   }
 }
@@ -96,11 +100,11 @@ std::vector<std::uint8_t> encodePng(const Image& image, const PngOptions& option
   std::vector<std::uint8_t> ihdr;
   putU32(ihdr, static_cast<std::uint32_t>(image.width));
   putU32(ihdr, static_cast<std::uint32_t>(image.height));
-  ihdr.push_back(8);                              // bit depth
-  ihdr.push_back(image.channels == 4 ? 6 : 2);    // colour type: truecolour (+ alpha)
-  ihdr.push_back(0);                              // compression: deflate
-  ihdr.push_back(0);                              // filter method 0
-  ihdr.push_back(0);                              // no interlace
+  ihdr.push_back(8);                            // bit depth
+  ihdr.push_back(image.channels == 4 ? 6 : 2);  // colour type: truecolour (+ alpha)
+  ihdr.push_back(0);                            // compression: deflate
+  ihdr.push_back(0);                            // filter method 0
+  ihdr.push_back(0);                            // no interlace
   putChunk(png, "IHDR", ihdr);
   std::vector<std::uint8_t> raw = filteredScanlines(image, options.adaptiveFilter);
   putChunk(png, "IDAT", zlibCompress(raw.data(), raw.size(), options.deflate));

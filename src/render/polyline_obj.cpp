@@ -53,8 +53,9 @@ std::vector<std::vector<geom::Vec3>> readObjPolylines(std::istream& in, const st
         long long n = static_cast<long long>(vertices.size());
         long long zeroBased = i > 0 ? i - 1 : n + i;
         if (zeroBased < 0 || zeroBased >= n)
-          throw InputError(atLine(source, lineNo, "vertex index " + idx + " out of range (" + std::to_string(n) +
-                                                      " vertices defined so far)"));
+          throw InputError(
+              atLine(source, lineNo,
+                     "vertex index " + idx + " out of range (" + std::to_string(n) + " vertices defined so far)"));
         pts.push_back(vertices[static_cast<std::size_t>(zeroBased)]);
       }
       if (pts.size() < 2) throw InputError(atLine(source, lineNo, "expected 'l' with at least two vertex indices"));

@@ -40,7 +40,9 @@ Rasterizer::Rasterizer(const geom::Camera& camera, Rgb background) : camera_(cam
   forward_ = camera.forward();
 }
 
-Eigen::Vector4d Rasterizer::toClip(const Vec3& p) const { return viewProj_ * Eigen::Vector4d(p.x(), p.y(), p.z(), 1.0); }
+Eigen::Vector4d Rasterizer::toClip(const Vec3& p) const {
+  return viewProj_ * Eigen::Vector4d(p.x(), p.y(), p.z(), 1.0);
+}
 
 Rasterizer::Projected Rasterizer::toScreen(const Eigen::Vector4d& c) const {
   // Same mapping as Camera::project, minus the viewport's offset (the image starts at the viewport).
@@ -82,21 +84,41 @@ bool Rasterizer::drawLine(const Vec3& a, const Vec3& b, Rgb color, const LineSty
   Eigen::Vector4d ca = toClip(a), cb = toClip(b);
   double da = nearDistance(ca), db = nearDistance(cb);
   if (da < 0 && db < 0) return false;
-  if (da < 0) ca = ca + (cb - ca) * (da / (da - db));  // clip at the near plane
-  else if (db < 0) cb = cb + (ca - cb) * (db / (db - da));
+  if (da < 0)
+    ca = ca + (cb - ca) * (da / (da - db));  // clip at the near plane
+  else if (db < 0)
+    cb = cb + (ca - cb) * (db / (db - da));
   if (ca.w() <= 0 || cb.w() <= 0) return false;
   Projected sa = toScreen(ca), sb = toScreen(cb);
   const int width = std::clamp(style.widthPx, 1, 8);
-  const double len = std::max(std::abs(sb.x - sa.x), std::abs(sb.y - sa.y));
+  // Clip the screen segment to the image (grown by the line width), Liang-Barsky style, so a
+  // segment reaching far off screen is walked only where it can be seen.
+  double t0 = 0.0, t1 = 1.0;
+  const double dx = sb.x - sa.x, dy = sb.y - sa.y;
+  auto clipAgainst = [&](double p, double q) {  // keeps the part where p * t <= q
+    if (p == 0) return q >= 0;
+    double t = q / p;
+    if (p < 0)
+      t0 = std::max(t0, t);
+    else
+      t1 = std::min(t1, t);
+    return t0 <= t1;
+  };
+  const double lo = -width - 1.0, hiX = image_.width + width + 1.0, hiY = image_.height + width + 1.0;
+  if (!clipAgainst(-dx, sa.x - lo) || !clipAgainst(dx, hiX - sa.x) || !clipAgainst(-dy, sa.y - lo) ||
+      !clipAgainst(dy, hiY - sa.y))
+    return true;  // in front of the camera but off screen
+  const double len = (t1 - t0) * std::max(std::abs(dx), std::abs(dy));
   if (!std::isfinite(len)) return false;
-  // Cull the off-screen part cheaply: a segment longer than the screen is walked only where visible.
-  const int steps = std::max(1, static_cast<int>(std::ceil(std::min(len, 4.0 * (image_.width + image_.height)))));
+  const int steps = std::max(1, static_cast<int>(std::ceil(len)));
+  // Walk between the clipped ends (not from the far-away original ends: rounding there would
+  // make the steps uneven and leave gaps).
+  const double xs = sa.x + t0 * dx, ys = sa.y + t0 * dy, xe = sa.x + t1 * dx, ye = sa.y + t1 * dy;
+  const double ds = sa.depth + t0 * (sb.depth - sa.depth), de = sa.depth + t1 * (sb.depth - sa.depth);
   for (int i = 0; i <= steps; ++i) {
-    double t = static_cast<double>(i) / steps;
-    double x = sa.x + t * (sb.x - sa.x), y = sa.y + t * (sb.y - sa.y);
-    if (x < -width || y < -width || x > image_.width + width || y > image_.height + width) continue;
-    double d = sa.depth + t * (sb.depth - sa.depth) - style.depthBias;
-    stamp(x, y, d, width, color, style.depthTest ? PointDepth::Test : PointDepth::Ignore);
+    const double f = static_cast<double>(i) / steps;
+    stamp(xs + f * (xe - xs), ys + f * (ye - ys), ds + f * (de - ds) - style.depthBias, width, color,
+          style.depthTest ? PointDepth::Test : PointDepth::Ignore);
   }
   return true;
 }
@@ -123,10 +145,12 @@ bool Rasterizer::drawTriangle(const std::array<Vec3, 3>& v, const std::array<Rgb
   const bool uniform = colors[0] == colors[1] && colors[1] == colors[2];
   const Rgb flat = scale(colors[0], shade);
 
-  const int x0 = std::max(0, static_cast<int>(std::floor(std::min({s[0].x, s[1].x, s[2].x}))));
-  const int x1 = std::min(image_.width - 1, static_cast<int>(std::ceil(std::max({s[0].x, s[1].x, s[2].x}))));
-  const int y0 = std::max(0, static_cast<int>(std::floor(std::min({s[0].y, s[1].y, s[2].y}))));
-  const int y1 = std::min(image_.height - 1, static_cast<int>(std::ceil(std::max({s[0].y, s[1].y, s[2].y}))));
+  // Pixel bounds, clamped in floating point first (a vertex near the eye can project very far).
+  auto toPixel = [](double v, int size) { return static_cast<int>(std::floor(std::clamp(v, -1.0, double(size)))); };
+  const int x0 = std::max(0, toPixel(std::min({s[0].x, s[1].x, s[2].x}), image_.width));
+  const int x1 = std::min(image_.width - 1, toPixel(std::max({s[0].x, s[1].x, s[2].x}), image_.width));
+  const int y0 = std::max(0, toPixel(std::min({s[0].y, s[1].y, s[2].y}), image_.height));
+  const int y1 = std::min(image_.height - 1, toPixel(std::max({s[0].y, s[1].y, s[2].y}), image_.height));
   const double inv = 1.0 / area;
   for (int py = y0; py <= y1; ++py) {
     const double y = py + 0.5;

@@ -53,7 +53,7 @@ geom::Camera isoCamera(const geom::BBox& box, geom::UpAxis up, int width, int he
     dist = 0;
     for (const Vec3& c : corners(box)) {
       Eigen::Vector4d r = rot * Eigen::Vector4d(c.x(), c.y(), c.z(), 1.0);  // eye frame with the eye at distance 1
-      double z = r.z() + 1.0;                                                // relative to the target
+      double z = r.z() + 1.0;                                               // relative to the target
       dist = std::max({dist, z + std::abs(r.x()) / tanH, z + std::abs(r.y()) / tanV, z + 1e-6 * radius});
     }
     double xMin = HUGE_VAL, xMax = -HUGE_VAL, yMin = HUGE_VAL, yMax = -HUGE_VAL;

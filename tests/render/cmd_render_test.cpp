@@ -11,7 +11,8 @@ namespace {
 std::string tinyCloud() {
   std::string text;
   for (int i = 0; i < 40; ++i)
-    text += std::to_string(0.05 * (i % 5)) + " " + std::to_string(0.03 * (i % 7)) + " " + std::to_string(0.1 * i) + "\n";
+    text +=
+        std::to_string(0.05 * (i % 5)) + " " + std::to_string(0.03 * (i % 7)) + " " + std::to_string(0.1 * i) + "\n";
   return text;
 }
 
@@ -22,9 +23,8 @@ TEST(CmdRender, RendersATinyCloudToPng) {
   test::writeText(dir / "c.xyz", tinyCloud());
   test::writeText(dir / "s.obj", "v 0 0 0\nv 0 0 2\nv 0.1 0 3\nl 1 2 3\n");
   std::string out;
-  int code = test::runCli("render --cloud '" + (dir / "c.xyz").string() + "' --skeleton '" +
-                              (dir / "s.obj").string() + "' --size 64x48 --view front -o '" +
-                              (dir / "c.png").string() + "'",
+  int code = test::runCli("render --cloud '" + (dir / "c.xyz").string() + "' --skeleton '" + (dir / "s.obj").string() +
+                              "' --size 64x48 --view front -o '" + (dir / "c.png").string() + "'",
                           &out);
   EXPECT_EQ(code, 0) << out;
   EXPECT_TRUE(isPng(test::readText(dir / "c.png")));
@@ -39,18 +39,17 @@ TEST(CmdRender, BadInputFileIsExit3AndLeavesNoOutput) {
   test::TempDir dir;
   test::writeText(dir / "bad.xyz", "1 2 3\n4 five 6\n");
   std::string out;
-  EXPECT_EQ(test::runCli("render --cloud '" + (dir / "bad.xyz").string() + "' -o '" + (dir / "o.png").string() + "'",
-                         &out),
-            3)
+  EXPECT_EQ(
+      test::runCli("render --cloud '" + (dir / "bad.xyz").string() + "' -o '" + (dir / "o.png").string() + "'", &out),
+      3)
       << out;
   EXPECT_NE(out.find("bad.xyz"), std::string::npos);
-  EXPECT_EQ(test::runCli("render --cloud '" + (dir / "missing.ply").string() + "' -o '" +
-                         (dir / "o.png").string() + "'"),
-            3);
+  EXPECT_EQ(
+      test::runCli("render --cloud '" + (dir / "missing.ply").string() + "' -o '" + (dir / "o.png").string() + "'"), 3);
   test::writeText(dir / "noline.obj", "v 0 0 0\n");
-  EXPECT_EQ(test::runCli("render --skeleton '" + (dir / "noline.obj").string() + "' -o '" +
-                         (dir / "o.png").string() + "'"),
-            3);
+  EXPECT_EQ(
+      test::runCli("render --skeleton '" + (dir / "noline.obj").string() + "' -o '" + (dir / "o.png").string() + "'"),
+      3);
   EXPECT_FALSE(std::filesystem::exists(dir / "o.png"));
 }
 

@@ -105,8 +105,8 @@ inline std::vector<std::uint8_t> inflateZlib(const std::vector<std::uint8_t>& z)
   }
   if (bitPos != 0) ++bytePos;
   if (bytePos + 4 != z.size()) throw std::runtime_error("zlib: trailing or missing bytes");
-  std::uint32_t adler = (std::uint32_t(z[bytePos]) << 24) | (z[bytePos + 1] << 16) | (z[bytePos + 2] << 8) |
-                        z[bytePos + 3];
+  std::uint32_t adler =
+      (std::uint32_t(z[bytePos]) << 24) | (z[bytePos + 1] << 16) | (z[bytePos + 2] << 8) | z[bytePos + 3];
   if (adler != slowAdler32(out.data(), out.size())) throw std::runtime_error("zlib: Adler-32 mismatch");
   return out;
 }

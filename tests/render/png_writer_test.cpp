@@ -91,8 +91,8 @@ void expectPixelsBack(const Image& img, const PngOptions& opt) {
   ASSERT_EQ(chunks[0].data.size(), 13u);
   EXPECT_EQ(be32(&chunks[0].data[0]), std::uint32_t(img.width));
   EXPECT_EQ(be32(&chunks[0].data[4]), std::uint32_t(img.height));
-  EXPECT_EQ(chunks[0].data[8], 8);                             // bit depth
-  EXPECT_EQ(chunks[0].data[9], img.channels == 4 ? 6 : 2);     // colour type
+  EXPECT_EQ(chunks[0].data[8], 8);                          // bit depth
+  EXPECT_EQ(chunks[0].data[9], img.channels == 4 ? 6 : 2);  // colour type
   std::vector<std::uint8_t> raw = test::inflateZlib(chunks[1].data);
   ASSERT_EQ(raw.size(), (std::size_t(img.width) * img.channels + 1) * img.height);
   EXPECT_TRUE(unfilter(raw, img.width, img.height, img.channels) == img.pixels);

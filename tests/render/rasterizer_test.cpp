@@ -139,6 +139,18 @@ TEST(Rasterizer, LineCrossingTheNearPlaneIsClippedAndBehindIsSkipped) {
   EXPECT_EQ(r.image().at(int(std::floor(s.x())), int(std::floor(s.y()))), kRed);
 }
 
+TEST(Rasterizer, VeryLongLinesAndHugeTrianglesStayContinuousAndSafe) {
+  geom::Camera cam = testCamera(true);
+  Rasterizer r(cam);
+  EXPECT_TRUE(r.drawLine(Vec3(-1e7, 0.01, 0), Vec3(1e7, 0.01, 0), kRed));
+  int row = static_cast<int>(std::floor(cam.project(Vec3(0, 0.01, 0)).y()));
+  for (int x = 0; x < 64; ++x) EXPECT_EQ(r.image().at(x, row), kRed) << "column " << x;
+  EXPECT_TRUE(r.drawLine(Vec3(-1e7, 50, 0), Vec3(1e7, 50, 0), kRed));  // off screen: nothing drawn
+  Rasterizer p(testCamera());
+  // A vertex just past the near plane projects hundreds of thousands of pixels away.
+  EXPECT_TRUE(p.drawTriangle({Vec3(0, 0, 4.8999), Vec3(-1, -1, 0), Vec3(1, -1, 0)}, {kRed, kRed, kRed}, flat()));
+}
+
 TEST(Rasterizer, DegenerateAndCulledTrianglesAreSkipped) {
   Rasterizer r(testCamera());
   EXPECT_FALSE(r.drawTriangle({Vec3(0, 0, 0), Vec3(1, 1, 0), Vec3(2, 2, 0)}, {kRed, kRed, kRed}));

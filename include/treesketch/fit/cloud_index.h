@@ -83,6 +83,9 @@ class CloudIndex {
  private:
   template <class Visit>
   void forEachCandidateCell(const SliceRegion& region, Visit&& visit) const;
+  /// Calls hit(slot) for every stored point inside `region`, in cell order.
+  template <class Hit>
+  void forEachHit(const SliceRegion& region, Hit&& hit) const;
 
   geom::BBox bounds_;
   double cell_ = 1.0;
@@ -90,6 +93,10 @@ class CloudIndex {
   std::vector<std::uint32_t> cellStart_;  ///< size cells+1, into sorted arrays
   std::vector<geom::Vec3> sorted_;        ///< finite positions, sorted by cell
   std::vector<std::uint32_t> ids_;        ///< original index of each sorted point
+  /// Float copy of sorted_ relative to centre_ (x, y, z per point): a conservative pre-test that
+  /// streams half the bytes; points passing it are tested exactly on sorted_.
+  geom::Vec3 centre_ = geom::Vec3::Zero();
+  std::vector<float> fpos_;
 };
 
 }  // namespace treesketch::fit

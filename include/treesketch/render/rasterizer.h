@@ -14,23 +14,23 @@ namespace treesketch::render {
 
 /// How a point splat meets what is already drawn.
 enum class PointDepth {
-  Test,        ///< z-tested like everything else
-  Ignore,      ///< drawn over everything
-  EmptyOnly,   ///< only on pixels nothing was drawn on yet (a backdrop behind earlier meshes)
+  Test,       ///< z-tested like everything else
+  Ignore,     ///< drawn over everything
+  EmptyOnly,  ///< only on pixels nothing was drawn on yet (a backdrop behind earlier meshes)
 };
 
 struct LineStyle {
-  int widthPx = 1;             ///< line width in pixels, clamped to [1, 8]
-  bool depthTest = true;       ///< false: drawn over everything already in the image
-  double depthBias = 2e-4;     ///< window-depth units pulled towards the viewer so lines on a surface show
+  int widthPx = 1;          ///< line width in pixels, clamped to [1, 8]
+  bool depthTest = true;    ///< false: drawn over everything already in the image
+  double depthBias = 2e-4;  ///< window-depth units pulled towards the viewer so lines on a surface show
 };
 
 struct TriangleStyle {
-  bool lambert = true;         ///< true: Lambert shading from a headlight at the eye; false: flat colour
-  double ambient = 0.35;       ///< fraction of the colour kept where the surface faces away from the light
-  double diffuse = 0.65;       ///< fraction added by the cosine term (ambient + diffuse = 1: full colour head-on)
-  bool useVertexColors = true; ///< drawMesh: take TriMesh::colors when the mesh has them
-  bool wireframe = false;      ///< overlay the triangle edges
+  bool lambert = true;          ///< true: Lambert shading from a headlight at the eye; false: flat colour
+  double ambient = 0.35;        ///< fraction of the colour kept where the surface faces away from the light
+  double diffuse = 0.65;        ///< fraction added by the cosine term (ambient + diffuse = 1: full colour head-on)
+  bool useVertexColors = true;  ///< drawMesh: take TriMesh::colors when the mesh has them
+  bool wireframe = false;       ///< overlay the triangle edges
   Rgb wireColor = {40, 40, 40};
 };
 

@@ -30,19 +30,19 @@ struct Dot {
 /// What renderScene draws, in this order: cloud points, meshes (or meshes, then the cloud as a
 /// backdrop when cloudBehindMeshes), then polylines and dots (over everything when linesOnTop).
 struct RenderScene {
-  std::vector<geom::Vec3> cloud;          ///< world points
-  std::vector<Rgb> cloudColors;           ///< one per point, or empty for cloudColor
+  std::vector<geom::Vec3> cloud;  ///< world points
+  std::vector<Rgb> cloudColors;   ///< one per point, or empty for cloudColor
   Rgb cloudColor = {120, 120, 120};
-  int pointSize = 2;                      ///< pixels
-  bool cloudBehindMeshes = false;         ///< true: meshes first, points only on pixels no mesh covers
+  int pointSize = 2;               ///< pixels
+  bool cloudBehindMeshes = false;  ///< true: meshes first, points only on pixels no mesh covers
   std::vector<geom::TriMesh> meshes;
-  std::vector<Rgb> meshColors;            ///< one per mesh, or fewer: the rest get distinctColor(i)
+  std::vector<Rgb> meshColors;  ///< one per mesh, or fewer: the rest get distinctColor(i)
   TriangleStyle meshStyle;
   std::vector<Polyline> polylines;
   std::vector<Dot> dots;
-  int lineWidth = 2;                      ///< pixels
-  int dotSize = 7;                        ///< pixels
-  bool linesOnTop = true;                 ///< polylines and dots ignore the depth of points and meshes
+  int lineWidth = 2;       ///< pixels
+  int dotSize = 7;         ///< pixels
+  bool linesOnTop = true;  ///< polylines and dots ignore the depth of points and meshes
   Rgb background = {255, 255, 255};
 
   /// Bounding box of everything in the scene (empty when the scene is).
