@@ -71,14 +71,14 @@ bool kasaFit(const std::vector<Vec2>& pts, const std::vector<std::uint32_t>& idx
 
 // atan2 in degrees within ±0.3° (a rational approximation of atan on [0, 1]), in [0, 360).
 double fastAngleDeg(double y, double x) {
-  double ax = std::abs(x), ay = std::abs(y);
-  double mx = std::max(ax, ay);
-  if (mx == 0.0) return 0.0;
-  double z = std::min(ax, ay) / mx;
+  // Selects instead of branches (the signs of noisy data are unpredictable); (0, 0) gives 0.
+  const double ax = std::abs(x), ay = std::abs(y);
+  const double mx = std::max(std::max(ax, ay), 1e-300);
+  const double z = std::min(ax, ay) / mx;
   double a = z * (M_PI / 4 + 0.273 * (1.0 - z));  // atan(z), |error| < 0.004 rad
-  if (ay > ax) a = M_PI / 2 - a;
-  if (x < 0) a = M_PI - a;
-  if (y < 0) a = 2 * M_PI - a;
+  a = ay > ax ? M_PI / 2 - a : a;
+  a = x < 0 ? M_PI - a : a;
+  a = y < 0 ? 2 * M_PI - a : a;
   return a * (180.0 / M_PI);
 }
 
@@ -177,26 +177,16 @@ struct Scorer {
     double lo = std::max(0.0, r - t);
     return {r - t > 0.0 ? lo * lo : -1.0, (r + t) * (r + t)};
   }
-  // Inlier count and residual sum over `idx`.
-  std::pair<std::size_t, double> score(const std::vector<std::uint32_t>& idx, const Vec2& c, double r) const {
-    const Band b = band(r);
-    std::size_t count = 0;
-    double sum = 0.0;
-    for (auto i : idx) {
-      double d2 = (pts[i] - c).squaredNorm();
-      if (b.contains(d2)) {
-        ++count;
-        sum += std::abs(std::sqrt(d2) - r);
-      }
-    }
-    return {count, sum};
-  }
+  // Branch-free: the in/out pattern of noisy data defeats branch prediction.
   std::vector<std::uint32_t> inliers(std::size_t n, const Vec2& c, double r) const {
     const Band b = band(r);
-    std::vector<std::uint32_t> out;
-    out.reserve(n);
-    for (std::size_t i = 0; i < n; ++i)
-      if (b.contains((pts[i] - c).squaredNorm())) out.push_back(std::uint32_t(i));
+    std::vector<std::uint32_t> out(n);
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      out[k] = std::uint32_t(i);
+      k += b.contains((pts[i] - c).squaredNorm());
+    }
+    out.resize(k);
     return out;
   }
   // Angular coverage (degrees) of the points of `idx` within the threshold of the circle: the
@@ -217,12 +207,12 @@ struct Scorer {
     const Band b = band(r);
     const double perBin = 1.0 / opt.arcBinDegrees;
     // A strided subsample of at most kCoveragePoints points is plenty for 10° bins.
-    const std::size_t stride = std::max<std::size_t>(1, idx.size() / kCoveragePoints);
+    const std::size_t stride = std::max<std::size_t>(1, (idx.size() + kCoveragePoints - 1) / kCoveragePoints);
     for (std::size_t k = 0; k < idx.size(); k += stride) {
-      Vec2 d = pts[idx[k]] - c;
-      if (!b.contains(d.squaredNorm())) continue;
-      double deg = fastAngleDeg(d.y(), d.x());
-      ++hit[std::min(bins - 1, int(deg * perBin))];
+      const Vec2 d = pts[idx[k]] - c;
+      const double deg = fastAngleDeg(d.y(), d.x());
+      const int bin = deg >= 0.0 && deg < 360.0 ? std::min(bins - 1, int(deg * perBin)) : 0;
+      hit[bin] += b.contains(d.squaredNorm()) ? 1 : 0;  // branch-free: NaN adds nothing
     }
     const double floor = 0.25 * *std::max_element(hit, hit + bins);
     int covered = 0;
@@ -272,6 +262,40 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   }
   const std::size_t ns = sample.size();
   Scorer scorer{points, options};
+  // The scoring subset's coordinates, contiguous (structure of arrays: the scoring loop below is
+  // branch-free and vectorizes).
+  std::vector<double> sampleX(ns), sampleY(ns);
+  for (std::size_t k = 0; k < ns; ++k) {
+    sampleX[k] = points[sample[k]].x();
+    sampleY[k] = points[sample[k]].y();
+  }
+  // Inlier count and residual sum of a hypothesis over the subset. The residual |d − r| is taken
+  // as |d² − r²| / 2r (first order; only a tie-break between equal counts), which keeps the loop
+  // free of square roots and branches; four lanes let the compiler vectorize it.
+  auto scoreSample = [&](const Vec2& centre, double r) {
+    const auto b = scorer.band(r);
+    const double cx = centre.x(), cy = centre.y(), r2 = r * r;
+    double count[4] = {0, 0, 0, 0}, sum[4] = {0, 0, 0, 0};
+    std::size_t k = 0;
+    for (; k + 4 <= ns; k += 4)
+      for (int j = 0; j < 4; ++j) {
+        const double dx = sampleX[k + j] - cx, dy = sampleY[k + j] - cy;
+        const double d2 = dx * dx + dy * dy;
+        const double m = (d2 >= b.lo2 && d2 <= b.hi2) ? 1.0 : 0.0;
+        count[j] += m;
+        sum[j] += m * std::abs(d2 - r2);
+      }
+    for (; k < ns; ++k) {
+      const double dx = sampleX[k] - cx, dy = sampleY[k] - cy;
+      const double d2 = dx * dx + dy * dy;
+      const double m = (d2 >= b.lo2 && d2 <= b.hi2) ? 1.0 : 0.0;
+      count[0] += m;
+      sum[0] += m * std::abs(d2 - r2);
+    }
+    const double total = (count[0] + count[1]) + (count[2] + count[3]);
+    const double residual = ((sum[0] + sum[1]) + (sum[2] + sum[3])) / (2.0 * r);
+    return std::pair<std::size_t, double>(std::size_t(total), residual);
+  };
 
   std::size_t bestCount = 0;
   double bestSum = 0.0;
@@ -288,7 +312,7 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
     double r;
     if (!circleFrom3(points[sample[a]], points[sample[b]], points[sample[c]], &centre, &r)) continue;
     if (!scorer.admissible(centre, r)) continue;
-    auto [count, sum] = scorer.score(sample, centre, r);
+    auto [count, sum] = scoreSample(centre, r);
     if ((count > bestCount || (count == bestCount && count > 0 && sum < bestSum)) &&
         scorer.enoughArc(sample, centre, r)) {
       bestCount = count;

@@ -112,6 +112,8 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
     sorted_[slot] = pts[i];
     ids_[slot] = std::uint32_t(i);
   }
+  idBits_ = 0;
+  while (idBits_ < 32 && (std::uint64_t(pts.size()) >> idBits_) != 0) ++idBits_;
   centre_ = bounds_.center();
   fpos_.resize(3 * nFinite);
   for (std::size_t s = 0; s < nFinite; ++s)
@@ -130,7 +132,7 @@ bool CloudIndex::regionCoversCloud(const SliceRegion& region) const {
   return true;
 }
 
-// Visits (as a linear cell index) every cell that may hold a point of `region`: the cells of the
+// Visits (as a linear cell index, empty cells included) every cell that may hold a point of `region`: the cells of the
 // region's bounding box (ball, or the clipped cylinder axis ± radius) whose column along the
 // normal's dominant axis meets the slab, and whose centre is within radius + half-diagonal of the
 // axis/centre. A superset of the cells holding region points; points are then tested exactly.
@@ -182,6 +184,18 @@ void CloudIndex::forEachCandidateCell(const SliceRegion& region, Visit&& visit) 
     double a0 = bounds_.min[ia] + i * cell_, a1 = a0 + cell_;
     for (int j = clo[ib]; j <= chi[ib]; ++j) {
       double b0 = bounds_.min[ib] + j * cell_, b1 = b0 + cell_;
+      int ballK0 = clo[k], ballK1 = chi[k];
+      if (region.kind == SliceRegion::Kind::Ball) {
+        // The column (unbounded along k) misses the ball when its rectangle is farther than r;
+        // otherwise the ball spans ±√(r² − e²) along k over it.
+        const double ea = std::max({a0 - region.linePoint[ia], region.linePoint[ia] - a1, 0.0});
+        const double eb = std::max({b0 - region.linePoint[ib], region.linePoint[ib] - b1, 0.0});
+        const double e2 = ea * ea + eb * eb, rr = (r + margin) * (r + margin);
+        if (e2 > rr) continue;
+        const double hk = std::sqrt(rr - e2) + margin;
+        ballK0 = int(std::clamp(std::floor((region.linePoint[k] - hk - bounds_.min[k]) / cell_), -1.0, 1e9));
+        ballK1 = int(std::clamp(std::floor((region.linePoint[k] + hk - bounds_.min[k]) / cell_), -1.0, 1e9));
+      }
       // The plane's k coordinate over the column's rectangle is linear: extremes at corners.
       double kmin = std::numeric_limits<double>::infinity(), kmax = -kmin;
       for (double av : {a0, a1})
@@ -192,16 +206,15 @@ void CloudIndex::forEachCandidateCell(const SliceRegion& region, Visit&& visit) 
         }
       kmin -= slabK;
       kmax += slabK;
-      int k0 = std::max(clo[k], int(std::clamp(std::floor((kmin - bounds_.min[k]) / cell_), -1.0, 1e9)));
-      int k1 = std::min(chi[k], int(std::clamp(std::floor((kmax - bounds_.min[k]) / cell_), -1.0, 1e9)));
+      int k0 = std::max({clo[k], ballK0, int(std::clamp(std::floor((kmin - bounds_.min[k]) / cell_), -1.0, 1e9))});
+      int k1 = std::min({chi[k], ballK1, int(std::clamp(std::floor((kmax - bounds_.min[k]) / cell_), -1.0, 1e9))});
       for (int c = k0; c <= k1; ++c) {
         int idx[3];
         idx[k] = c;
         idx[ia] = i;
         idx[ib] = j;
         std::size_t lin = (std::size_t(idx[2]) * dims_[1] + idx[1]) * dims_[0] + idx[0];
-        if (cellStart_[lin] == cellStart_[lin + 1]) continue;
-        if (region.kind != SliceRegion::Kind::Slab) {
+        if (region.kind == SliceRegion::Kind::Cylinder) {  // geometry first: cheaper than a cache miss
           Vec3 centre = bounds_.min + (Vec3(idx[0], idx[1], idx[2]) + Vec3::Constant(0.5)) * cell_;
           Vec3 d = centre - region.linePoint;
           if (region.kind == SliceRegion::Kind::Cylinder) d -= d.dot(region.lineDir) * region.lineDir;
@@ -224,62 +237,98 @@ void CloudIndex::forEachHit(const SliceRegion& region, Hit&& hit) const {
   const Vec3& n = region.planeNormal;
   const float nx = float(n.x()), ny = float(n.y()), nz = float(n.z());
   const float pd = float(n.dot(pp));
-  const float hs = float(region.halfThickness + 1e-5 * (mag + pp.norm()) + 1e-30);
+  const double slabTol = 1e-5 * (mag + pp.norm()) + 1e-30;
+  const float hs = float(region.halfThickness + slabTol);
+  const float hsIn = float(std::max(0.0, region.halfThickness - slabTol));  // surely inside below
   const bool radial = region.kind != SliceRegion::Kind::Slab &&
                       region.radius + 1e-5 * (mag + lp.norm() + region.radius) < 1e15;
   const bool ball = region.kind == SliceRegion::Kind::Ball;
   const double rTol = radial ? region.radius + 1e-5 * (mag + lp.norm() + region.radius) + 1e-30 : 0.0;
   const float r2 = float(rTol * rTol);
+  const double rIn = radial ? std::max(0.0, region.radius - 1e-5 * (mag + lp.norm() + region.radius)) : 0.0;
+  const float r2In = float(rIn * rIn);
   const float lx = float(lp.x()), ly = float(lp.y()), lz = float(lp.z());
   const float ax = float(region.lineDir.x()), ay = float(region.lineDir.y()), az = float(region.lineDir.z());
   const float* f = fpos_.data();
-  forEachCandidateCell(region, [&](std::size_t cell) {
-    const std::uint32_t s1 = cellStart_[cell + 1];
-    for (std::uint32_t s = cellStart_[cell]; s < s1; ++s) {
-      const float x = f[3 * s], y = f[3 * s + 1], z = f[3 * s + 2];
-      if (!(std::abs(nx * x + ny * y + nz * z - pd) < hs)) continue;
-      if (radial) {
-        float dx = x - lx, dy = y - ly, dz = z - lz;
-        if (!ball) {
-          const float t = dx * ax + dy * ay + dz * az;
-          dx -= t * ax;
-          dy -= t * ay;
-          dz -= t * az;
-        }
-        if (!(dx * dx + dy * dy + dz * dz < r2)) continue;
-      }
-      if (region.contains(sorted_[s])) hit(s);
+  // The candidate cells are scattered over large arrays, so a query is bound by memory latency:
+  // collect the cells first, then read their bounds and their points with prefetches a few cells
+  // ahead (many misses in flight instead of one at a time).
+  std::vector<std::uint32_t> cells;
+  forEachCandidateCell(region, [&](std::size_t cell) { cells.push_back(std::uint32_t(cell)); });
+  constexpr std::size_t kAhead = 8;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;
+  ranges.reserve(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i + kAhead < cells.size()) __builtin_prefetch(&cellStart_[cells[i + kAhead]]);
+    const std::uint32_t s0 = cellStart_[cells[i]], s1 = cellStart_[cells[i] + 1];
+    if (s0 < s1) ranges.emplace_back(s0, s1);
+  }
+  // Per cell, a branch-free float pass compacts the candidate slots (the in/out pattern of a slab
+  // through a cell is unpredictable), then the exact test runs on the candidates.
+  std::vector<std::uint32_t> cand;
+  std::vector<std::uint8_t> sure;
+  for (std::size_t i = 0; i < ranges.size(); ++i) {
+    if (i + kAhead < ranges.size()) {
+      const std::uint32_t p0 = ranges[i + kAhead].first;
+      __builtin_prefetch(f + 3 * std::size_t(p0));
+      __builtin_prefetch(&sorted_[p0]);
     }
-  });
+    const auto [s0, s1] = ranges[i];
+    if (cand.size() < s1 - s0) {
+      cand.resize(std::max<std::size_t>(s1 - s0, 2 * cand.size()));
+      sure.resize(cand.size());
+    }
+    std::uint32_t* out = cand.data();
+    std::uint8_t* isIn = sure.data();
+    std::size_t k = 0;
+    for (std::uint32_t s = s0; s < s1; ++s) {
+      const float x = f[3 * s], y = f[3 * s + 1], z = f[3 * s + 2];
+      const float ds = std::abs(nx * x + ny * y + nz * z - pd);
+      float dx = x - lx, dy = y - ly, dz = z - lz;
+      const float t = ball ? 0.0f : dx * ax + dy * ay + dz * az;
+      dx -= t * ax;
+      dy -= t * ay;
+      dz -= t * az;
+      const float q = dx * dx + dy * dy + dz * dz;
+      const bool in = (ds < hs) & (!radial | (q < r2));
+      const bool inner = (ds < hsIn) & (!radial | (q < r2In));
+      out[k] = s;
+      isIn[k] = inner;
+      k += in;
+    }
+    // Points inside by more than the float tolerance need no exact test.
+    for (std::size_t c = 0; c < k; ++c)
+      if (isIn[c] || region.contains(sorted_[out[c]])) hit(out[c]);
+  }
 }
 
 namespace {
 
-// Sorts keys (id << 32 | payload) by id, ids unique: LSD radix sort on the id's 11-bit digits
-// (only as many digits as the largest id needs); std::sort for short lists.
-void sortById(std::vector<std::uint64_t>& keys) {
-  if (keys.size() < 128) {
+// Sorts keys (id << 32 | payload) by id, ids unique and below 2^idBits: LSD radix sort with
+// digits of equal width (at most 8 bits) spanning idBits, so each digit is spread over its
+// buckets; all histograms in one pass; std::sort for short lists.
+void sortById(std::vector<std::uint64_t>& keys, int idBits) {
+  if (keys.size() < 64 || idBits <= 0) {
     std::sort(keys.begin(), keys.end());
     return;
   }
-  std::uint64_t maxKey = 0;
-  for (auto k : keys) maxKey = std::max(maxKey, k);
-  const std::uint32_t maxId = std::uint32_t(maxKey >> 32);
-  int bits = 0;
-  while (bits < 32 && (maxId >> bits) != 0) ++bits;
-  constexpr int kDigit = 11;
+  const int passes = (idBits + 7) / 8;
+  const int width = (idBits + passes - 1) / passes;
+  const std::uint64_t mask = (std::uint64_t(1) << width) - 1;
+  std::uint32_t count[4][256] = {};
+  for (auto k : keys)
+    for (int d = 0; d < passes; ++d) ++count[d][(k >> (32 + d * width)) & mask];
   std::vector<std::uint64_t> tmp(keys.size());
-  std::uint32_t count[1u << kDigit];
-  for (int shift = 0; shift < bits; shift += kDigit) {
-    std::fill(std::begin(count), std::end(count), 0u);
-    for (auto k : keys) ++count[(k >> (32 + shift)) & ((1u << kDigit) - 1)];
+  for (int d = 0; d < passes; ++d) {
+    std::uint32_t* c = count[d];
+    const int shift = 32 + d * width;
     std::uint32_t sum = 0;
-    for (auto& c : count) {
-      std::uint32_t v = c;
-      c = sum;
+    for (std::uint64_t b = 0; b <= mask; ++b) {
+      const std::uint32_t v = c[b];
+      c[b] = sum;
       sum += v;
     }
-    for (auto k : keys) tmp[count[(k >> (32 + shift)) & ((1u << kDigit) - 1)]++] = k;
+    for (auto k : keys) tmp[c[(k >> shift) & mask]++] = k;
     keys.swap(tmp);
   }
 }
@@ -305,11 +354,13 @@ std::vector<std::uint32_t> CloudIndex::query(const SliceRegion& region, std::vec
   // contiguous read) and permuted from that small buffer after the sort.
   std::vector<std::uint64_t> keys;
   std::vector<Vec3> buf;
+  keys.reserve(1024);
+  if (positions) buf.reserve(1024);
   forEachHit(region, [&](std::uint32_t s) {
     keys.push_back(std::uint64_t(ids_[s]) << 32 | std::uint64_t(keys.size()));
     if (positions) buf.push_back(sorted_[s]);
   });
-  sortById(keys);
+  sortById(keys, idBits_);
   std::vector<std::uint32_t> out(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) out[i] = std::uint32_t(keys[i] >> 32);
   if (positions) {

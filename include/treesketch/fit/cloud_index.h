@@ -96,6 +96,7 @@ class CloudIndex {
   /// Float copy of sorted_ relative to centre_ (x, y, z per point): a conservative pre-test that
   /// streams half the bytes; points passing it are tested exactly on sorted_.
   geom::Vec3 centre_ = geom::Vec3::Zero();
+  int idBits_ = 0;  ///< original indices are below 2^idBits_
   std::vector<float> fpos_;
 };
 
