@@ -208,11 +208,17 @@ struct Scorer {
     const double perBin = 1.0 / opt.arcBinDegrees;
     // A strided subsample of at most kCoveragePoints points is plenty for 10° bins.
     const std::size_t stride = std::max<std::size_t>(1, (idx.size() + kCoveragePoints - 1) / kCoveragePoints);
-    for (std::size_t k = 0; k < idx.size(); k += stride) {
+    // Branch-free compaction of the subsample's band members, then their angles.
+    Vec2 inBand[kCoveragePoints + 1];
+    std::size_t m = 0;
+    for (std::size_t k = 0; k < idx.size() && m < kCoveragePoints; k += stride) {
       const Vec2 d = pts[idx[k]] - c;
-      const double deg = fastAngleDeg(d.y(), d.x());
-      const int bin = deg >= 0.0 && deg < 360.0 ? std::min(bins - 1, int(deg * perBin)) : 0;
-      hit[bin] += b.contains(d.squaredNorm()) ? 1 : 0;  // branch-free: NaN adds nothing
+      inBand[m] = d;
+      m += b.contains(d.squaredNorm()) ? 1 : 0;  // NaN is never in the band
+    }
+    for (std::size_t q = 0; q < m; ++q) {
+      const double deg = fastAngleDeg(inBand[q].y(), inBand[q].x());
+      ++hit[deg >= 0.0 && deg < 360.0 ? std::min(bins - 1, int(deg * perBin)) : 0];
     }
     const double floor = 0.25 * *std::max_element(hit, hit + bins);
     int covered = 0;
