@@ -115,9 +115,10 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
   idBits_ = 0;
   while (idBits_ < 32 && (std::uint64_t(pts.size()) >> idBits_) != 0) ++idBits_;
   centre_ = bounds_.center();
-  fpos_.resize(3 * nFinite);
-  for (std::size_t s = 0; s < nFinite; ++s)
-    for (int a = 0; a < 3; ++a) fpos_[3 * s + a] = float(sorted_[s][a] - centre_[a]);
+  for (int a = 0; a < 3; ++a) {
+    fpos_[a].resize(nFinite);
+    for (std::size_t s = 0; s < nFinite; ++s) fpos_[a][s] = float(sorted_[s][a] - centre_[a]);
+  }
 }
 
 bool CloudIndex::regionCoversCloud(const SliceRegion& region) const {
@@ -243,18 +244,22 @@ void CloudIndex::forEachHit(const SliceRegion& region, Hit&& hit) const {
   const bool radial = region.kind != SliceRegion::Kind::Slab &&
                       region.radius + 1e-5 * (mag + lp.norm() + region.radius) < 1e15;
   const bool ball = region.kind == SliceRegion::Kind::Ball;
+  // Without a usable radial pre-test only pure slabs can be decided in float.
+  const bool radialSure = region.kind == SliceRegion::Kind::Slab;
+  // Coordinates beyond float range: every candidate gets the exact test.
+  const bool useFloat = mag < 1e30 && pp.norm() < 1e30 && lp.norm() < 1e30;
   const double rTol = radial ? region.radius + 1e-5 * (mag + lp.norm() + region.radius) + 1e-30 : 0.0;
   const float r2 = float(rTol * rTol);
   const double rIn = radial ? std::max(0.0, region.radius - 1e-5 * (mag + lp.norm() + region.radius)) : 0.0;
   const float r2In = float(rIn * rIn);
   const float lx = float(lp.x()), ly = float(lp.y()), lz = float(lp.z());
   const float ax = float(region.lineDir.x()), ay = float(region.lineDir.y()), az = float(region.lineDir.z());
-  const float* f = fpos_.data();
+  const float *fx = fpos_[0].data(), *fy = fpos_[1].data(), *fz = fpos_[2].data();
   // The candidate cells are scattered over large arrays, so a query is bound by memory latency:
   // collect the cells first, then read their bounds and their points with prefetches a few cells
   // ahead (many misses in flight instead of one at a time).
-  std::vector<std::uint32_t> cells;
-  forEachCandidateCell(region, [&](std::size_t cell) { cells.push_back(std::uint32_t(cell)); });
+  std::vector<std::size_t> cells;
+  forEachCandidateCell(region, [&](std::size_t cell) { cells.push_back(cell); });
   constexpr std::size_t kAhead = 8;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;
   ranges.reserve(cells.size());
@@ -266,35 +271,50 @@ void CloudIndex::forEachHit(const SliceRegion& region, Hit&& hit) const {
   // Per cell, a branch-free float pass compacts the candidate slots (the in/out pattern of a slab
   // through a cell is unpredictable), then the exact test runs on the candidates.
   std::vector<std::uint32_t> cand;
-  std::vector<std::uint8_t> sure;
+  std::vector<std::uint8_t> sure, code;
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     if (i + kAhead < ranges.size()) {
       const std::uint32_t p0 = ranges[i + kAhead].first;
-      __builtin_prefetch(f + 3 * std::size_t(p0));
-      __builtin_prefetch(&sorted_[p0]);
+      __builtin_prefetch(fx + p0);
+      __builtin_prefetch(fy + p0);
+      __builtin_prefetch(fz + p0);
+      // The double positions of the whole cell (most of a cell's points in the slab are hits).
+      const char* b = reinterpret_cast<const char*>(sorted_.data() + p0);
+      const char* e = reinterpret_cast<const char*>(sorted_.data() + ranges[i + kAhead].second);
+      for (; b < e; b += 64) __builtin_prefetch(b);
     }
     const auto [s0, s1] = ranges[i];
-    if (cand.size() < s1 - s0) {
-      cand.resize(std::max<std::size_t>(s1 - s0, 2 * cand.size()));
+    const std::uint32_t len = s1 - s0;
+    if (cand.size() < len) {
+      cand.resize(std::max<std::size_t>(len, 2 * cand.size()));
       sure.resize(cand.size());
+      code.resize(cand.size());
     }
-    std::uint32_t* out = cand.data();
-    std::uint8_t* isIn = sure.data();
-    std::size_t k = 0;
-    for (std::uint32_t s = s0; s < s1; ++s) {
-      const float x = f[3 * s], y = f[3 * s + 1], z = f[3 * s + 2];
-      const float ds = std::abs(nx * x + ny * y + nz * z - pd);
-      float dx = x - lx, dy = y - ly, dz = z - lz;
+    // Pass 1 (vectorizable): per point 0 = out, 1 = undecided, 3 = surely in.
+    const float *x = fx + s0, *y = fy + s0, *z = fz + s0;
+    std::uint8_t* cd = code.data();
+    if (!useFloat) std::fill(cd, cd + len, std::uint8_t(1));
+    if (useFloat)
+    for (std::uint32_t q = 0; q < len; ++q) {
+      const float ds = std::abs(nx * x[q] + ny * y[q] + nz * z[q] - pd);
+      float dx = x[q] - lx, dy = y[q] - ly, dz = z[q] - lz;
       const float t = ball ? 0.0f : dx * ax + dy * ay + dz * az;
       dx -= t * ax;
       dy -= t * ay;
       dz -= t * az;
-      const float q = dx * dx + dy * dy + dz * dz;
-      const bool in = (ds < hs) & (!radial | (q < r2));
-      const bool inner = (ds < hsIn) & (!radial | (q < r2In));
-      out[k] = s;
-      isIn[k] = inner;
-      k += in;
+      const float rq = dx * dx + dy * dy + dz * dz;
+      const bool in = (ds < hs) & (!radial | (rq < r2));
+      const bool inner = (ds < hsIn) & ((radial & (rq < r2In)) | (!radial & radialSure));
+      cd[q] = std::uint8_t(std::uint8_t(in) | std::uint8_t(inner << 1));
+    }
+    // Pass 2: branch-free compaction of the candidates.
+    std::uint32_t* out = cand.data();
+    std::uint8_t* isIn = sure.data();
+    std::size_t k = 0;
+    for (std::uint32_t q = 0; q < len; ++q) {
+      out[k] = s0 + q;
+      isIn[k] = cd[q] >> 1;
+      k += cd[q] & 1;
     }
     // Points inside by more than the float tolerance need no exact test.
     for (std::size_t c = 0; c < k; ++c)

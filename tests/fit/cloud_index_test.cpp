@@ -149,5 +149,57 @@ TEST(CloudIndex, InvalidRegionsThrow) {
   EXPECT_THROW(CloudIndex(cloud, bad), OptionsError);
 }
 
+// The index pre-tests points in float (relative to the cloud's centre) and decides points near
+// the region's boundary exactly: points placed at the boundary within a few ulps, in a cloud far
+// from the origin, must give the brute-force answer; so must regions whose sizes or positions are
+// beyond the float pre-test's range (a huge ball centred far away, a plane point far away).
+TEST(CloudIndex, BoundaryPointsAndHugeRegionsEqualBruteForce) {
+  const Vec3 offset(1e5, -2e5, 3e4);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  geom::PointCloud cloud;
+  const double h = 0.05, radius = 0.5;
+  for (int i = 0; i < 4000; ++i) {
+    // Slab normal +y through offset: y on the boundary ± a few ulps, x/z on the ball boundary.
+    double y = h * (i % 2 ? 1 : -1);
+    y = std::nextafter(y, (i % 4) < 2 ? 1.0 : -1.0);
+    double th = 3.0 * u(rng);
+    double rr = std::nextafter(std::sqrt(radius * radius - y * y), (i % 3) ? 0.0 : 1.0);
+    cloud.positions.push_back(offset + Vec3(rr * std::cos(th), y, rr * std::sin(th)));
+    cloud.positions.push_back(offset + Vec3(u(rng), 0.1 * u(rng), u(rng)));
+  }
+  CloudIndex index(cloud);
+  std::vector<SliceRegion> regions;
+  SliceRegion r;
+  r.kind = SliceRegion::Kind::Ball;
+  r.planePoint = offset;
+  r.planeNormal = Vec3::UnitY();
+  r.halfThickness = h;
+  r.linePoint = offset;
+  r.radius = radius;
+  regions.push_back(r);
+  r.kind = SliceRegion::Kind::Cylinder;
+  r.lineDir = Vec3::UnitY();
+  regions.push_back(r);
+  r.kind = SliceRegion::Kind::Slab;
+  regions.push_back(r);
+  r.kind = SliceRegion::Kind::Ball;  // huge ball centred far away: covers part of the cloud only
+  r.linePoint = offset + Vec3(2e15, 0, 0);
+  r.radius = 2e15 - 0.2;
+  regions.push_back(r);
+  r.kind = SliceRegion::Kind::Slab;  // plane point far away along the plane
+  r.linePoint = offset;
+  r.planePoint = offset + Vec3(1e35, 0, -1e35);
+  regions.push_back(r);
+  for (const auto& reg : regions) {
+    auto slow = sliceBruteForce(cloud, reg);
+    EXPECT_EQ(index.query(reg), slow) << "kind " << int(reg.kind);
+    EXPECT_EQ(index.count(reg), slow.size());
+  }
+  EXPECT_FALSE(sliceBruteForce(cloud, regions[0]).empty());
+  EXPECT_LT(sliceBruteForce(cloud, regions[3]).size(), cloud.size());
+  EXPECT_FALSE(sliceBruteForce(cloud, regions[3]).empty());
+}
+
 }  // namespace
 }  // namespace treesketch::fit

@@ -47,15 +47,16 @@ std::vector<std::uint32_t> sliceBruteForce(const geom::PointCloud& cloud, const 
 struct CloudIndexOptions {
   /// Grid resolution, first guess: one cell per this many points over the bounding box volume.
   double pointsPerCell = 2.0;
-  /// Then refined so that occupied cells hold about this many points on average (scans cover
-  /// surfaces, so most cells are empty and occupied ones hold far more than pointsPerCell).
-  /// Speed design choice: 8. 0 = no refinement.
+  /// Then refined so that the cell of an average point holds about this many points (Σ count² / n,
+  /// so sparse clutter in one-point cells does not hide the crowded surface cells that queries
+  /// hit; scans cover surfaces, so most cells are empty). Speed design choice: 8. 0 = no refinement.
   double pointsPerOccupiedCell = 8.0;
-  /// Upper bound on the number of cells (memory: 5 bytes a cell while building, 4 after).
+  /// Upper bound on the number of cells (memory: 4 bytes a cell, 8 while building).
   std::size_t maxCells = std::size_t(1) << 23;
 };
 
-/// A uniform grid over the cloud. Holds its own copy of the positions (sorted by cell); results
+/// A uniform grid over the cloud. Holds its own copy of the positions (sorted by cell, in double
+/// and, relative to the grid's centre, in float for a conservative pre-test); results
 /// are indices into the original cloud. Immutable after construction: safe to query from many
 /// threads at once. Non-finite points are left out of every query result.
 class CloudIndex {
@@ -93,11 +94,12 @@ class CloudIndex {
   std::vector<std::uint32_t> cellStart_;  ///< size cells+1, into sorted arrays
   std::vector<geom::Vec3> sorted_;        ///< finite positions, sorted by cell
   std::vector<std::uint32_t> ids_;        ///< original index of each sorted point
-  /// Float copy of sorted_ relative to centre_ (x, y, z per point): a conservative pre-test that
-  /// streams half the bytes; points passing it are tested exactly on sorted_.
+  /// Float copy of sorted_ relative to centre_ (one array per axis, so the pre-test vectorizes):
+  /// a conservative pre-test that streams half the bytes; points it cannot decide are tested
+  /// exactly on sorted_.
   geom::Vec3 centre_ = geom::Vec3::Zero();
   int idBits_ = 0;  ///< original indices are below 2^idBits_
-  std::vector<float> fpos_;
+  std::vector<float> fpos_[3];
 };
 
 }  // namespace treesketch::fit
