@@ -155,7 +155,11 @@ void TubeSweeper::assemble(const std::map<NodeId, NodeId>& parentOf) {
     if (parent == kNoNode) continue;
     hasChild.insert(parent);
     Vec3 d = rings_.at(child).disc.centre - rings_.at(parent).disc.centre;
-    if (d.norm() > 0.0) childDir[parent] += d.normalized();
+    if (d.norm() > 0.0) {
+      // Eigen vectors are not zero-initialised: insert an explicit zero before summing.
+      auto it = childDir.try_emplace(parent, Vec3::Zero()).first;
+      it->second += d.normalized();
+    }
   }
   auto addCap = [&](NodeId id, const Vec3& outward) {
     const Ring& ring = rings_.at(id);
