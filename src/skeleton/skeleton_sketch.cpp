@@ -248,7 +248,8 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
     auto& s = sweepNodes[i];
     s.id = static_cast<sketch::NodeId>(i);
     s.parent = res.model[i].parent < 0 ? sketch::kNoNode : res.model[i].parent;
-    s.fitted = true;
+    const bool fork = res.model[i].parent >= 0 && res.model[i].children.size() >= 2;
+    s.fitted = !(options.bridgeUnfittedForks && fork && !res.fitAccepted[i]);
     s.disc = sweep::Disc{res.model[i].position, res.model[i].direction, radii[i]};
   }
   sweep::SweepOptions so;

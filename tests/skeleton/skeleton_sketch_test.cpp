@@ -119,3 +119,21 @@ TEST(SkeletonSketch, EmptyCloud) {
   EXPECT_TRUE(res.sketch.empty());
   EXPECT_TRUE(res.mesh.empty());
 }
+
+TEST(SkeletonSketch, UnfittedForksAreBridgedInTheMesh) {
+  const auto cloud = test::sampleCylinders(test::threeLevelTree(), 0.02, 0.003, 2);
+  skeleton::AutoSkeletonOptions o;
+  o.radii.maxRadiusRatio = 1e-6;  // reject (nearly) every fit, so the forks have none
+  o.bridgeUnfittedForks = false;
+  const auto kept = skeleton::autoSkeletonSketch(cloud, o);
+  o.bridgeUnfittedForks = true;
+  const auto bridged = skeleton::autoSkeletonSketch(cloud, o);
+  ASSERT_EQ(kept.model.size(), bridged.model.size());
+  int unfittedForks = 0;
+  for (std::size_t i = 0; i < bridged.model.size(); ++i)
+    unfittedForks += bridged.model[i].parent >= 0 && bridged.model[i].children.size() >= 2 && !bridged.fitAccepted[i];
+  ASSERT_GE(unfittedForks, 1);
+  // Each bridged fork loses exactly its ring; its parent and children keep theirs (no new caps).
+  EXPECT_EQ(kept.mesh.vertices.size() - bridged.mesh.vertices.size(), std::size_t(16 * unfittedForks));
+  EXPECT_EQ(bridged.sketch.size(), kept.sketch.size());  // the sketch keeps every node
+}
