@@ -27,6 +27,7 @@ struct ReconstructArgs {
   double inlierThreshold = -1.0;  // < 0: library default
   std::uint64_t seed = 1;
   bool autoSkeleton = false;        // --auto: sketch from the cloud's skeleton (skeleton module)
+  bool leafOn = false;              // --leaf-on (with --auto): settings for trees in leaf
   std::string up = "y", cylinders;  // --up, --cylinders (with --auto)
 };
 
@@ -86,6 +87,7 @@ void runAutoReconstruct(const ReconstructArgs& a) {
     throw OptionsError(std::string("-o: ") + e.what());
   }
   skeleton::AutoSkeletonOptions opt;
+  if (a.leafOn) opt.skeleton = skeleton::leafOnSkeletonOptions();
   opt.skeleton.up = geom::parseUpAxis(a.up);
   opt.seed = a.seed;
   opt.ringVertices = a.ring;
@@ -108,6 +110,7 @@ void runAutoReconstruct(const ReconstructArgs& a) {
 void runReconstruct(const ReconstructArgs& a) {
   if (a.autoSkeleton) return runAutoReconstruct(a);
   if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
+  if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");
   checkNotAnInput(a.output, {a.cloud, a.sketch});
   if (!a.report.empty()) checkNotAnInput(a.report, {a.cloud, a.sketch});
   try {
@@ -156,6 +159,8 @@ void registerReconstruct(CLI::App& app, Action& action) {
   sub->add_flag("--auto", a->autoSkeleton, "Sketch automatically from the cloud's branching skeleton");
   sub->add_option("--up", a->up, "With --auto: world up axis, y or z (default y)")
       ->check(CLI::IsMember({"y", "z", "Y", "Z"}));
+  sub->add_flag("--leaf-on", a->leafOn,
+                "With --auto: the tree was scanned in leaf (finer voxels, weaker foliage rule)");
   sub->add_option("--cylinders", a->cylinders, "With --auto: also write the cylinder table (.csv)");
   sub->add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
   sub->add_option("--report", a->report, "Write a JSON report of every node's fit");

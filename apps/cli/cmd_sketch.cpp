@@ -27,6 +27,7 @@ struct AutoSketchInput {
   const geom::Camera& camera;
   int nodes;
   geom::UpAxis up;
+  bool leafOn;
 };
 using AutoSketchMethod = std::function<sketch::Sketch(const AutoSketchInput&)>;
 
@@ -38,7 +39,7 @@ const std::map<std::string, AutoSketchMethod>& autoSketchMethods() {
       // The branching skeleton found from the cloud (skeleton module); --nodes and --view are not used.
       {"skeleton",
        [](const AutoSketchInput& in) {
-         skeleton::SkeletonOptions o;
+         skeleton::SkeletonOptions o = in.leafOn ? skeleton::leafOnSkeletonOptions() : skeleton::SkeletonOptions{};
          o.up = in.up;
          return skeleton::skeletonToSketch(skeleton::extractSkeleton(in.cloud, o));
        }},
@@ -50,6 +51,7 @@ struct AutoOptions {
   std::string cloud, view = "front", method = "uniform", up = "y", output;
   int nodes = 18;  // the thesis's automatic sketches had 18 nodes (Table 5.2)
   bool ortho = false;
+  bool leafOn = false;  // --leaf-on: the skeleton method's settings for trees in leaf
   int width = 1280, height = 800;
 };
 
@@ -64,7 +66,7 @@ void runAuto(const AutoOptions& o) {
   const auto& methods = autoSketchMethods();
   auto it = methods.find(o.method);
   if (it == methods.end()) throw OptionsError("--method: unknown method '" + o.method + "'");
-  sketch::Sketch sk = it->second(AutoSketchInput{cloud, camera, o.nodes, up});
+  sketch::Sketch sk = it->second(AutoSketchInput{cloud, camera, o.nodes, up, o.leafOn});
   io::writeSketch(std::filesystem::path(o.output), sk);
   std::printf("sketch: %zu nodes (%s, view %s) from %zu points -> %s\n", sk.size(), o.method.c_str(), o.view.c_str(),
               cloud.size(), o.output.c_str());
@@ -84,6 +86,8 @@ void registerSketch(CLI::App& app, Action& action) {
   autoCmd->add_option("--view", o->view, "front, side, top, or a camera JSON file {view, projection, viewport}");
   autoCmd->add_option("--method", o->method, "Automatic method")->check(CLI::IsMember(names));
   autoCmd->add_option("--up", o->up, "World up axis: y or z")->check(CLI::IsMember({"y", "z", "Y", "Z"}));
+  autoCmd->add_flag("--leaf-on", o->leafOn,
+                    "Method skeleton: the tree was scanned in leaf (finer voxels, weaker foliage rule)");
   autoCmd->add_flag("--ortho", o->ortho, "Orthographic preset camera (default perspective, 30° field of view)");
   autoCmd->add_option("--width", o->width, "Viewport width of a preset camera, pixels (default 1280)");
   autoCmd->add_option("--height", o->height, "Viewport height of a preset camera, pixels (default 800)");

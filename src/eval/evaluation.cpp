@@ -144,6 +144,7 @@ MethodOutput methodIdeal(const MethodInput& in) {
 MethodOutput methodSkeleton(const MethodInput& in) {
   auto t0 = Clock::now();
   skeleton::AutoSkeletonOptions so;
+  if (in.leafOn) so.skeleton = skeleton::leafOnSkeletonOptions(so.skeleton);
   so.skeleton.up = in.tree.up;
   so.seed = in.options.seed;
   skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, so);
@@ -264,7 +265,7 @@ std::vector<EvalRow> runEvaluation(const std::vector<TreeCase>& trees, const Eva
           row.points = cloud.size();
           row.woodFraction = cloud.size() ? static_cast<double>(wood) / cloud.size() : 0.0;
           row.bboxDiagonal = diag;
-          MethodOutput out = runMethod(method, MethodInput{tree, cloud, o, nodes});
+          MethodOutput out = runMethod(method, MethodInput{tree, cloud, o, nodes, leafOn});
           row.nodes = out.nodes;
           row.fitted = out.fitted;
           row.reconstructMs = out.ms;

@@ -542,4 +542,11 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
   return s;
 }
 
+SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base) {
+  base.graph.autoSpacingFactor = 1.5;
+  base.binWidthVoxels = 1.0;
+  base.minTubularFraction = 0.2;
+  return base;
+}
+
 }  // namespace treesketch::skeleton

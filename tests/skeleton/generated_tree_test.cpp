@@ -50,3 +50,39 @@ TEST(GeneratedTree, ScannedSparseTreeNodesLieNearTheTrueAxes) {
   EXPECT_LT(p90, 2.0 * trunkRadius);
   EXPECT_GE(skeleton::countBranchPoints(res.model) + 1, tree.skeleton.branches.size() / 2);
 }
+
+// A tree in leaf, scanned with its leaves: the leaf-on settings find more of the true branches
+// (share of true axis points with a skeleton node nearby) than the defaults, whose cross-section
+// rule drops leafy sub-trees together with the limbs that carry them.
+TEST(GeneratedTree, LeafOnSettingsFindMoreOfALeafyCrown) {
+  gen::TreeOptions to = gen::presetOptions("default");
+  to.leaves = true;
+  const gen::GeneratedTree tree = gen::generateTree(to);
+  ASSERT_FALSE(tree.leaves.empty());
+  scan::SphereScanOptions so;
+  so.rays = 120000;
+  const std::vector<geom::TriMesh> meshes = {tree.branches.mesh, tree.leaves};
+  const geom::PointCloud cloud = scan::sphereScan(meshes, so).cloud;
+  auto covered = [&](const skeleton::SkeletonOptions& opt) {
+    skeleton::AutoSkeletonOptions o;
+    o.skeleton = opt;
+    o.skeleton.up = to.up;
+    const auto res = skeleton::autoSkeletonSketch(cloud, o);
+    const double reach = 3.0 * tree.skeleton.branches.front().sections.front().radius;
+    std::size_t near = 0, all = 0;
+    for (const auto& b : tree.skeleton.branches)
+      for (const auto& s : b.sections) {
+        ++all;
+        for (const auto& n : res.model)
+          if ((n.position - s.center).norm() < reach) {
+            ++near;
+            break;
+          }
+      }
+    return double(near) / double(all);
+  };
+  const double plain = covered(skeleton::SkeletonOptions{});
+  const double leafy = covered(skeleton::leafOnSkeletonOptions());
+  std::printf("leafy generated tree: true axis points covered: defaults %.3f, leaf-on settings %.3f\n", plain, leafy);
+  EXPECT_GT(leafy, plain + 0.03);
+}

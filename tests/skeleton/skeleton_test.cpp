@@ -166,3 +166,15 @@ TEST(Skeleton, Deterministic) {
     EXPECT_EQ(s1.nodes[i].radius, s2.nodes[i].radius);
   }
 }
+
+TEST(Skeleton, LeafOnSettingsKeepTheRestOfTheBase) {
+  skeleton::SkeletonOptions base;
+  base.up = geom::UpAxis::Z;
+  base.spurLengthRadii = 7.0;
+  const auto o = skeleton::leafOnSkeletonOptions(base);
+  EXPECT_EQ(o.up, geom::UpAxis::Z);
+  EXPECT_EQ(o.spurLengthRadii, 7.0);
+  EXPECT_LT(o.graph.autoSpacingFactor, base.graph.autoSpacingFactor);
+  EXPECT_LT(o.binWidthVoxels, base.binWidthVoxels);
+  EXPECT_LT(o.minTubularFraction, base.minTubularFraction);
+}

@@ -10,7 +10,8 @@
 //    data, as for a real user, so branches lined up in depth can be confused (thesis §6.2).
 //  - "ideal": 3D point nodes on the true axes with exact tangents (an upper bound for any sketch).
 //  - "skeleton": treesketch's automatic branching skeleton (skeleton::autoSkeletonSketch): its
-//    nodes are fitted with the same slice + RANSAC machinery and radii regularised.
+//    nodes are fitted with the same slice + RANSAC machinery and radii regularised. Leaf-on
+//    scans use skeleton::leafOnSkeletonOptions() (the user says the tree was in leaf).
 // Percentages are of the *reference* (branch mesh) bounding-box diagonal in both directions, so
 // that methods are compared on one scale (MeshLab divides the backward numbers by the
 // reconstruction's own diagonal; a reconstruction with stray parts would look better there).
@@ -107,6 +108,9 @@ struct MethodInput {
   const geom::PointCloud& cloud;
   const EvalOptions& options;
   int nodeCount;
+  /// The scan has leaves. A user knows whether the tree was in leaf, so methods may use it: the
+  /// skeleton method then takes skeleton::leafOnSkeletonOptions().
+  bool leafOn = false;
 };
 
 using Method = std::function<MethodOutput(const MethodInput&)>;

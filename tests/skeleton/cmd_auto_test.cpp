@@ -1,0 +1,61 @@
+// `treesketch reconstruct --auto` and `sketch auto --method skeleton`, run as processes.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "synthetic_tree.h"
+#include "test_support.h"
+#include "treesketch/io/mesh_io.h"
+#include "treesketch/io/point_cloud_io.h"
+#include "treesketch/io/sketch_file.h"
+
+namespace treesketch {
+namespace {
+
+std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+TEST(CmdAuto, ReconstructAutoWritesMeshSketchAndCylinders) {
+  test::TempDir dir;
+  io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
+  for (const std::string extra : {"", " --leaf-on"}) {
+    std::string out;
+    const int rc = test::runCli("reconstruct " + q(dir / "c.ply") + " --auto" + extra + " --sketch " +
+                                    q(dir / "s.json") + " --cylinders " + q(dir / "c.csv") + " -o " + q(dir / "m.ply"),
+                                &out);
+    ASSERT_EQ(rc, 0) << extra << ": " << out;
+    EXPECT_FALSE(io::readMesh(dir / "m.ply").empty()) << extra;
+    EXPECT_GE(io::readSketch(dir / "s.json").size(), 3u) << extra;
+    std::ifstream csv(dir / "c.csv");
+    std::string header, row;
+    ASSERT_TRUE(std::getline(csv, header) && std::getline(csv, row)) << extra;
+    std::filesystem::remove(dir / "m.ply");
+  }
+}
+
+TEST(CmdAuto, LeafOnNeedsAuto) {
+  test::TempDir dir;
+  io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
+  std::string out;
+  EXPECT_EQ(test::runCli("reconstruct " + q(dir / "c.ply") + " --sketch " + q(dir / "s.json") + " --leaf-on -o " +
+                             q(dir / "m.ply"),
+                         &out),
+            2)
+      << out;
+  EXPECT_NE(out.find("--leaf-on"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m.ply"));
+}
+
+TEST(CmdAuto, SketchAutoSkeletonLeafOn) {
+  test::TempDir dir;
+  io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
+  std::string out;
+  const int rc = test::runCli(
+      "sketch auto " + q(dir / "c.ply") + " --method skeleton --leaf-on -o " + q(dir / "s.json"), &out);
+  ASSERT_EQ(rc, 0) << out;
+  EXPECT_GE(io::readSketch(dir / "s.json").size(), 3u);
+}
+
+}  // namespace
+}  // namespace treesketch
