@@ -119,8 +119,10 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
 
   double eps = p.lineEpsilon;
   std::vector<std::uint32_t> test;
-  std::vector<Vec3> testPos;
-  std::vector<Vec2> pts2;
+  // Per-thread buffers: a fit is short, and reallocating these (tens of kB) for every node was a
+  // visible share of it.
+  thread_local std::vector<Vec3> testPos;
+  thread_local std::vector<Vec2> pts2;
   std::string lastReason;
   bool covered = false;
   for (;;) {
@@ -147,8 +149,8 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
       res.centre = origin + fit.centre.x() * u + fit.centre.y() * v;
       res.radius = fit.radius;
       res.rms = fit.rms;
-      res.inlierIndices.reserve(fit.inliers.size());
-      for (auto i : fit.inliers) res.inlierIndices.push_back(test[i]);
+      res.inlierIndices.resize(fit.inliers.size());
+      for (std::size_t k = 0; k < fit.inliers.size(); ++k) res.inlierIndices[k] = test[fit.inliers[k]];
       break;
     }
     lastReason = fit.reason;
@@ -163,6 +165,10 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
     if (res.growthSteps >= options.maxGrowthSteps) break;
     eps += p.lineEpsilonStep;
     ++res.growthSteps;
+  }
+  if (testPos.capacity() > (std::size_t(1) << 20)) {  // do not keep a huge slice's memory per thread
+    testPos = {};
+    pts2 = {};
   }
   res.testIndices = std::move(test);
   if (res.sliceComputed) res.sliceIndices = std::move(near);

@@ -4,6 +4,7 @@
 
 #include <limits>
 #include <random>
+#include <thread>
 
 #include "fit/synthetic_cylinder.h"
 #include "treesketch/util/error.h"
@@ -199,6 +200,45 @@ TEST(CloudIndex, BoundaryPointsAndHugeRegionsEqualBruteForce) {
   EXPECT_FALSE(sliceBruteForce(cloud, regions[0]).empty());
   EXPECT_LT(sliceBruteForce(cloud, regions[3]).size(), cloud.size());
   EXPECT_FALSE(sliceBruteForce(cloud, regions[3]).empty());
+}
+
+// Queries reuse per-thread buffers (grown by big results, released past a size): a mix of huge and
+// small results on one thread, on a cloud whose ids need more than 16 bits (three radix digits for
+// short results, two for long ones), and the same from several threads at once.
+TEST(CloudIndex, ReusedQueryBuffersGiveBruteForceResults) {
+  std::mt19937_64 rng(5);
+  geom::PointCloud cloud;
+  test::addOutliers(cloud, 150000, Vec3(-2, 0, -2), Vec3(2, 4, 2), rng);
+  const CloudIndex index(cloud);
+  std::uniform_real_distribution<double> u01(0, 1);
+  std::vector<SliceRegion> regions;
+  for (int q = 0; q < 12; ++q) {
+    SliceRegion r;
+    r.kind = q % 3 == 0 ? SliceRegion::Kind::Slab : SliceRegion::Kind::Ball;
+    r.planePoint = Vec3(0, 4 * u01(rng), 0);
+    r.planeNormal = randomUnit(rng);
+    r.halfThickness = q % 3 == 0 ? 1.0 : 0.05;  // slabs: ~100k hits; balls: a few hundred
+    r.linePoint = r.planePoint;
+    r.radius = 0.3 + 0.5 * u01(rng);
+    regions.push_back(r);
+  }
+  std::vector<std::vector<std::uint32_t>> expected;
+  for (const auto& r : regions) expected.push_back(sliceBruteForce(cloud, r));
+  EXPECT_GT(expected[0].size(), 70000u);
+  EXPECT_GT(expected[1].size(), 100u);
+  auto check = [&](int pass) {
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+      std::vector<Vec3> pos;
+      ASSERT_EQ(index.query(regions[i], &pos), expected[i]) << "pass " << pass << " region " << i;
+      ASSERT_EQ(pos.size(), expected[i].size());
+      for (std::size_t k = 0; k < pos.size(); k += 97) ASSERT_EQ(pos[k], cloud.positions[expected[i][k]]);
+    }
+  };
+  check(0);
+  check(1);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 3; ++t) threads.emplace_back(check, 2 + t);
+  for (auto& th : threads) th.join();
 }
 
 }  // namespace

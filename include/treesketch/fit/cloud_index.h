@@ -96,7 +96,7 @@ class CloudIndex {
   std::vector<std::uint32_t> ids_;        ///< original index of each sorted point
   /// Float copy of sorted_ relative to centre_ (one array per axis, so the pre-test vectorizes):
   /// a conservative pre-test that streams half the bytes; points it cannot decide are tested
-  /// exactly on sorted_.
+  /// exactly on sorted_. Padded with 4 zeros: the pre-test reads blocks of 4.
   geom::Vec3 centre_ = geom::Vec3::Zero();
   int idBits_ = 0;  ///< original indices are below 2^idBits_
   std::vector<float> fpos_[3];
