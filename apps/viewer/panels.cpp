@@ -153,7 +153,9 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
     ImGui::SliderInt("nodes", &panel.autoNodes, 2, 40);
     ImGui::SameLine();
     if (ImGui::Button("Auto")) state.autoSketchUniform(panel.autoNodes);
-    if (ImGui::Button("Auto skeleton")) state.autoSketchSkeleton();
+    if (ImGui::Button("Auto skeleton")) state.autoSketchSkeleton(panel.autoLeafOn);
+    ImGui::SameLine();
+    ImGui::Checkbox("in leaf", &panel.autoLeafOn);
     ImGui::SameLine();
     if (ImGui::Button("Clear")) state.clearSketch();
     ImGui::BeginDisabled(!state.canUndo());

@@ -485,13 +485,13 @@ bool ViewerState::autoSketchUniform(int nodes) {
   });
 }
 
-bool ViewerState::autoSketchSkeleton() {
+bool ViewerState::autoSketchSkeleton(bool leafOn) {
   if (cloud_.empty()) {
     error("automatic skeleton sketch: open a point cloud first");
     return false;
   }
   return edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
-    skeleton::SkeletonOptions options;
+    skeleton::SkeletonOptions options = leafOn ? skeleton::leafOnSkeletonOptions() : skeleton::SkeletonOptions{};
     options.up = up_;
     skeleton::Skeleton skel = skeleton::extractSkeleton(cloud_, options);
     if (skel.nodes.empty()) throw OptionsError("no skeleton found in this cloud");

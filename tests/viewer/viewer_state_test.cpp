@@ -327,6 +327,21 @@ TEST(ViewerState, SkeletonAutoSketchGivesPointNodesAlongTheTrunk) {
   EXPECT_GT(f.state.sketch().node(id).point.y(), before.y());
 }
 
+TEST(ViewerState, SkeletonAutoSketchInLeafIsOneUndoStep) {
+  Fixture f;
+  ASSERT_TRUE(f.state.autoSketchSkeleton(true)) << f.state.lastMessage().text;
+  const sketch::Sketch& sk = f.state.sketch();
+  ASSERT_GE(sk.size(), 2u);
+  const std::size_t leafOnNodes = sk.size();
+  EXPECT_TRUE(f.state.undo());
+  EXPECT_TRUE(f.state.sketch().empty());
+  // The leaf-on settings are really used: thinner level sets give another sketch.
+  ASSERT_TRUE(f.state.autoSketchSkeleton(false));
+  EXPECT_NE(f.state.sketch().size(), leafOnNodes);
+  EXPECT_TRUE(f.state.undo());
+  EXPECT_TRUE(f.state.sketch().empty());
+}
+
 TEST(ViewerState, OrbitAndPanGesturesDoNotEditTheSketch) {
   Fixture f;
   f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));

@@ -220,8 +220,9 @@ class ViewerState {
   /// Replaces the sketch by the thesis's uniform automatic sketch (nodes at regular heights).
   bool autoSketchUniform(int nodes = 12);
   /// Replaces the sketch by the automatic skeleton sketch (skeleton::extractSkeleton then
-  /// skeletonToSketch: point nodes along the branches, with their own sampling sizes).
-  bool autoSketchSkeleton();
+  /// skeletonToSketch: point nodes along the branches, with their own sampling sizes). leafOn:
+  /// the tree was scanned in leaf (skeleton::leafOnSkeletonOptions).
+  bool autoSketchSkeleton(bool leafOn = false);
   /// Ends the current merge of consecutive edits (call when a slider is released).
   void finishEdit() { lastEditKey_.clear(); }
   bool saveSketch(const std::filesystem::path& path);
