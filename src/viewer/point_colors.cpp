@@ -7,22 +7,16 @@
 #include <cmath>
 #include <limits>
 
+#include "treesketch/render/color_map.h"
+
 namespace treesketch::viewer {
 
 using geom::Vec3;
 
 Rgb rampColor(double t) {
-  // Stops approximating matplotlib's viridis at 0, .25, .5, .75, 1.
-  static const double kStops[5][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
-  if (!(t >= 0.0)) t = 0.0;
-  if (t > 1.0) t = 1.0;
-  double x = t * 4.0;
-  int i = std::min(static_cast<int>(x), 3);
-  double f = x - i;
-  Rgb c;
-  for (int k = 0; k < 3; ++k)
-    c[k] = static_cast<std::uint8_t>(std::lround(kStops[i][k] + f * (kStops[i + 1][k] - kStops[i][k])));
-  return c;
+  // One ramp for the whole project: the offline renderer's (pictures and the viewer agree).
+  const render::Rgb c = render::viridis(t);
+  return {c.r, c.g, c.b};
 }
 
 std::vector<Rgb> heightColors(const geom::PointCloud& cloud, geom::UpAxis up) {

@@ -21,8 +21,8 @@ struct Circle3 {
   double radius = 0.0;
 };
 
-/// Colour of `t` in [0, 1] on a blue-green-yellow ramp (viridis-like, piecewise linear through
-/// five stops); t is clamped, NaN maps to 0.
+/// Colour of `t` in [0, 1] on the project's viridis-like ramp (render::viridis); t is clamped,
+/// NaN maps to 0.
 Rgb rampColor(double t);
 
 /// One colour per point by its height along `up`, the ramp spanning the cloud's height range.
