@@ -10,10 +10,11 @@
 // that touch merge their level sets (one node between them until they separate); a fork's node
 // sits where the level set splits, i.e. a little past the true junction on the child's side;
 // centroids of one-sided (occluded) rings are biased towards the visible side (the circle fits
-// that follow correct this). Foliage is the weak point: the cross-section rule
-// (minTubularFraction) keeps leaves out but, on leaf-on scans of the ez-tree test trees, also
-// drops most limbs (forward RMS ~10 % of the diagonal); with minTubularFraction = 0 the limbs are
-// found (aspen, TLS: forward 0.9 %) but leaf clusters grow branches (backward 2.1 %).
+// that follow correct this). Foliage is the weak point: on leaf-on scans (the ez-tree test trees
+// are 5-11 % wood) the default cross-section rule (minTubularFraction) keeps leaves out but drops
+// most limbs with them (forward RMS ~8-10 % of the diagonal); leafOnSkeletonOptions() follows the
+// crown out to the twigs (forward 0.5-1.2 %) but its level sets then run through the leaf
+// clusters, whose centroids lie one or two leaf sizes off the twigs (backward ~2 %).
 #pragma once
 
 #include <cstdint>
