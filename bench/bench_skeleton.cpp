@@ -1,12 +1,16 @@
 // Skeleton sketch speed: a 1M-point cloud of a synthetic branching tree (noisy cylinder surfaces,
 // trunk + 8 limbs + 4 twigs each, ~10 m tall) → extractSkeleton, and → autoSkeletonSketch
 // (skeleton, sketch, every node's slice + RANSAC fit, radius rules, sweep). Target: ≤ 2 s on 2 cores.
+// Also: a leafy cloud (the built-in generator's default tree with leaves, sphere-scanned to about
+// 1M points, ~90 % leaf points) through autoSkeletonSketch with the leaf-on settings.
 //   build-*/bench_skeleton --benchmark_min_time=1
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <random>
 
+#include "treesketch/gen/tree_generator.h"
+#include "treesketch/scan/sphere_scan.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 
 using namespace treesketch;
@@ -99,6 +103,39 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   state.counters["sweepMs"] = sweep;
 }
 BENCHMARK(BM_AutoSkeletonSketch1M)->Unit(benchmark::kMillisecond);
+
+const geom::PointCloud& leafyCloud1M() {
+  static const geom::PointCloud cloud = [] {
+    gen::TreeOptions to = gen::presetOptions("default");
+    to.leaves = true;
+    const gen::GeneratedTree tree = gen::generateTree(to);
+    scan::SphereScanOptions so;
+    so.rays = 9400000;  // about 1M hits
+    so.jitterDeg = 20.0;  // spread the rays over the whole crown
+    return scan::sphereScan(std::vector<geom::TriMesh>{tree.branches.mesh, tree.leaves}, so).cloud;
+  }();
+  return cloud;
+}
+
+void BM_AutoSkeletonSketchLeafOn1M(benchmark::State& state) {
+  const auto& cloud = leafyCloud1M();
+  skeleton::AutoSkeletonOptions o;
+  o.skeleton = skeleton::leafOnSkeletonOptions();
+  double skel = 0, fit = 0;
+  std::size_t nodes = 0;
+  for (auto _ : state) {
+    auto r = skeleton::autoSkeletonSketch(cloud, o);
+    skel = r.skeletonMs;
+    fit = r.fitMs;
+    nodes = r.model.size();
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["points"] = static_cast<double>(cloud.size());
+  state.counters["nodes"] = static_cast<double>(nodes);
+  state.counters["skeletonMs"] = skel;
+  state.counters["fitMs"] = fit;
+}
+BENCHMARK(BM_AutoSkeletonSketchLeafOn1M)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace
 
