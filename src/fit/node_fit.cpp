@@ -162,7 +162,8 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
       covered = true;
       break;
     }
-    if (res.growthSteps >= options.maxGrowthSteps) break;
+    if (res.growthSteps >= options.maxGrowthSteps || (p.maxGrowthSteps >= 0 && res.growthSteps >= p.maxGrowthSteps))
+      break;
     eps += p.lineEpsilonStep;
     ++res.growthSteps;
   }

@@ -110,6 +110,7 @@ ojson paramsToJson(const sketch::SamplingParams& p) {
   j["lineEpsilon"] = p.lineEpsilon;
   j["lineEpsilonStep"] = p.lineEpsilonStep;
   j["enabled"] = p.enabled;
+  if (p.maxGrowthSteps >= 0) j["maxGrowthSteps"] = p.maxGrowthSteps;  // absent = unlimited (thesis)
   return j;
 }
 
@@ -127,6 +128,12 @@ sketch::SamplingParams paramsFromJson(const json& j, const sketch::SamplingParam
   if (it != j.end()) {
     if (!it->is_boolean()) ctx.fail("\"enabled\": expected true or false, got " + typeName(*it));
     p.enabled = it->get<bool>();
+  }
+  it = j.find("maxGrowthSteps");
+  if (it != j.end()) {
+    if (!it->is_number_integer() || it->get<std::int64_t>() < -1 || it->get<std::int64_t>() > 1000000000)
+      ctx.fail("\"maxGrowthSteps\": expected an integer >= -1 (-1: unlimited), got " + it->dump());
+    p.maxGrowthSteps = static_cast<int>(it->get<std::int64_t>());
   }
   if (!(p.sliceHalfThickness > 0)) ctx.fail("sliceHalfThickness must be > 0");
   if (!(p.lineEpsilon > 0)) ctx.fail("lineEpsilon must be > 0");

@@ -27,6 +27,7 @@ sketch::SamplingParams paramsFor(double radius, double voxel, const SkeletonSket
   p.sliceHalfThickness = std::max(o.sliceRadii * radius, o.sliceVoxels * voxel);
   p.lineEpsilon = o.lineRadii * radius + o.lineVoxels * voxel;
   p.lineEpsilonStep = o.stepRadii * radius + o.stepVoxels * voxel;
+  p.maxGrowthSteps = autoNodeFitOptions().maxGrowthSteps;  // the same cap in the GUI and `reconstruct --sketch`
   return p;
 }
 

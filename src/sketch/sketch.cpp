@@ -27,6 +27,7 @@ void checkParams(const SamplingParams& p, const std::string& what) {
   if (!(p.sliceHalfThickness > 0)) throw OptionsError(what + ": sliceHalfThickness must be > 0");
   if (!(p.lineEpsilon > 0)) throw OptionsError(what + ": lineEpsilon must be > 0");
   if (!(p.lineEpsilonStep > 0)) throw OptionsError(what + ": lineEpsilonStep must be > 0");
+  if (p.maxGrowthSteps < -1) throw OptionsError(what + ": maxGrowthSteps must be >= -1 (-1: unlimited)");
 }
 
 bool sameCamera(const geom::Camera& a, const geom::Camera& b) {

@@ -132,6 +132,21 @@ TEST(FitNode, NodeInEmptySpaceIsSkippedWithAReason) {
   EXPECT_EQ(r.testIndices.size(), r.sliceIndices.size());
 }
 
+TEST(FitNode, PerNodeGrowthCap) {
+  Trunk t;
+  CloudIndex index(t.cloud);
+  sketch::SamplingParams p;
+  p.lineEpsilon = 0.1;      // as LineEpsilonGrowsUntilTheBranchIsFound: needs a few steps...
+  p.lineEpsilonStep = 0.2;
+  p.maxGrowthSteps = 1;     // ...but may take only one
+  NodeResult r = fitNode(index, lineNode(1.55, 1.0), p);
+  EXPECT_EQ(r.status, NodeStatus::Skipped);
+  EXPECT_EQ(r.growthSteps, 1);
+  EXPECT_NE(r.reason.find("growth cap reached"), std::string::npos) << r.reason;
+  p.maxGrowthSteps = -1;    // unlimited again: it fits
+  EXPECT_EQ(fitNode(index, lineNode(1.55, 1.0), p).status, NodeStatus::Fitted);
+}
+
 TEST(FitNode, DisabledNodesAreNotFitted) {
   Trunk t;
   CloudIndex index(t.cloud);

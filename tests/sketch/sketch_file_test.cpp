@@ -44,6 +44,7 @@ Sketch awkwardSketch() {
   p.lineEpsilon = 1.0 / 3.0;
   p.lineEpsilonStep = 5e-324 * 1e10;
   p.enabled = false;
+  p.maxGrowthSteps = 3;
   NodeId pn = sk.addPointNode(a, Vec3(u(rng), u(rng), 1e17 * u(rng)), Vec3(u(rng), 1, u(rng)), p);
   sk.setParent(a, b);  // r's children: [b]; b's children: [a]
   (void)pn;
@@ -75,6 +76,7 @@ void expectBitIdentical(const Sketch& x, const Sketch& y) {
     EXPECT_TRUE(bitEqual(a.params.lineEpsilon, b.params.lineEpsilon));
     EXPECT_TRUE(bitEqual(a.params.lineEpsilonStep, b.params.lineEpsilonStep));
     EXPECT_EQ(a.params.enabled, b.params.enabled);
+    EXPECT_EQ(a.params.maxGrowthSteps, b.params.maxGrowthSteps);
     EXPECT_EQ(x.geometry(id), y.geometry(id));
   }
 }
@@ -148,6 +150,7 @@ TEST(SketchFile, GoodMinimalFileReads) {
   EXPECT_EQ(sk.size(), 2u);
   EXPECT_EQ(sk.node(4).params.lineEpsilon, 0.5);
   EXPECT_EQ(sk.node(4).params.sliceHalfThickness, sketch::SamplingParams{}.sliceHalfThickness);
+  EXPECT_EQ(sk.node(4).params.maxGrowthSteps, -1);  // absent: unlimited
   EXPECT_EQ(sk.node(0).children, (std::vector<NodeId>{4}));
 }
 
@@ -173,6 +176,10 @@ TEST(SketchFile, RejectsNonNumbers) {
   expectBad(fileWith(R"([{"id":3,"parent":-1,"camera":0,"screen":[1,2],"params":{"lineEpsilon":-1}}])"),
             {"node 3", "lineEpsilon must be > 0"});
   expectBad(fileWith(R"([{"id":3,"parent":-1,"camera":0,"screen":[1,2],"params":{"enabled":1}}])"), {"node 3", "enabled"});
+  expectBad(fileWith(R"([{"id":3,"parent":-1,"camera":0,"screen":[1,2],"params":{"maxGrowthSteps":-2}}])"),
+            {"node 3", "maxGrowthSteps"});
+  expectBad(fileWith(R"([{"id":3,"parent":-1,"camera":0,"screen":[1,2],"params":{"maxGrowthSteps":1.5}}])"),
+            {"node 3", "maxGrowthSteps"});
   expectBad(fileWith(R"([{"id":3.5,"parent":-1,"camera":0,"screen":[1,2]}])"), {"node #0", "id", "integer"});
   expectBad(fileWith(R"([{"parent":-1,"camera":0,"screen":[1,2]}])"), {"node #0", "missing \"id\""});
   expectBad(fileWith(R"([{"id":2,"parent":-1,"screen":[1,2]}])"), {"node 2", "camera"});

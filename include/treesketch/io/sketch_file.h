@@ -4,7 +4,8 @@
 //    "cameras":[{"view":[16 numbers, row-major],"projection":[16],"viewport":[x,y,w,h]}],
 //    "nodes":[{"id":0,"parent":-1,"camera":0,"screen":[x,y],"params":{PARAMS}},
 //             {"id":1,"parent":0,"point":[x,y,z],"normal":[x,y,z],"params":{PARAMS}}]}
-//   PARAMS = {"sliceHalfThickness":..,"lineEpsilon":..,"lineEpsilonStep":..,"enabled":true}
+//   PARAMS = {"sliceHalfThickness":..,"lineEpsilon":..,"lineEpsilonStep":..,"enabled":true
+//             [,"maxGrowthSteps":N]}   (absent = -1 = unlimited, as the thesis)
 // A node has either "camera"+"screen" (screen node) or "point"+"normal" (point node). Missing
 // "params" fields take the file's "defaults" (and missing defaults the SamplingParams defaults).
 // A camera file holds one camera object: {"view":[16],"projection":[16],"viewport":[4]}.

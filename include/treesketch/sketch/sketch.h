@@ -38,6 +38,11 @@ struct SamplingParams {
   double lineEpsilonStep = 0.25;
   /// A disabled node keeps its place in the hierarchy but is not fitted (treated as skipped).
   bool enabled = true;
+  /// Cap on lineEpsilon growth steps for this node; -1 (default) grows until the test points are
+  /// the whole slice, as the thesis does. The automatic skeleton's nodes carry 3: such a node knows
+  /// where its branch is, and one that fails gets an interpolated radius rather than a circle from
+  /// the whole slice (and thousands of failing nodes would otherwise each grow over the cloud).
+  int maxGrowthSteps = -1;
 
   bool operator==(const SamplingParams&) const = default;
 };
