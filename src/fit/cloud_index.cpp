@@ -331,41 +331,8 @@ void trim(std::vector<T>& v) {
 // (tolerance 1e-5 of the coordinates' magnitude, ~100x the worst rounding error) and accepts those
 // inside by as much; only the few undecided points in between get the exact double test, so the
 // result equals the brute-force scan.
-void CloudIndex::candidateRanges(const SliceRegion& region,
-                                 std::vector<std::pair<std::uint32_t, std::uint32_t>>& ranges) const {
-  // The candidate cells are scattered over large arrays, so a query is bound by memory latency:
-  // collect the cells first, then read their bounds with prefetches a few cells ahead (many misses
-  // in flight instead of one at a time). Consecutive cells are stored consecutively, so their
-  // ranges merge into longer runs.
-  QueryScratch& sc = scratch();
-  auto& cells = sc.cells;
-  cells.clear();
-  ranges.clear();
-  forEachCandidateCell(region, [&](std::size_t cell) { cells.push_back(cell); });
-  constexpr std::size_t kAhead = 8;
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    if (i + kAhead < cells.size()) __builtin_prefetch(&cellStart_[cells[i + kAhead]]);
-    const std::uint32_t s0 = cellStart_[cells[i]], s1 = cellStart_[cells[i] + 1];
-    if (s0 == s1) continue;
-    if (!ranges.empty() && ranges.back().second == s0)
-      ranges.back().second = s1;
-    else
-      ranges.emplace_back(s0, s1);
-  }
-  trim(cells);
-}
-
 template <class Hit>
 void CloudIndex::forEachHit(const SliceRegion& region, Hit&& hit) const {
-  auto& ranges = scratch().ranges;
-  candidateRanges(region, ranges);
-  scanRanges(region, ranges.data(), ranges.size(), hit);
-  trim(ranges);
-}
-
-template <class Hit>
-void CloudIndex::scanRanges(const SliceRegion& region, const std::pair<std::uint32_t, std::uint32_t>* ranges,
-                            std::size_t nRanges, Hit&& hit) const {
   const double mag = 0.5 * bounds_.diagonal();
   const Vec3 pp = region.planePoint - centre_, lp = region.linePoint - centre_;
   const Vec3& n = region.planeNormal;
@@ -395,10 +362,30 @@ void CloudIndex::scanRanges(const SliceRegion& region, const std::pair<std::uint
     if (region.kind == SliceRegion::Kind::Cylinder)
       ft.a = {float(region.lineDir.x()), float(region.lineDir.y()), float(region.lineDir.z())};
   }
+  // The candidate cells are scattered over large arrays, so a query is bound by memory latency:
+  // collect the cells first, then read their bounds and their points with prefetches a few cells
+  // ahead (many misses in flight instead of one at a time). Consecutive cells are stored
+  // consecutively, so their ranges merge into longer runs.
+  QueryScratch& sc = scratch();
+  auto& cells = sc.cells;
+  auto& ranges = sc.ranges;
+  cells.clear();
+  ranges.clear();
+  forEachCandidateCell(region, [&](std::size_t cell) { cells.push_back(cell); });
   constexpr std::size_t kAhead = 8;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i + kAhead < cells.size()) __builtin_prefetch(&cellStart_[cells[i + kAhead]]);
+    const std::uint32_t s0 = cellStart_[cells[i]], s1 = cellStart_[cells[i] + 1];
+    if (s0 == s1) continue;
+    if (!ranges.empty() && ranges.back().second == s0)
+      ranges.back().second = s1;
+    else
+      ranges.emplace_back(s0, s1);
+  }
+  trim(cells);
   const float* f[3] = {fpos_[0].data(), fpos_[1].data(), fpos_[2].data()};
-  for (std::size_t i = 0; i < nRanges; ++i) {
-    if (i + kAhead < nRanges) {
+  for (std::size_t i = 0; i < ranges.size(); ++i) {
+    if (i + kAhead < ranges.size()) {
       const std::uint32_t p0 = ranges[i + kAhead].first;
       for (int a = 0; a < 3; ++a) __builtin_prefetch(f[a] + p0);
       // The double positions and original ids of the whole range (most of a cell's points in the
@@ -430,6 +417,7 @@ void CloudIndex::scanRanges(const SliceRegion& region, const std::pair<std::uint
       }
     }
   }
+  trim(ranges);
 }
 
 namespace {
@@ -489,24 +477,21 @@ std::vector<std::uint32_t> finish(std::vector<std::uint64_t>& hits, const std::v
 
 std::vector<std::uint32_t> CloudIndex::query(const SliceRegion& region, std::vector<Vec3>* positions) const {
   region.validate();
-  QueryScratch& sc = scratch();
-  auto& ranges = sc.ranges;
-  candidateRanges(region, ranges);
   // Keys (original id << 32 | slot in the sorted arrays): after the sort, the positions are read
   // back by slot from the lines the query just touched (still cached).
+  QueryScratch& sc = scratch();
   auto& keys = sc.keys;
   // Written through a local pointer (push_back re-reads and stores the vector's end on every hit).
   if (keys.size() < 1024) keys.resize(1024);
   std::uint64_t* key = keys.data();
   std::size_t nHits = 0;
-  scanRanges(region, ranges.data(), ranges.size(), [&](std::uint32_t s) {
+  forEachHit(region, [&](std::uint32_t s) {
     if (nHits == keys.size()) {
       keys.resize(2 * keys.size());
       key = keys.data();
     }
     key[nHits++] = std::uint64_t(ids_[s]) << 32 | s;
   });
-  trim(ranges);
   sortById(keys, nHits, idBits_, sc.sortTmp);
   std::vector<std::uint32_t> out(nHits);
   for (std::size_t i = 0; i < nHits; ++i) out[i] = std::uint32_t(keys[i] >> 32);

@@ -20,19 +20,10 @@ Rgb rampColor(double t) {
 }
 
 std::vector<Rgb> heightColors(const geom::PointCloud& cloud, geom::UpAxis up) {
-  std::vector<Rgb> colors(cloud.size());
-  if (cloud.empty()) return colors;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const Vec3& p : cloud.positions) {
-    double h = geom::height(p, up);
-    lo = std::min(lo, h);
-    hi = std::max(hi, h);
-  }
-  double range = hi - lo;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 16384), [&](const auto& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i)
-      colors[i] = rampColor(range > 0 ? (geom::height(cloud.positions[i], up) - lo) / range : 0.5);
-  });
+  // The renderer's height colouring, in the viewer's colour type.
+  std::vector<Rgb> colors;
+  colors.reserve(cloud.size());
+  for (const render::Rgb& c : render::heightColors(cloud.positions, up)) colors.push_back({c.r, c.g, c.b});
   return colors;
 }
 

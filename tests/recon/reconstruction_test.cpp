@@ -172,8 +172,8 @@ TEST(Reconstruction, DeterministicAndOrderIndependent) {
   EXPECT_EQ(a.order, s.topologicalOrder());
 }
 
-// A parallel re-fit of every node (scheduled dearest first by the previous fits' times, which
-// differ from run to run) gives the same results and mesh as a serial one.
+// A parallel re-fit of every node (in whatever order TBB schedules the nodes) gives the same
+// results and mesh as a serial one.
 TEST(Reconstruction, ParallelRefitMatchesSerial) {
   geom::PointCloud cloud = treeCloud();
   sketch::Sketch s = trunkSketch();

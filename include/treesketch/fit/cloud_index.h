@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <utility>
 #include <vector>
 
 #include "treesketch/geom/point_cloud.h"
@@ -88,12 +87,6 @@ class CloudIndex {
   /// Calls hit(slot) for every stored point inside `region`, in cell order.
   template <class Hit>
   void forEachHit(const SliceRegion& region, Hit&& hit) const;
-  /// The runs of stored slots of the candidate cells of `region` (consecutive cells merged).
-  void candidateRanges(const SliceRegion& region, std::vector<std::pair<std::uint32_t, std::uint32_t>>& ranges) const;
-  /// Calls hit(slot) for every point of ranges[0, n) inside `region`.
-  template <class Hit>
-  void scanRanges(const SliceRegion& region, const std::pair<std::uint32_t, std::uint32_t>* ranges, std::size_t n,
-                  Hit&& hit) const;
 
   geom::BBox bounds_;
   double cell_ = 1.0;
