@@ -9,6 +9,7 @@
 // Run: build-fitperf/bench_reconstruct [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -130,8 +131,11 @@ void fullReconstruct(benchmark::State& state, bool bruteForce) {
 }
 void BM_FullReconstructIndexed(benchmark::State& state) { fullReconstruct(state, false); }
 void BM_FullReconstructBruteForce(benchmark::State& state) { fullReconstruct(state, true); }
-BENCHMARK(BM_FullReconstructIndexed)->Arg(0)->Arg(1)->ArgName("parallel")->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_FullReconstructBruteForce)->Arg(0)->Arg(1)->ArgName("parallel")->Unit(benchmark::kMillisecond)->Iterations(5);
+// With --benchmark_repetitions, also the fastest repetition: on a shared machine the minimum is
+// the least disturbed estimate of each path's cost (other processes only ever add time).
+double minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+BENCHMARK(BM_FullReconstructIndexed)->Arg(0)->Arg(1)->ArgName("parallel")->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
+BENCHMARK(BM_FullReconstructBruteForce)->Arg(0)->Arg(1)->ArgName("parallel")->Unit(benchmark::kMillisecond)->Iterations(5)->ComputeStatistics("min", minimum);
 
 // One edited node (its slice thickness toggles): re-fit one node + re-sweep, as the GUI does.
 void BM_EditOneNode(benchmark::State& state) {
@@ -155,7 +159,7 @@ void BM_EditOneNode(benchmark::State& state) {
   state.counters["fit_ms"] = rec.timings().fitMs;
   state.counters["sweep_ms"] = rec.timings().sweepMs;
 }
-BENCHMARK(BM_EditOneNode)->Arg(0)->Arg(5)->Arg(17)->ArgName("node")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EditOneNode)->Arg(0)->Arg(5)->Arg(17)->ArgName("node")->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
 // The pieces of one trunk node's fit: the test-region query, the whole fit, the thesis's scan.
 void BM_NodePieces(benchmark::State& state) {

@@ -7,7 +7,6 @@
 #include <limits>
 #include <cmath>
 #include <numeric>
-#include <random>
 
 #include "treesketch/util/error.h"
 
@@ -288,6 +287,28 @@ void checkOptions(const CircleFitOptions& o) {
 
 constexpr std::size_t kCoveragePoints = 256;
 
+// The sampler's random numbers: SplitMix64 (a Weyl sequence through a 64-bit mixer). Design
+// choice: a fit draws a few hundred numbers, and seeding a Mersenne Twister (312 words) per fit
+// cost more than all of them; this generator's state is one word and its output passes the usual
+// statistical batteries, which is far more than sample selection needs.
+class SplitMix64 {
+ public:
+  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  }
+  /// Uniform in [0, n) by a multiply-shift (bias below n / 2^64: irrelevant here), no division.
+  std::size_t below(std::size_t n) {
+    return std::size_t((static_cast<unsigned __int128>(next()) * n) >> 64);
+  }
+
+ private:
+  std::uint64_t state_;
+};
+
 struct Scorer {
   const std::vector<Vec2>& pts;
   const CircleFitOptions& opt;
@@ -305,9 +326,11 @@ struct Scorer {
   }
   // Branch-free: the in/out pattern of noisy data defeats branch prediction. Two points at a time
   // with SSE2 (same arithmetic as the scalar test).
-  std::vector<std::uint32_t> inliers(std::size_t n, const Vec2& c, double r) const {
+  // The indices of the points within the band of (c, r), into `out` (reused: a fit classifies all
+  // points a few times, and fresh buffers of that size were a visible share of it).
+  void inliers(std::size_t n, const Vec2& c, double r, std::vector<std::uint32_t>& out) const {
     const Band b = band(r);
-    std::vector<std::uint32_t> out(n + 1);
+    out.resize(n + 1);
     std::size_t k = 0, i = 0;
 #if defined(__SSE2__)
     const __m128d vc = _mm_set_pd(c.y(), c.x()), lo = _mm_set1_pd(b.lo2), hi = _mm_set1_pd(b.hi2);
@@ -328,7 +351,6 @@ struct Scorer {
       k += b.contains((pts[i] - c).squaredNorm());
     }
     out.resize(k);
-    return out;
   }
   // Σ (|p − c| − r)² over the points of `idx`.
   double squaredResiduals(const std::vector<std::uint32_t>& idx, const Vec2& c, double r) const {
@@ -405,10 +427,21 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   checkOptions(options);
   CircleFitResult res;
   const std::size_t n = points.size();
-  std::vector<std::uint32_t> finite;
-  finite.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    if (points[i].allFinite()) finite.push_back(std::uint32_t(i));
+  // Per-thread index buffers, reused by every fit on the thread.
+  thread_local std::vector<std::uint32_t> finite, sample, strided, inl, inl2;
+  struct Release {  // ...but not the memory of a huge input
+    ~Release() {
+      for (auto* v : {&finite, &sample, &strided, &inl, &inl2})
+        if (v->capacity() > (std::size_t(1) << 20)) *v = {};
+    }
+  } release;
+  finite.resize(n);
+  std::size_t nFinite = 0;
+  for (std::size_t i = 0; i < n; ++i) {  // branch-free compaction
+    finite[nFinite] = std::uint32_t(i);
+    nFinite += points[i].allFinite() ? 1 : 0;
+  }
+  finite.resize(nFinite);
   if (finite.size() < 3) {
     res.reason = "fewer than 3 points (" + std::to_string(finite.size()) + ")";
     return res;
@@ -421,13 +454,13 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
     return res;
   }
 
-  std::mt19937_64 rng(options.seed);
+  SplitMix64 rng(options.seed);
   // The scoring subset: a deterministic random subset of the finite points.
-  std::vector<std::uint32_t> sample = finite;
+  sample = finite;
   if (options.maxScoringPoints > 0 && sample.size() > std::size_t(options.maxScoringPoints)) {
     std::size_t m = std::size_t(options.maxScoringPoints);
     for (std::size_t i = 0; i < m; ++i) {
-      std::size_t j = i + std::size_t(rng() % (sample.size() - i));
+      std::size_t j = i + rng.below(sample.size() - i);
       std::swap(sample[i], sample[j]);
     }
     sample.resize(m);
@@ -495,7 +528,7 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   const double logFail = std::log(1.0 - options.probability);
   while (it < options.maxIterations && (it < options.minIterations || it < maxIter)) {
     ++it;
-    std::size_t a = rng() % ns, b = rng() % ns, c = rng() % ns;
+    std::size_t a = rng.below(ns), b = rng.below(ns), c = rng.below(ns);
     if (a == b || a == c || b == c) continue;
     Vec2 centre;
     double r;
@@ -527,25 +560,25 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   // Refinement: classify on all points, least-squares fit, repeat.
   Vec2 c = bestC;
   double r = bestR;
-  std::vector<std::uint32_t> inl = scorer.inliers(n, c, r);
+  scorer.inliers(n, c, r, inl);
   for (int round = 0; round < options.refineRounds; ++round) {
     Vec2 c2 = c;
     double r2 = r;
     const std::vector<std::uint32_t>* fitSet = &inl;
-    std::vector<std::uint32_t> strided;
     if (options.maxRefinePoints > 0 && inl.size() > std::size_t(options.maxRefinePoints)) {
       const double step = double(inl.size()) / double(options.maxRefinePoints);
-      for (int k = 0; k < options.maxRefinePoints; ++k) strided.push_back(inl[std::size_t(k * step)]);
+      strided.resize(std::size_t(options.maxRefinePoints));
+      for (int k = 0; k < options.maxRefinePoints; ++k) strided[std::size_t(k)] = inl[std::size_t(k * step)];
       fitSet = &strided;
     }
     if (!fitCircleLeastSquares(points, *fitSet, options.refineIterations, &c2, &r2)) break;
     if (!scorer.admissible(c2, r2)) break;  // keep the last admissible circle
-    auto inl2 = scorer.inliers(n, c2, r2);
+    scorer.inliers(n, c2, r2, inl2);
     if (inl2.size() < 3) break;
     bool same = inl2 == inl;
     c = c2;
     r = r2;
-    inl = std::move(inl2);
+    inl.swap(inl2);
     if (same) break;
   }
   if (inl.size() < needed) {
@@ -566,7 +599,7 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   res.centre = c;
   res.radius = r;
   res.rms = std::sqrt(ss / double(inl.size()));
-  res.inliers = std::move(inl);
+  res.inliers.assign(inl.begin(), inl.end());
   return res;
 }
 

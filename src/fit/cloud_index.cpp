@@ -117,8 +117,6 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
     sorted_[slot] = pts[i];
     ids_[slot] = std::uint32_t(i);
   }
-  idBits_ = 0;
-  while (idBits_ < 32 && (std::uint64_t(pts.size()) >> idBits_) != 0) ++idBits_;
   centre_ = bounds_.center();
   for (int a = 0; a < 3; ++a) {
     fpos_[a].assign(nFinite + 4, 0.0f);  // padded: the pre-test reads blocks of 4
@@ -308,7 +306,7 @@ struct FloatTest {
 struct QueryScratch {
   std::vector<std::size_t> cells;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;
-  std::vector<std::uint64_t> keys, sortTmp;
+  std::vector<std::uint32_t> slots;
 };
 QueryScratch& scratch() {
   thread_local QueryScratch s;
@@ -383,6 +381,19 @@ void CloudIndex::forEachHit(const SliceRegion& region, Hit&& hit) const {
       ranges.emplace_back(s0, s1);
   }
   trim(cells);
+  // Ranges in storage order (they are disjoint): hits then come out in slot order, the order the
+  // brute-force scan of the same index visits them, with no sort of the hits (sorting a node's
+  // few hundred ranges is several times cheaper than sorting its thousands of hits). Sorting also
+  // merges runs that the column-wise cell walk visited apart.
+  std::sort(ranges.begin(), ranges.end());
+  std::size_t merged = 0;
+  for (std::size_t i = 1; i < ranges.size(); ++i) {
+    if (ranges[merged].second == ranges[i].first)
+      ranges[merged].second = ranges[i].second;
+    else
+      ranges[++merged] = ranges[i];
+  }
+  if (!ranges.empty()) ranges.resize(merged + 1);
   const float* f[3] = {fpos_[0].data(), fpos_[1].data(), fpos_[2].data()};
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     if (i + kAhead < ranges.size()) {
@@ -420,96 +431,41 @@ void CloudIndex::forEachHit(const SliceRegion& region, Hit&& hit) const {
   trim(ranges);
 }
 
-namespace {
-
-// Sorts the first n keys (id << 32 | payload) by id, ids below 2^idBits: LSD radix sort with
-// digits of equal width spanning idBits, all histograms in one pass; std::sort for short lists.
-// Digits of up to 11 bits (two passes for clouds of up to 4M points) once there are enough keys to
-// fill their buckets: each pass waits on its bucket counters, so fewer passes beat smaller tables
-// (measured: 3 passes of 7 bits, and MSD bucket sorts, were 1.5x slower on a node's few thousand
-// hits). `tmp` is scratch space; both buffers only ever grow, so that reused buffers are not
-// zero-filled again on every query.
-void sortById(std::vector<std::uint64_t>& keys, std::size_t n, int idBits, std::vector<std::uint64_t>& tmp) {
-  if (n < 64 || idBits <= 0) {
-    std::sort(keys.begin(), keys.begin() + std::ptrdiff_t(n));
-    return;
-  }
-  const int maxWidth = n >= 512 ? 11 : 8;
-  const int passes = (idBits + maxWidth - 1) / maxWidth;
-  const int width = (idBits + passes - 1) / passes;
-  const std::uint64_t mask = (std::uint64_t(1) << width) - 1;
-  std::uint32_t count[4][2048];  // up to 4 passes of 8 bits, or 3 of 11
-  for (int d = 0; d < passes; ++d) std::fill(count[d], count[d] + mask + 1, 0u);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int d = 0; d < passes; ++d) ++count[d][(keys[i] >> (32 + d * width)) & mask];
-  if (tmp.size() < keys.size()) tmp.resize(keys.size());
-  if (keys.size() < tmp.size()) keys.resize(tmp.size());
-  for (int d = 0; d < passes; ++d) {
-    std::uint32_t* c = count[d];
-    const int shift = 32 + d * width;
-    std::uint32_t sum = 0;
-    for (std::uint64_t b = 0; b <= mask; ++b) {
-      const std::uint32_t v = c[b];
-      c[b] = sum;
-      sum += v;
-    }
-    const std::uint64_t* k = keys.data();
-    std::uint64_t* t = tmp.data();
-    for (std::size_t i = 0; i < n; ++i) t[c[(k[i] >> shift) & mask]++] = k[i];
-    keys.swap(tmp);
-  }
-}
-
-// Hits as (original id << 32 | sorted slot): sorting the keys orders by original id.
-std::vector<std::uint32_t> finish(std::vector<std::uint64_t>& hits, const std::vector<Vec3>& sorted,
-                                  std::vector<Vec3>* positions) {
-  std::sort(hits.begin(), hits.end());
-  std::vector<std::uint32_t> out(hits.size());
-  for (std::size_t i = 0; i < hits.size(); ++i) out[i] = std::uint32_t(hits[i] >> 32);
-  if (positions) {
-    positions->resize(hits.size());
-    for (std::size_t i = 0; i < hits.size(); ++i) (*positions)[i] = sorted[std::uint32_t(hits[i])];
-  }
-  return out;
-}
-
-}  // namespace
-
 std::vector<std::uint32_t> CloudIndex::query(const SliceRegion& region, std::vector<Vec3>* positions) const {
   region.validate();
-  // Keys (original id << 32 | slot in the sorted arrays): after the sort, the positions are read
-  // back by slot from the lines the query just touched (still cached).
-  QueryScratch& sc = scratch();
-  auto& keys = sc.keys;
-  // Written through a local pointer (push_back re-reads and stores the vector's end on every hit).
-  if (keys.size() < 1024) keys.resize(1024);
-  std::uint64_t* key = keys.data();
+  // Hits arrive in slot order (see forEachHit): the output needs no sort. Slots are collected
+  // first through a local pointer (push_back re-reads and stores the vector's end on every hit).
+  auto& slots = scratch().slots;
+  if (slots.size() < 1024) slots.resize(1024);
+  std::uint32_t* slot = slots.data();
   std::size_t nHits = 0;
   forEachHit(region, [&](std::uint32_t s) {
-    if (nHits == keys.size()) {
-      keys.resize(2 * keys.size());
-      key = keys.data();
+    if (nHits == slots.size()) {
+      slots.resize(2 * slots.size());
+      slot = slots.data();
     }
-    key[nHits++] = std::uint64_t(ids_[s]) << 32 | s;
+    slot[nHits++] = s;
   });
-  sortById(keys, nHits, idBits_, sc.sortTmp);
   std::vector<std::uint32_t> out(nHits);
-  for (std::size_t i = 0; i < nHits; ++i) out[i] = std::uint32_t(keys[i] >> 32);
+  for (std::size_t i = 0; i < nHits; ++i) out[i] = ids_[slot[i]];
   if (positions) {
     positions->resize(nHits);
-    for (std::size_t i = 0; i < nHits; ++i) (*positions)[i] = sorted_[std::uint32_t(keys[i])];
+    for (std::size_t i = 0; i < nHits; ++i) (*positions)[i] = sorted_[slot[i]];
   }
-  trim(keys);
-  trim(sc.sortTmp);
+  trim(slots);
   return out;
 }
 
 std::vector<std::uint32_t> CloudIndex::queryBruteForce(const SliceRegion& region, std::vector<Vec3>* positions) const {
   region.validate();
-  std::vector<std::uint64_t> hits;
+  std::vector<std::uint32_t> out;
+  if (positions) positions->clear();
   for (std::size_t s = 0; s < sorted_.size(); ++s)
-    if (region.contains(sorted_[s])) hits.push_back(std::uint64_t(ids_[s]) << 32 | s);
-  return finish(hits, sorted_, positions);
+    if (region.contains(sorted_[s])) {
+      out.push_back(ids_[s]);
+      if (positions) positions->push_back(sorted_[s]);
+    }
+  return out;
 }
 
 std::size_t CloudIndex::count(const SliceRegion& region) const {

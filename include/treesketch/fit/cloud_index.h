@@ -1,7 +1,7 @@
 // Slicing the cloud: the points near a node's plane ("nearPts", thesis §4.4) and those of them
 // near the node's line or point ("testPts"). A uniform grid built once answers these queries by
 // touching only the cells near the region; the thesis's full scan per node is kept as the
-// reference path (sliceBruteForce) and both give identical index sets.
+// reference path (sliceBruteForce, CloudIndex::queryBruteForce) and all give identical index sets.
 #pragma once
 
 #include <cmath>
@@ -64,10 +64,16 @@ class CloudIndex {
   /// Builds the grid (O(n)). An empty cloud gives an index whose queries return nothing.
   explicit CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& options = {});
 
-  /// Indices of the points inside `region`, increasing (identical to sliceBruteForce). When
-  /// `positions` is given it receives the matching positions (same order).
+  /// Indices of the points inside `region`, in the index's storage order (cell by cell,
+  /// increasing within a cell): the same list in the same order as queryBruteForce, and the same
+  /// set as sliceBruteForce (sort it for increasing indices). Design choice: the storage order is
+  /// the canonical order of a slice, so that neither path sorts its hits (sorting them by index
+  /// was a tenth of a node fit) and fits, which draw their samples by position in the list, give
+  /// identical results on both paths. When `positions` is given it receives the matching
+  /// positions (same order).
   std::vector<std::uint32_t> query(const SliceRegion& region, std::vector<geom::Vec3>* positions = nullptr) const;
-  /// The same, by scanning every stored point (the thesis's cost; for benchmarks).
+  /// The same list, by scanning every stored point in storage order (the thesis's cost; the
+  /// reference path for tests and benchmarks).
   std::vector<std::uint32_t> queryBruteForce(const SliceRegion& region,
                                              std::vector<geom::Vec3>* positions = nullptr) const;
   /// Number of points inside `region` (same cost as query, no allocation of the result).
@@ -98,7 +104,6 @@ class CloudIndex {
   /// a conservative pre-test that streams half the bytes; points it cannot decide are tested
   /// exactly on sorted_. Padded with 4 zeros: the pre-test reads blocks of 4.
   geom::Vec3 centre_ = geom::Vec3::Zero();
-  int idBits_ = 0;  ///< original indices are below 2^idBits_
   std::vector<float> fpos_[3];
 };
 

@@ -33,7 +33,8 @@ struct NodeFitOptions {
 };
 
 /// Everything the fit of one node produced (plain data for the viewer and tests). Indices are
-/// into the cloud the CloudIndex was built from, increasing.
+/// into the cloud the CloudIndex was built from, in the index's storage order (CloudIndex::query);
+/// the brute-force path gives the same lists in the same order.
 struct NodeResult {
   NodeStatus status = NodeStatus::Skipped;
   std::string reason;  ///< why the node was skipped or disabled; empty when fitted
@@ -59,7 +60,8 @@ SliceRegion slabRegion(const sketch::NodeGeometry& geometry, const sketch::Sampl
 /// around L (screen nodes) or slab ∩ ball of that radius around planePoint (point nodes).
 SliceRegion testRegion(const sketch::NodeGeometry& geometry, const sketch::SamplingParams& params,
                        double lineEpsilon);
-/// The node's slice (nearPts) indices, increasing: what the viewer highlights for a selected node.
+/// The node's slice (nearPts) indices, in the index's storage order: what the viewer highlights
+/// for a selected node.
 std::vector<std::uint32_t> nodeSlice(const CloudIndex& index, const sketch::NodeGeometry& geometry,
                                      const sketch::SamplingParams& params);
 
