@@ -187,7 +187,8 @@ std::array<double, 10> gaussNewtonSums(const double* xs, const double* ys, std::
     const __m128d valid = _mm_cmpgt_pd(n, zero);
     // Invalid lanes divide by 1 and are then zeroed.
     const __m128d nn = _mm_or_pd(_mm_and_pd(valid, n), _mm_andnot_pd(valid, one));
-    const __m128d ux = _mm_and_pd(valid, _mm_div_pd(dx, nn)), uy = _mm_and_pd(valid, _mm_div_pd(dy, nn));
+    const __m128d inv = _mm_div_pd(one, nn);  // one division for both components
+    const __m128d ux = _mm_and_pd(valid, _mm_mul_pd(dx, inv)), uy = _mm_and_pd(valid, _mm_mul_pd(dy, inv));
     const __m128d res = _mm_and_pd(valid, _mm_sub_pd(n, vr));
     t[0] = _mm_mul_pd(ux, ux);
     t[1] = _mm_mul_pd(ux, uy);
@@ -429,36 +430,75 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   const std::size_t n = points.size();
   // Per-thread index buffers, reused by every fit on the thread.
   thread_local std::vector<std::uint32_t> finite, sample, strided, inl, inl2;
+  thread_local std::vector<std::uint64_t> taken;
   struct Release {  // ...but not the memory of a huge input
     ~Release() {
       for (auto* v : {&finite, &sample, &strided, &inl, &inl2})
         if (v->capacity() > (std::size_t(1) << 20)) *v = {};
+      if (taken.capacity() > (std::size_t(1) << 16)) taken = {};
     }
   } release;
-  finite.resize(n);
-  std::size_t nFinite = 0;
-  for (std::size_t i = 0; i < n; ++i) {  // branch-free compaction
-    finite[nFinite] = std::uint32_t(i);
-    nFinite += points[i].allFinite() ? 1 : 0;
+  // The finite points: in the common case all of them (one vectorizable test: x·0 + y·0 is NaN
+  // exactly when x or y is NaN or infinite), else a compacted list.
+  bool allFinite = true;
+  {
+    std::size_t i = 0;
+#if defined(__SSE2__)
+    // Sums of p · 0 stay 0 unless some coordinate is NaN or infinite; four independent sums.
+    const __m128d zero = _mm_setzero_pd();
+    __m128d acc[4] = {zero, zero, zero, zero};
+    for (; i + 4 <= n; i += 4)
+      for (int q = 0; q < 4; ++q) acc[q] = _mm_add_pd(acc[q], _mm_mul_pd(_mm_loadu_pd(points[i + q].data()), zero));
+    const __m128d all = _mm_add_pd(_mm_add_pd(acc[0], acc[1]), _mm_add_pd(acc[2], acc[3]));
+    allFinite = _mm_movemask_pd(_mm_cmpeq_pd(all, all)) == 3;
+#endif
+    for (; i < n; ++i) allFinite &= points[i].allFinite();
   }
-  finite.resize(nFinite);
-  if (finite.size() < 3) {
-    res.reason = "fewer than 3 points (" + std::to_string(finite.size()) + ")";
+  std::size_t nFinite = n;
+  if (!allFinite) {
+    finite.resize(n);
+    nFinite = 0;
+    for (std::size_t i = 0; i < n; ++i) {  // branch-free compaction
+      finite[nFinite] = std::uint32_t(i);
+      nFinite += points[i].allFinite() ? 1 : 0;
+    }
+    finite.resize(nFinite);
+  }
+  if (nFinite < 3) {
+    res.reason = "fewer than 3 points (" + std::to_string(nFinite) + ")";
     return res;
   }
   const std::size_t needed =
       std::max<std::size_t>(std::size_t(options.minInliers), std::size_t(std::ceil(options.minInlierFraction * n)));
-  if (finite.size() < needed) {
-    res.reason = "too few points for the minimum support (" + std::to_string(finite.size()) + " < " +
+  if (nFinite < needed) {
+    res.reason = "too few points for the minimum support (" + std::to_string(nFinite) + " < " +
                  std::to_string(needed) + ")";
     return res;
   }
 
   SplitMix64 rng(options.seed);
-  // The scoring subset: a deterministic random subset of the finite points.
-  sample = finite;
-  if (options.maxScoringPoints > 0 && sample.size() > std::size_t(options.maxScoringPoints)) {
-    std::size_t m = std::size_t(options.maxScoringPoints);
+  // The scoring subset: a deterministic random subset of the finite points (all of them when
+  // there are few).
+  const std::size_t m = options.maxScoringPoints > 0 ? std::size_t(options.maxScoringPoints) : nFinite;
+  if (nFinite <= m) {
+    if (allFinite) {
+      sample.resize(n);
+      std::iota(sample.begin(), sample.end(), 0u);
+    } else {
+      sample = finite;
+    }
+  } else if (allFinite) {
+    // Floyd's sampling of m of the n indices: m draws and a bit set, no array of all n.
+    taken.assign((n + 63) / 64, 0);
+    sample.clear();
+    for (std::size_t j = n - m; j < n; ++j) {
+      std::size_t t = rng.below(j + 1);
+      if ((taken[t >> 6] >> (t & 63)) & 1) t = j;
+      taken[t >> 6] |= std::uint64_t(1) << (t & 63);
+      sample.push_back(std::uint32_t(t));
+    }
+  } else {
+    sample = finite;  // partial Fisher–Yates
     for (std::size_t i = 0; i < m; ++i) {
       std::size_t j = i + rng.below(sample.size() - i);
       std::swap(sample[i], sample[j]);
@@ -557,30 +597,43 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
     return res;
   }
 
-  // Refinement: classify on all points, least-squares fit, repeat.
+  // Refinement: least-squares fit to the inliers, classify all points, repeat. The first fit
+  // takes the best circle's inliers within the scoring subset (a random sample of the points
+  // already at hand) rather than classifying all points first: one pass over them less.
   Vec2 c = bestC;
   double r = bestR;
-  scorer.inliers(n, c, r, inl);
+  bool full = ns == n;  // inl holds the inliers among all points (not only the subset's)
+  if (full) {
+    scorer.inliers(n, c, r, inl);
+  } else {
+    const auto b = scorer.band(r);
+    inl.clear();
+    for (std::uint32_t i : sample)
+      if (b.contains((points[i] - c).squaredNorm())) inl.push_back(i);
+  }
   for (int round = 0; round < options.refineRounds; ++round) {
     Vec2 c2 = c;
     double r2 = r;
     const std::vector<std::uint32_t>* fitSet = &inl;
-    if (options.maxRefinePoints > 0 && inl.size() > std::size_t(options.maxRefinePoints)) {
-      const double step = double(inl.size()) / double(options.maxRefinePoints);
-      strided.resize(std::size_t(options.maxRefinePoints));
-      for (int k = 0; k < options.maxRefinePoints; ++k) strided[std::size_t(k)] = inl[std::size_t(k * step)];
+    const std::size_t maxRefine = std::size_t(options.maxRefinePoints);
+    if (maxRefine > 0 && inl.size() > maxRefine) {
+      // Evenly strided: element ⌊k · size / maxRefine⌋, in integers.
+      strided.resize(maxRefine);
+      for (std::size_t k = 0; k < maxRefine; ++k) strided[k] = inl[k * inl.size() / maxRefine];
       fitSet = &strided;
     }
     if (!fitCircleLeastSquares(points, *fitSet, options.refineIterations, &c2, &r2)) break;
     if (!scorer.admissible(c2, r2)) break;  // keep the last admissible circle
     scorer.inliers(n, c2, r2, inl2);
     if (inl2.size() < 3) break;
-    bool same = inl2 == inl;
+    const bool same = full && inl2 == inl;
     c = c2;
     r = r2;
     inl.swap(inl2);
+    full = true;
     if (same) break;
   }
+  if (!full) scorer.inliers(n, c, r, inl);
   if (inl.size() < needed) {
     res.reason = "best circle has too few inliers (" + std::to_string(inl.size()) + " < " + std::to_string(needed) +
                  " of " + std::to_string(n) + ")";

@@ -107,7 +107,11 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
     cellOf[i] = std::uint32_t(lin);
     ++cellStart_[lin + 1];
   }
-  for (std::size_t c = 0; c < nCells; ++c) cellStart_[c + 1] += cellStart_[c];
+  occupied_.assign((nCells + 63) / 64, 0);
+  for (std::size_t c = 0; c < nCells; ++c) {
+    if (cellStart_[c + 1] != 0) occupied_[c >> 6] |= std::uint64_t(1) << (c & 63);
+    cellStart_[c + 1] += cellStart_[c];
+  }
   std::vector<std::uint32_t> fill(cellStart_.begin(), cellStart_.end() - 1);
   sorted_.resize(nFinite);
   ids_.resize(nFinite);
@@ -136,7 +140,7 @@ bool CloudIndex::regionCoversCloud(const SliceRegion& region) const {
   return true;
 }
 
-// Visits (as a linear cell index, empty cells included) every cell that may hold a point of `region`: the cells of the
+// Visits (as a linear cell index; only occupied cells) every cell that may hold a point of `region`: the cells of the
 // region's bounding box (ball, or the clipped cylinder axis ± radius) whose column along the
 // normal's dominant axis meets the slab, and whose centre is within radius + half-diagonal of the
 // axis/centre. A superset of the cells holding region points; points are then tested exactly.
@@ -229,13 +233,15 @@ void CloudIndex::forEachCandidateCell(const SliceRegion& region, Visit&& visit) 
       centre[ia] = a0 + 0.5 * cell_;
       centre[ib] = b0 + 0.5 * cell_;
       for (int c = k0; c <= k1; ++c) {
-        if (region.kind == SliceRegion::Kind::Cylinder) {  // geometry first: cheaper than a cache miss
+        const std::size_t cell = column + std::size_t(c) * stride[k];
+        if (!((occupied_[cell >> 6] >> (cell & 63)) & 1)) continue;  // empty: most candidate cells
+        if (region.kind == SliceRegion::Kind::Cylinder) {
           centre[k] = bounds_.min[k] + (c + 0.5) * cell_;
           Vec3 d = centre - region.linePoint;
           d -= d.dot(region.lineDir) * region.lineDir;
           if (d.squaredNorm() > reach * reach) continue;
         }
-        visit(column + std::size_t(c) * stride[k]);
+        visit(cell);
       }
     }
   }
@@ -374,7 +380,6 @@ void CloudIndex::forEachHit(const SliceRegion& region, Hit&& hit) const {
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (i + kAhead < cells.size()) __builtin_prefetch(&cellStart_[cells[i + kAhead]]);
     const std::uint32_t s0 = cellStart_[cells[i]], s1 = cellStart_[cells[i] + 1];
-    if (s0 == s1) continue;
     if (!ranges.empty() && ranges.back().second == s0)
       ranges.back().second = s1;
     else

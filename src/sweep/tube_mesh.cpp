@@ -1,8 +1,8 @@
 // Generalized-cylinder sweep of fitted discs (thesis §3.1.4, §4.4).
 #include "treesketch/sweep/tube_mesh.h"
 
+#include <algorithm>
 #include <cmath>
-#include <set>
 #include <string>
 
 #include "treesketch/util/error.h"
@@ -27,28 +27,47 @@ void ringFrame(const Disc& d, Vec3* n, Vec3* e1, Vec3* e2) {
 
 }  // namespace
 
-std::map<NodeId, NodeId> fittedParents(const std::vector<SweepNode>& nodes) {
-  std::map<NodeId, const SweepNode*> byId;
-  for (const auto& n : nodes) byId[n.id] = &n;
-  std::map<NodeId, NodeId> out;
-  for (const auto& n : nodes) {
+namespace {
+
+// For every usable node, its nearest usable ancestor (kNoNode if none), sorted by child id.
+// `byId` is scratch space.
+void resolveFittedParents(const std::vector<SweepNode>& nodes, std::vector<std::pair<NodeId, std::size_t>>& byId,
+                          std::vector<std::pair<NodeId, NodeId>>& out) {
+  byId.clear();
+  for (std::size_t i = 0; i < nodes.size(); ++i) byId.emplace_back(nodes[i].id, i);
+  std::sort(byId.begin(), byId.end());
+  auto find = [&](NodeId id) -> const SweepNode* {
+    auto it = std::lower_bound(byId.begin(), byId.end(), std::make_pair(id, std::size_t(0)));
+    return it != byId.end() && it->first == id ? &nodes[it->second] : nullptr;
+  };
+  out.clear();
+  for (const auto& [id, i] : byId) {
+    const SweepNode& n = nodes[i];
     if (!usable(n)) continue;
     NodeId p = n.parent;
     std::size_t steps = 0;
     while (p != kNoNode) {
-      auto it = byId.find(p);
-      if (it == byId.end()) {
+      const SweepNode* q = find(p);
+      if (!q) {
         p = kNoNode;
         break;
       }
-      if (usable(*it->second)) break;
-      p = it->second->parent;
+      if (usable(*q)) break;
+      p = q->parent;
       if (++steps > nodes.size()) throw OptionsError("sweep: the node hierarchy has a cycle at node " + std::to_string(n.id));
     }
     if (p == n.id) throw OptionsError("sweep: the node hierarchy has a cycle at node " + std::to_string(n.id));
-    out[n.id] = p;
+    out.emplace_back(n.id, p);
   }
-  return out;
+}
+
+}  // namespace
+
+std::map<NodeId, NodeId> fittedParents(const std::vector<SweepNode>& nodes) {
+  std::vector<std::pair<NodeId, std::size_t>> byId;
+  std::vector<std::pair<NodeId, NodeId>> list;
+  resolveFittedParents(nodes, byId, list);
+  return std::map<NodeId, NodeId>(list.begin(), list.end());
 }
 
 TubeSweeper::TubeSweeper(const SweepOptions& options) : options_(options) {
@@ -63,14 +82,13 @@ std::vector<SegmentKey> TubeSweeper::segmentKeys() const {
 
 void TubeSweeper::update(const std::vector<SweepNode>& nodes) {
   const int kRing = options_.ringVertices;
+  const std::uint64_t stamp = ++stamp_;
   // 1. Rings: rebuild changed discs, drop rings of nodes gone or no longer fitted.
-  std::set<NodeId> live;
   for (const auto& n : nodes) {
     if (!usable(n)) continue;
-    live.insert(n.id);
-    auto it = rings_.find(n.id);
-    if (it != rings_.end() && it->second.disc == n.disc) continue;
     Ring& ring = rings_[n.id];
+    ring.stamp = stamp;
+    if (ring.version != 0 && ring.disc == n.disc) continue;
     ring.disc = n.disc;
     ring.version = nextVersion_++;
     Vec3 nn, e1, e2;
@@ -81,22 +99,17 @@ void TubeSweeper::update(const std::vector<SweepNode>& nodes) {
       ring.vertices[j] = n.disc.centre + n.disc.radius * (std::cos(a) * e1 + std::sin(a) * e2);
     }
   }
-  for (auto it = rings_.begin(); it != rings_.end();) it = live.count(it->first) ? std::next(it) : rings_.erase(it);
+  for (auto it = rings_.begin(); it != rings_.end();) it = it->second.stamp == stamp ? std::next(it) : rings_.erase(it);
 
   // 2. Bands: one per (fitted parent, fitted child); rebuilt when either ring changed.
-  auto parentOf = fittedParents(nodes);
-  std::map<SegmentKey, Band> bands;
-  for (const auto& [child, parent] : parentOf) {
+  resolveFittedParents(nodes, byId_, parentOf_);
+  for (const auto& [child, parent] : parentOf_) {
     if (parent == kNoNode) continue;
-    SegmentKey key{parent, child};
     const Ring& rp = rings_.at(parent);
     const Ring& rc = rings_.at(child);
-    auto old = bands_.find(key);
-    if (old != bands_.end() && old->second.parentVersion == rp.version && old->second.childVersion == rc.version) {
-      bands[key] = std::move(old->second);
-      continue;
-    }
-    Band band;
+    Band& band = bands_[SegmentKey{parent, child}];
+    band.stamp = stamp;
+    if (band.parentVersion == rp.version && band.childVersion == rc.version) continue;
     band.parentVersion = rp.version;
     band.childVersion = rc.version;
     Vec3 d = rc.disc.centre - rp.disc.centre;
@@ -123,22 +136,26 @@ void TubeSweeper::update(const std::vector<SweepNode>& nodes) {
       band.childIdx[j] = ((offset + sc * j) % kRing + kRing) % kRing;
     }
     ++segmentBuilds_;
-    bands[key] = std::move(band);
   }
-  bands_ = std::move(bands);
-  assemble(parentOf);
+  for (auto it = bands_.begin(); it != bands_.end();) it = it->second.stamp == stamp ? std::next(it) : bands_.erase(it);
+  assemble(parentOf_);
 }
 
-void TubeSweeper::assemble(const std::map<NodeId, NodeId>& parentOf) {
+void TubeSweeper::assemble(const ParentList& parentOf) {
   const int kRing = options_.ringVertices;
-  mesh_ = geom::TriMesh{};
-  std::map<NodeId, std::uint32_t> base;
-  for (const auto& [id, ring] : rings_) {
-    base[id] = std::uint32_t(mesh_.vertices.size());
+  // Cleared, not replaced: the arrays keep their capacity from one update to the next.
+  mesh_.vertices.clear();
+  mesh_.triangles.clear();
+  mesh_.colors.clear();
+  mesh_.quality.clear();
+  for (auto& [id, ring] : rings_) {
+    ring.base = std::uint32_t(mesh_.vertices.size());
+    ring.hasChild = false;
+    ring.childDir = Vec3::Zero();
     mesh_.vertices.insert(mesh_.vertices.end(), ring.vertices.begin(), ring.vertices.end());
   }
   for (const auto& [key, band] : bands_) {
-    std::uint32_t bp = base.at(key.first), bc = base.at(key.second);
+    const std::uint32_t bp = rings_.at(key.first).base, bc = rings_.at(key.second).base;
     for (int j = 0; j < kRing; ++j) {
       int j1 = (j + 1) % kRing;
       std::uint32_t a0 = bp + band.parentIdx[j], a1 = bp + band.parentIdx[j1];
@@ -149,25 +166,19 @@ void TubeSweeper::assemble(const std::map<NodeId, NodeId>& parentOf) {
   }
   // Caps: a fan at each ring without a fitted parent (facing away from its children) and at each
   // ring without fitted children (facing away from its parent).
-  std::map<NodeId, Vec3> childDir;
-  std::set<NodeId> hasChild;
   for (const auto& [child, parent] : parentOf) {
     if (parent == kNoNode) continue;
-    hasChild.insert(parent);
-    Vec3 d = rings_.at(child).disc.centre - rings_.at(parent).disc.centre;
-    if (d.norm() > 0.0) {
-      // Eigen vectors are not zero-initialised: insert an explicit zero before summing.
-      auto it = childDir.try_emplace(parent, Vec3::Zero()).first;
-      it->second += d.normalized();
-    }
+    Ring& rp = rings_.at(parent);
+    rp.hasChild = true;
+    const Vec3 d = rings_.at(child).disc.centre - rp.disc.centre;
+    if (d.norm() > 0.0) rp.childDir += d.normalized();
   }
-  auto addCap = [&](NodeId id, const Vec3& outward) {
-    const Ring& ring = rings_.at(id);
-    Vec3 n = ring.disc.normal.normalized();
-    auto centre = std::uint32_t(mesh_.vertices.size());
+  auto addCap = [&](const Ring& ring, const Vec3& outward) {
+    const Vec3 n = ring.disc.normal.normalized();
+    const auto centre = std::uint32_t(mesh_.vertices.size());
     mesh_.vertices.push_back(ring.disc.centre);
     const bool ccw = n.dot(outward) >= 0.0;  // ring CCW around the outward direction
-    const std::uint32_t b = base.at(id);
+    const std::uint32_t b = ring.base;
     for (int j = 0; j < kRing; ++j) {
       std::uint32_t v0 = b + j, v1 = b + (j + 1) % kRing;
       if (ccw)
@@ -177,19 +188,16 @@ void TubeSweeper::assemble(const std::map<NodeId, NodeId>& parentOf) {
     }
   };
   for (const auto& [id, parent] : parentOf) {
-    const Vec3 n = rings_.at(id).disc.normal.normalized();
-    if (parent == kNoNode) {
-      auto it = childDir.find(id);
-      Vec3 toward = (it != childDir.end() && it->second.norm() > 1e-12) ? it->second : n;
-      addCap(id, -toward);
-    }
-    if (!hasChild.count(id)) {
+    const Ring& ring = rings_.at(id);
+    const Vec3 n = ring.disc.normal.normalized();
+    if (parent == kNoNode) addCap(ring, -(ring.childDir.norm() > 1e-12 ? ring.childDir : n));
+    if (!ring.hasChild) {
       Vec3 away = n;
       if (parent != kNoNode) {
-        Vec3 d = rings_.at(id).disc.centre - rings_.at(parent).disc.centre;
+        const Vec3 d = ring.disc.centre - rings_.at(parent).disc.centre;
         if (d.norm() > 1e-12) away = d;
       }
-      addCap(id, away);
+      addCap(ring, away);
     }
   }
 }

@@ -98,6 +98,10 @@ class CloudIndex {
   double cell_ = 1.0;
   int dims_[3] = {0, 0, 0};
   std::vector<std::uint32_t> cellStart_;  ///< size cells+1, into sorted arrays
+  /// One bit per cell, set when the cell holds a point: a query's cell walk tests these (1/32 of
+  /// cellStart_'s bytes, mostly cached) instead of reading cellStart_ for the many empty cells
+  /// around a branch's surface.
+  std::vector<std::uint64_t> occupied_;
   std::vector<geom::Vec3> sorted_;        ///< finite positions, sorted by cell
   std::vector<std::uint32_t> ids_;        ///< original index of each sorted point
   /// Float copy of sorted_ relative to centre_ (one array per axis, so the pre-test vectorizes):

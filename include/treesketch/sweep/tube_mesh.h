@@ -81,17 +81,33 @@ class TubeSweeper {
     Disc disc;
     std::vector<geom::Vec3> vertices;
     std::uint64_t version = 0;
+    std::uint64_t stamp = 0;  ///< the update that last saw this ring's node fitted
+    // Scratch of assemble(): first vertex in the mesh, whether a fitted child hangs from this
+    // ring, and the sum of the unit directions towards those children.
+    std::uint32_t base = 0;
+    bool hasChild = false;
+    geom::Vec3 childDir = geom::Vec3::Zero();
   };
   struct Band {
     std::uint64_t parentVersion = 0, childVersion = 0;
+    std::uint64_t stamp = 0;               ///< the update that last needed this band
     std::vector<int> parentIdx, childIdx;  ///< ring-local vertex index of step j on each ring
   };
-  void assemble(const std::map<NodeId, NodeId>& parentOf);
+  /// (child, nearest fitted ancestor or kNoNode) for every fitted node, by child id.
+  using ParentList = std::vector<std::pair<NodeId, NodeId>>;
+  void assemble(const ParentList& parentOf);
 
+  // Per-update bookkeeping lives in the rings and bands themselves (stamps, scratch fields), so
+  // that an update after a one-node edit allocates nothing but what changed: an edit's re-sweep
+  // is on the interactive path (measured: the node-keyed sets and maps rebuilt on every update
+  // were a fifth of a one-node edit).
   SweepOptions options_;
   std::map<NodeId, Ring> rings_;
   std::map<SegmentKey, Band> bands_;
   std::uint64_t nextVersion_ = 1;
+  std::uint64_t stamp_ = 0;
+  std::vector<std::pair<NodeId, std::size_t>> byId_;  ///< scratch: node id → index in the input
+  ParentList parentOf_;                               ///< scratch
   std::size_t segmentBuilds_ = 0;
   geom::TriMesh mesh_;
 };
