@@ -404,14 +404,13 @@ void CloudIndex::forEachHit(const SliceRegion& region, Hit&& hit) const {
     if (i + kAhead < ranges.size()) {
       const std::uint32_t p0 = ranges[i + kAhead].first;
       for (int a = 0; a < 3; ++a) __builtin_prefetch(f[a] + p0);
-      // The double positions and original ids of the whole range (most of a cell's points in the
-      // slab are hits).
+      // The original ids of the whole range (most of a cell's points in the slab are hits). Not
+      // the double positions: the exact test needs few of them, and the hits' positions are read
+      // afterwards in slot order, which the hardware prefetcher follows (measured: prefetching
+      // them here too was ~10 % slower).
       const std::uint32_t p1 = ranges[i + kAhead].second;
-      const char* b = reinterpret_cast<const char*>(sorted_.data() + p0);
-      const char* e = reinterpret_cast<const char*>(sorted_.data() + p1);
-      for (; b < e; b += 64) __builtin_prefetch(b);
-      b = reinterpret_cast<const char*>(ids_.data() + p0);
-      e = reinterpret_cast<const char*>(ids_.data() + p1);
+      const char* b = reinterpret_cast<const char*>(ids_.data() + p0);
+      const char* e = reinterpret_cast<const char*>(ids_.data() + p1);
       for (; b < e; b += 64) __builtin_prefetch(b);
     }
     const auto [s0, s1] = ranges[i];
