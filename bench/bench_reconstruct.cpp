@@ -134,8 +134,19 @@ void BM_FullReconstructBruteForce(benchmark::State& state) { fullReconstruct(sta
 // With --benchmark_repetitions, also the fastest repetition: on a shared machine the minimum is
 // the least disturbed estimate of each path's cost (other processes only ever add time).
 double minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
-BENCHMARK(BM_FullReconstructIndexed)->Arg(0)->Arg(1)->ArgName("parallel")->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
-BENCHMARK(BM_FullReconstructBruteForce)->Arg(0)->Arg(1)->ArgName("parallel")->Unit(benchmark::kMillisecond)->Iterations(5)->ComputeStatistics("min", minimum);
+BENCHMARK(BM_FullReconstructIndexed)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("parallel")
+    ->Unit(benchmark::kMillisecond)
+    ->ComputeStatistics("min", minimum);
+BENCHMARK(BM_FullReconstructBruteForce)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("parallel")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5)
+    ->ComputeStatistics("min", minimum);
 
 // One edited node (its slice thickness toggles): re-fit one node + re-sweep, as the GUI does.
 void BM_EditOneNode(benchmark::State& state) {
@@ -159,7 +170,13 @@ void BM_EditOneNode(benchmark::State& state) {
   state.counters["fit_ms"] = rec.timings().fitMs;
   state.counters["sweep_ms"] = rec.timings().sweepMs;
 }
-BENCHMARK(BM_EditOneNode)->Arg(0)->Arg(5)->Arg(17)->ArgName("node")->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
+BENCHMARK(BM_EditOneNode)
+    ->Arg(0)
+    ->Arg(5)
+    ->Arg(17)
+    ->ArgName("node")
+    ->Unit(benchmark::kMillisecond)
+    ->ComputeStatistics("min", minimum);
 
 // The pieces of one trunk node's fit: the test-region query, the whole fit, the thesis's scan.
 void BM_NodePieces(benchmark::State& state) {
@@ -179,7 +196,13 @@ void BM_NodePieces(benchmark::State& state) {
     }
   }
 }
-BENCHMARK(BM_NodePieces)->Arg(0)->Arg(1)->Arg(2)->ArgName("query_fit_scan")->Unit(benchmark::kMicrosecond)->ComputeStatistics("min", minimum);
+BENCHMARK(BM_NodePieces)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("query_fit_scan")
+    ->Unit(benchmark::kMicrosecond)
+    ->ComputeStatistics("min", minimum);
 
 void BM_BuildIndex(benchmark::State& state) {
   const Scene& sc = scene();

@@ -4,8 +4,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "treesketch/util/error.h"
@@ -302,9 +302,7 @@ class SplitMix64 {
     return z ^ (z >> 31);
   }
   /// Uniform in [0, n) by a multiply-shift (bias below n / 2^64: irrelevant here), no division.
-  std::size_t below(std::size_t n) {
-    return std::size_t((static_cast<unsigned __int128>(next()) * n) >> 64);
-  }
+  std::size_t below(std::size_t n) { return std::size_t((static_cast<unsigned __int128>(next()) * n) >> 64); }
 
  private:
   std::uint64_t state_;
@@ -471,8 +469,8 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
   const std::size_t needed =
       std::max<std::size_t>(std::size_t(options.minInliers), std::size_t(std::ceil(options.minInlierFraction * n)));
   if (nFinite < needed) {
-    res.reason = "too few points for the minimum support (" + std::to_string(nFinite) + " < " +
-                 std::to_string(needed) + ")";
+    res.reason =
+        "too few points for the minimum support (" + std::to_string(nFinite) + " < " + std::to_string(needed) + ")";
     return res;
   }
 
