@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <map>
+#include <random>
 
 #include "treesketch/util/error.h"
 
@@ -159,6 +160,54 @@ TEST(TubeSweeper, EditsRebuildOnlyTheTouchedBands) {
   geom::TriMesh fresh = sweepTubes(nodes);
   EXPECT_EQ(s.mesh().vertices, fresh.vertices);
   EXPECT_EQ(s.mesh().triangles, fresh.triangles);
+}
+
+// Random edit sequences on a branching sketch (discs moved, nodes skipped and fitted again,
+// re-parented, deleted, added): after every update the incremental mesh equals a fresh sweep.
+TEST(TubeSweeper, RandomEditsMatchAFreshSweep) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u01(0, 1);
+  std::vector<SweepNode> nodes;
+  NodeId nextId = 0;
+  auto addNode = [&](NodeId parent) {
+    SweepNode n;
+    n.id = nextId++;
+    n.parent = parent;
+    n.fitted = true;
+    n.disc = {Vec3(u01(rng), 4 * u01(rng), u01(rng)), Vec3(0.2 * u01(rng), 1, 0.2 * u01(rng)).normalized(),
+              0.1 + 0.3 * u01(rng)};
+    nodes.push_back(n);
+  };
+  addNode(kNoNode);
+  for (int i = 0; i < 11; ++i) addNode(nodes[std::size_t(u01(rng) * double(nodes.size()))].id);
+  TubeSweeper s;
+  for (int step = 0; step < 60; ++step) {
+    const std::size_t i = std::size_t(u01(rng) * double(nodes.size()));
+    auto& n = nodes[i];
+    switch (step % 5) {
+      case 0: n.disc.centre.x() += 0.05; break;
+      case 1: n.fitted = !n.fitted; break;
+      case 2: n.disc.radius *= 1.1; break;
+      case 3:  // re-parent onto an earlier node (parents always have smaller ids: no cycle)
+        if (i > 0) n.parent = nodes[std::size_t(u01(rng) * double(i))].id;
+        break;
+      case 4:
+        if (nodes.size() > 4 && step % 10 == 4) {
+          const NodeId gone = nodes.back().id;  // a node that nothing can be the parent of...
+          for (auto& m : nodes)
+            if (m.parent == gone) m.parent = kNoNode;  // ...or that its children lose
+          nodes.pop_back();
+        } else {
+          addNode(nodes[std::size_t(u01(rng) * double(nodes.size()))].id);
+        }
+        break;
+    }
+    s.update(nodes);
+    const geom::TriMesh fresh = sweepTubes(nodes);
+    ASSERT_EQ(s.mesh().vertices, fresh.vertices) << "step " << step;
+    ASSERT_EQ(s.mesh().triangles, fresh.triangles) << "step " << step;
+  }
+  EXPECT_FALSE(s.mesh().empty());
 }
 
 TEST(TubeSweeper, BadInput) {
