@@ -90,9 +90,11 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
   if (u.norm() < 1e-9) u = geom::anyPerpendicular(n);
   u.normalize();
   const Vec3 v = n.cross(u);
-  auto to2D = [&](const Vec3& q) { return Vec2((q - origin).dot(u), (q - origin).dot(v)); };
+  const PlaneFrame frame{origin, u, v};
+  auto to2D = [&](const Vec3& q) { return frame(q); };
 
   CircleFitOptions circle = options.circle;
+  circle.inputFinite = true;  // slices come from the index, which leaves non-finite points out
   circle.centreRegion.active = true;
   circle.centreRegion.hasLine = g.hasLine;
   circle.centreRegion.origin = g.hasLine ? to2D(g.linePoint) : Vec2::Zero();
@@ -128,18 +130,18 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
   for (;;) {
     SliceRegion region = testRegion(g, p, eps);
     test.clear();
-    testPos.clear();
     if (res.sliceComputed) {
+      testPos.clear();
       for (std::size_t i = 0; i < near.size(); ++i)
         if (region.contains(nearPos[i])) {
           test.push_back(near[i]);
           testPos.push_back(nearPos[i]);
         }
+      pts2.resize(testPos.size());
+      for (std::size_t i = 0; i < testPos.size(); ++i) pts2[i] = to2D(testPos[i]);
     } else {
-      test = index.query(region, &testPos);
+      test = index.queryInPlane(region, frame, &pts2);  // the same points, projected in the same way
     }
-    pts2.resize(testPos.size());
-    for (std::size_t i = 0; i < testPos.size(); ++i) pts2[i] = to2D(testPos[i]);
     circle.centreRegion.maxDistance = eps;
     CircleFitResult fit = fitCircleRansac(pts2, circle);
     res.iterations += fit.iterations;

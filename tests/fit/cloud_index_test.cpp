@@ -80,6 +80,42 @@ TEST(CloudIndex, IndexedSlicesEqualBruteForceOnRandomRegions) {
   EXPECT_GT(nonEmpty, 60u);  // the comparison is not vacuous
 }
 
+// The eight-wide (AVX2) pre-test and the baseline four-wide one give the same lists, and the
+// projected query gives the same points as query() in the same order, projected by PlaneFrame.
+// (On a processor without AVX2 both indexes run the baseline path and the test still holds.)
+TEST(CloudIndex, Avx2AndBaselinePreTestsAndProjectedQueryAgree) {
+  const geom::PointCloud cloud = randomCloud(7);
+  CloudIndexOptions baseline;
+  baseline.allowAvx2 = false;
+  const CloudIndex wide(cloud), narrow(cloud, baseline);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u01(0, 1);
+  std::size_t hits = 0;
+  for (int q = 0; q < 90; ++q) {
+    SliceRegion r;
+    r.kind = SliceRegion::Kind(q % 3);
+    r.planePoint = Vec3(-2 + 5 * u01(rng), 6 * u01(rng), -1 + 3 * u01(rng));
+    r.planeNormal = q % 4 == 0 ? Vec3::Unit(q % 3) : randomUnit(rng);
+    r.halfThickness = 0.01 + 0.2 * u01(rng);
+    r.linePoint = r.planePoint;
+    r.lineDir = randomUnit(rng);
+    r.radius = 0.05 + 1.5 * u01(rng);
+    std::vector<Vec3> pos;
+    const auto a = wide.query(r, &pos);
+    ASSERT_EQ(narrow.query(r), a) << "query " << q;
+    PlaneFrame frame;
+    frame.origin = r.planePoint;
+    frame.u = geom::anyPerpendicular(r.planeNormal).normalized();
+    frame.v = r.planeNormal.cross(frame.u);
+    std::vector<geom::Vec2> coords;
+    ASSERT_EQ(wide.queryInPlane(r, frame, &coords), a) << "query " << q;
+    ASSERT_EQ(coords.size(), a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(coords[i], frame(pos[i]));
+    hits += a.size();
+  }
+  EXPECT_GT(hits, 1000u);  // not vacuous
+}
+
 TEST(CloudIndex, CoarseAndFineGridsGiveTheSameAnswer) {
   geom::PointCloud cloud = randomCloud(2);
   CloudIndexOptions coarse, fine;

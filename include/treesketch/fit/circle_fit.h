@@ -70,6 +70,10 @@ struct CircleFitOptions {
   /// Gauss–Newton iterations of the geometric refinement, and inlier re-classification rounds.
   int refineIterations = 10;
   int refineRounds = 2;
+  /// The caller guarantees that every point is finite (slices from CloudIndex, which leaves
+  /// non-finite points out): the scan for NaN/Inf coordinates is skipped. Results with a
+  /// non-finite point are then undefined (no crash, but no meaningful circle).
+  bool inputFinite = false;
   /// Seed of the random sampler: equal seeds and inputs give equal results.
   std::uint64_t seed = 1;
   /// Optional centre constraint.
@@ -96,8 +100,12 @@ CircleFitResult fitCircleRansac(const std::vector<geom::Vec2>& points, const Cir
 bool circleFrom3(const geom::Vec2& a, const geom::Vec2& b, const geom::Vec2& c, geom::Vec2* centre, double* radius);
 
 /// Least-squares circle through `points[indices]`: algebraic (Kåsa) start refined by Gauss–Newton
-/// on the geometric distance. Returns false for fewer than 3 points or a degenerate system.
+/// on the geometric distance. With `warmStart`, Gauss–Newton starts from the circle given in
+/// *centre / *radius instead (when it is finite with a positive radius; else from Kåsa's): the
+/// RANSAC refinement's later rounds start from the previous round's circle, which is already at
+/// the minimum for nearly the same inliers. Returns false for fewer than 3 points or a
+/// degenerate system.
 bool fitCircleLeastSquares(const std::vector<geom::Vec2>& points, const std::vector<std::uint32_t>& indices,
-                           int iterations, geom::Vec2* centre, double* radius);
+                           int iterations, geom::Vec2* centre, double* radius, bool warmStart = false);
 
 }  // namespace treesketch::fit
