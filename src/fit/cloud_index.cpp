@@ -522,7 +522,21 @@ std::pair<const std::uint32_t*, std::size_t> gatherSlots(ForEach&& forEach) {
 }
 }  // namespace
 
-std::vector<std::uint32_t> CloudIndex::query(const SliceRegion& region, std::vector<Vec3>* positions) const {
+namespace {
+// A hit's plane coordinates from the float copy (see CloudIndex::query): one expression for both
+// paths, so they give the same numbers.
+struct FloatProjector {
+  Vec3 offset, u, v;  ///< offset = grid centre − frame origin
+  const float* f[3];
+  geom::Vec2 operator()(std::uint32_t s) const {
+    const Vec3 d = offset + Vec3(double(f[0][s]), double(f[1][s]), double(f[2][s]));
+    return geom::Vec2(d.dot(u), d.dot(v));
+  }
+};
+}  // namespace
+
+std::vector<std::uint32_t> CloudIndex::query(const SliceRegion& region, std::vector<Vec3>* positions,
+                                             const PlaneFrame* frame, std::vector<geom::Vec2>* coords) const {
   region.validate();
   const auto [slot, nHits] = gatherSlots([&](auto&& hit) { forEachHit(region, hit); });
   std::vector<std::uint32_t> out(nHits);
@@ -531,32 +545,32 @@ std::vector<std::uint32_t> CloudIndex::query(const SliceRegion& region, std::vec
     positions->resize(nHits);
     for (std::size_t i = 0; i < nHits; ++i) (*positions)[i] = sorted_[slot[i]];
   }
-  trim(scratch().slots);
-  return out;
-}
-
-std::vector<std::uint32_t> CloudIndex::queryInPlane(const SliceRegion& region, const PlaneFrame& frame,
-                                                    std::vector<geom::Vec2>* coords) const {
-  region.validate();
-  const auto [slot, nHits] = gatherSlots([&](auto&& hit) { forEachHit(region, hit); });
-  std::vector<std::uint32_t> out(nHits);
-  coords->resize(nHits);
-  for (std::size_t i = 0; i < nHits; ++i) {
-    out[i] = ids_[slot[i]];
-    (*coords)[i] = frame(sorted_[slot[i]]);
+  if (frame && coords) {
+    const FloatProjector project{
+        centre_ - frame->origin, frame->u, frame->v, {fpos_[0].data(), fpos_[1].data(), fpos_[2].data()}};
+    coords->resize(nHits);
+    for (std::size_t i = 0; i < nHits; ++i) (*coords)[i] = project(slot[i]);
   }
   trim(scratch().slots);
   return out;
 }
 
-std::vector<std::uint32_t> CloudIndex::queryBruteForce(const SliceRegion& region, std::vector<Vec3>* positions) const {
+std::vector<std::uint32_t> CloudIndex::queryBruteForce(const SliceRegion& region, std::vector<Vec3>* positions,
+                                                       const PlaneFrame* frame, std::vector<geom::Vec2>* coords) const {
   region.validate();
   std::vector<std::uint32_t> out;
   if (positions) positions->clear();
+  const bool project = frame && coords;
+  if (project) coords->clear();
+  const FloatProjector projector{project ? Vec3(centre_ - frame->origin) : Vec3::Zero(),
+                                 project ? frame->u : Vec3::Zero(),
+                                 project ? frame->v : Vec3::Zero(),
+                                 {fpos_[0].data(), fpos_[1].data(), fpos_[2].data()}};
   for (std::size_t s = 0; s < sorted_.size(); ++s)
     if (region.contains(sorted_[s])) {
       out.push_back(ids_[s]);
       if (positions) positions->push_back(sorted_[s]);
+      if (project) coords->push_back(projector(std::uint32_t(s)));
     }
   return out;
 }

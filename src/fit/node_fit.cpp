@@ -112,18 +112,21 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
   const SliceRegion slab = slabRegion(g, p);
   std::vector<std::uint32_t> near;
   std::vector<Vec3> nearPos;
+  std::vector<Vec2> nearCoords;
+  // Plane coordinates always come from the index (its float copy, see CloudIndex::query), on
+  // both paths and whether or not the slice was computed: the fits then see the same numbers.
   auto computeSlice = [&] {
     if (res.sliceComputed) return;
-    near = options.bruteForce ? index.queryBruteForce(slab, &nearPos) : index.query(slab, &nearPos);
+    near = options.bruteForce ? index.queryBruteForce(slab, &nearPos, &frame, &nearCoords)
+                              : index.query(slab, &nearPos, &frame, &nearCoords);
     res.sliceComputed = true;
   };
   if (options.keepSlice || options.bruteForce) computeSlice();
 
   double eps = p.lineEpsilon;
   std::vector<std::uint32_t> test;
-  // Per-thread buffers: a fit is short, and reallocating these (tens of kB) for every node was a
+  // Per-thread buffer: a fit is short, and reallocating this (tens of kB) for every node was a
   // visible share of it.
-  thread_local std::vector<Vec3> testPos;
   thread_local std::vector<Vec2> pts2;
   std::string lastReason;
   bool covered = false;
@@ -131,16 +134,14 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
     SliceRegion region = testRegion(g, p, eps);
     test.clear();
     if (res.sliceComputed) {
-      testPos.clear();
+      pts2.clear();
       for (std::size_t i = 0; i < near.size(); ++i)
         if (region.contains(nearPos[i])) {
           test.push_back(near[i]);
-          testPos.push_back(nearPos[i]);
+          pts2.push_back(nearCoords[i]);
         }
-      pts2.resize(testPos.size());
-      for (std::size_t i = 0; i < testPos.size(); ++i) pts2[i] = to2D(testPos[i]);
     } else {
-      test = index.queryInPlane(region, frame, &pts2);  // the same points, projected in the same way
+      test = index.query(region, nullptr, &frame, &pts2);
     }
     circle.centreRegion.maxDistance = eps;
     CircleFitResult fit = fitCircleRansac(pts2, circle);
@@ -169,10 +170,7 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
     eps += p.lineEpsilonStep;
     ++res.growthSteps;
   }
-  if (testPos.capacity() > (std::size_t(1) << 20)) {  // do not keep a huge slice's memory per thread
-    testPos = {};
-    pts2 = {};
-  }
+  if (pts2.capacity() > (std::size_t(1) << 20)) pts2 = {};  // do not keep a huge slice's memory per thread
   res.testIndices = std::move(test);
   if (res.sliceComputed) res.sliceIndices = std::move(near);
   if (res.status != NodeStatus::Fitted) {
