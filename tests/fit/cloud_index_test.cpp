@@ -44,6 +44,24 @@ Vec3 randomUnit(std::mt19937_64& rng) {
   return v.normalized();
 }
 
+// Query q of a random series over randomCloud's box: kinds in turn, every fourth plane
+// axis-aligned (the dominant-axis column walk's edge case), lines mostly in the plane (as
+// sketches draw them), every fifth not.
+SliceRegion randomRegion(int q, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u01(0, 1);
+  SliceRegion r;
+  r.kind = SliceRegion::Kind(q % 3);
+  r.planePoint = Vec3(-2 + 5 * u01(rng), 6 * u01(rng), -1 + 3 * u01(rng));
+  r.planeNormal = q % 4 == 0 ? Vec3::Unit(q % 3) : randomUnit(rng);
+  r.halfThickness = 0.01 + 0.2 * u01(rng);
+  r.linePoint = r.planePoint + 0.3 * u01(rng) * r.planeNormal.cross(randomUnit(rng));
+  const Vec3 d = randomUnit(rng);
+  r.lineDir = (d - d.dot(r.planeNormal) * r.planeNormal).normalized();
+  if (q % 5 == 0) r.lineDir = randomUnit(rng);
+  r.radius = 0.05 + 1.5 * u01(rng);
+  return r;
+}
+
 TEST(CloudIndex, IndexedSlicesEqualBruteForceOnRandomRegions) {
   geom::PointCloud cloud = randomCloud(1);
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -51,20 +69,9 @@ TEST(CloudIndex, IndexedSlicesEqualBruteForceOnRandomRegions) {
   CloudIndex index(cloud);
   EXPECT_EQ(index.size(), cloud.size() - 1);
   std::mt19937_64 rng(99);
-  std::uniform_real_distribution<double> u01(0, 1);
   std::size_t nonEmpty = 0;
   for (int q = 0; q < 120; ++q) {
-    SliceRegion r;
-    r.kind = SliceRegion::Kind(q % 3);
-    r.planePoint = Vec3(-2 + 5 * u01(rng), 6 * u01(rng), -1 + 3 * u01(rng));
-    // Every third plane axis-aligned (the dominant-axis column walk's edge case).
-    r.planeNormal = q % 4 == 0 ? Vec3::Unit(q % 3) : randomUnit(rng);
-    r.halfThickness = 0.01 + 0.2 * u01(rng);
-    r.linePoint = r.planePoint + 0.3 * u01(rng) * r.planeNormal.cross(randomUnit(rng));
-    Vec3 d = randomUnit(rng);
-    r.lineDir = (d - d.dot(r.planeNormal) * r.planeNormal).normalized();  // L in the plane, as sketches
-    if (q % 5 == 0) r.lineDir = randomUnit(rng);                        // ... or not
-    r.radius = 0.05 + 1.5 * u01(rng);
+    const SliceRegion r = randomRegion(q, rng);
     std::vector<Vec3> pos;
     auto fast = index.query(r, &pos);
     auto slow = sliceBruteForce(cloud, r);
@@ -89,17 +96,9 @@ TEST(CloudIndex, Avx2AndBaselinePreTestsAndProjectedQueryAgree) {
   baseline.allowAvx2 = false;
   const CloudIndex wide(cloud), narrow(cloud, baseline);
   std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u01(0, 1);
   std::size_t hits = 0;
   for (int q = 0; q < 90; ++q) {
-    SliceRegion r;
-    r.kind = SliceRegion::Kind(q % 3);
-    r.planePoint = Vec3(-2 + 5 * u01(rng), 6 * u01(rng), -1 + 3 * u01(rng));
-    r.planeNormal = q % 4 == 0 ? Vec3::Unit(q % 3) : randomUnit(rng);
-    r.halfThickness = 0.01 + 0.2 * u01(rng);
-    r.linePoint = r.planePoint;
-    r.lineDir = randomUnit(rng);
-    r.radius = 0.05 + 1.5 * u01(rng);
+    const SliceRegion r = randomRegion(q, rng);
     std::vector<Vec3> pos;
     const auto a = wide.query(r, &pos);
     ASSERT_EQ(narrow.query(r), a) << "query " << q;
