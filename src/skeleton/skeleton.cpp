@@ -9,6 +9,9 @@
 #include <numeric>
 #include <queue>
 
+#include <tbb/parallel_for.h>
+
+#include "treesketch/fit/cloud_index.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::skeleton {
@@ -38,6 +41,100 @@ void checkOptions(const SkeletonOptions& o) {
   positive(o.maxSegmentRadii, "maxSegmentRadii");
   positive(o.maxSegmentBins, "maxSegmentBins");
   if (o.radiusMedianWindow < 1) throw OptionsError("skeleton: radiusMedianWindow must be >= 1");
+  positive(o.leafPlaneRadiusVoxels, "leafPlaneRadiusVoxels");
+  nonNegative(o.leafPlaneMinInliers, "leafPlaneMinInliers");
+  nonNegative(o.leafPlaneMinSpread, "leafPlaneMinSpread");
+  if (!(o.leafPlaneMaxAngleDeg >= 0 && o.leafPlaneMaxAngleDeg <= 90))
+    throw OptionsError("skeleton: leafPlaneMaxAngleDeg must be in [0, 90]");
+}
+
+// Per voxel: does a plane through its centroid hold most of the points around it, spread in 2D (a
+// leaf), and that plane's unit normal. RANSAC with a fixed per-voxel seed, so the result does not
+// depend on the thread schedule.
+void flatVoxels(const geom::PointCloud& cloud, const VoxelGraph& graph, const SkeletonOptions& o,
+                std::vector<char>& flat, std::vector<geom::Vec3>& normal) {
+  const std::size_t nv = graph.size();
+  flat.assign(nv, 0);
+  normal.assign(nv, geom::Vec3::UnitZ());
+  const fit::CloudIndex index(cloud);
+  const double radius = o.leafPlaneRadiusVoxels * graph.voxelSize;
+  const double band = 0.15 * graph.voxelSize;  // the scans' range noise is well below this
+  tbb::parallel_for(std::size_t{0}, nv, [&](std::size_t k) {
+    const geom::Vec3 p = graph.positions[k];
+    fit::SliceRegion ball;
+    ball.kind = fit::SliceRegion::Kind::Ball;
+    ball.planePoint = ball.linePoint = p;
+    ball.halfThickness = 2.0 * radius;  // the ball decides; the slab must be finite
+    ball.radius = radius;
+    std::vector<geom::Vec3> near;
+    index.query(ball, &near);
+    if (near.size() < 6) return;
+    std::uint64_t state = k * 2654435761u + 1;  // xorshift64
+    auto next = [&state]() {
+      state ^= state << 13;
+      state ^= state >> 7;
+      state ^= state << 17;
+      return state;
+    };
+    int bestInliers = 0;
+    geom::Vec3 best = geom::Vec3::UnitZ();
+    for (int it = 0; it < 40; ++it) {
+      const geom::Vec3 n = (near[next() % near.size()] - p).cross(near[next() % near.size()] - p);
+      if (n.norm() < 1e-12) continue;
+      const geom::Vec3 u = n.normalized();
+      int inliers = 0;
+      for (const auto& q : near) inliers += std::abs((q - p).dot(u)) < band;
+      if (inliers > bestInliers) {
+        bestInliers = inliers;
+        best = u;
+      }
+    }
+    geom::Vec3 mean = geom::Vec3::Zero();
+    int count = 0;
+    for (const auto& q : near)
+      if (std::abs((q - p).dot(best)) < band) {
+        mean += q;
+        ++count;
+      }
+    mean /= std::max(count, 1);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& q : near)
+      if (std::abs((q - p).dot(best)) < band) cov += (q - mean) * (q - mean).transpose();
+    cov /= std::max(count, 1);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const double spread = std::sqrt(std::max(eig.eigenvalues()[1], 0.0)) / radius;
+    normal[k] = best;
+    flat[k] = static_cast<double>(bestInliers) / near.size() >= o.leafPlaneMinInliers && spread >= o.leafPlaneMinSpread;
+  });
+}
+
+// Voxel positions for the level-set centroids: a flat voxel takes the position of the first voxel of
+// its flat patch on its shortest path from the root (where the path entered the leaf: its base).
+std::vector<geom::Vec3> leafEntryPositions(const geom::PointCloud& cloud, const VoxelGraph& graph,
+                                           const GeodesicLevels& levels, const SkeletonOptions& o) {
+  std::vector<char> flat;
+  std::vector<geom::Vec3> normal;
+  flatVoxels(cloud, graph, o, flat, normal);
+  const std::size_t nv = graph.size();
+  std::vector<std::size_t> order;
+  for (std::size_t k = 0; k < nv; ++k)
+    if (std::isfinite(levels.distance[k])) order.push_back(k);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return levels.distance[a] < levels.distance[b] || (levels.distance[a] == levels.distance[b] && a < b);
+  });
+  std::vector<std::size_t> entry(nv);
+  std::iota(entry.begin(), entry.end(), std::size_t{0});
+  const double minCos = std::cos(o.leafPlaneMaxAngleDeg * M_PI / 180.0);
+  for (std::size_t k : order) {  // predecessors come first
+    const std::int64_t u = levels.predecessor[k];
+    if (u < 0 || !flat[k] || !flat[u]) continue;
+    if (std::abs(normal[k].dot(normal[u])) < minCos) continue;
+    if (std::abs((graph.positions[u] - graph.positions[k]).dot(normal[k])) > 0.5 * graph.voxelSize) continue;
+    entry[k] = entry[u];
+  }
+  std::vector<geom::Vec3> positions(nv);
+  for (std::size_t k = 0; k < nv; ++k) positions[k] = graph.positions[entry[k]];
+  return positions;
 }
 
 struct UnionFind {
@@ -535,7 +632,14 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
   if (progress) progress(1, 4);
   s.levels = computeGeodesicLevels(s.graph, options);
   if (progress) progress(2, 4);
-  s.rawNodes = levelSetNodes(s.graph, s.levels, options);
+  if (options.leafEntryPositions && s.graph.size() > 0) {
+    // Only the centroids move: s.graph keeps the voxels' own positions.
+    VoxelGraph moved = s.graph;
+    moved.positions = leafEntryPositions(cloud, s.graph, s.levels, options);
+    s.rawNodes = levelSetNodes(moved, s.levels, options);
+  } else {
+    s.rawNodes = levelSetNodes(s.graph, s.levels, options);
+  }
   if (progress) progress(3, 4);
   s.nodes = simplifySkeleton(s.rawNodes, s.graph.voxelSize, s.levels.binWidth, options);
   if (progress) progress(4, 4);
@@ -546,6 +650,7 @@ SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base) {
   base.graph.autoSpacingFactor = 1.5;
   base.binWidthVoxels = 1.0;
   base.minTubularFraction = 0.2;
+  base.leafEntryPositions = true;
   return base;
 }
 

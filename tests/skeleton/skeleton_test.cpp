@@ -70,6 +70,9 @@ TEST(Skeleton, RejectsBadOptions) {
   o = {};
   o.radiusMedianWindow = 0;
   EXPECT_THROW(skeleton::extractSkeleton(cloud, o), OptionsError);
+  o = {};
+  o.leafPlaneMaxAngleDeg = 120;
+  EXPECT_THROW(skeleton::extractSkeleton(cloud, o), OptionsError);
 }
 
 TEST(Skeleton, YTreeHasOneForkTwoEndsAndNodesOnTheAxes) {
@@ -177,4 +180,35 @@ TEST(Skeleton, LeafOnSettingsKeepTheRestOfTheBase) {
   EXPECT_LT(o.graph.autoSpacingFactor, base.graph.autoSpacingFactor);
   EXPECT_LT(o.binWidthVoxels, base.binWidthVoxels);
   EXPECT_LT(o.minTubularFraction, base.minTubularFraction);
+}
+
+TEST(Skeleton, LeafEntryPositionsPutLeafNodesAtTheLeafBase) {
+  // A thin stem carrying one flat square leaf (0.8 wide, 0.8 long) by its base edge, like the
+  // ez-tree leaves. The level sets cross the blade in arcs around its base, so their centroids run
+  // out along the blade's midline; with leaf-entry positions the blade counts at its base.
+  const std::vector<test::Cyl> stem = {{Vec3(0, 0, 0), Vec3(0, 2, 0), 0.03, -1}};
+  auto cloud = test::sampleCylinders(stem, 0.02, 0.001, 3);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.004, 0.004);
+  for (int i = 0; i <= 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      cloud.positions.push_back(Vec3(-0.4 + 0.02 * i + jitter(rng), 2.0 + 0.02 * j + jitter(rng), 0.0));
+  auto farthest = [&](const skeleton::Skeleton& s) {
+    double worst = 0;
+    for (const auto& n : s.rawNodes) worst = std::max(worst, test::distanceToSegment(n.position, stem[0].a, stem[0].b));
+    return worst;
+  };
+  auto o = skeleton::leafOnSkeletonOptions();
+  ASSERT_TRUE(o.leafEntryPositions);
+  // A fixed voxel (1.5 spacings): the automatic one from this mixed sampling splits the stem's rings.
+  o.graph.voxelSize = 0.03;
+  o.leafEntryPositions = false;
+  const auto plain = skeleton::extractSkeleton(cloud, o);
+  EXPECT_GT(farthest(plain), 0.4);
+  o.leafEntryPositions = true;
+  const auto entry = skeleton::extractSkeleton(cloud, o);
+  EXPECT_LT(farthest(entry), 0.15);
+  // Only the centroids move: the graph keeps the voxels' own positions and the same level sets.
+  EXPECT_EQ(entry.graph.positions, plain.graph.positions);
+  EXPECT_EQ(entry.levels.level, plain.levels.level);
 }
