@@ -66,7 +66,7 @@ void flatVoxels(const geom::PointCloud& cloud, const VoxelGraph& graph, const Sk
     ball.planePoint = ball.linePoint = p;
     ball.halfThickness = 2.0 * radius;  // the ball decides; the slab must be finite
     ball.radius = radius;
-    std::vector<geom::Vec3> near;
+    thread_local std::vector<geom::Vec3> near;  // per thread: one allocation, not one per voxel
     index.query(ball, &near);
     if (near.size() < 6) return;
     std::uint64_t state = k * 2654435761u + 1;  // xorshift64
