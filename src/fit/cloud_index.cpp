@@ -51,8 +51,8 @@ std::vector<std::uint32_t> sliceBruteForce(const geom::PointCloud& cloud, const 
 }
 
 CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& options) {
-  if (!(options.pointsPerCell > 0.0) || options.maxCells < 1)
-    throw OptionsError("cloud index: pointsPerCell and maxCells must be positive");
+  if (!(options.pointsPerCell > 0.0) || options.maxCells < 1 || !(options.maxCellsPerPoint >= 0.0))
+    throw OptionsError("cloud index: pointsPerCell and maxCells must be positive, maxCellsPerPoint >= 0");
   if (cloud.size() >= std::size_t(std::numeric_limits<std::uint32_t>::max()))
     throw OptionsError("cloud index: too many points (at most 2^32 - 2)");
 #if defined(TREESKETCH_AVX2_DISPATCH)
@@ -69,10 +69,14 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
     cellStart_.assign(1, 0);
     return;
   }
+  const double cellCap =
+      options.maxCellsPerPoint > 0.0
+          ? std::min(double(options.maxCells), std::max(4096.0, options.maxCellsPerPoint * double(nFinite)))
+          : double(options.maxCells);
   Vec3 ext = bounds_.extent();
   double diag = std::max(bounds_.diagonal(), 1e-9);
   Vec3 thick = ext.cwiseMax(Vec3::Constant(1e-3 * diag));
-  double targetCells = std::clamp(double(nFinite) / options.pointsPerCell, 1.0, double(options.maxCells));
+  double targetCells = std::clamp(double(nFinite) / options.pointsPerCell, 1.0, cellCap);
   cell_ = std::cbrt(thick.prod() / targetCells);
   auto fitDims = [&] {
     for (;;) {
@@ -81,7 +85,7 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
         dims_[a] = std::max(1, int(std::ceil(ext[a] / cell_)));
         total *= dims_[a];
       }
-      if (total <= double(options.maxCells)) break;
+      if (total <= cellCap) break;
       cell_ *= 1.1;
     }
   };
@@ -108,7 +112,7 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
     const double before = cell_;
     cell_ *= std::max(0.25, std::sqrt(options.pointsPerOccupiedCell / perCell));
     fitDims();
-    if (cell_ >= 0.95 * before) break;  // held back by maxCells
+    if (cell_ >= 0.95 * before) break;  // held back by the cell cap
   }
   const std::size_t nCells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
   std::vector<std::uint32_t> cellOf(pts.size(), std::uint32_t(-1));

@@ -118,6 +118,45 @@ TEST(CloudIndex, Avx2AndBaselinePreTestsAndProjectedQueryAgree) {
   EXPECT_GT(hits, 1000u);  // not vacuous
 }
 
+// A small surface scan is not refined to millions of cells (their build time dominated small
+// clouds): at most maxCellsPerPoint cells a point, with the same answers as without the bound.
+TEST(CloudIndex, SmallCloudsGetAGridSizedToThem) {
+  std::mt19937_64 rng(3);
+  geom::PointCloud cloud;
+  test::CylinderSpec c;
+  c.radius = 0.3;
+  c.length = 6;
+  c.points = 3000;
+  test::addCylinder(cloud, c, rng);
+  cloud.positions.push_back(Vec3(20, 20, 20));  // a far stray point: a large, mostly empty box
+  auto cells = [&](const CloudIndex& index) {
+    const Vec3 ext = index.bounds().extent();
+    double total = 1;
+    for (int a = 0; a < 3; ++a) total *= std::max(1.0, std::ceil(ext[a] / index.cellSize()));
+    return total;
+  };
+  CloudIndexOptions unbounded;
+  unbounded.maxCellsPerPoint = 0;
+  const CloudIndex bounded(cloud), fine(cloud, unbounded);
+  EXPECT_LE(cells(bounded), 16.0 * 3001 * 1.001);
+  EXPECT_GT(cells(fine), 2 * cells(bounded));  // the bound did something
+  for (int q = 0; q < 60; ++q) {
+    SliceRegion r;
+    r.kind = SliceRegion::Kind(q % 3);
+    r.planePoint = Vec3(0, 0.1 * q, 0);
+    r.planeNormal = Vec3(0.1 * (q % 7), 1, 0.05 * (q % 5)).normalized();
+    r.halfThickness = 0.02 + 0.002 * q;
+    r.linePoint = r.planePoint;
+    r.lineDir = Vec3::UnitY();
+    r.radius = 0.2 + 0.01 * q;
+    ASSERT_EQ(bounded.query(r), bounded.queryBruteForce(r)) << "query " << q;
+    ASSERT_EQ(sorted(bounded.query(r)), sorted(fine.query(r))) << "query " << q;
+  }
+  CloudIndexOptions bad;
+  bad.maxCellsPerPoint = -1;
+  EXPECT_THROW(CloudIndex(cloud, bad), OptionsError);
+}
+
 TEST(CloudIndex, CoarseAndFineGridsGiveTheSameAnswer) {
   geom::PointCloud cloud = randomCloud(2);
   CloudIndexOptions coarse, fine;
