@@ -91,13 +91,12 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
   u.normalize();
   const Vec3 v = n.cross(u);
   const PlaneFrame frame{origin, u, v};
-  auto to2D = [&](const Vec3& q) { return frame(q); };
 
   CircleFitOptions circle = options.circle;
   circle.inputFinite = true;  // slices come from the index, which leaves non-finite points out
   circle.centreRegion.active = true;
   circle.centreRegion.hasLine = g.hasLine;
-  circle.centreRegion.origin = g.hasLine ? to2D(g.linePoint) : Vec2::Zero();
+  circle.centreRegion.origin = g.hasLine ? frame(g.linePoint) : Vec2::Zero();
   if (g.hasLine) {
     Vec2 d2(g.lineDir.dot(u), g.lineDir.dot(v));
     if (d2.norm() > 1e-9) {
@@ -105,7 +104,7 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
     } else {
       circle.centreRegion.hasLine = false;  // L pierces the plane: constrain to the pierce point
       double t = (origin - g.linePoint).dot(n) / g.lineDir.dot(n);
-      circle.centreRegion.origin = to2D(g.linePoint + t * g.lineDir);
+      circle.centreRegion.origin = frame(g.linePoint + t * g.lineDir);
     }
   }
 

@@ -94,8 +94,6 @@ void flatVoxels(const geom::PointCloud& cloud, const VoxelGraph& graph, const Sk
         best = u;
       }
     }
-    int bestInliers = 0;
-    for (const auto& q : near) bestInliers += std::abs((q - p).dot(best)) < band;
     geom::Vec3 mean = geom::Vec3::Zero();
     int count = 0;
     for (const auto& q : near)
@@ -111,7 +109,7 @@ void flatVoxels(const geom::PointCloud& cloud, const VoxelGraph& graph, const Sk
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
     const double spread = std::sqrt(std::max(eig.eigenvalues()[1], 0.0)) / radius;
     normal[k] = best;
-    flat[k] = static_cast<double>(bestInliers) / near.size() >= o.leafPlaneMinInliers && spread >= o.leafPlaneMinSpread;
+    flat[k] = static_cast<double>(count) / near.size() >= o.leafPlaneMinInliers && spread >= o.leafPlaneMinSpread;
   });
 }
 
@@ -640,10 +638,12 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
   s.levels = computeGeodesicLevels(s.graph, options);
   if (progress) progress(2, 4);
   if (options.leafEntryPositions && s.graph.size() > 0) {
-    // Only the centroids move: s.graph keeps the voxels' own positions.
-    VoxelGraph moved = s.graph;
-    moved.positions = leafEntryPositions(cloud, s.graph, s.levels, options);
-    s.rawNodes = levelSetNodes(moved, s.levels, options);
+    // Only the centroids move: the entry positions stand in for the voxels' own while the level
+    // sets' nodes are taken, then s.graph gets its positions back (no copy of the graph).
+    std::vector<geom::Vec3> positions = leafEntryPositions(cloud, s.graph, s.levels, options);
+    s.graph.positions.swap(positions);
+    s.rawNodes = levelSetNodes(s.graph, s.levels, options);
+    s.graph.positions.swap(positions);
   } else {
     s.rawNodes = levelSetNodes(s.graph, s.levels, options);
   }
