@@ -212,3 +212,55 @@ TEST(Skeleton, LeafEntryPositionsPutLeafNodesAtTheLeafBase) {
   EXPECT_EQ(entry.graph.positions, plain.graph.positions);
   EXPECT_EQ(entry.levels.level, plain.levels.level);
 }
+
+TEST(Skeleton, LeafPlaneConvergencePullsLeafNodesTowardsAnUnseenTwig) {
+  // A stem whose last part, a twig, is not in the scan (hidden by its leaves, as on the ez-tree
+  // crowns); five square blades hang from the twig, each tilted 40 degrees out from it in a plane
+  // that holds the twig's line (one quad of a crossed leaf), all on one side. The level sets cut
+  // the blades, so entry positions alone leave the nodes out on the blades; the blades' planes
+  // meet on the twig, which is where plane convergence pulls them.
+  const std::vector<test::Cyl> stem = {{Vec3(0, 0, 0), Vec3(0, 2, 0), 0.03, -1}};
+  auto cloud = test::sampleCylinders(stem, 0.02, 0.001, 3);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> jitter(-0.003, 0.003);
+  const double kPi = 3.14159265358979323846, tilt = 40 * kPi / 180, width = 0.6;
+  for (int leaf = 0; leaf < 5; ++leaf) {
+    const double azimuth = (-60 + 30 * leaf) * kPi / 180;
+    const Vec3 radial(std::cos(azimuth), 0, std::sin(azimuth));
+    const Vec3 base(0, 2.0 + 0.2 * leaf, 0);
+    const Vec3 spine = std::cos(tilt) * Vec3::UnitY() + std::sin(tilt) * radial;
+    const Vec3 across = -std::sin(tilt) * Vec3::UnitY() + std::cos(tilt) * radial;
+    for (int i = 0; i <= 30; ++i)
+      for (int j = 0; j <= 30; ++j) {
+        const Vec3 p = base + (width * i / 30) * spine + (width * (j / 30.0 - 0.5)) * across;
+        cloud.positions.push_back(p + Vec3(jitter(rng), jitter(rng), jitter(rng)));
+      }
+  }
+  auto meanOffAxis = [&](const skeleton::Skeleton& s) {
+    double sum = 0;
+    int count = 0;
+    for (const auto& n : s.rawNodes)
+      if (n.position.y() > 2.1) {
+        sum += std::hypot(n.position.x(), n.position.z());
+        ++count;
+      }
+    EXPECT_GT(count, 5);
+    return sum / std::max(count, 1);
+  };
+  auto o = skeleton::leafOnSkeletonOptions();
+  o.graph.voxelSize = 0.03;
+  ASSERT_GT(o.leafConvergenceWeight, 0);
+  const auto converged = skeleton::extractSkeleton(cloud, o);
+  o.leafConvergenceWeight = 0;
+  const auto entryOnly = skeleton::extractSkeleton(cloud, o);
+  EXPECT_LT(meanOffAxis(converged), 0.75 * meanOffAxis(entryOnly)) << meanOffAxis(converged) << " vs " << meanOffAxis(entryOnly);
+  // The graph and the level sets are the same; only the centroids moved.
+  EXPECT_EQ(converged.graph.positions, entryOnly.graph.positions);
+  EXPECT_EQ(converged.levels.level, entryOnly.levels.level);
+  // Out-of-range settings are refused.
+  o.leafConvergenceWeight = 1.5;
+  EXPECT_THROW(skeleton::extractSkeleton(cloud, o), OptionsError);
+  o.leafConvergenceWeight = 0.5;
+  o.leafConvergenceRadiusVoxels = 0;
+  EXPECT_THROW(skeleton::extractSkeleton(cloud, o), OptionsError);
+}

@@ -14,8 +14,9 @@
 // are 5-11 % wood) the default cross-section rule (minTubularFraction) keeps leaves out but drops
 // most limbs with them (forward RMS ~8-10 % of the diagonal); leafOnSkeletonOptions() follows the
 // crown out to the twigs (forward 0.4-1.2 %) but its level sets then run through the leaf
-// clusters, whose centroids lie about half a leaf off the twigs; taking leaf points at their
-// leaf's base (leafEntryPositions) brings the backward error from ~2 % to 1.7-1.9 %.
+// clusters, whose centroids lie about half a leaf off the twigs; taking leaf points near their
+// leaf's base (leafEntryPositions, leafConvergenceWeight) brings the backward error from ~2 % to
+// 1.4-1.6 %.
 #pragma once
 
 #include <cstdint>
@@ -99,6 +100,22 @@ struct SkeletonOptions {
   double leafPlaneMinInliers = 0.3;
   double leafPlaneMinSpread = 0.1;
   double leafPlaneMaxAngleDeg = 45.0;
+  /// Plane convergence (part of the leaf-entry rule; 0 = entry positions alone). The leaves of a
+  /// twig radiate from it: every leaf plane passes through its base on the twig, and one quad of
+  /// each crossed (double-billboard) leaf holds the twig's whole line, so leaf planes meet near
+  /// the twig. Each flat voxel's position is moved from its entry position by this fraction of
+  /// the way to the least-squares point nearest to the planes of the flat voxels within
+  /// leafConvergenceRadiusVoxels of that entry position (directions the planes leave free — along
+  /// a twig, or within a lone blade — are not moved along; the move is at most that radius).
+  /// Measured with `treesketch evaluate` on the ez-tree trees scanned with leaves (mean over the
+  /// four trees × sphere/TLS, backward / forward RMS % of the diagonal): entry positions alone
+  /// 1.79 / 0.81, with weight 0.5 and radius 14 voxels 1.52 / 0.88. Also measured (same trees):
+  /// radius 20 1.52 / 0.88 (no gain for a larger query); weight 0.75 / 1.0 1.47 / 1.38 and
+  /// 1.43 / 1.27 — the pine's thick, locally flat trunk then collapses to thin radii (its forward
+  /// RMS 0.3 -> 1.5-3.0 %), so 0.5; planes around the voxel's own position instead of its entry
+  /// position 1.60 / 0.90; radii from the voxels' own positions 1.68 / 0.77.
+  double leafConvergenceWeight = 0.5;
+  double leafConvergenceRadiusVoxels = 14.0;
 };
 
 /// Settings for scans of trees in leaf: finer voxels (1.5 point spacings instead of 2.5), level
@@ -111,7 +128,8 @@ struct SkeletonOptions {
 /// `treesketch evaluate`): sphere 1.65 / 8.27 -> 1.95 / 0.48, TLS 1.89 / 9.83 -> 2.11 / 1.25: far
 /// more of the tree is found, at the price of tubes through leaf clusters that sit one or two
 /// leaf sizes off their twigs (the backward error); with leaf-entry positions as well, sphere
-/// 1.68 / 0.43 and TLS 1.90 / 1.20. Why not the default: on densely sampled
+/// 1.68 / 0.43 and TLS 1.90 / 1.20, and with their plane convergence (leafConvergenceWeight 0.5)
+/// sphere 1.42 / 0.50, TLS 1.63 / 1.26. Why not the default: on densely sampled
 /// surfaces with random (not scan-line) spacing, 1.5 spacings leave holes in the voxel graph
 /// that split rings into arcs (spurious forks on the synthetic test cylinders).
 SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base = {});
@@ -164,8 +182,11 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
 /// The stages after the graph, for callers that already have one (tests, the viewer re-running
 /// with other options): Dijkstra from the root region, then level-set nodes.
 GeodesicLevels computeGeodesicLevels(const VoxelGraph& graph, const SkeletonOptions& options);
+/// `centroids` (optional, one per voxel): the positions the pieces' centroids, radii and ring
+/// shapes are taken over instead of the voxels' own (the leaf-entry positions).
 std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& graph, GeodesicLevels& levels,
-                                        const SkeletonOptions& options);
+                                        const SkeletonOptions& options,
+                                        const std::vector<geom::Vec3>* centroids = nullptr);
 /// Pruning (spurs, foliage) and simplification of raw nodes. The result's index 0 is the root
 /// and parents come before children.
 std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw, double voxelSize, double binWidth,
