@@ -16,7 +16,7 @@
 // crown out to the twigs (forward 0.4-1.2 %) but its level sets then run through the leaf
 // clusters, whose centroids lie about half a leaf off the twigs; taking leaf points near their
 // leaf's base (leafEntryPositions, leafConvergenceWeight) brings the backward error from ~2 % to
-// 1.4-1.6 %.
+// 1.3-1.5 %.
 #pragma once
 
 #include <cstdint>
@@ -109,12 +109,12 @@ struct SkeletonOptions {
   /// a twig, or within a lone blade — are not moved along; the move is at most that radius).
   /// Measured with `treesketch evaluate` on the ez-tree trees scanned with leaves (mean over the
   /// four trees × sphere/TLS, backward / forward RMS % of the diagonal): entry positions alone
-  /// 1.79 / 0.81, with weight 0.5 and radius 14 voxels 1.52 / 0.88. Also measured (same trees):
-  /// radius 20 1.52 / 0.88 (no gain for a larger query); weight 0.75 / 1.0 1.47 / 1.38 and
-  /// 1.43 / 1.27 — the pine's thick, locally flat trunk then collapses to thin radii (its forward
-  /// RMS 0.3 -> 1.5-3.0 %), so 0.5; planes around the voxel's own position instead of its entry
-  /// position 1.60 / 0.90; radii from the voxels' own positions 1.68 / 0.77.
-  double leafConvergenceWeight = 0.5;
+  /// 1.79 / 0.81; weight 0.5 1.52 / 0.80, weight 1 1.42 / 0.82. Also measured (same trees, weight
+  /// 1): radius 10 / 20 voxels 1.47 / 0.79, 1.45 / 0.88; planes around the voxel's own position
+  /// instead of its entry position (weight 0.5) 1.60 / 0.90. Weight 1 needs levelSetNodes' tubular
+  /// test on the voxels' own positions: on the moved positions the pine's needle-covered lower
+  /// limbs read as foliage and were pruned (1.43 / 1.27).
+  double leafConvergenceWeight = 1.0;
   double leafConvergenceRadiusVoxels = 14.0;
 };
 
@@ -128,8 +128,8 @@ struct SkeletonOptions {
 /// `treesketch evaluate`): sphere 1.65 / 8.27 -> 1.95 / 0.48, TLS 1.89 / 9.83 -> 2.11 / 1.25: far
 /// more of the tree is found, at the price of tubes through leaf clusters that sit one or two
 /// leaf sizes off their twigs (the backward error); with leaf-entry positions as well, sphere
-/// 1.68 / 0.43 and TLS 1.90 / 1.20, and with their plane convergence (leafConvergenceWeight 0.5)
-/// sphere 1.42 / 0.50, TLS 1.63 / 1.26. Why not the default: on densely sampled
+/// 1.68 / 0.43 and TLS 1.90 / 1.20, and with their plane convergence (leafConvergenceWeight)
+/// sphere 1.33 / 0.46, TLS 1.52 / 1.18. Why not the default: on densely sampled
 /// surfaces with random (not scan-line) spacing, 1.5 spacings leave holes in the voxel graph
 /// that split rings into arcs (spurious forks on the synthetic test cylinders).
 SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base = {});
@@ -145,7 +145,7 @@ struct SkeletonNode {
   std::int32_t level = 0;     ///< level-set index
   std::int32_t support = 0;   ///< input points in the piece(s) the node stands for
   float linearity = 0;        ///< support-weighted mean linearity of the piece's voxels
-  float ringVariation = 0;    ///< std / mean of the voxels' distances to the axis (ring ~ low)
+  float ringVariation = 0;    ///< std / mean of the voxels' (own) distances to the axis (ring ~ low)
   bool tubular = true;        ///< thin or ring-like (see SkeletonOptions::maxRingVariation)
   std::int32_t branchOrder = 0;  ///< 0 = trunk; +1 at every fork for the side (non-main) child
   std::int32_t raw = -1;      ///< simplified nodes: the raw node it came from
@@ -182,8 +182,9 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
 /// The stages after the graph, for callers that already have one (tests, the viewer re-running
 /// with other options): Dijkstra from the root region, then level-set nodes.
 GeodesicLevels computeGeodesicLevels(const VoxelGraph& graph, const SkeletonOptions& options);
-/// `centroids` (optional, one per voxel): the positions the pieces' centroids, radii and ring
-/// shapes are taken over instead of the voxels' own (the leaf-entry positions).
+/// `centroids` (optional, one per voxel): the positions the pieces' centroids and radii are taken
+/// over instead of the voxels' own (the leaf-entry positions); ring variation and the tubular
+/// test stay on the voxels' own positions (the scanned shape).
 std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& graph, GeodesicLevels& levels,
                                         const SkeletonOptions& options,
                                         const std::vector<geom::Vec3>* centroids = nullptr);
