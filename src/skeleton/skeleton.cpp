@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 #include <queue>
+#include <unordered_set>
 
 #include <tbb/parallel_for.h>
 
@@ -48,7 +49,8 @@ void checkOptions(const SkeletonOptions& o) {
     throw OptionsError("skeleton: leafPlaneMaxAngleDeg must be in [0, 90]");
   if (!(o.leafConvergenceWeight >= 0 && o.leafConvergenceWeight <= 1))
     throw OptionsError("skeleton: leafConvergenceWeight must be in [0, 1]");
-  positive(o.leafConvergenceRadiusVoxels, "leafConvergenceRadiusVoxels");
+  nonNegative(o.leafConvergenceRadiusVoxels, "leafConvergenceRadiusVoxels");
+  positive(o.leafConvergenceAutoScale, "leafConvergenceAutoScale");
 }
 
 // Per voxel: does a plane through its centroid hold most of the points around it, spread in 2D (a
@@ -126,16 +128,27 @@ std::vector<geom::Vec3> planeConvergenceMoves(const VoxelGraph& graph, const std
                                               const std::vector<geom::Vec3>& normal,
                                               const std::vector<std::size_t>& origins, double radiusVoxels) {
   std::vector<geom::Vec3> moves(origins.size(), geom::Vec3::Zero());
+  // The planes: one flat voxel per cell of radius / 8 (all of them while that is under two
+  // voxels), so a query meets a bounded number of planes whatever the radius in voxels (a dense
+  // scan's leaves span many voxels).
+  const double radius = radiusVoxels * graph.voxelSize;
+  const double cell = radius / 8 >= 2 * graph.voxelSize ? radius / 8 : 0.0;
+  std::unordered_set<std::uint64_t> taken;
   geom::PointCloud flatCloud;
   std::vector<std::uint32_t> flatId;
-  for (std::size_t k = 0; k < graph.size(); ++k)
-    if (flat[k]) {
-      flatCloud.positions.push_back(graph.positions[k]);
-      flatId.push_back(static_cast<std::uint32_t>(k));
+  for (std::size_t k = 0; k < graph.size(); ++k) {
+    if (!flat[k]) continue;
+    if (cell > 0) {
+      const Vec3 c = ((graph.positions[k] - graph.origin) / cell).array().floor();
+      const auto key = (static_cast<std::uint64_t>(c.x() + 1048576) << 42) ^ (static_cast<std::uint64_t>(c.y() + 1048576) << 21) ^
+                       static_cast<std::uint64_t>(c.z() + 1048576);
+      if (!taken.insert(key).second) continue;
     }
+    flatCloud.positions.push_back(graph.positions[k]);
+    flatId.push_back(static_cast<std::uint32_t>(k));
+  }
   if (flatId.empty()) return moves;
   const fit::CloudIndex index(flatCloud);
-  const double radius = radiusVoxels * graph.voxelSize;
   constexpr std::size_t kPlanes = 256;
   tbb::parallel_for(std::size_t{0}, origins.size(), [&](std::size_t o) {
     const Vec3 p = graph.positions[origins[o]];
@@ -168,6 +181,21 @@ std::vector<geom::Vec3> planeConvergenceMoves(const VoxelGraph& graph, const std
     moves[o] = move;
   });
   return moves;
+}
+
+// The automatic plane-convergence radius, in voxels: leafConvergenceAutoScale × the 90th percentile
+// of the flat voxels' distances to their entry positions (the long end of a leaf: its length),
+// clamped to [6, 30] voxels. A fixed radius suits one leaf size only: on the test trees the best
+// fixed radius was 20 voxels for the bush's large leaves, 10 for the pine's needles.
+double automaticConvergenceRadius(const VoxelGraph& graph, const std::vector<char>& flat,
+                                  const std::vector<std::size_t>& entry, const SkeletonOptions& o) {
+  std::vector<double> reach;
+  for (std::size_t k = 0; k < graph.size(); ++k)
+    if (flat[k] && entry[k] != k) reach.push_back((graph.positions[entry[k]] - graph.positions[k]).norm());
+  if (reach.empty()) return 6.0;
+  const auto p90 = reach.begin() + static_cast<std::ptrdiff_t>((reach.size() * 9) / 10);
+  std::nth_element(reach.begin(), p90, reach.end());
+  return std::clamp(o.leafConvergenceAutoScale * *p90 / graph.voxelSize, 6.0, 20.0);
 }
 
 // Voxel positions for the level-set centroids: a flat voxel takes the position of the first voxel of
@@ -206,8 +234,10 @@ std::vector<geom::Vec3> leafEntryPositions(const geom::PointCloud& cloud, const 
         slot[entry[k]] = static_cast<std::int64_t>(origins.size());
         origins.push_back(entry[k]);
       }
+    const double radiusVoxels =
+        o.leafConvergenceRadiusVoxels > 0 ? o.leafConvergenceRadiusVoxels : automaticConvergenceRadius(graph, flat, entry, o);
     const std::vector<geom::Vec3> moves =
-        planeConvergenceMoves(graph, flat, normal, origins, o.leafConvergenceRadiusVoxels);
+        planeConvergenceMoves(graph, flat, normal, origins, radiusVoxels);
     for (std::size_t k = 0; k < nv; ++k)
       if (flat[k]) positions[k] += o.leafConvergenceWeight * moves[slot[entry[k]]];
   }

@@ -261,6 +261,45 @@ TEST(Skeleton, LeafPlaneConvergencePullsLeafNodesTowardsAnUnseenTwig) {
   o.leafConvergenceWeight = 1.5;
   EXPECT_THROW(skeleton::extractSkeleton(cloud, o), OptionsError);
   o.leafConvergenceWeight = 0.5;
-  o.leafConvergenceRadiusVoxels = 0;
+  o.leafConvergenceRadiusVoxels = -1;
   EXPECT_THROW(skeleton::extractSkeleton(cloud, o), OptionsError);
+  o.leafConvergenceRadiusVoxels = 0;  // automatic
+  o.leafConvergenceAutoScale = 0;
+  EXPECT_THROW(skeleton::extractSkeleton(cloud, o), OptionsError);
+}
+
+TEST(Skeleton, LevelSetCentroidPositionsMoveCentroidsAndRadiiButNotTheShapeTest) {
+  // Centroid positions pulled towards the stem's axis, alternately to 0.2 and 0.8 of the way out:
+  // the pieces' radii halve, but the ring test stays on the scanned shape — over the pulled
+  // positions (distances to the axis varying by ±60 %) every piece would read as foliage.
+  const std::vector<test::Cyl> stem = {{Vec3(0, 0, 0), Vec3(0, 2, 0), 0.1, -1}};
+  const auto cloud = test::sampleCylinders(stem, 0.02, 0.001, 4);
+  skeleton::SkeletonOptions o;
+  o.graph.voxelSize = 0.04;
+  const auto graph = skeleton::buildVoxelGraph(cloud, o.graph);
+  auto levels = skeleton::computeGeodesicLevels(graph, o);
+  const auto own = skeleton::levelSetNodes(graph, levels, o);
+  std::vector<Vec3> pulled(graph.size());
+  for (std::size_t k = 0; k < graph.size(); ++k) {
+    const Vec3& p = graph.positions[k];
+    const double f = k % 2 ? 0.8 : 0.2;
+    pulled[k] = Vec3(f * p.x(), p.y(), f * p.z());
+  }
+  const auto moved = skeleton::levelSetNodes(graph, levels, o, &pulled);
+  ASSERT_EQ(own.size(), moved.size());
+  ASSERT_GT(own.size(), 10u);
+  int compared = 0;
+  for (std::size_t i = 0; i < own.size(); ++i) {
+    if (own[i].position.y() < 0.3 || own[i].position.y() > 1.7) continue;  // away from the ends
+    ++compared;
+    EXPECT_NEAR(moved[i].radius, 0.5 * own[i].radius, 0.15 * own[i].radius) << i;
+    EXPECT_LT(std::hypot(moved[i].position.x(), moved[i].position.z()), 0.3 * own[i].radius) << i;
+    EXPECT_NEAR(moved[i].ringVariation, own[i].ringVariation, 0.05) << i;
+    EXPECT_TRUE(own[i].tubular) << i;
+    EXPECT_TRUE(moved[i].tubular) << i;
+  }
+  EXPECT_GT(compared, 5);
+  // One centroid position per voxel or an error.
+  pulled.pop_back();
+  EXPECT_THROW(skeleton::levelSetNodes(graph, levels, o, &pulled), OptionsError);
 }

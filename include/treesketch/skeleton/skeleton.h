@@ -16,7 +16,7 @@
 // crown out to the twigs (forward 0.4-1.2 %) but its level sets then run through the leaf
 // clusters, whose centroids lie about half a leaf off the twigs; taking leaf points near their
 // leaf's base (leafEntryPositions, leafConvergenceWeight) brings the backward error from ~2 % to
-// 1.3-1.5 %.
+// 1.3-1.5 % (mean 1.37 %).
 #pragma once
 
 #include <cstdint>
@@ -109,13 +109,23 @@ struct SkeletonOptions {
   /// a twig, or within a lone blade — are not moved along; the move is at most that radius).
   /// Measured with `treesketch evaluate` on the ez-tree trees scanned with leaves (mean over the
   /// four trees × sphere/TLS, backward / forward RMS % of the diagonal): entry positions alone
-  /// 1.79 / 0.81; weight 0.5 1.52 / 0.80, weight 1 1.42 / 0.82. Also measured (same trees, weight
-  /// 1): radius 10 / 20 voxels 1.47 / 0.79, 1.45 / 0.88; planes around the voxel's own position
+  /// 1.79 / 0.81; radius 14 voxels, weight 0.5 1.52 / 0.80, weight 1 1.42 / 0.82; the automatic
+  /// radius (below), weight 1: 1.37 / 0.81. Also measured (same trees, weight 1): fixed radius
+  /// 10 / 20 voxels 1.47 / 0.79, 1.45 / 0.88; planes around the voxel's own position
   /// instead of its entry position (weight 0.5) 1.60 / 0.90. Weight 1 needs levelSetNodes' tubular
   /// test on the voxels' own positions: on the moved positions the pine's needle-covered lower
   /// limbs read as foliage and were pruned (1.43 / 1.27).
   double leafConvergenceWeight = 1.0;
-  double leafConvergenceRadiusVoxels = 14.0;
+  /// 0 = automatic: leafConvergenceAutoScale × the 90th percentile of the flat voxels' distances to
+  /// their entry positions (about a leaf's length), clamped to [6, 20] voxels — on the test trees
+  /// 17-19 voxels for the bush's large leaves, 7-8 for the pine's needles. Measured (weight 1):
+  /// fixed 14 voxels 1.42 / 0.82, automatic with scale 1.1 1.37 / 0.81, scale 1.4 1.35 / 0.87.
+  /// Why 20 at most: the dense 1 M-point benchmark scan asks for 80 (its leaves span many fine
+  /// voxels); at 30 its fits took 0.75 s instead of 0.49 s (more, larger nodes) and the whole run
+  /// 1.86-1.92 s of the 2 s budget, at 20 1.71-1.79 s. Beyond 16 voxels the planes are thinned to
+  /// one per radius/8 cell, which holds the query cost.
+  double leafConvergenceRadiusVoxels = 0.0;
+  double leafConvergenceAutoScale = 1.1;
 };
 
 /// Settings for scans of trees in leaf: finer voxels (1.5 point spacings instead of 2.5), level
@@ -129,7 +139,7 @@ struct SkeletonOptions {
 /// more of the tree is found, at the price of tubes through leaf clusters that sit one or two
 /// leaf sizes off their twigs (the backward error); with leaf-entry positions as well, sphere
 /// 1.68 / 0.43 and TLS 1.90 / 1.20, and with their plane convergence (leafConvergenceWeight)
-/// sphere 1.33 / 0.46, TLS 1.52 / 1.18. Why not the default: on densely sampled
+/// sphere 1.27 / 0.47, TLS 1.47 / 1.15. Why not the default: on densely sampled
 /// surfaces with random (not scan-line) spacing, 1.5 spacings leave holes in the voxel graph
 /// that split rings into arcs (spurious forks on the synthetic test cylinders).
 SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base = {});
