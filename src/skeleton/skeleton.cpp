@@ -120,10 +120,14 @@ void flatVoxels(const geom::PointCloud& cloud, const VoxelGraph& graph, const Sk
 
 // For each voxel in `origins`: the move from its position to the point nearest (least squares) to
 // the planes of the flat voxels within `radiusVoxels` of it. Directions the planes leave free
-// (eigenvalues of their normal matrix below 5 % of the plane count: along a twig that a pencil of
-// leaf planes shares, or within a lone blade) are not moved along, and the move is clamped to the
+// (eigenvalues of their normal matrix below kFreeDirection × the plane count: along a twig that a
+// pencil of leaf planes shares, or within a lone blade) are not moved along, and the move is clamped to the
 // radius. At most kPlanes planes are summed per origin (evenly strided: the sum is an average, and
 // a dense crown holds thousands of voxels within the radius).
+// Measured on the leaf-on test trees (weight 1, automatic radius; backward / forward RMS %):
+// 0.1 1.43 / 0.81, 0.05 1.37 / 0.81, 0.02 1.35 / 0.82, 0.01 1.34 / 0.82.
+constexpr double kFreeDirection = 0.02;
+
 std::vector<geom::Vec3> planeConvergenceMoves(const VoxelGraph& graph, const std::vector<char>& flat,
                                               const std::vector<geom::Vec3>& normal,
                                               const std::vector<std::size_t>& origins, double radiusVoxels) {
@@ -174,7 +178,7 @@ std::vector<geom::Vec3> planeConvergenceMoves(const VoxelGraph& graph, const std
     Vec3 move = Vec3::Zero();
     for (int e = 0; e < 3; ++e) {
       const double lambda = eig.eigenvalues()[e];
-      if (lambda > 0.05 * planes) move += eig.eigenvectors().col(e) * (eig.eigenvectors().col(e).dot(b) / lambda);
+      if (lambda > kFreeDirection * planes) move += eig.eigenvectors().col(e) * (eig.eigenvectors().col(e).dot(b) / lambda);
     }
     const double length = move.norm();
     if (length > radius) move *= radius / length;

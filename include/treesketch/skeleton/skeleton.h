@@ -16,7 +16,7 @@
 // crown out to the twigs (forward 0.4-1.2 %) but its level sets then run through the leaf
 // clusters, whose centroids lie about half a leaf off the twigs; taking leaf points near their
 // leaf's base (leafEntryPositions, leafConvergenceWeight) brings the backward error from ~2 % to
-// 1.3-1.5 % (mean 1.37 %).
+// 1.3-1.4 % (mean 1.35 %).
 #pragma once
 
 #include <cstdint>
@@ -110,7 +110,8 @@ struct SkeletonOptions {
   /// Measured with `treesketch evaluate` on the ez-tree trees scanned with leaves (mean over the
   /// four trees × sphere/TLS, backward / forward RMS % of the diagonal): entry positions alone
   /// 1.79 / 0.81; radius 14 voxels, weight 0.5 1.52 / 0.80, weight 1 1.42 / 0.82; the automatic
-  /// radius (below), weight 1: 1.37 / 0.81. Also measured (same trees, weight 1): fixed radius
+  /// radius (below), weight 1: 1.37 / 0.81, and 1.35 / 0.82 with the free-direction threshold at
+  /// 2 % instead of 5 % of the plane count (skeleton.cpp, kFreeDirection). Also measured (same trees, weight 1): fixed radius
   /// 10 / 20 voxels 1.47 / 0.79, 1.45 / 0.88; planes around the voxel's own position
   /// instead of its entry position (weight 0.5) 1.60 / 0.90. Weight 1 needs levelSetNodes' tubular
   /// test on the voxels' own positions: on the moved positions the pine's needle-covered lower
@@ -139,7 +140,7 @@ struct SkeletonOptions {
 /// more of the tree is found, at the price of tubes through leaf clusters that sit one or two
 /// leaf sizes off their twigs (the backward error); with leaf-entry positions as well, sphere
 /// 1.68 / 0.43 and TLS 1.90 / 1.20, and with their plane convergence (leafConvergenceWeight)
-/// sphere 1.27 / 0.47, TLS 1.47 / 1.15. Why not the default: on densely sampled
+/// sphere 1.26 / 0.47, TLS 1.44 / 1.16. Why not the default: on densely sampled
 /// surfaces with random (not scan-line) spacing, 1.5 spacings leave holes in the voxel graph
 /// that split rings into arcs (spurious forks on the synthetic test cylinders).
 SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base = {});
