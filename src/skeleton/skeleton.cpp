@@ -8,10 +8,10 @@
 #include <limits>
 #include <numeric>
 #include <queue>
-#include <unordered_set>
 
 #include <tbb/parallel_for.h>
 
+#include "skeleton/voxel_hash.h"
 #include "treesketch/fit/cloud_index.h"
 #include "treesketch/util/error.h"
 
@@ -53,6 +53,16 @@ void checkOptions(const SkeletonOptions& o) {
   positive(o.leafConvergenceAutoScale, "leafConvergenceAutoScale");
 }
 
+// The open ball of `radius` around `p` as a slice query (the slab only has to be finite).
+fit::SliceRegion ballAround(const Vec3& p, double radius) {
+  fit::SliceRegion ball;
+  ball.kind = fit::SliceRegion::Kind::Ball;
+  ball.planePoint = ball.linePoint = p;
+  ball.halfThickness = 2.0 * radius;
+  ball.radius = radius;
+  return ball;
+}
+
 // Per voxel: does a plane through its centroid hold most of the points around it, spread in 2D (a
 // leaf), and that plane's unit normal. RANSAC with a fixed per-voxel seed, so the result does not
 // depend on the thread schedule.
@@ -66,13 +76,8 @@ void flatVoxels(const geom::PointCloud& cloud, const VoxelGraph& graph, const Sk
   const double band = 0.15 * graph.voxelSize;  // the scans' range noise is well below this
   tbb::parallel_for(std::size_t{0}, nv, [&](std::size_t k) {
     const geom::Vec3 p = graph.positions[k];
-    fit::SliceRegion ball;
-    ball.kind = fit::SliceRegion::Kind::Ball;
-    ball.planePoint = ball.linePoint = p;
-    ball.halfThickness = 2.0 * radius;  // the ball decides; the slab must be finite
-    ball.radius = radius;
     thread_local std::vector<geom::Vec3> near;  // per thread: one allocation, not one per voxel
-    index.query(ball, &near);
+    index.query(ballAround(p, radius), &near);
     if (near.size() < 6) return;
     std::uint64_t state = k * 2654435761u + 1;  // xorshift64
     auto next = [&state]() {
@@ -121,9 +126,9 @@ void flatVoxels(const geom::PointCloud& cloud, const VoxelGraph& graph, const Sk
 // For each voxel in `origins`: the move from its position to the point nearest (least squares) to
 // the planes of the flat voxels within `radiusVoxels` of it. Directions the planes leave free
 // (eigenvalues of their normal matrix below kFreeDirection × the plane count: along a twig that a
-// pencil of leaf planes shares, or within a lone blade) are not moved along, and the move is clamped to the
-// radius. At most kPlanes planes are summed per origin (evenly strided: the sum is an average, and
-// a dense crown holds thousands of voxels within the radius).
+// pencil of leaf planes shares, or within a lone blade) are not moved along, and the move is
+// clamped to the radius. At most kPlanes planes are summed per origin (evenly strided: the sum is
+// an average, and a dense crown holds thousands of voxels within the radius).
 // Measured on the leaf-on test trees (weight 1, automatic radius; backward / forward RMS %):
 // 0.1 1.43 / 0.81, 0.05 1.37 / 0.81, 0.02 1.35 / 0.82, 0.01 1.34 / 0.82.
 constexpr double kFreeDirection = 0.02;
@@ -137,17 +142,13 @@ std::vector<geom::Vec3> planeConvergenceMoves(const VoxelGraph& graph, const std
   // scan's leaves span many voxels).
   const double radius = radiusVoxels * graph.voxelSize;
   const double cell = radius / 8 >= 2 * graph.voxelSize ? radius / 8 : 0.0;
-  std::unordered_set<std::uint64_t> taken;
+  detail::VoxelHash taken;
   geom::PointCloud flatCloud;
   std::vector<std::uint32_t> flatId;
   for (std::size_t k = 0; k < graph.size(); ++k) {
     if (!flat[k]) continue;
-    if (cell > 0) {
-      const Vec3 c = ((graph.positions[k] - graph.origin) / cell).array().floor();
-      const auto key = (static_cast<std::uint64_t>(c.x() + 1048576) << 42) ^ (static_cast<std::uint64_t>(c.y() + 1048576) << 21) ^
-                       static_cast<std::uint64_t>(c.z() + 1048576);
-      if (!taken.insert(key).second) continue;
-    }
+    const auto id = static_cast<std::uint32_t>(k);
+    if (cell > 0 && taken.findOrInsert(detail::cellKey(graph.positions[k], graph.origin, cell), id) != id) continue;
     flatCloud.positions.push_back(graph.positions[k]);
     flatId.push_back(static_cast<std::uint32_t>(k));
   }
@@ -156,12 +157,7 @@ std::vector<geom::Vec3> planeConvergenceMoves(const VoxelGraph& graph, const std
   constexpr std::size_t kPlanes = 256;
   tbb::parallel_for(std::size_t{0}, origins.size(), [&](std::size_t o) {
     const Vec3 p = graph.positions[origins[o]];
-    fit::SliceRegion ball;
-    ball.kind = fit::SliceRegion::Kind::Ball;
-    ball.planePoint = ball.linePoint = p;
-    ball.halfThickness = 2.0 * radius;
-    ball.radius = radius;
-    const std::vector<std::uint32_t> near = index.query(ball);
+    const std::vector<std::uint32_t> near = index.query(ballAround(p, radius));
     const std::size_t stride = (near.size() + kPlanes - 1) / kPlanes;
     Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
@@ -189,7 +185,7 @@ std::vector<geom::Vec3> planeConvergenceMoves(const VoxelGraph& graph, const std
 
 // The automatic plane-convergence radius, in voxels: leafConvergenceAutoScale × the 90th percentile
 // of the flat voxels' distances to their entry positions (the long end of a leaf: its length),
-// clamped to [6, 30] voxels. A fixed radius suits one leaf size only: on the test trees the best
+// clamped to [6, 20] voxels. A fixed radius suits one leaf size only: on the test trees the best
 // fixed radius was 20 voxels for the bush's large leaves, 10 for the pine's needles.
 double automaticConvergenceRadius(const VoxelGraph& graph, const std::vector<char>& flat,
                                   const std::vector<std::size_t>& entry, const SkeletonOptions& o) {
@@ -571,16 +567,12 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
       sq[id] += r * r;
     }
   };
-  std::vector<double> atSum, atSq, ownSum, ownSq;
-  axisDistances(at, atSum, atSq);
-  if (centroids) {
-    axisDistances(g.positions, ownSum, ownSq);
-  } else {
-    ownSum = atSum;
-    ownSq = atSq;
-  }
+  std::vector<double> ownSum, ownSq, atSum, atSq;
+  axisDistances(g.positions, ownSum, ownSq);
+  if (centroids) axisDistances(*centroids, atSum, atSq);
+  const std::vector<double>& radiusSum = centroids ? atSum : ownSum;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    nodes[i].radius = std::max(atSum[i] / count[i], 0.25 * g.voxelSize);
+    nodes[i].radius = std::max(radiusSum[i] / count[i], 0.25 * g.voxelSize);
     const double mean = ownSum[i] / count[i];
     const double var = std::max(ownSq[i] / count[i] - mean * mean, 0.0);
     nodes[i].ringVariation = static_cast<float>(mean > 0 ? std::sqrt(var) / mean : 0.0);

@@ -111,9 +111,9 @@ struct SkeletonOptions {
   /// four trees × sphere/TLS, backward / forward RMS % of the diagonal): entry positions alone
   /// 1.79 / 0.81; radius 14 voxels, weight 0.5 1.52 / 0.80, weight 1 1.42 / 0.82; the automatic
   /// radius (below), weight 1: 1.37 / 0.81, and 1.35 / 0.82 with the free-direction threshold at
-  /// 2 % instead of 5 % of the plane count (skeleton.cpp, kFreeDirection). Also measured (same trees, weight 1): fixed radius
-  /// 10 / 20 voxels 1.47 / 0.79, 1.45 / 0.88; planes around the voxel's own position
-  /// instead of its entry position (weight 0.5) 1.60 / 0.90. Weight 1 needs levelSetNodes' tubular
+  /// 2 % instead of 5 % of the plane count (skeleton.cpp, kFreeDirection). Also measured (same
+  /// trees, weight 1): fixed radius 10 / 20 voxels 1.47 / 0.79, 1.45 / 0.88; planes around the
+  /// voxel's own position instead of its entry position (weight 0.5) 1.60 / 0.90. Weight 1 needs levelSetNodes' tubular
   /// test on the voxels' own positions: on the moved positions the pine's needle-covered lower
   /// limbs read as foliage and were pruned (1.43 / 1.27).
   double leafConvergenceWeight = 1.0;
