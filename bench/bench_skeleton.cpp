@@ -110,7 +110,7 @@ const geom::PointCloud& leafyCloud1M() {
     to.leaves = true;
     const gen::GeneratedTree tree = gen::generateTree(to);
     scan::SphereScanOptions so;
-    so.rays = 9400000;  // about 1M hits
+    so.rays = 9400000;    // about 1M hits
     so.jitterDeg = 20.0;  // spread the rays over the whole crown
     return scan::sphereScan(std::vector<geom::TriMesh>{tree.branches.mesh, tree.leaves}, so).cloud;
   }();
@@ -121,24 +121,28 @@ void BM_AutoSkeletonSketchLeafOn1M(benchmark::State& state) {
   const auto& cloud = leafyCloud1M();
   skeleton::AutoSkeletonOptions o;
   o.skeleton = skeleton::leafOnSkeletonOptions();
-  // Arg 0 runs without the leaf planes' convergence (the entry positions alone), for its cost
-  // within the same run.
-  if (state.range(0) == 0) o.skeleton.leafConvergenceWeight = 0;
+  // Arg 0: the leaf-on defaults. Arg 1: every node fitted (leaf pieces too). Arg 2: every node
+  // fitted and the plane test on all points (session 5's path), for same-run ratios.
+  if (state.range(0) >= 1) o.maxFitFlatFraction = 1.0;
+  if (state.range(0) >= 2) o.skeleton.leafPlaneMaxPointsPerVoxel = 0;
   double skel = 0, fit = 0;
-  std::size_t nodes = 0;
+  std::size_t nodes = 0, fitted = 0;
   for (auto _ : state) {
     auto r = skeleton::autoSkeletonSketch(cloud, o);
     skel = r.skeletonMs;
     fit = r.fitMs;
     nodes = r.model.size();
+    fitted = 0;
+    for (const auto& f : r.fits) fitted += f.status == fit::NodeStatus::Fitted;
     benchmark::DoNotOptimize(r);
   }
   state.counters["points"] = static_cast<double>(cloud.size());
   state.counters["nodes"] = static_cast<double>(nodes);
+  state.counters["fitted"] = static_cast<double>(fitted);
   state.counters["skeletonMs"] = skel;
   state.counters["fitMs"] = fit;
 }
-BENCHMARK(BM_AutoSkeletonSketchLeafOn1M)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_AutoSkeletonSketchLeafOn1M)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace
 

@@ -2,14 +2,14 @@
 // data"), with the clustering by distance bins and adjacency of Xu, Gossett & Chen 2007.
 #include "treesketch/skeleton/skeleton.h"
 
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <queue>
-
-#include <tbb/parallel_for.h>
 
 #include "skeleton/voxel_hash.h"
 #include "treesketch/fit/cloud_index.h"
@@ -50,6 +50,7 @@ void checkOptions(const SkeletonOptions& o) {
   if (!(o.leafConvergenceWeight >= 0 && o.leafConvergenceWeight <= 1))
     throw OptionsError("skeleton: leafConvergenceWeight must be in [0, 1]");
   nonNegative(o.leafConvergenceRadiusVoxels, "leafConvergenceRadiusVoxels");
+  if (o.leafPlaneMaxPointsPerVoxel < 0) throw OptionsError("skeleton: leafPlaneMaxPointsPerVoxel must be >= 0");
   positive(o.leafConvergenceAutoScale, "leafConvergenceAutoScale");
 }
 
@@ -71,7 +72,22 @@ void flatVoxels(const geom::PointCloud& cloud, const VoxelGraph& graph, const Sk
   const std::size_t nv = graph.size();
   flat.assign(nv, 0);
   normal.assign(nv, geom::Vec3::UnitZ());
-  const fit::CloudIndex index(cloud);
+  // The test's points: all of them, or an even stride through each voxel's points down to at most
+  // leafPlaneMaxPointsPerVoxel (scan order, every station's points alike), so that the cost of
+  // the ball queries and plane passes stays bounded on dense scans.
+  geom::PointCloud sample;
+  const int cap = o.leafPlaneMaxPointsPerVoxel;
+  const bool thin = cap > 0 && std::any_of(graph.pointCount.begin(), graph.pointCount.end(),
+                                           [cap](std::int32_t c) { return c > cap; });
+  if (thin) {
+    std::vector<std::int32_t> seen(nv, 0);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      const std::uint32_t v = graph.pointVoxel[i];
+      const std::int32_t stride = (graph.pointCount[v] + cap - 1) / cap;
+      if (seen[v]++ % stride == 0) sample.positions.push_back(cloud.positions[i]);
+    }
+  }
+  const fit::CloudIndex index(thin ? sample : cloud);
   const double radius = o.leafPlaneRadiusVoxels * graph.voxelSize;
   const double band = 0.15 * graph.voxelSize;  // the scans' range noise is well below this
   tbb::parallel_for(std::size_t{0}, nv, [&](std::size_t k) {
@@ -174,7 +190,8 @@ std::vector<geom::Vec3> planeConvergenceMoves(const VoxelGraph& graph, const std
     Vec3 move = Vec3::Zero();
     for (int e = 0; e < 3; ++e) {
       const double lambda = eig.eigenvalues()[e];
-      if (lambda > kFreeDirection * planes) move += eig.eigenvectors().col(e) * (eig.eigenvectors().col(e).dot(b) / lambda);
+      if (lambda > kFreeDirection * planes)
+        move += eig.eigenvectors().col(e) * (eig.eigenvectors().col(e).dot(b) / lambda);
     }
     const double length = move.norm();
     if (length > radius) move *= radius / length;
@@ -200,9 +217,10 @@ double automaticConvergenceRadius(const VoxelGraph& graph, const std::vector<cha
 
 // Voxel positions for the level-set centroids: a flat voxel takes the position of the first voxel of
 // its flat patch on its shortest path from the root (where the path entered the leaf: its base).
+// `flat` receives the plane test's verdict per voxel.
 std::vector<geom::Vec3> leafEntryPositions(const geom::PointCloud& cloud, const VoxelGraph& graph,
-                                           const GeodesicLevels& levels, const SkeletonOptions& o) {
-  std::vector<char> flat;
+                                           const GeodesicLevels& levels, const SkeletonOptions& o,
+                                           std::vector<char>& flat) {
   std::vector<geom::Vec3> normal;
   flatVoxels(cloud, graph, o, flat, normal);
   const std::size_t nv = graph.size();
@@ -234,10 +252,9 @@ std::vector<geom::Vec3> leafEntryPositions(const geom::PointCloud& cloud, const 
         slot[entry[k]] = static_cast<std::int64_t>(origins.size());
         origins.push_back(entry[k]);
       }
-    const double radiusVoxels =
-        o.leafConvergenceRadiusVoxels > 0 ? o.leafConvergenceRadiusVoxels : automaticConvergenceRadius(graph, flat, entry, o);
-    const std::vector<geom::Vec3> moves =
-        planeConvergenceMoves(graph, flat, normal, origins, radiusVoxels);
+    const double radiusVoxels = o.leafConvergenceRadiusVoxels > 0 ? o.leafConvergenceRadiusVoxels
+                                                                  : automaticConvergenceRadius(graph, flat, entry, o);
+    const std::vector<geom::Vec3> moves = planeConvergenceMoves(graph, flat, normal, origins, radiusVoxels);
     for (std::size_t k = 0; k < nv; ++k)
       if (flat[k]) positions[k] += o.leafConvergenceWeight * moves[slot[entry[k]]];
   }
@@ -353,7 +370,8 @@ void mergeSplitRings(const VoxelGraph& g, const GeodesicLevels& lv, UnionFind& u
   for (std::size_t v = 0; v < g.size(); ++v) {
     if (lv.level[v] < 0) continue;
     for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k)
-      if (lv.level[g.targets[k]] == lv.level[v] + 1) steps.push_back(Step{lv.level[v], static_cast<std::uint32_t>(v), g.targets[k]});
+      if (lv.level[g.targets[k]] == lv.level[v] + 1)
+        steps.push_back(Step{lv.level[v], static_cast<std::uint32_t>(v), g.targets[k]});
   }
   std::stable_sort(steps.begin(), steps.end(), [](const Step& a, const Step& b) { return a.level < b.level; });
   // steps[levelStart[k] .. levelStart[k+1]) go from level k to k+1.
@@ -445,8 +463,8 @@ GeodesicLevels computeGeodesicLevels(const VoxelGraph& g, const SkeletonOptions&
         }
     }
   }
-  const auto mainLabel = static_cast<std::int32_t>(
-      std::max_element(labelPoints.begin(), labelPoints.end()) - labelPoints.begin());
+  const auto mainLabel =
+      static_cast<std::int32_t>(std::max_element(labelPoints.begin(), labelPoints.end()) - labelPoints.begin());
   double lowest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i)
     if (label[i] == mainLabel) lowest = std::min(lowest, geom::height(g.positions[i], options.up));
@@ -475,7 +493,8 @@ GeodesicLevels computeGeodesicLevels(const VoxelGraph& g, const SkeletonOptions&
     }
   }
   for (std::size_t i = 0; i < n; ++i)
-    if (std::isfinite(lv.distance[i])) lv.level[i] = static_cast<std::int32_t>(std::floor(lv.distance[i] / lv.binWidth));
+    if (std::isfinite(lv.distance[i]))
+      lv.level[i] = static_cast<std::int32_t>(std::floor(lv.distance[i] / lv.binWidth));
   return lv;
 }
 
@@ -503,7 +522,8 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
   std::vector<std::uint32_t> reps;
   for (std::size_t v = 0; v < n; ++v)
     if (lv.level[v] >= 0 && uf.find(static_cast<std::uint32_t>(v)) == v) reps.push_back(static_cast<std::uint32_t>(v));
-  std::stable_sort(reps.begin(), reps.end(), [&](std::uint32_t a, std::uint32_t b) { return lv.level[a] < lv.level[b]; });
+  std::stable_sort(reps.begin(), reps.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return lv.level[a] < lv.level[b]; });
   std::vector<std::int32_t> repNode(n, -1);
   for (std::size_t i = 0; i < reps.size(); ++i) repNode[reps[i]] = static_cast<std::int32_t>(i);
   nodes.resize(reps.size());
@@ -521,7 +541,8 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
     node.level = lv.level[v];
     linSum[id] += g.linearity[v] * g.pointCount[v];
     ++count[id];
-    if (firstVertex[id] < 0 || lv.distance[v] < lv.distance[firstVertex[id]]) firstVertex[id] = static_cast<std::int64_t>(v);
+    if (firstVertex[id] < 0 || lv.distance[v] < lv.distance[firstVertex[id]])
+      firstVertex[id] = static_cast<std::int64_t>(v);
   }
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     auto& node = nodes[i];
@@ -576,7 +597,8 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
     const double mean = ownSum[i] / count[i];
     const double var = std::max(ownSq[i] / count[i] - mean * mean, 0.0);
     nodes[i].ringVariation = static_cast<float>(mean > 0 ? std::sqrt(var) / mean : 0.0);
-    nodes[i].tubular = mean <= options.thinRadiusVoxels * g.voxelSize || nodes[i].ringVariation <= options.maxRingVariation;
+    nodes[i].tubular =
+        mean <= options.thinRadiusVoxels * g.voxelSize || nodes[i].ringVariation <= options.maxRingVariation;
   }
   return nodes;
 }
@@ -706,7 +728,8 @@ std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw,
       maxSeg.clear();
       for (std::int32_t id : chain) {
         pts.push_back(position[id]);
-        tol.push_back(std::max(options.collinearToleranceRadii * radius[id], options.collinearToleranceVoxels * voxelSize));
+        tol.push_back(
+            std::max(options.collinearToleranceRadii * radius[id], options.collinearToleranceVoxels * voxelSize));
         maxSeg.push_back(std::max(options.maxSegmentRadii * radius[id], options.maxSegmentBins * binWidth));
       }
       std::vector<char> keep(chain.size(), 0);
@@ -758,8 +781,18 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
   if (progress) progress(2, 4);
   if (options.leafEntryPositions && s.graph.size() > 0) {
     // Only the level-set nodes see the entry positions; the graph, distances and levels stay.
-    const std::vector<geom::Vec3> positions = leafEntryPositions(cloud, s.graph, s.levels, options);
+    std::vector<char> flat;
+    const std::vector<geom::Vec3> positions = leafEntryPositions(cloud, s.graph, s.levels, options, flat);
     s.rawNodes = levelSetNodes(s.graph, s.levels, options, &positions);
+    std::vector<std::uint32_t> voxels(s.rawNodes.size(), 0), flatCount(s.rawNodes.size(), 0);
+    for (std::size_t v = 0; v < s.graph.size(); ++v) {
+      const std::int32_t id = s.levels.vertexNode[v];
+      if (id < 0) continue;
+      ++voxels[id];
+      flatCount[id] += flat[v] != 0;
+    }
+    for (std::size_t i = 0; i < s.rawNodes.size(); ++i)
+      s.rawNodes[i].flatFraction = voxels[i] ? static_cast<float>(flatCount[i]) / static_cast<float>(voxels[i]) : 0.0f;
   } else {
     s.rawNodes = levelSetNodes(s.graph, s.levels, options);
   }

@@ -155,6 +155,8 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
 AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
                                       const ProgressFn& progress) {
   checkRules(options.radii);
+  if (!(options.maxFitFlatFraction >= 0 && options.maxFitFlatFraction <= 1))
+    throw OptionsError("skeleton: maxFitFlatFraction must be in [0, 1]");
   AutoSkeletonResult res;
   auto t0 = std::chrono::steady_clock::now();
   res.skeleton = extractSkeleton(cloud, options.skeleton);
@@ -172,7 +174,12 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
     fit::NodeFitOptions fo = options.fit;
     fo.circle.seed = options.seed + i;
     const auto id = static_cast<sketch::NodeId>(i);
-    res.fits[i] = fit::fitNode(index, res.sketch.geometry(id), res.sketch.node(id).params, fo);
+    if (nodes[i].flatFraction > options.maxFitFlatFraction) {
+      res.fits[i].status = fit::NodeStatus::Skipped;
+      res.fits[i].reason = "leaf piece (mostly flat voxels): not fitted";
+    } else {
+      res.fits[i] = fit::fitNode(index, res.sketch.geometry(id), res.sketch.node(id).params, fo);
+    }
     const std::uint64_t d = ++done;
     if (progress && (d % 64 == 0 || d == n)) progress(d, n);
   });

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <random>
+#include <string>
 
 #include "synthetic_tree.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/error.h"
 
 using namespace treesketch;
@@ -49,6 +52,20 @@ geom::PointCloud leafClutter(const std::vector<test::Cyl>& cyls, int leavesPerTi
   return leaves;
 }
 
+/// A thin stem (0 to 2 along y) carrying one flat square leaf, 0.8 wide and 0.8 long, by its base
+/// edge at its top, like the ez-tree leaves.
+std::vector<test::Cyl> stemOfTheBlade() { return {{Vec3(0, 0, 0), Vec3(0, 2, 0), 0.03, -1}}; }
+/// `density` divides the sample spacing (0.02).
+geom::PointCloud stemWithBlade(int density = 1) {
+  const double step = 0.02 / density;
+  auto cloud = test::sampleCylinders(stemOfTheBlade(), step, 0.001, 3);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.2 * step, 0.2 * step);
+  for (int i = 0; i <= 40 * density; ++i)
+    for (int j = 0; j < 40 * density; ++j)
+      cloud.positions.push_back(Vec3(-0.4 + step * i + jitter(rng), 2.0 + step * j + jitter(rng), 0.0));
+  return cloud;
+}
 }  // namespace
 
 TEST(Skeleton, EmptyAndTinyClouds) {
@@ -183,16 +200,10 @@ TEST(Skeleton, LeafOnSettingsKeepTheRestOfTheBase) {
 }
 
 TEST(Skeleton, LeafEntryPositionsPutLeafNodesAtTheLeafBase) {
-  // A thin stem carrying one flat square leaf (0.8 wide, 0.8 long) by its base edge, like the
-  // ez-tree leaves. The level sets cross the blade in arcs around its base, so their centroids run
-  // out along the blade's midline; with leaf-entry positions the blade counts at its base.
-  const std::vector<test::Cyl> stem = {{Vec3(0, 0, 0), Vec3(0, 2, 0), 0.03, -1}};
-  auto cloud = test::sampleCylinders(stem, 0.02, 0.001, 3);
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> jitter(-0.004, 0.004);
-  for (int i = 0; i <= 40; ++i)
-    for (int j = 0; j < 40; ++j)
-      cloud.positions.push_back(Vec3(-0.4 + 0.02 * i + jitter(rng), 2.0 + 0.02 * j + jitter(rng), 0.0));
+  // A thin stem carrying one flat square leaf by its base edge. The level sets cross the blade in arcs around its base,
+  // so their centroids run out along the blade's midline; with leaf-entry positions the blade counts at its base.
+  const std::vector<test::Cyl> stem = stemOfTheBlade();
+  const auto cloud = stemWithBlade();
   auto farthest = [&](const skeleton::Skeleton& s) {
     double worst = 0;
     for (const auto& n : s.rawNodes) worst = std::max(worst, test::distanceToSegment(n.position, stem[0].a, stem[0].b));
@@ -253,7 +264,8 @@ TEST(Skeleton, LeafPlaneConvergencePullsLeafNodesTowardsAnUnseenTwig) {
   const auto converged = skeleton::extractSkeleton(cloud, o);
   o.leafConvergenceWeight = 0;
   const auto entryOnly = skeleton::extractSkeleton(cloud, o);
-  EXPECT_LT(meanOffAxis(converged), 0.75 * meanOffAxis(entryOnly)) << meanOffAxis(converged) << " vs " << meanOffAxis(entryOnly);
+  EXPECT_LT(meanOffAxis(converged), 0.75 * meanOffAxis(entryOnly))
+      << meanOffAxis(converged) << " vs " << meanOffAxis(entryOnly);
   // The graph and the level sets are the same; only the centroids moved.
   EXPECT_EQ(converged.graph.positions, entryOnly.graph.positions);
   EXPECT_EQ(converged.levels.level, entryOnly.levels.level);
@@ -302,4 +314,74 @@ TEST(Skeleton, LevelSetCentroidPositionsMoveCentroidsAndRadiiButNotTheShapeTest)
   // One centroid position per voxel or an error.
   pulled.pop_back();
   EXPECT_THROW(skeleton::levelSetNodes(graph, levels, o, &pulled), OptionsError);
+}
+
+TEST(Skeleton, LeafOnNodesKnowHowFlatTheirPieceIs) {
+  // The leaf-plane test's verdict per piece: the blade's nodes are leaf pieces, the stem's are not;
+  // without the test (leaf-off settings) every node reads 0.
+  // Also on a scan three times denser (~20 points per voxel) with the test on all points and thinned
+  // to the default 8 per voxel: the verdicts hold.
+  auto o = skeleton::leafOnSkeletonOptions();
+  o.graph.voxelSize = 0.03;
+  ASSERT_EQ(o.leafPlaneMaxPointsPerVoxel, 8);
+  for (const int perVoxel : {0, 8})
+    for (const int density : {1, 3}) {
+      const auto cloud = stemWithBlade(density);
+      o.leafPlaneMaxPointsPerVoxel = perVoxel;
+      const auto leafOn = skeleton::extractSkeleton(cloud, o);
+      double stemSum = 0, bladeSum = 0;
+      int stemCount = 0, bladeCount = 0;
+      for (const auto& n : leafOn.rawNodes) {
+        EXPECT_GE(n.flatFraction, 0.0f);
+        EXPECT_LE(n.flatFraction, 1.0f);
+        if (n.distance > 0.3 && n.distance < 1.6) {
+          stemSum += n.flatFraction;
+          ++stemCount;
+        } else if (n.distance > 2.2) {
+          bladeSum += n.flatFraction;
+          ++bladeCount;
+        }
+      }
+      ASSERT_GT(stemCount, 5);
+      ASSERT_GT(bladeCount, 5);
+      EXPECT_LT(stemSum / stemCount, 0.3) << perVoxel;
+      EXPECT_GT(bladeSum / bladeCount, 0.7) << perVoxel;
+      std::printf("density %d, points per voxel %d: mean flat fraction stem %.2f, blade %.2f\n", density, perVoxel,
+                  stemSum / stemCount, bladeSum / bladeCount);
+    }
+  const auto cloud = stemWithBlade();
+  o.leafPlaneMaxPointsPerVoxel = -1;
+  EXPECT_THROW(skeleton::extractSkeleton(cloud, o), OptionsError);
+  o.leafPlaneMaxPointsPerVoxel = 8;
+  o.leafEntryPositions = false;
+  for (const auto& n : skeleton::extractSkeleton(cloud, o).rawNodes) EXPECT_EQ(n.flatFraction, 0.0f);
+}
+
+TEST(Skeleton, LeafPiecesAreNotFitted) {
+  // The automatic sketch skips the circle fit of nodes that are mostly leaf (their slice holds
+  // blades, not a branch) and fits the others; 1 fits every node; out of range is refused.
+  const auto cloud = stemWithBlade();
+  skeleton::AutoSkeletonOptions o;
+  o.skeleton = skeleton::leafOnSkeletonOptions();
+  o.skeleton.graph.voxelSize = 0.03;
+  ASSERT_LT(o.maxFitFlatFraction, 1.0);
+  const auto r = skeleton::autoSkeletonSketch(cloud, o);
+  int skipped = 0, tried = 0;
+  for (std::size_t i = 0; i < r.model.size(); ++i) {
+    const bool leaf = r.skeleton.nodes[i].flatFraction > o.maxFitFlatFraction;
+    const bool skippedAsLeaf = r.fits[i].reason.find("leaf") != std::string::npos;
+    EXPECT_EQ(leaf, skippedAsLeaf) << "node " << i;
+    if (leaf) {
+      EXPECT_EQ(r.fits[i].status, fit::NodeStatus::Skipped);
+      EXPECT_FALSE(r.fitAccepted[i]);
+    }
+    skipped += leaf;
+    tried += !leaf;
+  }
+  EXPECT_GT(skipped, 0);
+  EXPECT_GT(tried, 0);
+  o.maxFitFlatFraction = 1.0;
+  for (const auto& f : skeleton::autoSkeletonSketch(cloud, o).fits) EXPECT_EQ(f.reason.find("leaf"), std::string::npos);
+  o.maxFitFlatFraction = 1.5;
+  EXPECT_THROW(skeleton::autoSkeletonSketch(cloud, o), OptionsError);
 }

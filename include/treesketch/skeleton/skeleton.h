@@ -100,6 +100,14 @@ struct SkeletonOptions {
   double leafPlaneMinInliers = 0.3;
   double leafPlaneMinSpread = 0.1;
   double leafPlaneMaxAngleDeg = 45.0;
+  /// The plane test looks at no more than this many points per voxel (an even stride through each
+  /// fuller voxel's points, in scan order; 0 = all): the cost per voxel stays bounded on dense
+  /// scans. The leafy 1 M-point benchmark scan holds ~24 points per voxel; there the leaf-on
+  /// skeleton took 1.1-1.35 s with all of them and 0.77 s with 8. On the leaf-on test trees
+  /// (mean backward / forward RMS %): all 1.334 / 0.836, 16 the same (no voxel holds more),
+  /// 12 1.332 / 0.849, 8 1.313 / 0.849, 6 1.326 / 0.840, 4 1.329 / 0.855 — within the spread that
+  /// any change of the RANSAC samples gives.
+  int leafPlaneMaxPointsPerVoxel = 8;
   /// Plane convergence (part of the leaf-entry rule; 0 = entry positions alone). The leaves of a
   /// twig radiate from it: every leaf plane passes through its base on the twig, and one quad of
   /// each crossed (double-billboard) leaf holds the twig's whole line, so leaf planes meet near
@@ -147,29 +155,32 @@ SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base = {});
 
 /// One skeleton node (raw level-set piece, or a kept node after simplification).
 struct SkeletonNode {
-  std::int32_t parent = -1;           ///< index in the same list; -1 for the root
-  std::vector<std::int32_t> children;  ///< indices, increasing
-  geom::Vec3 position = geom::Vec3::Zero();      ///< centroid of the piece, world
-  geom::Vec3 direction = geom::Vec3::UnitY();    ///< unit local branch direction (away from the root)
-  double radius = 0;          ///< estimated branch radius (mean distance of the piece's voxels to the axis)
-  double distance = 0;        ///< geodesic distance from the root, world units
-  std::int32_t level = 0;     ///< level-set index
-  std::int32_t support = 0;   ///< input points in the piece(s) the node stands for
-  float linearity = 0;        ///< support-weighted mean linearity of the piece's voxels
-  float ringVariation = 0;    ///< std / mean of the voxels' (own) distances to the axis (ring ~ low)
-  bool tubular = true;        ///< thin or ring-like (see SkeletonOptions::maxRingVariation)
+  std::int32_t parent = -1;                    ///< index in the same list; -1 for the root
+  std::vector<std::int32_t> children;          ///< indices, increasing
+  geom::Vec3 position = geom::Vec3::Zero();    ///< centroid of the piece, world
+  geom::Vec3 direction = geom::Vec3::UnitY();  ///< unit local branch direction (away from the root)
+  double radius = 0;         ///< estimated branch radius (mean distance of the piece's voxels to the axis)
+  double distance = 0;       ///< geodesic distance from the root, world units
+  std::int32_t level = 0;    ///< level-set index
+  std::int32_t support = 0;  ///< input points in the piece(s) the node stands for
+  float linearity = 0;       ///< support-weighted mean linearity of the piece's voxels
+  float ringVariation = 0;   ///< std / mean of the voxels' (own) distances to the axis (ring ~ low)
+  bool tubular = true;       ///< thin or ring-like (see SkeletonOptions::maxRingVariation)
+  /// Share of the piece's voxels the leaf-plane test found flat (leaves; see
+  /// SkeletonOptions::leafEntryPositions); 0 when the test did not run (leaf-off settings).
+  float flatFraction = 0;
   std::int32_t branchOrder = 0;  ///< 0 = trunk; +1 at every fork for the side (non-main) child
-  std::int32_t raw = -1;      ///< simplified nodes: the raw node it came from
+  std::int32_t raw = -1;         ///< simplified nodes: the raw node it came from
 };
 
 /// Geodesic distances over the voxel graph.
 struct GeodesicLevels {
-  double binWidth = 0;                       ///< world units
-  std::vector<std::uint32_t> rootVertices;   ///< Dijkstra sources
-  std::vector<double> distance;              ///< per vertex; +inf when unreachable
-  std::vector<std::int64_t> predecessor;     ///< per vertex; -1 for sources and unreachable
-  std::vector<std::int32_t> level;           ///< per vertex; -1 when unreachable
-  std::vector<std::int32_t> vertexNode;      ///< raw node of each vertex; -1 when none
+  double binWidth = 0;                      ///< world units
+  std::vector<std::uint32_t> rootVertices;  ///< Dijkstra sources
+  std::vector<double> distance;             ///< per vertex; +inf when unreachable
+  std::vector<std::int64_t> predecessor;    ///< per vertex; -1 for sources and unreachable
+  std::vector<std::int32_t> level;          ///< per vertex; -1 when unreachable
+  std::vector<std::int32_t> vertexNode;     ///< raw node of each vertex; -1 when none
 };
 
 struct Skeleton {
@@ -196,8 +207,7 @@ GeodesicLevels computeGeodesicLevels(const VoxelGraph& graph, const SkeletonOpti
 /// `centroids` (optional, one per voxel): the positions the pieces' centroids and radii are taken
 /// over instead of the voxels' own (the leaf-entry positions); ring variation and the tubular
 /// test stay on the voxels' own positions (the scanned shape).
-std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& graph, GeodesicLevels& levels,
-                                        const SkeletonOptions& options,
+std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& graph, GeodesicLevels& levels, const SkeletonOptions& options,
                                         const std::vector<geom::Vec3>* centroids = nullptr);
 /// Pruning (spurs, foliage) and simplification of raw nodes. The result's index 0 is the root
 /// and parents come before children.
