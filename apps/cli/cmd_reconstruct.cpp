@@ -99,12 +99,14 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   io::writeMesh(a.output, r.mesh);
   if (!a.sketch.empty()) io::writeSketch(std::filesystem::path(a.sketch), r.sketch);
   if (!a.cylinders.empty()) skeleton::writeCylinderCsv(a.cylinders, r.model);
-  std::size_t accepted = 0;
+  std::size_t accepted = 0, leaf = 0;
   for (char c : r.fitAccepted) accepted += c != 0;
-  std::printf("reconstruct --auto: %zu skeleton nodes (%zu forks), %zu fits accepted; %zu vertices, %zu triangles; "
-              "skeleton %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
-              r.model.size(), skeleton::countBranchPoints(r.model), accepted, r.mesh.vertices.size(),
-              r.mesh.triangles.size(), r.skeletonMs, r.fitMs, r.sweepMs, a.output.c_str());
+  for (const auto& n : r.model) leaf += n.flatFraction > opt.maxFitFlatFraction;
+  std::printf(
+      "reconstruct --auto: %zu skeleton nodes (%zu forks), %zu fits accepted, %zu leaf pieces not fitted; "
+      "%zu vertices, %zu triangles; skeleton %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
+      r.model.size(), skeleton::countBranchPoints(r.model), accepted, leaf, r.mesh.vertices.size(),
+      r.mesh.triangles.size(), r.skeletonMs, r.fitMs, r.sweepMs, a.output.c_str());
 }
 
 void runReconstruct(const ReconstructArgs& a) {
@@ -136,17 +138,19 @@ void runReconstruct(const ReconstructArgs& a) {
   }
   if (!a.report.empty()) {
     std::string text = reportJson(a, r, cloud.size()).dump(2) + "\n";
-    writeFileAtomically(a.report, [&](std::ostream& os) { os << text; }, false);
+    writeFileAtomically(
+        a.report, [&](std::ostream& os) { os << text; }, false);
   }
   if (fitted == 0)
     throw InputError(a.sketch + ": no node could be fitted in " + a.cloud + " (" + std::to_string(skipped) +
                      " skipped, " + std::to_string(disabled) + " disabled); no mesh written" +
                      (a.report.empty() ? "" : ", see " + a.report));
   io::writeMesh(a.output, r.mesh);
-  std::printf("reconstruct: %zu nodes: %zu fitted, %zu skipped, %zu disabled; %zu vertices, %zu triangles; "
-              "index %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
-              r.results.size(), fitted, skipped, disabled, r.mesh.vertices.size(), r.mesh.triangles.size(),
-              r.timings.indexMs, r.timings.fitMs, r.timings.sweepMs, a.output.c_str());
+  std::printf(
+      "reconstruct: %zu nodes: %zu fitted, %zu skipped, %zu disabled; %zu vertices, %zu triangles; "
+      "index %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
+      r.results.size(), fitted, skipped, disabled, r.mesh.vertices.size(), r.mesh.triangles.size(), r.timings.indexMs,
+      r.timings.fitMs, r.timings.sweepMs, a.output.c_str());
 }
 
 }  // namespace

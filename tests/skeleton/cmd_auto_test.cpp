@@ -25,6 +25,8 @@ TEST(CmdAuto, ReconstructAutoWritesMeshSketchAndCylinders) {
                                     q(dir / "s.json") + " --cylinders " + q(dir / "c.csv") + " -o " + q(dir / "m.ply"),
                                 &out);
     ASSERT_EQ(rc, 0) << extra << ": " << out;
+    EXPECT_NE(out.find("fits accepted"), std::string::npos) << out;
+    EXPECT_NE(out.find("leaf pieces not fitted"), std::string::npos) << out;
     EXPECT_FALSE(io::readMesh(dir / "m.ply").empty()) << extra;
     EXPECT_GE(io::readSketch(dir / "s.json").size(), 3u) << extra;
     std::ifstream csv(dir / "c.csv");
@@ -51,8 +53,8 @@ TEST(CmdAuto, SketchAutoSkeletonLeafOn) {
   test::TempDir dir;
   io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
   std::string out;
-  const int rc = test::runCli(
-      "sketch auto " + q(dir / "c.ply") + " --method skeleton --leaf-on -o " + q(dir / "s.json"), &out);
+  const int rc =
+      test::runCli("sketch auto " + q(dir / "c.ply") + " --method skeleton --leaf-on -o " + q(dir / "s.json"), &out);
   ASSERT_EQ(rc, 0) << out;
   EXPECT_GE(io::readSketch(dir / "s.json").size(), 3u);
 }
