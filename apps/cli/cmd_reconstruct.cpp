@@ -101,7 +101,7 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   if (!a.cylinders.empty()) skeleton::writeCylinderCsv(a.cylinders, r.model);
   std::size_t accepted = 0, leaf = 0;
   for (char c : r.fitAccepted) accepted += c != 0;
-  for (const auto& n : r.model) leaf += n.flatFraction > opt.maxFitFlatFraction;
+  for (const auto& n : r.model) leaf += skeleton::isLeafPiece(n, opt);
   std::printf(
       "reconstruct --auto: %zu skeleton nodes (%zu forks), %zu fits accepted, %zu leaf pieces not fitted; "
       "%zu vertices, %zu triangles; skeleton %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",

@@ -174,7 +174,7 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
     fit::NodeFitOptions fo = options.fit;
     fo.circle.seed = options.seed + i;
     const auto id = static_cast<sketch::NodeId>(i);
-    if (nodes[i].flatFraction > options.maxFitFlatFraction) {
+    if (isLeafPiece(nodes[i], options)) {
       res.fits[i].status = fit::NodeStatus::Skipped;
       res.fits[i].reason = "leaf piece (mostly flat voxels): not fitted";
     } else {

@@ -119,6 +119,11 @@ struct AutoSkeletonOptions {
   int ringVertices = 16;
 };
 
+/// Whether autoSkeletonSketch leaves `node` unfitted as a leaf piece (see maxFitFlatFraction).
+inline bool isLeafPiece(const SkeletonNode& node, const AutoSkeletonOptions& options) {
+  return node.flatFraction > options.maxFitFlatFraction;
+}
+
 struct AutoSkeletonResult {
   Skeleton skeleton;
   sketch::Sketch sketch;
