@@ -28,6 +28,7 @@ struct ReconstructArgs {
   std::uint64_t seed = 1;
   bool autoSkeleton = false;        // --auto: sketch from the cloud's skeleton (skeleton module)
   bool leafOn = false;              // --leaf-on (with --auto): settings for trees in leaf
+  bool refit = false;               // --refit: drop the sketch's kept circles, fit every node
   std::string up = "y", cylinders;  // --up, --cylinders (with --auto)
 };
 
@@ -41,6 +42,7 @@ nlohmann::json reportJson(const ReconstructArgs& a, const recon::ReconstructionR
     j["id"] = id;
     j["parent"] = r.parents.at(id);
     j["status"] = fit::toString(n.status);
+    j["kept"] = n.kept;  // the sketch's kept circle, not a fit
     j["reason"] = n.reason;
     j["centre"] = vec(n.centre);
     j["normal"] = vec(n.normal);
@@ -81,6 +83,7 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   checkNotAnInput(a.output, {a.cloud});
   if (!a.sketch.empty()) checkNotAnInput(a.sketch, {a.cloud});
   if (!a.report.empty()) throw OptionsError("--report is not available with --auto");
+  if (a.refit) throw OptionsError("--refit applies to a sketch file (--sketch without --auto)");
   try {
     io::meshFormatFromPath(a.output);
   } catch (const InputError& e) {
@@ -128,11 +131,13 @@ void runReconstruct(const ReconstructArgs& a) {
   geom::PointCloud cloud = io::readPointCloud(a.cloud);
   sketch::Sketch sk = io::readSketch(a.sketch);
   if (sk.empty()) throw InputError(a.sketch + ": the sketch has no nodes, expected at least one");
+  if (a.refit) sk.clearKeptCircles();
 
   recon::ReconstructionResult r = recon::reconstruct(cloud, sk, opt);
-  std::size_t fitted = 0, skipped = 0, disabled = 0;
+  std::size_t fitted = 0, skipped = 0, disabled = 0, kept = 0;
   for (const auto& [id, n] : r.results) {
-    fitted += n.status == fit::NodeStatus::Fitted;
+    fitted += n.status == fit::NodeStatus::Fitted && !n.kept;
+    kept += n.kept;
     skipped += n.status == fit::NodeStatus::Skipped;
     disabled += n.status == fit::NodeStatus::Disabled;
   }
@@ -141,15 +146,16 @@ void runReconstruct(const ReconstructArgs& a) {
     writeFileAtomically(
         a.report, [&](std::ostream& os) { os << text; }, false);
   }
-  if (fitted == 0)
+  if (fitted + kept == 0)
     throw InputError(a.sketch + ": no node could be fitted in " + a.cloud + " (" + std::to_string(skipped) +
                      " skipped, " + std::to_string(disabled) + " disabled); no mesh written" +
                      (a.report.empty() ? "" : ", see " + a.report));
   io::writeMesh(a.output, r.mesh);
   std::printf(
-      "reconstruct: %zu nodes: %zu fitted, %zu skipped, %zu disabled; %zu vertices, %zu triangles; "
-      "index %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
-      r.results.size(), fitted, skipped, disabled, r.mesh.vertices.size(), r.mesh.triangles.size(), r.timings.indexMs,
+      "reconstruct: %zu nodes: %zu fitted, %zu skipped, %zu disabled, %zu kept circles; %zu vertices, %zu "
+      "triangles; index %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
+      r.results.size(), fitted, skipped, disabled, kept, r.mesh.vertices.size(), r.mesh.triangles.size(),
+      r.timings.indexMs,
       r.timings.fitMs, r.timings.sweepMs, a.output.c_str());
 }
 
@@ -168,6 +174,8 @@ void registerReconstruct(CLI::App& app, Action& action) {
   sub->add_option("--cylinders", a->cylinders, "With --auto: also write the cylinder table (.csv)");
   sub->add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
   sub->add_option("--report", a->report, "Write a JSON report of every node's fit");
+  sub->add_flag("--refit", a->refit,
+                "Fit every node from the cloud, ignoring the circles the sketch keeps (an automatic sketch's model)");
   sub->add_option("--ring", a->ring, "Vertices per ring (default 16)")->check(CLI::Range(3, 4096));
   sub->add_option("--inlier-threshold", a->inlierThreshold,
                   "RANSAC inlier threshold on |distance to centre - radius|, cloud units (default 0.01)")

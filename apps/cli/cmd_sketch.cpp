@@ -36,12 +36,15 @@ const std::map<std::string, AutoSketchMethod>& autoSketchMethods() {
   static const std::map<std::string, AutoSketchMethod> methods = {
       {"uniform",
        [](const AutoSketchInput& in) { return sketch::uniformAutoSketch(in.cloud, in.camera, in.nodes, in.up); }},
-      // The branching skeleton found from the cloud (skeleton module); --nodes and --view are not used.
+      // The branching skeleton found from the cloud and fitted (skeleton module), as `reconstruct
+      // --auto` makes it: every node keeps its model circle, so `reconstruct --sketch` of this file
+      // gives the automatic model and the viewer shows it. --nodes and --view are not used.
       {"skeleton",
        [](const AutoSketchInput& in) {
-         skeleton::SkeletonOptions o = in.leafOn ? skeleton::leafOnSkeletonOptions() : skeleton::SkeletonOptions{};
-         o.up = in.up;
-         return skeleton::skeletonToSketch(skeleton::extractSkeleton(in.cloud, o));
+         skeleton::AutoSkeletonOptions o;
+         if (in.leafOn) o.skeleton = skeleton::leafOnSkeletonOptions();
+         o.skeleton.up = in.up;
+         return skeleton::autoSkeletonSketch(in.cloud, o).sketch;
        }},
   };
   return methods;

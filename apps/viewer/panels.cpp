@@ -66,8 +66,13 @@ void selectedNodeSection(viewer::ViewerState& state) {
   if (fit.status == NodeStatus::Fitted) {
     ImGui::Text("circle radius %.4f", fit.circle.radius);
     ImGui::Text("centre (%.3f, %.3f, %.3f)", fit.circle.centre.x(), fit.circle.centre.y(), fit.circle.centre.z());
-    ImGui::Text("inliers %zu of %zu test points", fit.inliers, fit.testPoints);
-    ImGui::Text("lineEpsilon used: %.4f", fit.finalLineEpsilon);
+    if (fit.kept) {
+      ImGui::TextDisabled("kept from the automatic model (not fitted)");
+      if (ImGui::Button("Refit from the cloud")) state.refitSelected();
+    } else {
+      ImGui::Text("inliers %zu of %zu test points", fit.inliers, fit.testPoints);
+      ImGui::Text("lineEpsilon used: %.4f", fit.finalLineEpsilon);
+    }
   } else if (fit.status == NodeStatus::Skipped) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(statusColor, "why: %s", fit.reason.c_str());
@@ -158,6 +163,12 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
     ImGui::Checkbox("in leaf", &panel.autoLeafOn);
     ImGui::SameLine();
     if (ImGui::Button("Clear")) state.clearSketch();
+    if (const std::size_t kept = state.sketch().keptCircleCount(); kept > 0) {
+      ImGui::SameLine();
+      if (ImGui::Button("Refit all")) state.refitAll();
+      ImGui::SameLine();
+      ImGui::TextDisabled("(%zu kept circles)", kept);
+    }
     ImGui::BeginDisabled(!state.canUndo());
     if (ImGui::Button("Undo")) state.undo();
     ImGui::EndDisabled();

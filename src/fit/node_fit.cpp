@@ -66,6 +66,26 @@ std::vector<std::uint32_t> nodeSlice(const CloudIndex& index, const sketch::Node
   return index.query(slabRegion(g, p));
 }
 
+NodeResult keptCircleResult(const sketch::NodeGeometry& g, const sketch::SamplingParams& p,
+                            const sketch::KeptCircle& circle) {
+  NodeResult res;
+  checkInputs(g, p);
+  res.normal = g.planeNormal.normalized();
+  res.lineEpsilon = p.lineEpsilon;
+  if (!p.enabled) {
+    res.status = NodeStatus::Disabled;
+    res.reason = "disabled";
+    return res;
+  }
+  if (!circle.centre.allFinite() || !(circle.radius > 0) || !std::isfinite(circle.radius))
+    throw OptionsError("kept circle: the centre must be finite and the radius > 0");
+  res.status = NodeStatus::Fitted;
+  res.kept = true;
+  res.centre = circle.centre - res.normal * res.normal.dot(circle.centre - g.planePoint);
+  res.radius = circle.radius;
+  return res;
+}
+
 NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const sketch::SamplingParams& p,
                    const NodeFitOptions& options) {
   auto t0 = std::chrono::steady_clock::now();

@@ -185,6 +185,15 @@ sketch::Node nodeFromJson(const json& j, std::size_t index, const sketch::Sampli
   }
   auto it = j.find("params");
   n.params = it == j.end() ? defaults : paramsFromJson(*it, defaults, ctx);
+  if (auto c = j.find("circle"); c != j.end()) {
+    if (hasScreen) ctx.fail("\"circle\": a kept circle needs a point node (this is a screen node)");
+    if (!c->is_object()) ctx.fail("\"circle\": expected an object {\"centre\": [x, y, z], \"radius\": r}, got " + typeName(*c));
+    Ctx cctx{source, ctx.where + ": \"circle\""};
+    std::vector<double> centre = numbers(*c, "centre", 3, cctx);
+    const double radius = number(field(*c, "radius", cctx), "\"radius\"", cctx);
+    if (!(radius > 0)) cctx.fail("\"radius\" must be > 0");
+    n.kept = sketch::KeptCircle{geom::Vec3(centre[0], centre[1], centre[2]), radius};
+  }
   return n;
 }
 
@@ -255,6 +264,12 @@ ojson sketchToJson(const sketch::Sketch& sk) {
       o["normal"] = {n.normal.x(), n.normal.y(), n.normal.z()};
     }
     o["params"] = paramsToJson(n.params);
+    if (n.kept) {
+      ojson c;
+      c["centre"] = {n.kept->centre.x(), n.kept->centre.y(), n.kept->centre.z()};
+      c["radius"] = n.kept->radius;
+      o["circle"] = std::move(c);
+    }
     j["nodes"].push_back(std::move(o));
   }
   return j;

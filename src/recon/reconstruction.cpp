@@ -52,22 +52,28 @@ std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch) {
     const sketch::Node& node = sketch.node(id);
     sketch::NodeGeometry g = sketch.geometry(id);
     auto it = entries_.find(id);
-    if (it != entries_.end() && it->second.geometry == g && it->second.params == node.params) {
+    if (it != entries_.end() && it->second.geometry == g && it->second.params == node.params &&
+        it->second.kept == node.kept) {
       it->second.parent = node.parent;
       continue;
     }
     changed.push_back(id);
-    fresh.push_back(Entry{g, node.params, node.parent, {}});
+    fresh.push_back(Entry{g, node.params, node.kept, node.parent, {}});
   }
   for (auto it = entries_.begin(); it != entries_.end();)
     it = present.count(it->first) ? std::next(it) : entries_.erase(it);
 
-  // 2. Fit the changed nodes (independent: parallel when several).
+  // 2. Fit the changed nodes (independent: parallel when several); kept circles need no fit.
   auto tFit = std::chrono::steady_clock::now();
   auto fitOne = [&](std::size_t i) {
+    Entry& e = fresh[i];
+    if (e.kept) {
+      e.result = fit::keptCircleResult(e.geometry, e.params, *e.kept);
+      return;
+    }
     fit::NodeFitOptions fo = options_.fit;
     fo.circle.seed = options_.seed + std::uint64_t(std::int64_t(changed[i]));
-    fresh[i].result = fit::fitNode(*index_, fresh[i].geometry, fresh[i].params, fo);
+    e.result = fit::fitNode(*index_, e.geometry, e.params, fo);
   };
   if (options_.parallel && changed.size() > 1)
     tbb::parallel_for(std::size_t(0), changed.size(), fitOne);

@@ -259,6 +259,16 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
     const bool fork = res.model[i].parent >= 0 && res.model[i].children.size() >= 2;
     s.fitted = !(options.bridgeUnfittedForks && fork && !res.fitAccepted[i]);
     s.disc = sweep::Disc{res.model[i].position, res.model[i].direction, radii[i]};
+    if (options.keepModelCircles) {
+      const auto id = static_cast<sketch::NodeId>(i);
+      if (s.fitted) {
+        res.sketch.setKeptCircle(id, sketch::KeptCircle{res.model[i].position, radii[i]});
+      } else {
+        sketch::SamplingParams p = res.sketch.node(id).params;
+        p.enabled = false;
+        res.sketch.setParams(id, p);
+      }
+    }
   }
   sweep::SweepOptions so;
   so.ringVertices = options.ringVertices;

@@ -54,6 +54,12 @@ Vec3 perpendicularPart(const Vec3& v, const Vec3& a) {
   return p / n;
 }
 
+void checkKeptCircle(const Node& n, const KeptCircle& c, const std::string& what) {
+  if (n.isScreenNode()) throw OptionsError(what + ": a kept circle needs a point node (this is a screen node)");
+  if (!c.centre.allFinite()) throw OptionsError(what + ": kept circle centre is not finite");
+  if (!(c.radius > 0) || !std::isfinite(c.radius)) throw OptionsError(what + ": kept circle radius must be > 0 and finite");
+}
+
 }  // namespace
 
 int Sketch::addCamera(const geom::Camera& camera) {
@@ -223,6 +229,7 @@ void Sketch::moveNode(NodeId id, const Vec2& screen) {
   Node& n = mutableNode(id);
   if (!n.isScreenNode()) throw OptionsError(nodeName(id) + ": is a point node, not a screen node");
   if (!screen.allFinite()) throw OptionsError(nodeName(id) + ": screen position is not finite");
+  if (n.screen != screen) n.kept.reset();
   n.screen = screen;
 }
 
@@ -231,6 +238,7 @@ void Sketch::movePointNode(NodeId id, const Vec3& point, const Vec3& normal) {
   if (n.isScreenNode()) throw OptionsError(nodeName(id) + ": is a screen node, not a point node");
   if (!point.allFinite() || !normal.allFinite()) throw OptionsError(nodeName(id) + ": point or normal is not finite");
   if (!(normal.norm() > 0)) throw OptionsError(nodeName(id) + ": normal is zero");
+  if (n.point != point || n.normal != normal) n.kept.reset();
   n.point = point;
   n.normal = normal;
 }
@@ -238,7 +246,29 @@ void Sketch::movePointNode(NodeId id, const Vec3& point, const Vec3& normal) {
 void Sketch::setParams(NodeId id, const SamplingParams& params) {
   Node& n = mutableNode(id);
   checkParams(params, nodeName(id));
+  if (!(n.params == params)) n.kept.reset();
   n.params = params;
+}
+
+void Sketch::setKeptCircle(NodeId id, const std::optional<KeptCircle>& circle) {
+  Node& n = mutableNode(id);
+  if (circle) checkKeptCircle(n, *circle, nodeName(id));
+  n.kept = circle;
+}
+
+std::size_t Sketch::clearKeptCircles() {
+  std::size_t cleared = 0;
+  for (auto& [id, n] : nodes_) {
+    cleared += n.kept.has_value();
+    n.kept.reset();
+  }
+  return cleared;
+}
+
+std::size_t Sketch::keptCircleCount() const {
+  std::size_t count = 0;
+  for (const auto& [id, n] : nodes_) count += n.kept.has_value();
+  return count;
 }
 
 void Sketch::setParent(NodeId id, NodeId newParent) {
@@ -369,6 +399,7 @@ void Sketch::validate() const {
       if (!(n.normal.norm() > 0)) throw OptionsError(what + ": normal is zero");
     }
     checkParams(n.params, what);
+    if (n.kept) checkKeptCircle(n, *n.kept, what);
     // Children lists agree with parent links, both ways.
     for (std::size_t k = 0; k < n.children.size(); ++k) {
       NodeId c = n.children[k];

@@ -87,7 +87,8 @@ class Parser {
       a.name = arg;
       checkView(a.name, index);
     } else if (verb == "undo" || verb == "redo" || verb == "fit" || verb == "clear" || verb == "autoSketch" ||
-               verb == "autoSkeleton" || verb == "delete" || verb == "deleteSubtree") {
+               verb == "autoSkeleton" || verb == "delete" || verb == "deleteSubtree" || verb == "refit" ||
+               verb == "refitAll") {
       a.kind = Kind::Button;
       a.name = verb;
     } else if (verb == "wait") {
@@ -405,6 +406,10 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
             state.deleteSelected(false);
           else if (a.name == "deleteSubtree")
             state.deleteSelected(true);
+          else if (a.name == "refit")
+            state.refitSelected();
+          else if (a.name == "refitAll")
+            state.refitAll();
           break;
         case Kind::Save:
         case Kind::Load: {

@@ -31,6 +31,7 @@ class DefaultReconstruction : public ViewerReconstruction {
     v.slicePoints = r->sliceComputed ? r->sliceIndices.size() : 0;
     v.testPoints = r->testIndices.size();
     v.inliers = r->inlierIndices.size();
+    v.kept = r->kept;
     return v;
   }
 

@@ -491,14 +491,38 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
     return false;
   }
   return edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
-    skeleton::SkeletonOptions options = leafOn ? skeleton::leafOnSkeletonOptions() : skeleton::SkeletonOptions{};
-    options.up = up_;
-    skeleton::Skeleton skel = skeleton::extractSkeleton(cloud_, options);
-    if (skel.nodes.empty()) throw OptionsError("no skeleton found in this cloud");
-    sketch_ = skeleton::skeletonToSketch(skel);
+    skeleton::AutoSkeletonOptions options;
+    if (leafOn) options.skeleton = skeleton::leafOnSkeletonOptions();
+    options.skeleton.up = up_;
+    skeleton::AutoSkeletonResult result = skeleton::autoSkeletonSketch(cloud_, options);
+    if (result.sketch.empty()) throw OptionsError("no skeleton found in this cloud");
+    sketch_ = std::move(result.sketch);
     selected_ = kNoNode;
     active_ = sketch_.root();
+    info("automatic skeleton sketch: " + std::to_string(sketch_.size()) + " nodes keep the automatic model's circles "
+         "(edit a node, or Refit, to fit it from the cloud)");
   });
+}
+
+bool ViewerState::refitSelected() {
+  if (selected_ == kNoNode || !sketch_.contains(selected_)) {
+    error("refit: select a node first");
+    return false;
+  }
+  if (!sketch_.node(selected_).kept) {
+    info("refit: node " + std::to_string(selected_) + " is fitted from the cloud already");
+    return false;
+  }
+  const NodeId id = selected_;
+  return edit("refit node", "refit node " + std::to_string(id), "", [&] { sketch_.setKeptCircle(id, std::nullopt); });
+}
+
+bool ViewerState::refitAll() {
+  if (sketch_.keptCircleCount() == 0) {
+    info("refit all: no node keeps a circle; every node is fitted from the cloud already");
+    return false;
+  }
+  return edit("refit all", "refit all nodes", "", [&] { sketch_.clearKeptCircles(); });
 }
 
 bool ViewerState::saveSketch(const std::filesystem::path& path) {

@@ -52,6 +52,9 @@ struct NodeResult {
   double lineEpsilon = 0.0;  ///< the test region radius used last (world units)
   int growthSteps = 0;       ///< how many times lineEpsilon grew
   double ms = 0.0;           ///< wall time of this fit
+  /// The circle is the node's kept circle (sketch::Node::kept), not a fit: status Fitted, no
+  /// slice was cut and no RANSAC ran (keptCircleResult).
+  bool kept = false;
 };
 
 /// The slab of a node: points within params.sliceHalfThickness of its plane.
@@ -79,5 +82,11 @@ std::vector<std::uint32_t> nodeSlice(const CloudIndex& index, const sketch::Node
 /// Throws OptionsError for non-positive or non-finite sampling sizes, a zero normal/direction.
 NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& geometry,
                    const sketch::SamplingParams& params, const NodeFitOptions& options = {});
+
+/// A node's result from its kept circle instead of a fit: status Fitted, kept = true, the centre
+/// projected onto the node's plane, the plane's normal, the circle's radius, rms 0. A disabled
+/// node stays Disabled (params.enabled wins, as for a fit).
+NodeResult keptCircleResult(const sketch::NodeGeometry& geometry, const sketch::SamplingParams& params,
+                            const sketch::KeptCircle& circle);
 
 }  // namespace treesketch::fit

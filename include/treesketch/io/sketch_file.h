@@ -3,11 +3,15 @@
 //   {"format":"treesketch-sketch","version":1,"up":"y","defaults":{PARAMS},
 //    "cameras":[{"view":[16 numbers, row-major],"projection":[16],"viewport":[x,y,w,h]}],
 //    "nodes":[{"id":0,"parent":-1,"camera":0,"screen":[x,y],"params":{PARAMS}},
-//             {"id":1,"parent":0,"point":[x,y,z],"normal":[x,y,z],"params":{PARAMS}}]}
+//             {"id":1,"parent":0,"point":[x,y,z],"normal":[x,y,z],"params":{PARAMS}
+//              [,"circle":{"centre":[x,y,z],"radius":r}]}]}
 //   PARAMS = {"sliceHalfThickness":..,"lineEpsilon":..,"lineEpsilonStep":..,"enabled":true
 //             [,"maxGrowthSteps":N]}   (absent = -1 = unlimited, as the thesis)
 // A node has either "camera"+"screen" (screen node) or "point"+"normal" (point node). Missing
 // "params" fields take the file's "defaults" (and missing defaults the SamplingParams defaults).
+// "circle" (point nodes only, optional) is the node's kept circle (sketch::KeptCircle: used
+// instead of a fit); it was added within version 1 (older files have none, older readers ignore
+// it and fit the node).
 // A camera file holds one camera object: {"view":[16],"projection":[16],"viewport":[4]}.
 #pragma once
 
@@ -26,7 +30,8 @@ namespace treesketch::io {
 /// or the byte offset of malformed JSON, for: malformed JSON, wrong "format", unsupported
 /// "version", a missing or non-numeric field (JSON has no NaN: null and strings are rejected),
 /// a camera index out of range, a degenerate camera, an unknown parent, two roots, a cycle, a
-/// duplicate id, non-positive sampling sizes, a zero normal. The result passes Sketch::validate.
+/// duplicate id, non-positive sampling sizes, a zero normal, a kept circle on a screen node or
+/// with a radius that is not > 0. The result passes Sketch::validate.
 sketch::Sketch readSketch(std::istream& in, const std::string& source);
 sketch::Sketch readSketch(const std::filesystem::path& path);
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "treesketch/fit/cloud_index.h"
 #include "treesketch/fit/node_fit.h"
@@ -43,8 +44,10 @@ class Reconstruction {
   explicit Reconstruction(const geom::PointCloud& cloud, const ReconstructionOptions& options = {});
 
   /// Brings the fits and the mesh up to date with `sketch`: a node is re-fitted when its geometry
-  /// (line, plane — which moves when its parent moves) or its sampling params changed or it is
-  /// new; removed nodes are dropped; re-parenting alone only re-sweeps. Returns the ids re-fitted.
+  /// (line, plane — which moves when its parent moves), its sampling params or its kept circle
+  /// changed or it is new; removed nodes are dropped; re-parenting alone only re-sweeps. A node
+  /// with a kept circle is not fitted: it takes that circle (fit::resolveNode). Returns the ids
+  /// re-fitted (or re-resolved).
   /// Throws OptionsError for an invalid sketch (see Sketch::validate).
   std::vector<NodeId> update(const sketch::Sketch& sketch);
 
@@ -68,6 +71,7 @@ class Reconstruction {
   struct Entry {
     sketch::NodeGeometry geometry;
     sketch::SamplingParams params;
+    std::optional<sketch::KeptCircle> kept;
     NodeId parent = sketch::kNoNode;
     fit::NodeResult result;
   };

@@ -47,6 +47,19 @@ struct SamplingParams {
   bool operator==(const SamplingParams&) const = default;
 };
 
+/// A cross-section that comes with the node instead of being measured: what an automatic method
+/// already found there (the skeleton sketch stores its model's circle in every node, so that a
+/// rebuild, in the viewer or by `treesketch reconstruct --sketch`, gives the automatic model
+/// itself and an edit changes only what it touches). Point nodes only: their plane does not
+/// depend on a camera or a parent. The circle lies in the node's plane (the centre is projected
+/// onto it when used) with the plane's normal.
+struct KeptCircle {
+  geom::Vec3 centre = geom::Vec3::Zero();  ///< world
+  double radius = 0.0;                     ///< world units, > 0
+
+  bool operator==(const KeptCircle&) const = default;
+};
+
 struct Node {
   NodeId id = kNoNode;
   NodeId parent = kNoNode;
@@ -57,6 +70,10 @@ struct Node {
   geom::Vec3 point = geom::Vec3::Zero();   ///< point nodes: a point on the branch axis (world)
   geom::Vec3 normal = geom::Vec3::Zero();  ///< point nodes: the slice plane's normal (world)
   SamplingParams params;
+  /// When set (and the node enabled), the reconstruction uses this circle and does not fit the
+  /// node. Sketch drops it when the node's inputs change (moveNode, movePointNode, setParams with
+  /// different params): it no longer says what those inputs would measure.
+  std::optional<KeptCircle> kept;
 
   bool isScreenNode() const { return camera >= 0; }
 };
@@ -105,6 +122,13 @@ class Sketch {
   void moveNode(NodeId id, const geom::Vec2& screen);
   void movePointNode(NodeId id, const geom::Vec3& point, const geom::Vec3& normal);
   void setParams(NodeId id, const SamplingParams& params);
+  /// Sets (or, with nullopt, drops) a point node's kept circle. Throws OptionsError for a screen
+  /// node, a non-finite centre or a radius that is not > 0.
+  void setKeptCircle(NodeId id, const std::optional<KeptCircle>& circle);
+  /// Drops every kept circle ("refit all from the cloud"); returns how many there were.
+  std::size_t clearKeptCircles();
+  /// Nodes with a kept circle.
+  std::size_t keptCircleCount() const;
   /// Re-parents `id` under `newParent` (throws if that would make a cycle).
   void setParent(NodeId id, NodeId newParent);
 
@@ -141,7 +165,8 @@ class Sketch {
   NodeGeometry geometry(NodeId id) const;
 
   /// Checks the whole structure: one root, parents exist, no cycles, children lists agree,
-  /// cameras valid and referenced ones exist, finite values, positive sampling sizes. Throws
+  /// cameras valid and referenced ones exist, finite values, positive sampling sizes, kept circles
+  /// on point nodes only with finite centres and radii > 0. Throws
   /// OptionsError naming the node.
   void validate() const;
 

@@ -14,7 +14,8 @@
 //              "showRegion", "value": "height"|"wireframe"|"ortho"|true|...}
 //   {"view": "front"|"side"|"top"|"fit"}
 //   {"select": nodeId}                     -1 clears the selection
-//   {"button": "autoSketch"|"autoSkeleton"|"undo"|"redo"|"clear"|"fit"|"delete"|"deleteSubtree"}
+//   {"button": "autoSketch"|"autoSkeleton"|"undo"|"redo"|"clear"|"fit"|"delete"|"deleteSubtree"|
+//              "refit"|"refitAll"}
 //   {"save": PATH}, {"load": PATH}, {"export": PATH}, {"screenshot": PATH}   ("save"/"load"
 //                                          without a path use the session's sketch path)
 //   {"wait": frames}

@@ -78,6 +78,8 @@ struct NodeFitView {
   Circle3 circle;                 ///< valid when fitted
   double finalLineEpsilon = 0.0;  ///< the cylinder radius the fit ended with, world units
   std::size_t slicePoints = 0, testPoints = 0, inliers = 0;
+  /// Fitted from the node's kept circle (an automatic sketch's model), not from the cloud.
+  bool kept = false;
 };
 
 /// A node as drawn over the view: screen position (window pixels) under the current camera.
@@ -219,10 +221,15 @@ class ViewerState {
   bool clearSketch();
   /// Replaces the sketch by the thesis's uniform automatic sketch (nodes at regular heights).
   bool autoSketchUniform(int nodes = 12);
-  /// Replaces the sketch by the automatic skeleton sketch (skeleton::extractSkeleton then
-  /// skeletonToSketch: point nodes along the branches, with their own sampling sizes). leafOn:
-  /// the tree was scanned in leaf (skeleton::leafOnSkeletonOptions).
+  /// Replaces the sketch by the automatic skeleton sketch (skeleton::autoSkeletonSketch, as
+  /// `reconstruct --auto`: point nodes along the branches with their own sampling sizes, each
+  /// keeping its model circle, so the view shows the automatic model and an edit re-fits only the
+  /// nodes it touches). leafOn: the tree was scanned in leaf (skeleton::leafOnSkeletonOptions).
   bool autoSketchSkeleton(bool leafOn = false);
+  /// Drops the selected node's kept circle (it is then fitted from the cloud) / every node's.
+  /// Undoable; an error message when there is nothing to refit.
+  bool refitSelected();
+  bool refitAll();
   /// Ends the current merge of consecutive edits (call when a slider is released).
   void finishEdit() { lastEditKey_.clear(); }
   bool saveSketch(const std::filesystem::path& path);
