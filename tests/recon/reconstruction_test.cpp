@@ -111,6 +111,42 @@ TEST(Reconstruction, EditsRefitOnlyTheTouchedNodes) {
   EXPECT_EQ(fresh.mesh.vertices, rec.mesh().vertices);
 }
 
+TEST(Reconstruction, KeptCirclesAreUsedAsGivenAndRefitWhenDropped) {
+  geom::PointCloud cloud = treeCloud();
+  sketch::Sketch s = trunkSketch();
+  // Node 1 keeps a circle that is not the trunk's (off the plane in y: it is projected onto it).
+  s.setKeptCircle(1, sketch::KeptCircle{Vec3(0.6, 1.3, 0.1), 0.4});
+  // Node 2 keeps one but is disabled: it stays disabled.
+  sketch::SamplingParams off = params();
+  off.enabled = false;
+  s.setParams(2, off);
+  s.setKeptCircle(2, sketch::KeptCircle{Vec3(0.5, 1.7, 0), 0.25});
+  Reconstruction rec(cloud, serial());
+  rec.update(s);
+  const fit::NodeResult* kept = rec.result(1);
+  ASSERT_NE(kept, nullptr);
+  EXPECT_EQ(kept->status, fit::NodeStatus::Fitted);
+  EXPECT_TRUE(kept->kept);
+  EXPECT_EQ(kept->radius, 0.4);
+  EXPECT_NEAR((kept->centre - Vec3(0.6, 1.1, 0.1)).norm(), 0.0, 1e-12);  // node 1's plane is y = 1.1
+  EXPECT_TRUE(kept->inlierIndices.empty());
+  EXPECT_EQ(rec.result(2)->status, fit::NodeStatus::Disabled);
+  EXPECT_FALSE(rec.result(2)->kept);
+  EXPECT_FALSE(rec.result(0)->kept);
+  EXPECT_EQ(rec.result(0)->status, fit::NodeStatus::Fitted);
+  EXPECT_GT(rec.result(0)->inlierIndices.size(), 0u);
+  // Same circle again: nothing to do. A new circle or none: that node alone is redone.
+  EXPECT_TRUE(rec.update(s).empty());
+  s.setKeptCircle(1, sketch::KeptCircle{Vec3(0.6, 1.1, 0.1), 0.3});
+  EXPECT_EQ(rec.update(s), (std::vector<sketch::NodeId>{1}));
+  EXPECT_EQ(rec.result(1)->radius, 0.3);
+  s.setKeptCircle(1, std::nullopt);
+  EXPECT_EQ(rec.update(s), (std::vector<sketch::NodeId>{1}));
+  EXPECT_FALSE(rec.result(1)->kept);
+  ASSERT_EQ(rec.result(1)->status, fit::NodeStatus::Fitted);
+  EXPECT_NEAR(rec.result(1)->radius, 0.25, 0.02);  // now measured: the trunk's radius
+}
+
 TEST(Reconstruction, MovingAScreenNodeRefitsItsChildren) {
   geom::PointCloud cloud = treeCloud();
   geom::BBox box = cloud.bounds();

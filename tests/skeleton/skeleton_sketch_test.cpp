@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "synthetic_tree.h"
+#include "treesketch/io/sketch_file.h"
+#include "treesketch/recon/reconstruction.h"
 #include "treesketch/util/error.h"
 
 using namespace treesketch;
@@ -111,6 +115,70 @@ TEST(SkeletonSketch, AutoSketchFitsRadiiAndRegularises) {
   }
   EXPECT_GE(checked, 8);
   EXPECT_GE(accepted, static_cast<int>(res.model.size()) * 3 / 4);
+}
+
+// The sketch hands over the model: rebuilt by the sketch path (viewer, `reconstruct --sketch`),
+// after a trip through the sketch file, it gives the automatic mesh; with keepModelCircles off
+// the same rebuild fits every node from the cloud.
+TEST(SkeletonSketch, TheSketchRebuildsTheAutomaticModel) {
+  const auto cloud = test::sampleCylinders(test::threeLevelTree(), 0.02, 0.003, 2);
+  for (double ratio : {2.0, 0.6}) {  // 0.6: many fits rejected, so forks are bridged
+    skeleton::AutoSkeletonOptions o;
+    o.radii.maxRadiusRatio = ratio;
+    const auto res = skeleton::autoSkeletonSketch(cloud, o);
+    ASSERT_FALSE(res.mesh.empty());
+    std::size_t bridged = 0;
+    for (std::size_t i = 0; i < res.model.size(); ++i) {
+      const bool fork = res.model[i].parent >= 0 && res.model[i].children.size() >= 2;
+      const bool bridge = fork && !res.fitAccepted[i];
+      const sketch::Node& node = res.sketch.node(static_cast<sketch::NodeId>(i));
+      EXPECT_EQ(node.params.enabled, !bridge) << "node " << i;
+      EXPECT_EQ(node.kept.has_value(), !bridge) << "node " << i;
+      if (node.kept) EXPECT_EQ(node.kept->radius, res.model[i].radius) << "node " << i;
+      bridged += bridge;
+    }
+    if (ratio < 1) EXPECT_GE(bridged, 1u);
+    std::stringstream file;
+    io::writeSketch(file, res.sketch);
+    const sketch::Sketch back = io::readSketch(file, "auto.json");
+    const auto rebuilt = recon::reconstruct(cloud, back);
+    ASSERT_EQ(rebuilt.mesh.triangles, res.mesh.triangles) << "ratio " << ratio;
+    ASSERT_EQ(rebuilt.mesh.vertices.size(), res.mesh.vertices.size());
+    double worst = 0;
+    for (std::size_t v = 0; v < res.mesh.vertices.size(); ++v)
+      worst = std::max(worst, (rebuilt.mesh.vertices[v] - res.mesh.vertices[v]).norm());
+    EXPECT_LT(worst, 1e-12) << "ratio " << ratio;
+    std::size_t kept = 0;
+    for (const auto& [id, r] : rebuilt.results) kept += r.kept;
+    EXPECT_EQ(kept, res.sketch.keptCircleCount());
+    EXPECT_EQ(kept + bridged, res.model.size());
+  }
+  skeleton::AutoSkeletonOptions o;
+  o.keepModelCircles = false;
+  const auto plain = skeleton::autoSkeletonSketch(cloud, o);
+  EXPECT_EQ(plain.sketch.keptCircleCount(), 0u);
+  for (const auto& [id, node] : plain.sketch.nodes()) EXPECT_TRUE(node.params.enabled);
+}
+
+// An edit in the handed-over sketch re-fits the node it touches, from the cloud, and no other.
+TEST(SkeletonSketch, AnEditRefitsOnlyTheTouchedNode) {
+  const auto cloud = test::sampleCylinders(test::yTree(), 0.02, 0.003, 7);
+  const auto res = skeleton::autoSkeletonSketch(cloud);
+  sketch::Sketch sk = res.sketch;
+  recon::Reconstruction rec(cloud);
+  rec.update(sk);
+  const std::size_t resolved = rec.fitCount();
+  const sketch::NodeId id = 2;
+  ASSERT_TRUE(sk.node(id).kept.has_value());
+  sketch::SamplingParams p = sk.node(id).params;
+  p.lineEpsilon *= 1.5;
+  sk.setParams(id, p);
+  EXPECT_EQ(rec.update(sk), (std::vector<sketch::NodeId>{id}));
+  EXPECT_EQ(rec.fitCount(), resolved + 1);
+  EXPECT_FALSE(rec.result(id)->kept);
+  EXPECT_TRUE(rec.result(id + 1)->kept);
+  ASSERT_EQ(rec.result(id)->status, fit::NodeStatus::Fitted);  // measured from the trunk's points
+  EXPECT_GT(rec.result(id)->inlierIndices.size(), 10u);
 }
 
 TEST(SkeletonSketch, EmptyCloud) {

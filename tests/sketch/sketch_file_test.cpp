@@ -47,7 +47,7 @@ Sketch awkwardSketch() {
   p.maxGrowthSteps = 3;
   NodeId pn = sk.addPointNode(a, Vec3(u(rng), u(rng), 1e17 * u(rng)), Vec3(u(rng), 1, u(rng)), p);
   sk.setParent(a, b);  // r's children: [b]; b's children: [a]
-  (void)pn;
+  sk.setKeptCircle(pn, sketch::KeptCircle{Vec3(u(rng), 1.0 / 7.0, -1e-17 * u(rng)), std::sqrt(3.0) / 11.0});
   return sk;
 }
 
@@ -77,6 +77,11 @@ void expectBitIdentical(const Sketch& x, const Sketch& y) {
     EXPECT_TRUE(bitEqual(a.params.lineEpsilonStep, b.params.lineEpsilonStep));
     EXPECT_EQ(a.params.enabled, b.params.enabled);
     EXPECT_EQ(a.params.maxGrowthSteps, b.params.maxGrowthSteps);
+    ASSERT_EQ(a.kept.has_value(), b.kept.has_value()) << "node " << id;
+    if (a.kept) {
+      for (int k = 0; k < 3; ++k) EXPECT_TRUE(bitEqual(a.kept->centre[k], b.kept->centre[k])) << "node " << id;
+      EXPECT_TRUE(bitEqual(a.kept->radius, b.kept->radius)) << "node " << id;
+    }
     EXPECT_EQ(x.geometry(id), y.geometry(id));
   }
 }
@@ -188,6 +193,27 @@ TEST(SketchFile, RejectsNonNumbers) {
   // Overflow to infinity is not a finite number.
   // (nlohmann refuses it while parsing, without a position: the message quotes the number.)
   expectBad(fileWith(R"([{"id":3,"parent":-1,"camera":0,"screen":[1e999,2]}])"), {"1e999", "overflow"});
+}
+
+TEST(SketchFile, KeptCirclesReadAndBadOnesAreRejected) {
+  std::istringstream in(fileWith(
+      R"([{"id":0,"parent":-1,"point":[0,1,0],"normal":[0,1,0],"circle":{"centre":[0.5,1,0],"radius":0.25}},)"
+      R"({"id":1,"parent":0,"point":[0,2,0],"normal":[0,1,0]}])"));
+  Sketch sk = readSketch(in, "kept.json");
+  ASSERT_TRUE(sk.node(0).kept.has_value());
+  EXPECT_EQ(sk.node(0).kept->centre, Vec3(0.5, 1, 0));
+  EXPECT_EQ(sk.node(0).kept->radius, 0.25);
+  EXPECT_FALSE(sk.node(1).kept.has_value());
+  EXPECT_EQ(sk.keptCircleCount(), 1u);
+  const std::string point = R"({"id":4,"parent":-1,"point":[0,1,0],"normal":[0,1,0],"circle":)";
+  expectBad(fileWith("[" + point + R"({"centre":[0,1,0],"radius":0}}])"), {"node 4", "circle", "radius", "> 0"});
+  expectBad(fileWith("[" + point + R"({"centre":[0,1,0],"radius":-2}}])"), {"node 4", "radius"});
+  expectBad(fileWith("[" + point + R"({"centre":[0,1],"radius":1}}])"), {"node 4", "circle", "centre", "3 numbers"});
+  expectBad(fileWith("[" + point + R"({"radius":1}}])"), {"node 4", "circle", "missing \"centre\""});
+  expectBad(fileWith("[" + point + R"({"centre":[0,1,0]}}])"), {"node 4", "circle", "missing \"radius\""});
+  expectBad(fileWith("[" + point + R"(0.5}])"), {"node 4", "circle", "expected an object"});
+  expectBad(fileWith(R"([{"id":5,"parent":-1,"camera":0,"screen":[1,2],"circle":{"centre":[0,1,0],"radius":1}}])"),
+            {"node 5", "circle", "point node"});
 }
 
 TEST(SketchFile, RejectsBadCameras) {

@@ -384,5 +384,61 @@ TEST(SketchCamera, AddCameraRejectsDegenerate) {
   EXPECT_TRUE(sk.cameras().empty());
 }
 
+TEST(SketchKeptCircle, DroppedWhenTheNodesInputsChangeAndOnlyThen) {
+  Sketch sk;
+  NodeId r = sk.addPointNode(kNoNode, Vec3(0, 1, 0), Vec3(0, 1, 0));
+  NodeId a = sk.addPointNode(r, Vec3(0, 2, 0), Vec3(0, 1, 0));
+  NodeId b = sk.addPointNode(a, Vec3(0, 3, 0), Vec3(0, 1, 0));
+  const KeptCircle c{Vec3(0.01, 2, 0), 0.2};
+  for (NodeId id : {r, a, b}) sk.setKeptCircle(id, c);
+  EXPECT_EQ(sk.keptCircleCount(), 3u);
+  // Same params, same point: nothing changes, the circles stay.
+  sk.setParams(a, sk.node(a).params);
+  sk.movePointNode(a, sk.node(a).point, sk.node(a).normal);
+  EXPECT_TRUE(sk.node(a).kept.has_value());
+  // New sampling sizes, a move, a new normal: that node's circle goes, the others stay.
+  SamplingParams p = sk.node(a).params;
+  p.lineEpsilon *= 2;
+  sk.setParams(a, p);
+  EXPECT_FALSE(sk.node(a).kept.has_value());
+  sk.movePointNode(b, Vec3(0, 3.1, 0), Vec3(0, 1, 0));
+  EXPECT_FALSE(sk.node(b).kept.has_value());
+  sk.setKeptCircle(b, c);
+  sk.movePointNode(b, Vec3(0, 3.1, 0), Vec3(0.1, 1, 0));
+  EXPECT_FALSE(sk.node(b).kept.has_value());
+  EXPECT_TRUE(sk.node(r).kept.has_value());
+  // Re-parenting does not touch a point node's plane: its circle stays.
+  sk.setKeptCircle(b, c);
+  sk.removeNode(a, false);
+  EXPECT_EQ(sk.node(b).parent, r);
+  EXPECT_TRUE(sk.node(b).kept.has_value());
+  EXPECT_EQ(sk.clearKeptCircles(), 2u);
+  EXPECT_EQ(sk.keptCircleCount(), 0u);
+  sk.setKeptCircle(r, c);
+  sk.setKeptCircle(r, std::nullopt);
+  EXPECT_FALSE(sk.node(r).kept.has_value());
+}
+
+TEST(SketchKeptCircle, BadCirclesAndScreenNodesAreRefused) {
+  Sketch sk;
+  int cam = sk.addCamera(frontCamera(false));
+  NodeId s = sk.addScreenNode(kNoNode, cam, Vec2(400, 500));
+  NodeId p = sk.addPointNode(s, Vec3(0, 2, 0), Vec3(0, 1, 0));
+  EXPECT_THROW(sk.setKeptCircle(s, KeptCircle{Vec3(0, 1, 0), 0.2}), OptionsError);
+  EXPECT_THROW(sk.setKeptCircle(p, KeptCircle{Vec3(0, 1, 0), 0.0}), OptionsError);
+  EXPECT_THROW(sk.setKeptCircle(p, KeptCircle{Vec3(0, 1, 0), -1.0}), OptionsError);
+  EXPECT_THROW(sk.setKeptCircle(p, KeptCircle{Vec3(0, NAN, 0), 1.0}), OptionsError);
+  EXPECT_THROW(sk.setKeptCircle(p, KeptCircle{Vec3(0, 1, 0), INFINITY}), OptionsError);
+  EXPECT_THROW(sk.setKeptCircle(99, KeptCircle{Vec3(0, 1, 0), 1.0}), OptionsError);
+  EXPECT_EQ(sk.keptCircleCount(), 0u);
+  // validate() catches one put in by a reader.
+  Node raw = sk.node(s);
+  raw.id = 7;
+  raw.parent = p;
+  raw.kept = KeptCircle{Vec3(0, 1, 0), 1.0};
+  sk.insertRaw(raw);
+  EXPECT_THROW(sk.validate(), OptionsError);
+}
+
 }  // namespace
 }  // namespace treesketch::sketch

@@ -131,6 +131,24 @@ TEST(ActionScript, RunsASessionAndReportsFailures) {
   EXPECT_EQ(state.sketch().size(), 1u);
 }
 
+TEST(ActionScript, RefitButtonsDropKeptCircles) {
+  ViewerState state;
+  state.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
+  ScriptReport report = runActionScript(state, parse(R"(["autoSkeleton"])"));
+  EXPECT_TRUE(report.failures.empty());
+  const std::size_t kept = state.sketch().keptCircleCount();
+  ASSERT_GE(kept, 2u);
+  ASSERT_TRUE(state.sketch().node(0).kept.has_value());  // the root is never a bridged fork
+  report = runActionScript(state, parse(R"([{"select": 0}, "refit"])"));
+  EXPECT_TRUE(report.failures.empty());
+  EXPECT_FALSE(state.sketch().node(0).kept.has_value());
+  EXPECT_EQ(state.sketch().keptCircleCount(), kept - 1);
+  report = runActionScript(state, parse(R"([{"button": "refitAll"}])"));
+  EXPECT_TRUE(report.failures.empty());
+  EXPECT_EQ(state.sketch().keptCircleCount(), 0u);
+}
+
 TEST(ActionScript, ScreenshotWithoutAWindowFails) {
   ViewerState state;
   ScriptReport report = runActionScript(state, parse(R"(["screenshot a.png", "save"])"));

@@ -327,6 +327,41 @@ TEST(ViewerState, SkeletonAutoSketchGivesPointNodesAlongTheTrunk) {
   EXPECT_GT(f.state.sketch().node(id).point.y(), before.y());
 }
 
+// The automatic skeleton sketch shows the automatic model (kept circles); an edit of a node's
+// sizes, Refit or Refit all fit from the cloud, each one undo step.
+TEST(ViewerState, SkeletonAutoSketchKeepsItsModelUntilRefit) {
+  Fixture f;
+  ASSERT_TRUE(f.state.autoSketchSkeleton()) << f.state.lastMessage().text;
+  const std::size_t n = f.state.sketch().size();
+  ASSERT_GE(n, 3u);
+  const std::size_t kept = f.state.sketch().keptCircleCount();
+  EXPECT_GE(kept, n - 1);  // all but bridged forks (a trunk has none)
+  const sketch::NodeId id = f.state.sketch().root();
+  ASSERT_TRUE(f.state.nodeFit(id).kept);
+  EXPECT_EQ(f.state.nodeFit(id).status, NodeStatus::Fitted);
+  EXPECT_FALSE(f.state.refitSelected());  // nothing selected: an error, no change
+  EXPECT_TRUE(f.state.lastMessage().error);
+  ASSERT_TRUE(f.state.selectNode(id));
+  ASSERT_TRUE(f.state.refitSelected());
+  EXPECT_FALSE(f.state.nodeFit(id).kept);
+  EXPECT_EQ(f.state.sketch().keptCircleCount(), kept - 1);
+  EXPECT_FALSE(f.state.refitSelected());  // fitted from the cloud already
+  ASSERT_TRUE(f.state.undo());
+  EXPECT_TRUE(f.state.nodeFit(id).kept);
+  // Editing a node's sizes refits that node.
+  const sketch::NodeId other = f.state.sketch().node(id).children.at(0);
+  ASSERT_TRUE(f.state.selectNode(other));
+  ASSERT_TRUE(f.state.setLineEpsilon(f.state.sketch().node(other).params.lineEpsilon * 1.5));
+  EXPECT_FALSE(f.state.nodeFit(other).kept);
+  EXPECT_TRUE(f.state.nodeFit(id).kept);
+  ASSERT_TRUE(f.state.refitAll());
+  EXPECT_EQ(f.state.sketch().keptCircleCount(), 0u);
+  EXPECT_FALSE(f.state.nodeFit(id).kept);
+  EXPECT_FALSE(f.state.refitAll());
+  ASSERT_TRUE(f.state.undo());
+  EXPECT_EQ(f.state.sketch().keptCircleCount(), kept - 1);
+}
+
 TEST(ViewerState, SkeletonAutoSketchInLeafIsOneUndoStep) {
   // A sparse trunk: on dense, randomly sampled surfaces the leaf-on settings' fine voxels split
   // rings into arcs and make thousands of nodes (see skeleton::leafOnSkeletonOptions).
