@@ -119,8 +119,9 @@ struct AutoSkeletonOptions {
   /// A rebuild of the sketch (viewer, `reconstruct --sketch`) then gives this result's mesh, and
   /// an edit re-fits only the nodes it touches. Without it a rebuild fits every node from the
   /// cloud with no radius rules: measured on the four ez-tree trees × sphere / TLS, leaf-off,
-  /// forward RMS 0.12-0.31 % of the diagonal (this mesh) became 0.14-0.59 %, and leaf-on
-  /// backward / forward 0.69-2.22 / 0.33-2.40 became 0.96-2.31 / 0.30-3.15.
+  /// forward RMS 0.12-0.31 % of the diagonal (this mesh) became 0.14-0.59 % (backward 0.09-0.20
+  /// became 0.08-0.18: unruled circles are tight where found, failed ones leave gaps), and
+  /// leaf-on backward / forward 0.69-2.22 / 0.33-2.40 became 0.96-2.31 / 0.30-3.15.
   bool keepModelCircles = true;
   /// Node i is fitted with seed `seed + i`.
   std::uint64_t seed = 1;
