@@ -86,8 +86,12 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   const auto& cloud = cloud1M();
   double skel = 0, fit = 0, sweep = 0;
   std::size_t nodes = 0, forks = 0;
+  // Arg 0: defaults. Arg 1: the fits' inlier band 15 % of the hypothesis's radius (sessions 2-6),
+  // for a same-run ratio.
+  skeleton::AutoSkeletonOptions o;
+  if (state.range(0) == 1) o.fit.circle.inlierThresholdRelative = 0.15;
   for (auto _ : state) {
-    auto r = skeleton::autoSkeletonSketch(cloud);
+    auto r = skeleton::autoSkeletonSketch(cloud, o);
     skel = r.skeletonMs;
     fit = r.fitMs;
     sweep = r.sweepMs;
@@ -102,7 +106,7 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   state.counters["fitMs"] = fit;
   state.counters["sweepMs"] = sweep;
 }
-BENCHMARK(BM_AutoSkeletonSketch1M)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AutoSkeletonSketch1M)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 const geom::PointCloud& leafyCloud1M() {
   static const geom::PointCloud cloud = [] {
@@ -122,9 +126,11 @@ void BM_AutoSkeletonSketchLeafOn1M(benchmark::State& state) {
   skeleton::AutoSkeletonOptions o;
   o.skeleton = skeleton::leafOnSkeletonOptions();
   // Arg 0: the leaf-on defaults. Arg 1: every node fitted (leaf pieces too). Arg 2: every node
-  // fitted and the plane test on all points (session 5's path), for same-run ratios.
-  if (state.range(0) >= 1) o.maxFitFlatFraction = 1.0;
-  if (state.range(0) >= 2) o.skeleton.leafPlaneMaxPointsPerVoxel = 0;
+  // fitted and the plane test on all points (session 5's path). Arg 3: the defaults with the fits'
+  // inlier band 15 % of the hypothesis's radius (session 6's path). For same-run ratios.
+  if (state.range(0) == 1 || state.range(0) == 2) o.maxFitFlatFraction = 1.0;
+  if (state.range(0) == 2) o.skeleton.leafPlaneMaxPointsPerVoxel = 0;
+  if (state.range(0) == 2 || state.range(0) == 3) o.fit.circle.inlierThresholdRelative = 0.15;
   double skel = 0, fit = 0;
   std::size_t nodes = 0, fitted = 0;
   for (auto _ : state) {
@@ -142,7 +148,7 @@ void BM_AutoSkeletonSketchLeafOn1M(benchmark::State& state) {
   state.counters["skeletonMs"] = skel;
   state.counters["fitMs"] = fit;
 }
-BENCHMARK(BM_AutoSkeletonSketchLeafOn1M)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_AutoSkeletonSketchLeafOn1M)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace
 
