@@ -155,8 +155,7 @@ void runReconstruct(const ReconstructArgs& a) {
       "reconstruct: %zu nodes: %zu fitted, %zu skipped, %zu disabled, %zu kept circles; %zu vertices, %zu "
       "triangles; index %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
       r.results.size(), fitted, skipped, disabled, kept, r.mesh.vertices.size(), r.mesh.triangles.size(),
-      r.timings.indexMs,
-      r.timings.fitMs, r.timings.sweepMs, a.output.c_str());
+      r.timings.indexMs, r.timings.fitMs, r.timings.sweepMs, a.output.c_str());
 }
 
 }  // namespace

@@ -71,8 +71,8 @@ void runAuto(const AutoOptions& o) {
   if (it == methods.end()) throw OptionsError("--method: unknown method '" + o.method + "'");
   sketch::Sketch sk = it->second(AutoSketchInput{cloud, camera, o.nodes, up, o.leafOn});
   io::writeSketch(std::filesystem::path(o.output), sk);
-  std::printf("sketch: %zu nodes (%s, view %s), %zu kept circles, from %zu points -> %s\n", sk.size(),
-              o.method.c_str(), o.view.c_str(), sk.keptCircleCount(), cloud.size(), o.output.c_str());
+  std::printf("sketch: %zu nodes (%s, view %s), %zu kept circles, from %zu points -> %s\n", sk.size(), o.method.c_str(),
+              o.view.c_str(), sk.keptCircleCount(), cloud.size(), o.output.c_str());
 }
 
 }  // namespace

@@ -187,7 +187,8 @@ sketch::Node nodeFromJson(const json& j, std::size_t index, const sketch::Sampli
   n.params = it == j.end() ? defaults : paramsFromJson(*it, defaults, ctx);
   if (auto c = j.find("circle"); c != j.end()) {
     if (hasScreen) ctx.fail("\"circle\": a kept circle needs a point node (this is a screen node)");
-    if (!c->is_object()) ctx.fail("\"circle\": expected an object {\"centre\": [x, y, z], \"radius\": r}, got " + typeName(*c));
+    if (!c->is_object())
+      ctx.fail("\"circle\": expected an object {\"centre\": [x, y, z], \"radius\": r}, got " + typeName(*c));
     Ctx cctx{source, ctx.where + ": \"circle\""};
     std::vector<double> centre = numbers(*c, "centre", 3, cctx);
     const double radius = number(field(*c, "radius", cctx), "\"radius\"", cctx);

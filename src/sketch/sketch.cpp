@@ -57,7 +57,8 @@ Vec3 perpendicularPart(const Vec3& v, const Vec3& a) {
 void checkKeptCircle(const Node& n, const KeptCircle& c, const std::string& what) {
   if (n.isScreenNode()) throw OptionsError(what + ": a kept circle needs a point node (this is a screen node)");
   if (!c.centre.allFinite()) throw OptionsError(what + ": kept circle centre is not finite");
-  if (!(c.radius > 0) || !std::isfinite(c.radius)) throw OptionsError(what + ": kept circle radius must be > 0 and finite");
+  if (!(c.radius > 0) || !std::isfinite(c.radius))
+    throw OptionsError(what + ": kept circle radius must be > 0 and finite");
 }
 
 }  // namespace

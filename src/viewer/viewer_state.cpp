@@ -499,7 +499,8 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
     sketch_ = std::move(result.sketch);
     selected_ = kNoNode;
     active_ = sketch_.root();
-    info("automatic skeleton sketch: " + std::to_string(sketch_.size()) + " nodes keep the automatic model's circles "
+    info("automatic skeleton sketch: " + std::to_string(sketch_.size()) +
+         " nodes keep the automatic model's circles "
          "(edit a node, or Refit, to fit it from the cloud)");
   });
 }

@@ -16,6 +16,12 @@ namespace {
 
 std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
+/// Writes the Y-shaped test tree's cloud to DIR/c.ply; returns that path, quoted for the shell.
+std::string yTreeCloud(const test::TempDir& dir) {
+  io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
+  return q(dir / "c.ply");
+}
+
 TEST(CmdAuto, ReconstructAutoWritesMeshSketchAndCylinders) {
   test::TempDir dir;
   io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
@@ -63,38 +69,28 @@ TEST(CmdAuto, SketchAutoSkeletonLeafOn) {
 // circles); --refit fits every node from the cloud instead.
 TEST(CmdAuto, SavedSketchRebuildsTheAutomaticMeshAndRefitFitsIt) {
   test::TempDir dir;
-  io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
+  const std::string cloud = yTreeCloud(dir), sketchFile = q(dir / "s.json");
   std::string out;
-  ASSERT_EQ(test::runCli("reconstruct " + q(dir / "c.ply") + " --auto --sketch " + q(dir / "s.json") + " -o " +
-                             q(dir / "auto.ply"),
-                         &out),
-            0)
+  ASSERT_EQ(
+      test::runCli("reconstruct " + cloud + " --auto --sketch " + sketchFile + " -o " + q(dir / "auto.ply"), &out), 0)
       << out;
   const sketch::Sketch sk = io::readSketch(dir / "s.json");
   ASSERT_GE(sk.keptCircleCount(), 3u);
-  ASSERT_EQ(test::runCli("reconstruct " + q(dir / "c.ply") + " --sketch " + q(dir / "s.json") + " -o " +
-                             q(dir / "again.ply") + " --report " + q(dir / "r.json"),
-                         &out),
-            0)
-      << out;
+  const std::string again = "reconstruct " + cloud + " --sketch " + sketchFile + " --report " + q(dir / "r.json");
+  ASSERT_EQ(test::runCli(again + " -o " + q(dir / "again.ply"), &out), 0) << out;
   EXPECT_NE(out.find(std::to_string(sk.keptCircleCount()) + " kept circles"), std::string::npos) << out;
   const geom::TriMesh a = io::readMesh(dir / "auto.ply"), b = io::readMesh(dir / "again.ply");
   ASSERT_EQ(a.triangles, b.triangles);
   ASSERT_EQ(a.vertices.size(), b.vertices.size());
   for (std::size_t v = 0; v < a.vertices.size(); ++v) EXPECT_LT((a.vertices[v] - b.vertices[v]).norm(), 1e-6);
   EXPECT_NE(test::readText(dir / "r.json").find("\"kept\": true"), std::string::npos);
-  ASSERT_EQ(test::runCli("reconstruct " + q(dir / "c.ply") + " --sketch " + q(dir / "s.json") + " --refit -o " +
-                             q(dir / "refit.ply"),
-                         &out),
-            0)
-      << out;
+  ASSERT_EQ(test::runCli(again + " --refit -o " + q(dir / "refit.ply"), &out), 0) << out;
   EXPECT_NE(out.find(" 0 kept circles"), std::string::npos) << out;
   // `sketch auto --method skeleton` saves the same handed-over model.
-  ASSERT_EQ(test::runCli("sketch auto " + q(dir / "c.ply") + " --method skeleton -o " + q(dir / "s2.json"), &out), 0)
-      << out;
+  ASSERT_EQ(test::runCli("sketch auto " + cloud + " --method skeleton -o " + q(dir / "s2.json"), &out), 0) << out;
   EXPECT_EQ(io::readSketch(dir / "s2.json").keptCircleCount(), sk.keptCircleCount());
   // --refit is for sketch files.
-  EXPECT_EQ(test::runCli("reconstruct " + q(dir / "c.ply") + " --auto --refit -o " + q(dir / "x.ply"), &out), 2) << out;
+  EXPECT_EQ(test::runCli("reconstruct " + cloud + " --auto --refit -o " + q(dir / "x.ply"), &out), 2) << out;
   EXPECT_NE(out.find("--refit"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.ply"));
 }

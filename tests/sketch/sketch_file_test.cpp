@@ -196,9 +196,9 @@ TEST(SketchFile, RejectsNonNumbers) {
 }
 
 TEST(SketchFile, KeptCirclesReadAndBadOnesAreRejected) {
-  std::istringstream in(fileWith(
-      R"([{"id":0,"parent":-1,"point":[0,1,0],"normal":[0,1,0],"circle":{"centre":[0.5,1,0],"radius":0.25}},)"
-      R"({"id":1,"parent":0,"point":[0,2,0],"normal":[0,1,0]}])"));
+  std::istringstream in(
+      fileWith(R"([{"id":0,"parent":-1,"point":[0,1,0],"normal":[0,1,0],"circle":{"centre":[0.5,1,0],"radius":0.25}},)"
+               R"({"id":1,"parent":0,"point":[0,2,0],"normal":[0,1,0]}])"));
   Sketch sk = readSketch(in, "kept.json");
   ASSERT_TRUE(sk.node(0).kept.has_value());
   EXPECT_EQ(sk.node(0).kept->centre, Vec3(0.5, 1, 0));
