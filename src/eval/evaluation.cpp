@@ -268,6 +268,8 @@ std::vector<EvalRow> runEvaluation(const std::vector<TreeCase>& trees, const Eva
           MethodOutput out = runMethod(method, MethodInput{tree, cloud, o, nodes, leafOn});
           row.nodes = out.nodes;
           row.fitted = out.fitted;
+          for (const auto& [id, node] : out.sketch.nodes()) row.tips += node.children.empty();
+          row.referenceLimbs = static_cast<int>(tree.axes.size());
           row.reconstructMs = out.ms;
           row.meshTriangles = out.mesh.triangles.size();
           DistanceOptions dopt;
@@ -332,15 +334,15 @@ std::string markdownTable(const std::vector<EvalRow>& rows) {
   }
   for (const auto& [pattern, condition] : groups) {
     s << "### " << pattern << " scan, " << condition << "\n\n";
-    s << "| tree | method | nodes (fitted) | reconstruct ms | points | wood % | samples | bbox diag | "
+    s << "| tree | method | nodes (fitted) | tips (limbs) | reconstruct ms | points | wood % | samples | bbox diag | "
          "back max % | back mean % | back RMS % | fwd max % | fwd mean % | fwd RMS % |\n";
-    s << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    s << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     std::map<std::string, std::vector<const EvalRow*>> byMethod;
     for (const auto& r : rows) {
       if (r.pattern != pattern || r.condition != condition || r.sweep) continue;
       byMethod[r.method].push_back(&r);
-      s << "| " << r.tree << " | " << r.method << " | " << r.nodes << " (" << r.fitted << ") | "
-        << f2(r.reconstructMs) << " | " << r.points << " | " << f2(100.0 * r.woodFraction) << " | " << r.samples
+      s << "| " << r.tree << " | " << r.method << " | " << r.nodes << " (" << r.fitted << ") | " << r.tips << " ("
+        << r.referenceLimbs << ") | " << f2(r.reconstructMs) << " | " << r.points << " | " << f2(100.0 * r.woodFraction) << " | " << r.samples
         << " | " << f2(r.bboxDiagonal) << " | " << f3(r.backwardMax) << " | " << f3(r.backwardMean) << " | "
         << f3(r.backwardRms) << " | " << f3(r.forwardMax) << " | " << f3(r.forwardMean) << " | " << f3(r.forwardRms)
         << " |\n";
@@ -373,13 +375,14 @@ std::string csvTable(const std::vector<EvalRow>& rows) {
   std::ostringstream s;
   s << "tree,pattern,condition,method,sweep,nodes,fitted,points,wood_fraction,reconstruct_ms,samples,bbox_diagonal,"
        "backward_max_pct,backward_mean_pct,backward_rms_pct,forward_max_pct,forward_mean_pct,forward_rms_pct,"
-       "mesh_triangles\n";
+       "mesh_triangles,tips,reference_limbs\n";
   s.precision(9);
   for (const auto& r : rows) {
     s << r.tree << "," << r.pattern << "," << r.condition << "," << r.method << "," << (r.sweep ? 1 : 0) << ","
       << r.nodes << "," << r.fitted << "," << r.points << "," << r.woodFraction << "," << r.reconstructMs << ","
       << r.samples << "," << r.bboxDiagonal << "," << r.backwardMax << "," << r.backwardMean << "," << r.backwardRms
-      << "," << r.forwardMax << "," << r.forwardMean << "," << r.forwardRms << "," << r.meshTriangles << "\n";
+      << "," << r.forwardMax << "," << r.forwardMean << "," << r.forwardRms << "," << r.meshTriangles << "," << r.tips << ","
+      << r.referenceLimbs << "\n";
   }
   return s.str();
 }

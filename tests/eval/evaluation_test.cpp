@@ -33,11 +33,17 @@ TEST(Evaluation, RunsEveryMethodAndTheSweep) {
     EXPECT_GT(r.woodFraction, 0.0);
     EXPECT_LT(r.woodFraction, 1.0);  // the leaves were scanned too
     EXPECT_GT(r.fitted, 0) << r.method;
+    EXPECT_EQ(r.referenceLimbs, static_cast<int>(trees[0].axes.size()));
+    EXPECT_GE(r.tips, 1) << r.method;
+    EXPECT_LE(r.tips, r.nodes) << r.method;
     EXPECT_TRUE(std::isfinite(r.backwardRms)) << r.method;
     EXPECT_TRUE(std::isfinite(r.forwardRms)) << r.method;
     EXPECT_LE(r.backwardMean, r.backwardRms + 1e-12);
     EXPECT_LE(r.backwardRms, r.backwardMax + 1e-12);
   }
+  // The uniform chain is one chain: one tip.
+  for (const auto& r : rows)
+    if (r.method == "uniform") EXPECT_EQ(r.tips, 1);
   // The uniform chain follows the trunk only: it misses the branches, so the original's samples
   // (forward) are farther from it than from a sketch that follows the true branches.
   const EvalRow* uniform = nullptr;
@@ -89,6 +95,8 @@ TEST(Evaluation, WritesTableCsvAndPlots) {
   r.method = "user";
   r.nodes = 10;
   r.fitted = 9;
+  r.tips = 3;
+  r.referenceLimbs = 7;
   r.backwardRms = 1.5;
   r.forwardRms = 2.5;
   EvalRow s = r;
@@ -98,10 +106,12 @@ TEST(Evaluation, WritesTableCsvAndPlots) {
   u.method = "uniform";
   std::vector<EvalRow> rows{r, s, u};
   std::string md = markdownTable(rows);
-  EXPECT_NE(md.find("| t1 | user | 10 (9) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| t1 | user | 10 (9) | 3 (7) |"), std::string::npos) << md;
   EXPECT_EQ(md.find("20 ("), std::string::npos) << "sweep rows stay out of the main table";
   std::string csv = csvTable(rows);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  EXPECT_NE(csv.find(",tips,reference_limbs\n"), std::string::npos);
+  EXPECT_NE(csv.find(",3,7\n"), std::string::npos) << csv;
   test::TempDir dir;
   writeReport(dir / "report", rows);
   for (const char* f : {"table.md", "results.csv", "fig_5_12_backward_vs_forward.svg", "fig_5_13_user_vs_auto.svg",

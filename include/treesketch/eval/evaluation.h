@@ -84,6 +84,10 @@ struct EvalRow {
   bool sweep = false;     ///< part of the node-count sweep (Figure 5.14), not the main table
   int nodes = 0;          ///< sketch nodes
   int fitted = 0;         ///< nodes with a circle
+  /// Topology, which the distances do not see (a spurious fork adds little area): tips (nodes
+  /// without children) of the method's sketch, against the reference's limbs (one tip each).
+  int tips = 0;
+  int referenceLimbs = 0;
   std::size_t points = 0;       ///< cloud size
   double woodFraction = 0.0;    ///< share of the cloud's points on the branch mesh
   double reconstructMs = 0.0;   ///< sketch + fit + sweep wall time
