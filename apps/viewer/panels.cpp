@@ -163,11 +163,9 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
     ImGui::Checkbox("in leaf", &panel.autoLeafOn);
     ImGui::SameLine();
     if (ImGui::Button("Clear")) state.clearSketch();
-    if (const std::size_t kept = state.sketch().keptCircleCount(); kept > 0) {
+    if (state.sketch().keptCircleCount() > 0) {
       ImGui::SameLine();
       if (ImGui::Button("Refit all")) state.refitAll();
-      ImGui::SameLine();
-      ImGui::TextDisabled("(%zu kept circles)", kept);
     }
     ImGui::BeginDisabled(!state.canUndo());
     if (ImGui::Button("Undo")) state.undo();
@@ -204,9 +202,9 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoSavedSettings);
   viewer::StatusMessage last = state.lastMessage();
-  ImGui::Text("%zu points | %zu nodes: %zu fitted, %zu skipped | last rebuild %.2f ms | %s |", state.cloud().size(),
-              state.sketch().size(), state.fittedCount(), state.skippedCount(), state.lastRebuildMs(),
-              state.orbit().orthographic() ? "orthographic" : "perspective");
+  ImGui::Text("%zu points | %zu nodes: %zu fitted (%zu kept circles), %zu skipped | last rebuild %.2f ms | %s |",
+              state.cloud().size(), state.sketch().size(), state.fittedCount(), state.sketch().keptCircleCount(),
+              state.skippedCount(), state.lastRebuildMs(), state.orbit().orthographic() ? "orthographic" : "perspective");
   ImGui::SameLine();
   if (last.error)
     ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", last.text.c_str());

@@ -176,7 +176,8 @@ class Parser {
       a.kind = Kind::Expect;
       const json& e = j["expect"];
       if (!e.is_object()) fail(index, "expect: expected an object");
-      static const char* kKeys[] = {"nodes", "fitted", "skipped", "selected", "active", "errors", "meshTriangles"};
+      static const char* kKeys[] = {"nodes",  "fitted", "skipped",       "selected",
+                                    "active", "errors", "meshTriangles", "kept"};
       for (const auto& [k, v] : e.items()) {
         bool known = false;
         for (const char* key : kKeys) known |= k == key;
@@ -274,6 +275,8 @@ std::string checkExpect(const ViewerState& state, const std::string& key, double
     got = state.active();
   else if (key == "errors")
     got = static_cast<double>(state.errorCount());
+  else if (key == "kept")
+    got = static_cast<double>(state.sketch().keptCircleCount());
   else if (key == "meshTriangles") {
     got = static_cast<double>(state.mesh().triangles.size());
     if (got >= want) return {};

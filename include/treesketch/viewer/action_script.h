@@ -20,7 +20,8 @@
 //                                          without a path use the session's sketch path)
 //   {"wait": frames}
 //   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
-//               "errors": n, "meshTriangles": n}}   ("meshTriangles" checks "at least n")
+//               "errors": n, "meshTriangles": n, "kept": n}}   ("meshTriangles" checks "at least
+//                                          n"; "kept": nodes with a kept circle)
 // Paths are relative to the current directory.
 #pragma once
 
