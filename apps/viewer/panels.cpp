@@ -204,7 +204,8 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   viewer::StatusMessage last = state.lastMessage();
   ImGui::Text("%zu points | %zu nodes: %zu fitted (%zu kept circles), %zu skipped | last rebuild %.2f ms | %s |",
               state.cloud().size(), state.sketch().size(), state.fittedCount(), state.sketch().keptCircleCount(),
-              state.skippedCount(), state.lastRebuildMs(), state.orbit().orthographic() ? "orthographic" : "perspective");
+              state.skippedCount(), state.lastRebuildMs(),
+              state.orbit().orthographic() ? "orthographic" : "perspective");
   ImGui::SameLine();
   if (last.error)
     ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", last.text.c_str());

@@ -342,10 +342,10 @@ std::string markdownTable(const std::vector<EvalRow>& rows) {
       if (r.pattern != pattern || r.condition != condition || r.sweep) continue;
       byMethod[r.method].push_back(&r);
       s << "| " << r.tree << " | " << r.method << " | " << r.nodes << " (" << r.fitted << ") | " << r.tips << " ("
-        << r.referenceLimbs << ") | " << f2(r.reconstructMs) << " | " << r.points << " | " << f2(100.0 * r.woodFraction) << " | " << r.samples
-        << " | " << f2(r.bboxDiagonal) << " | " << f3(r.backwardMax) << " | " << f3(r.backwardMean) << " | "
-        << f3(r.backwardRms) << " | " << f3(r.forwardMax) << " | " << f3(r.forwardMean) << " | " << f3(r.forwardRms)
-        << " |\n";
+        << r.referenceLimbs << ") | " << f2(r.reconstructMs) << " | " << r.points << " | " << f2(100.0 * r.woodFraction)
+        << " | " << r.samples << " | " << f2(r.bboxDiagonal) << " | " << f3(r.backwardMax) << " | "
+        << f3(r.backwardMean) << " | " << f3(r.backwardRms) << " | " << f3(r.forwardMax) << " | " << f3(r.forwardMean)
+        << " | " << f3(r.forwardRms) << " |\n";
     }
     s << "\nMean over trees (a method that fitted no node on a tree has no mesh: that tree is left out of its "
          "mean and counted in the last column):\n\n| method | back RMS % | fwd RMS % | reconstruct ms | trees "
@@ -381,8 +381,8 @@ std::string csvTable(const std::vector<EvalRow>& rows) {
     s << r.tree << "," << r.pattern << "," << r.condition << "," << r.method << "," << (r.sweep ? 1 : 0) << ","
       << r.nodes << "," << r.fitted << "," << r.points << "," << r.woodFraction << "," << r.reconstructMs << ","
       << r.samples << "," << r.bboxDiagonal << "," << r.backwardMax << "," << r.backwardMean << "," << r.backwardRms
-      << "," << r.forwardMax << "," << r.forwardMean << "," << r.forwardRms << "," << r.meshTriangles << "," << r.tips << ","
-      << r.referenceLimbs << "\n";
+      << "," << r.forwardMax << "," << r.forwardMean << "," << r.forwardRms << "," << r.meshTriangles << "," << r.tips
+      << "," << r.referenceLimbs << "\n";
   }
   return s.str();
 }
