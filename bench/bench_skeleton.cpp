@@ -72,13 +72,16 @@ const geom::PointCloud& cloud1M() {
 void BM_ExtractSkeleton1M(benchmark::State& state) {
   const auto& cloud = cloud1M();
   std::size_t nodes = 0;
+  double voxel = 0;
   for (auto _ : state) {
     auto s = skeleton::extractSkeleton(cloud);
     nodes = s.nodes.size();
+    voxel = s.graph.voxelSize;
     benchmark::DoNotOptimize(s);
   }
   state.counters["points"] = static_cast<double>(cloud.size());
   state.counters["nodes"] = static_cast<double>(nodes);
+  state.counters["voxel"] = voxel;  // cloud units (metres): the fits' band is max(0.01, 0.1 voxel)
 }
 BENCHMARK(BM_ExtractSkeleton1M)->Unit(benchmark::kMillisecond);
 

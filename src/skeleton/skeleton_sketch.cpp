@@ -157,6 +157,8 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   checkRules(options.radii);
   if (!(options.maxFitFlatFraction >= 0 && options.maxFitFlatFraction <= 1))
     throw OptionsError("skeleton: maxFitFlatFraction must be in [0, 1]");
+  if (!(options.minInlierBandVoxels >= 0) || !std::isfinite(options.minInlierBandVoxels))
+    throw OptionsError("skeleton: minInlierBandVoxels must be a finite number >= 0");
   AutoSkeletonResult res;
   auto t0 = std::chrono::steady_clock::now();
   res.skeleton = extractSkeleton(cloud, options.skeleton);
@@ -168,10 +170,13 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
 
   t0 = std::chrono::steady_clock::now();
   const fit::CloudIndex index(cloud);
+  fit::NodeFitOptions fitOptions = options.fit;
+  fitOptions.circle.inlierThreshold =
+      std::max(fitOptions.circle.inlierThreshold, options.minInlierBandVoxels * res.skeleton.graph.voxelSize);
   res.fits.resize(n);
   std::atomic<std::uint64_t> done{0};
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-    fit::NodeFitOptions fo = options.fit;
+    fit::NodeFitOptions fo = fitOptions;
     fo.circle.seed = options.seed + i;
     const auto id = static_cast<sketch::NodeId>(i);
     if (isLeafPiece(nodes[i], options)) {

@@ -181,6 +181,31 @@ TEST(SkeletonSketch, AnEditRefitsOnlyTheTouchedNode) {
   EXPECT_GT(rec.result(id)->inlierIndices.size(), 10u);
 }
 
+// The fits' band follows the cloud's scale: the same tree in millimetres is fitted as in metres
+// (without the voxel floor its 0.01-unit band would be 0.01 mm and most fits would fail).
+TEST(SkeletonSketch, FitsDoNotDependOnTheCloudsUnits) {
+  const auto metres = test::sampleCylinders(test::yTree(), 0.02, 0.003, 7);
+  geom::PointCloud millimetres = metres;
+  for (auto& p : millimetres.positions) p *= 1000.0;
+  auto accepted = [](const skeleton::AutoSkeletonResult& r) {
+    std::size_t n = 0;
+    for (char a : r.fitAccepted) n += a != 0;
+    return n;
+  };
+  const auto m = skeleton::autoSkeletonSketch(metres);
+  const auto mm = skeleton::autoSkeletonSketch(millimetres);
+  ASSERT_EQ(m.model.size(), mm.model.size());  // the skeleton is scale-free
+  EXPECT_GE(accepted(mm), accepted(m) * 9 / 10);
+  EXPECT_GE(accepted(m), m.model.size() * 3 / 4);
+  for (std::size_t i = 0; i < m.model.size(); ++i)
+    EXPECT_NEAR(mm.model[i].radius / 1000.0, m.model[i].radius, 0.1 * m.model[i].radius) << "node " << i;
+  skeleton::AutoSkeletonOptions fixedBand;
+  fixedBand.minInlierBandVoxels = 0;
+  EXPECT_LT(accepted(skeleton::autoSkeletonSketch(millimetres, fixedBand)), accepted(m) / 2);
+  fixedBand.minInlierBandVoxels = -1;
+  EXPECT_THROW(skeleton::autoSkeletonSketch(metres, fixedBand), OptionsError);
+}
+
 TEST(SkeletonSketch, EmptyCloud) {
   const auto res = skeleton::autoSkeletonSketch(geom::PointCloud{});
   EXPECT_TRUE(res.model.empty());

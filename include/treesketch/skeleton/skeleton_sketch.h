@@ -78,7 +78,9 @@ inline fit::NodeFitOptions autoNodeFitOptions() {
   // four ez-tree trees × sphere / TLS scanned without leaves (mean backward / forward RMS % of
   // the diagonal): relative 0.15 (sessions 2-6) 0.143 / 0.180, 0.05 0.133 / 0.185, 0.03 0.125 /
   // 0.189; none, fixed band 0.005 / 0.01 (default) / 0.02 / 0.04 units 0.121 / 0.099 / 0.105 /
-  // 0.110 backward at 0.186-0.188 forward. In leaf: 1.313 / 0.849 -> 1.313 / 0.866.
+  // 0.110 backward at 0.186-0.188 forward. In leaf: 1.313 / 0.849 -> 1.313 / 0.866. The band is
+  // also at least AutoSkeletonOptions::minInlierBandVoxels (0.1 voxel: 0.011-0.026 units on those
+  // trees, 0.104 / 0.186), so that it follows the cloud's scale.
   // 500 samples find an all-inlier triple with p = 0.999 down to ~24 % inliers; below that a
   // skeleton node's slice is mostly something else (leaves) and its radius is interpolated
   // anyway. Measured on the test trees: the same accuracy as the fit module's 2,000 in every
@@ -125,8 +127,16 @@ struct AutoSkeletonOptions {
   /// an edit re-fits only the nodes it touches. Without it a rebuild fits every node from the
   /// cloud with no radius rules: measured on the four ez-tree trees × sphere / TLS (per scan,
   /// backward / forward RMS % of the diagonal), leaf-off 0.07-0.15 / 0.12-0.31 (this mesh) became
-  /// 0.08-0.18 / 0.14-0.59, leaf-on 0.72-2.24 / 0.31-2.40 became 0.96-2.31 / 0.30-3.15.
+  /// 0.08-0.18 / 0.14-0.59, leaf-on 0.70-2.23 / 0.33-2.39 became 0.96-2.31 / 0.30-3.15.
   bool keepModelCircles = true;
+  /// The fits' inlier band is at least this many voxels (fit.circle.inlierThreshold is in cloud
+  /// units, 0.01 by default: right for metres and for the test trees' units, but a cloud in
+  /// millimetres would be fitted with a 0.01 mm band, and its fits would fail). 0 = the band as
+  /// given. Measured on the four ez-tree trees × sphere / TLS without leaves, the same scans in
+  /// scene units and × 1000: 0 gave 0.099 / 0.188 and 0.195 / 0.167 (backward / forward RMS %),
+  /// 0.1 gives 0.104 / 0.186 at both scales; real scans in metres keep the 0.01 m band (0.1 voxel is
+  /// a few millimetres there).
+  double minInlierBandVoxels = 0.1;
   /// Node i is fitted with seed `seed + i`.
   std::uint64_t seed = 1;
   /// Vertices per ring of the swept mesh.
