@@ -170,9 +170,10 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
 
   t0 = std::chrono::steady_clock::now();
   const fit::CloudIndex index(cloud);
+  const double voxel = res.skeleton.graph.voxelSize;
   fit::NodeFitOptions fitOptions = options.fit;
   fitOptions.circle.inlierThreshold =
-      std::max(fitOptions.circle.inlierThreshold, options.minInlierBandVoxels * res.skeleton.graph.voxelSize);
+      std::max(fitOptions.circle.inlierThreshold, options.minInlierBandVoxels * voxel);
   res.fits.resize(n);
   std::atomic<std::uint64_t> done{0};
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
@@ -191,7 +192,6 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   res.fitMs = elapsedMs(t0);
 
   t0 = std::chrono::steady_clock::now();
-  const double voxel = res.skeleton.graph.voxelSize;
   const RadiusRules& rules = options.radii;
   res.fitAccepted.assign(n, 0);
   std::vector<double> fitted(n, 0.0);
@@ -241,7 +241,7 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
         if (keep[i]) centres.push_back(res.model[i].position);
       Skeleton trimmed;
       trimmed.up = res.skeleton.up;
-      trimmed.graph.voxelSize = res.skeleton.graph.voxelSize;
+      trimmed.graph.voxelSize = voxel;
       trimmed.nodes = kept;
       res.sketch = skeletonToSketch(trimmed, options.sketch);
       res.model = kept;

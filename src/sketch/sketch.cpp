@@ -230,7 +230,6 @@ void Sketch::moveNode(NodeId id, const Vec2& screen) {
   Node& n = mutableNode(id);
   if (!n.isScreenNode()) throw OptionsError(nodeName(id) + ": is a point node, not a screen node");
   if (!screen.allFinite()) throw OptionsError(nodeName(id) + ": screen position is not finite");
-  if (n.screen != screen) n.kept.reset();
   n.screen = screen;
 }
 

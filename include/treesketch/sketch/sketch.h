@@ -71,7 +71,7 @@ struct Node {
   geom::Vec3 normal = geom::Vec3::Zero();  ///< point nodes: the slice plane's normal (world)
   SamplingParams params;
   /// When set (and the node enabled), the reconstruction uses this circle and does not fit the
-  /// node. Sketch drops it when the node's inputs change (moveNode, movePointNode, setParams with
+  /// node. Sketch drops it when the node's inputs change (movePointNode, setParams with
   /// different params): it no longer says what those inputs would measure.
   std::optional<KeptCircle> kept;
 
