@@ -172,8 +172,7 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   const fit::CloudIndex index(cloud);
   const double voxel = res.skeleton.graph.voxelSize;
   fit::NodeFitOptions fitOptions = options.fit;
-  fitOptions.circle.inlierThreshold =
-      std::max(fitOptions.circle.inlierThreshold, options.minInlierBandVoxels * voxel);
+  fitOptions.circle.inlierThreshold = std::max(fitOptions.circle.inlierThreshold, options.minInlierBandVoxels * voxel);
   res.fits.resize(n);
   std::atomic<std::uint64_t> done{0};
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
