@@ -89,10 +89,15 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   const auto& cloud = cloud1M();
   double skel = 0, fit = 0, sweep = 0;
   std::size_t nodes = 0, forks = 0;
-  // Arg 0: defaults. Arg 1: the fits' inlier band 15 % of the hypothesis's radius (sessions 2-6),
-  // for a same-run ratio.
+  // Arg 0: defaults. Arg 1: the fits' inlier band 15 % of the hypothesis's radius (sessions 2-6).
+  // Arg 2: the pruning of sessions 1-7 (cross-section rule 0.6 for long sub-trees too, partial
+  // tips below half their parent's support dropped). For same-run ratios.
   skeleton::AutoSkeletonOptions o;
   if (state.range(0) == 1) o.fit.circle.inlierThresholdRelative = 0.15;
+  if (state.range(0) == 2) {
+    o.skeleton.minTubularFractionLong = o.skeleton.minTubularFraction;
+    o.skeleton.minEndSupportFraction = 0.5;
+  }
   for (auto _ : state) {
     auto r = skeleton::autoSkeletonSketch(cloud, o);
     skel = r.skeletonMs;
@@ -109,7 +114,7 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   state.counters["fitMs"] = fit;
   state.counters["sweepMs"] = sweep;
 }
-BENCHMARK(BM_AutoSkeletonSketch1M)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AutoSkeletonSketch1M)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 const geom::PointCloud& leafyCloud1M() {
   static const geom::PointCloud cloud = [] {

@@ -37,6 +37,8 @@ void checkOptions(const SkeletonOptions& o) {
   nonNegative(o.thinRadiusVoxels, "thinRadiusVoxels");
   nonNegative(o.maxRingVariation, "maxRingVariation");
   nonNegative(o.minTubularFraction, "minTubularFraction");
+  nonNegative(o.longBranchBins, "longBranchBins");
+  nonNegative(o.minTubularFractionLong, "minTubularFractionLong");
   nonNegative(o.collinearToleranceRadii, "collinearToleranceRadii");
   nonNegative(o.collinearToleranceVoxels, "collinearToleranceVoxels");
   positive(o.maxSegmentRadii, "maxSegmentRadii");
@@ -661,7 +663,10 @@ std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw,
       const double length = reach[c] + (raw[c].position - raw[i].position).norm();
       const double lin = supSum[c] > 0 ? linSum[c] / supSum[c] : 0.0;
       const double tub = supSum[c] > 0 ? tubSum[c] / supSum[c] : 0.0;
-      kept[c] = length >= spur && lin >= options.minBranchLinearity && tub >= options.minTubularFraction;
+      const double minTub = length >= options.longBranchBins * binWidth
+                                ? std::min(options.minTubularFraction, options.minTubularFractionLong)
+                                : options.minTubularFraction;
+      kept[c] = length >= spur && lin >= options.minBranchLinearity && tub >= minTub;
     }
     for (std::int32_t c : raw[i].children)
       if (kept[c] && raw[c].children.empty() && raw[c].support < options.minEndSupportFraction * raw[i].support)
@@ -806,6 +811,7 @@ SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base) {
   base.graph.autoSpacingFactor = 1.5;
   base.binWidthVoxels = 1.0;
   base.minTubularFraction = 0.2;
+  base.minEndSupportFraction = 0.5;  // partial tips in a crown are leaf ends (see the option)
   base.leafEntryPositions = true;
   return base;
 }

@@ -175,6 +175,40 @@ TEST(Skeleton, LeafClutterDoesNotGrowBranches) {
   EXPECT_GE(skeleton::countBranchPoints(unfiltered.nodes), skeleton::countBranchPoints(s.nodes) + 3);
 }
 
+// A tree scanned sparsely from one side only (a single station, as real scans often are): the
+// level sets of a branch are noisy half rings, neither thin nor rings, so the cross-section rule
+// alone (0.6 for every side sub-tree) drops side branches; a long sub-tree needs only
+// minTubularFractionLong.
+TEST(Skeleton, OneSidedLimbsAreKept) {
+  const auto cyls = test::threeLevelTree();
+  const auto full = test::sampleCylinders(cyls, 0.04, 0.01, 13);
+  geom::PointCloud half;
+  for (const auto& p : full.positions) {
+    // The nearest axis decides the side: keep the half of each surface that faces -z.
+    std::size_t k = 0;
+    for (std::size_t j = 1; j < cyls.size(); ++j)
+      if (test::distanceToSegment(p, cyls[j].a, cyls[j].b) < test::distanceToSegment(p, cyls[k].a, cyls[k].b)) k = j;
+    const Vec3 axis = (cyls[k].b - cyls[k].a).normalized();
+    const Vec3 off = (p - cyls[k].a) - axis * axis.dot(p - cyls[k].a);
+    if (off.z() < 0) half.positions.push_back(p);
+  }
+  auto tipsReached = [&](const std::vector<skeleton::SkeletonNode>& nodes) {
+    int reached = 0;
+    for (int c : {2, 3, 4, 5}) {  // the side branches and twigs
+      double nearest = 1e300;
+      for (const auto& n : nodes) nearest = std::min(nearest, (n.position - cyls[c].b).norm());
+      reached += nearest < 0.3;
+    }
+    return reached;
+  };
+  const auto s = skeleton::extractSkeleton(half);
+  EXPECT_EQ(tipsReached(s.nodes), 4);
+  EXPECT_LE(skeleton::countEnds(s.nodes), 6u);  // the true tree has 5
+  skeleton::SkeletonOptions strict;
+  strict.minTubularFractionLong = strict.minTubularFraction;
+  EXPECT_LE(tipsReached(skeleton::extractSkeleton(half, strict).nodes), 2);
+}
+
 TEST(Skeleton, Deterministic) {
   const auto cloud = test::sampleCylinders(test::threeLevelTree(), 0.02, 0.003, 2);
   const auto s1 = skeleton::extractSkeleton(cloud);

@@ -12,7 +12,7 @@
 // centroids of one-sided (occluded) rings are biased towards the visible side (the circle fits
 // that follow correct this). Foliage is the weak point: on leaf-on scans (the ez-tree test trees
 // are 5-11 % wood) the default cross-section rule (minTubularFraction) keeps leaves out but drops
-// most limbs with them (forward RMS ~8-10 % of the diagonal); leafOnSkeletonOptions() follows the
+// most limbs with them (forward RMS ~5-10 % of the diagonal); leafOnSkeletonOptions() follows the
 // crown out to the twigs (forward 0.4-1.2 %) but its level sets then run through the leaf
 // clusters, whose centroids lie about half a leaf off the twigs; taking leaf points near their
 // leaf's base (leafEntryPositions, leafConvergenceWeight) brings the backward error from ~2 % to
@@ -42,8 +42,14 @@ struct SkeletonOptions {
   /// by sparse sampling or a junction) instead of making them separate nodes.
   bool mergeSplitRings = true;
   /// End nodes with fewer points than this fraction of their parent's are dropped (the partial
-  /// last level set at a branch tip, whose centroid is off the axis).
-  double minEndSupportFraction = 0.5;
+  /// last level set at a branch tip, whose centroid is off the axis). Leaf-off, the tip's circle
+  /// fit puts that node back on the axis, and dropping it only shortens the branch. Measured on
+  /// the four ez-tree trees scanned without leaves (mean over sphere / TLS, backward / forward
+  /// RMS % of the diagonal, with the long-limb rule below): 0.5 gave 0.103 / 0.172, 0.25 0.103 /
+  /// 0.164, 0.1 0.103 / 0.160 and 0 0.103 / 0.159. 0.1 still drops the slivers. Leaf-on, the
+  /// partial tips are leaf ends, so leafOnSkeletonOptions keeps 0.5 (0 gave 1.337 / 0.836
+  /// against 1.316 / 0.859).
+  double minEndSupportFraction = 0.1;
 
   /// Spurs: a side sub-tree whose longest path from its fork is shorter than the largest of
   /// `spurLengthRadii` × the fork's radius and `spurLengthBins` level sets is dropped.
@@ -55,10 +61,27 @@ struct SkeletonOptions {
   /// Foliage by cross-section: a level-set piece is tubular when it is thin (mean distance to its
   /// axis ≤ thinRadiusVoxels voxels) or a ring (coefficient of variation of those distances ≤
   /// maxRingVariation; a noisy ring is ~0.1-0.3, a cluster of leaves a blob, ~0.5+). A side
-  /// sub-tree whose tubular share (by support) is below minTubularFraction is dropped.
+  /// sub-tree whose tubular share (by support) is below minTubularFraction is dropped...
   double thinRadiusVoxels = 0.5;
   double maxRingVariation = 0.4;
   double minTubularFraction = 0.6;
+  /// ...unless it is at least longBranchBins level sets long: then a tubular share of
+  /// minTubularFractionLong is enough (the smaller of the two applies). Leaf clusters are compact:
+  /// the spurs they grow are a few leaf lengths long. A real limb that is scanned sparsely or
+  /// from one side is long, but at the voxel scale it is neither thin nor a ring. On real
+  /// leaf-off scans the single 0.6 rule dropped limbs with tubular shares of 0.33-0.58:
+  ///   - AdTree tree7: most of its limbs (8 tips, 11.9 m of branches); with this rule 36 tips and
+  ///     46.2 m, every main limb (a flat 0.3 gives 45 tips, 51.3 m);
+  ///   - aRchi tree 2: a whole limb (78.8 m, now 94.6 m);
+  ///   - rTwig: 1.5 m of twigs (24.4 m, now 25.8 m; its QSM has 31.4 m).
+  /// On the ez-tree trees without leaves the rule's forward RMS is 0.163 % (0.6 alone: 0.172 %, with
+  /// the end rule above; a flat 0.3: 0.160 %), and the backward is 0.103 % in all three. The
+  /// compact-cluster threshold stays at 0.6: a flat 0.3 let the leaf-clutter test grow 6 forks
+  /// instead of at most 4. On the leafy ez-tree scans run with these (leaf-off) settings, sphere /
+  /// TLS: backward 1.59 / 1.86 %, forward 5.0 / 4.8 % (the single 0.6 rule: 1.44 / 1.66 %, 8.5 /
+  /// 10.1 %; leafOnSkeletonOptions, the settings for such scans: 1.24 / 1.40 %, 0.52 / 1.20 %).
+  double longBranchBins = 10.0;
+  double minTubularFractionLong = 0.3;
 
   /// Forks: the fork node and the raw nodes within forkZoneRadii × radius + one level set below
   /// it are moved onto the line of the parent chain below that zone (their level sets include the
@@ -138,19 +161,20 @@ struct SkeletonOptions {
 };
 
 /// Settings for scans of trees in leaf: finer voxels (1.5 point spacings instead of 2.5), level
-/// sets one voxel wide instead of two, a weak cross-section rule (minTubularFraction 0.2
-/// instead of 0.6) and leaf-entry positions (leafEntryPositions; the figures below are without
-/// it), applied to `base`. In a leafy crown the level sets run through the leaf
-/// clusters; finer pieces keep neighbouring twigs' clusters apart and follow them out to the
-/// twigs, where the strict rule drops them together with the limbs that carry them. Measured on
+/// sets one voxel wide instead of two, a weak cross-section rule (minTubularFraction 0.2 instead of
+/// 0.6, for long sub-trees too), partial tips dropped below half their parent's support
+/// (minEndSupportFraction 0.5 instead of 0.1) and leaf-entry positions (leafEntryPositions; the
+/// figures below are without it), applied to `base`. In a leafy crown the level sets run through
+/// the leaf clusters; finer pieces keep neighbouring twigs' clusters apart and follow them out to
+/// the twigs, where the strict rule drops them together with the limbs that carry them. Measured on
 /// the four ez-tree test trees scanned with leaves (backward / forward RMS % of the diagonal,
 /// `treesketch evaluate`): sphere 1.65 / 8.27 -> 1.95 / 0.48, TLS 1.89 / 9.83 -> 2.11 / 1.25: far
-/// more of the tree is found, at the price of tubes through leaf clusters that sit one or two
-/// leaf sizes off their twigs (the backward error); with leaf-entry positions as well, sphere
-/// 1.68 / 0.43 and TLS 1.90 / 1.20, and with their plane convergence (leafConvergenceWeight)
-/// sphere 1.26 / 0.47, TLS 1.44 / 1.16. Why not the default: on densely sampled
-/// surfaces with random (not scan-line) spacing, 1.5 spacings leave holes in the voxel graph
-/// that split rings into arcs (spurious forks on the synthetic test cylinders).
+/// more of the tree is found, at the price of tubes through leaf clusters that sit one or two leaf
+/// sizes off their twigs (the backward error); with leaf-entry positions as well, sphere 1.68 /
+/// 0.43 and TLS 1.90 / 1.20, and with their plane convergence (leafConvergenceWeight) sphere 1.26 /
+/// 0.47, TLS 1.44 / 1.16. Why not the default: on densely sampled surfaces with random (not
+/// scan-line) spacing, 1.5 spacings leave holes in the voxel graph that split rings into arcs
+/// (spurious forks on the synthetic test cylinders).
 SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base = {});
 
 /// One skeleton node (raw level-set piece, or a kept node after simplification).
