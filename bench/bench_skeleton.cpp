@@ -131,8 +131,7 @@ const geom::PointCloud& leafyCloud1M() {
 
 void BM_AutoSkeletonSketchLeafOn1M(benchmark::State& state) {
   const auto& cloud = leafyCloud1M();
-  skeleton::AutoSkeletonOptions o;
-  o.skeleton = skeleton::leafOnSkeletonOptions();
+  skeleton::AutoSkeletonOptions o = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOn);
   // Arg 0: the leaf-on defaults. Arg 1: every node fitted (leaf pieces too). Arg 2: every node
   // fitted and the plane test on all points (session 5's path). Arg 3: the defaults with the fits'
   // inlier band 15 % of the hypothesis's radius (session 6's path). For same-run ratios.

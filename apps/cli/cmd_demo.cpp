@@ -27,10 +27,10 @@
 #include "treesketch/eval/evaluation.h"
 #include "treesketch/eval/tree_suite.h"
 #include "treesketch/gen/skeleton_io.h"
-#include "treesketch/io/sketch_file.h"
 #include "treesketch/gen/tree_generator.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
+#include "treesketch/io/sketch_file.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
@@ -76,7 +76,8 @@ template <typename F>
 void timed(DemoState& s, const std::string& name, F&& step) {
   auto start = std::chrono::steady_clock::now();
   step();
-  s.timings.emplace_back(name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  s.timings.emplace_back(name,
+                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 
 std::string formatBox(const geom::BBox& b) {
@@ -108,8 +109,8 @@ void stepGenerate(DemoState& s) {
   s.summary << "  branches: " << sk.branches.size() << " (per level:";
   for (int l = 0; l <= sk.maxLevel() && l < 5; ++l) s.summary << " " << perLevel[l];
   s.summary << "), sections " << sk.sectionCount() << ", total length " << gen::totalLength(sk) << " m\n";
-  s.summary << "  trunk base radius " << sk.branches[0].sections[0].radius << " m, wood volume "
-            << gen::woodVolume(sk) << " m^3\n";
+  s.summary << "  trunk base radius " << sk.branches[0].sections[0].radius << " m, wood volume " << gen::woodVolume(sk)
+            << " m^3\n";
   s.summary << "  branch mesh: " << s.tree.branches.mesh.vertices.size() << " vertices, "
             << s.tree.branches.mesh.triangles.size() << " triangles, area " << s.tree.branches.mesh.area() << " m^2\n";
   s.summary << "  leaf mesh: " << s.tree.leaves.triangles.size() / 2 << " quads, area " << s.tree.leaves.area()
@@ -208,7 +209,8 @@ void stepSummary(DemoState& s) {
   text << "files: tree_branches.obj tree_leaves.obj tree_skeleton.json cloud.ply sketch_user.json sketch_uniform.json "
           "recon_user.obj recon_uniform.obj error_user.ply summary.txt\n";
   const std::string str = text.str();
-  writeFileAtomically(s.dir / "summary.txt", [&](std::ostream& out) { out << str; }, false);
+  writeFileAtomically(
+      s.dir / "summary.txt", [&](std::ostream& out) { out << str; }, false);
   std::fputs(str.c_str(), stdout);
 }
 

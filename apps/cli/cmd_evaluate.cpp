@@ -63,8 +63,10 @@ void registerEvaluate(CLI::App& app, Action& action) {
       eval::EvalOptions e = o->e;
       if (cmdRaysGiven) e.sphereTargetPoints = 0;
       e.patterns = o->patterns;
-      if (!o->methods.empty()) e.methods = o->methods;
-      else e.methods = eval::methodNames();
+      if (!o->methods.empty())
+        e.methods = o->methods;
+      else
+        e.methods = eval::methodNames();
       if (!o->sweep.empty()) e.nodeSweep = o->sweep;
       if (o->noSweep) e.nodeSweep.clear();
       e.leafOn = !o->noLeafOn;

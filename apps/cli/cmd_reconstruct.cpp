@@ -89,9 +89,8 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   } catch (const InputError& e) {
     throw OptionsError(std::string("-o: ") + e.what());
   }
-  skeleton::AutoSkeletonOptions opt;
-  if (a.leafOn) opt.skeleton = skeleton::leafOnSkeletonOptions();
-  opt.skeleton.up = geom::parseUpAxis(a.up);
+  skeleton::AutoSkeletonOptions opt = skeleton::autoSkeletonPreset(
+      a.leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, geom::parseUpAxis(a.up));
   opt.seed = a.seed;
   opt.ringVertices = a.ring;
   if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;

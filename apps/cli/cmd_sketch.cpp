@@ -11,8 +11,8 @@
 #include "commands.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
-#include "treesketch/sketch/auto_sketch.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
+#include "treesketch/sketch/auto_sketch.h"
 #include "treesketch/sketch/view_camera.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
@@ -41,9 +41,8 @@ const std::map<std::string, AutoSketchMethod>& autoSketchMethods() {
       // gives the automatic model and the viewer shows it. --nodes and --view are not used.
       {"skeleton",
        [](const AutoSketchInput& in) {
-         skeleton::AutoSkeletonOptions o;
-         if (in.leafOn) o.skeleton = skeleton::leafOnSkeletonOptions();
-         o.skeleton.up = in.up;
+         const auto o =
+             skeleton::autoSkeletonPreset(in.leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, in.up);
          return skeleton::autoSkeletonSketch(in.cloud, o).sketch;
        }},
   };

@@ -28,9 +28,7 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 const geom::Viewport kViewport{0, 0, 1280, 800};
 
@@ -67,8 +65,10 @@ std::vector<sketch::BranchPolyline> branchesForBudget(const std::vector<sketch::
   for (int iter = 0; iter < 60; ++iter) {
     double mid = std::sqrt(lo * hi);
     branchesAtSpacing(axes, mid, &n);
-    if (n > nodeCount) lo = mid;
-    else hi = mid;
+    if (n > nodeCount)
+      lo = mid;
+    else
+      hi = mid;
   }
   int nLo = 0, nHi = 0;
   auto keepLo = branchesAtSpacing(axes, lo, &nLo);
@@ -143,9 +143,8 @@ MethodOutput methodIdeal(const MethodInput& in) {
 
 MethodOutput methodSkeleton(const MethodInput& in) {
   auto t0 = Clock::now();
-  skeleton::AutoSkeletonOptions so;
-  if (in.leafOn) so.skeleton = skeleton::leafOnSkeletonOptions(so.skeleton);
-  so.skeleton.up = in.tree.up;
+  skeleton::AutoSkeletonOptions so =
+      skeleton::autoSkeletonPreset(in.leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, in.tree.up);
   so.seed = in.options.seed;
   skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, so);
   MethodOutput out;
@@ -391,8 +390,10 @@ void writeReport(const fs::path& folder, const std::vector<EvalRow>& rows) {
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (!fs::is_directory(folder)) throw OutputError(folder.string() + ": cannot create the directory");
-  writeFileAtomically(folder / "table.md", [&](std::ostream& o) { o << markdownTable(rows); }, false);
-  writeFileAtomically(folder / "results.csv", [&](std::ostream& o) { o << csvTable(rows); }, false);
+  writeFileAtomically(
+      folder / "table.md", [&](std::ostream& o) { o << markdownTable(rows); }, false);
+  writeFileAtomically(
+      folder / "results.csv", [&](std::ostream& o) { o << csvTable(rows); }, false);
   if (rows.empty()) return;
 
   // The main condition of the plots: the first pattern, leaf-on when present.

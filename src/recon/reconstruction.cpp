@@ -4,6 +4,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <chrono>
 #include <set>
 
@@ -40,7 +41,7 @@ std::map<NodeId, const fit::NodeResult*> Reconstruction::results() const {
   return out;
 }
 
-std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch) {
+std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const ProgressFn& progress) {
   auto t0 = std::chrono::steady_clock::now();
   sketch.validate();
   // 1. Diff: which nodes have new inputs (geometry or params); drop removed nodes.
@@ -65,15 +66,19 @@ std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch) {
 
   // 2. Fit the changed nodes (independent: parallel when several); kept circles need no fit.
   auto tFit = std::chrono::steady_clock::now();
+  std::atomic<std::uint64_t> done{0};
+  const std::uint64_t total = changed.size();
   auto fitOne = [&](std::size_t i) {
     Entry& e = fresh[i];
     if (e.kept) {
       e.result = fit::keptCircleResult(e.geometry, e.params, *e.kept);
-      return;
+    } else {
+      fit::NodeFitOptions fo = options_.fit;
+      fo.circle.seed = options_.seed + std::uint64_t(std::int64_t(changed[i]));
+      e.result = fit::fitNode(*index_, e.geometry, e.params, fo);
     }
-    fit::NodeFitOptions fo = options_.fit;
-    fo.circle.seed = options_.seed + std::uint64_t(std::int64_t(changed[i]));
-    e.result = fit::fitNode(*index_, e.geometry, e.params, fo);
+    const std::uint64_t d = ++done;
+    if (progress && (d % 64 == 0 || d == total)) progress(d, total);
   };
   if (options_.parallel && changed.size() > 1)
     tbb::parallel_for(std::size_t(0), changed.size(), fitOne);

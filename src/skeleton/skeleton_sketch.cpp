@@ -2,15 +2,11 @@
 // by Xu et al. 2007 for branch thickness); the node fit is the thesis's (fit module).
 #include "treesketch/skeleton/skeleton_sketch.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 
-#include "treesketch/fit/cloud_index.h"
-#include "treesketch/sweep/tube_mesh.h"
+#include "treesketch/recon/reconstruction.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::skeleton {
@@ -35,8 +31,9 @@ void checkRules(const RadiusRules& r) {
   if (!(r.maxRadiusRatio > 0) || !(r.maxCentreShiftRadii > 0) || !(r.maxRelativeRms > 0))
     throw OptionsError("skeleton radii: maxRadiusRatio, maxCentreShiftRadii and maxRelativeRms must be > 0");
   if (r.medianWindow < 1) throw OptionsError("skeleton radii: medianWindow must be >= 1");
-  if (!(r.pipeExponent > 0) || !std::isfinite(r.pipeExponent))
-    throw OptionsError("skeleton radii: pipeExponent must be > 0");
+  if (!(r.slackVoxels >= 0) || !(r.rmsFloorVoxels >= 0) || !std::isfinite(r.slackVoxels) ||
+      !std::isfinite(r.rmsFloorVoxels))
+    throw OptionsError("skeleton radii: slackVoxels and rmsFloorVoxels must be finite numbers >= 0");
 }
 
 /// Branches as node chains: each starts at the root or at a child whose branch order differs
@@ -141,8 +138,8 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
     for (std::size_t i = n; i-- > 0;) {
       if (nodes[i].children.size() < 2) continue;
       double sum = 0;
-      for (std::int32_t c : nodes[i].children) sum += std::pow(r[c], rules.pipeExponent);
-      r[i] = std::max(r[i], std::pow(sum, 1.0 / rules.pipeExponent));
+      for (std::int32_t c : nodes[i].children) sum += r[c] * r[c];
+      r[i] = std::max(r[i], std::sqrt(sum));
     }
   }
   // 4. No child thicker than its parent, top-down.
@@ -152,131 +149,126 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
   return r;
 }
 
-AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
-                                      const ProgressFn& progress) {
+AutoSkeletonOptions autoSkeletonPreset(Foliage foliage, geom::UpAxis up) {
+  AutoSkeletonOptions o;
+  if (foliage == Foliage::LeafOn) o.skeleton = leafOnSkeletonOptions(o.skeleton);
+  o.skeleton.up = up;
+  return o;
+}
+
+namespace {
+
+void checkOptions(const AutoSkeletonOptions& options) {
   checkRules(options.radii);
   if (!(options.maxFitFlatFraction >= 0 && options.maxFitFlatFraction <= 1))
     throw OptionsError("skeleton: maxFitFlatFraction must be in [0, 1]");
   if (!(options.minInlierBandVoxels >= 0) || !std::isfinite(options.minInlierBandVoxels))
     throw OptionsError("skeleton: minInlierBandVoxels must be a finite number >= 0");
-  AutoSkeletonResult res;
-  auto t0 = std::chrono::steady_clock::now();
-  res.skeleton = extractSkeleton(cloud, options.skeleton);
-  res.sketch = skeletonToSketch(res.skeleton, options.sketch);
-  res.skeletonMs = elapsedMs(t0);
-  const auto& nodes = res.skeleton.nodes;
-  const std::size_t n = nodes.size();
-  if (n == 0) return res;
+}
 
-  t0 = std::chrono::steady_clock::now();
-  const fit::CloudIndex index(cloud);
-  const double voxel = res.skeleton.graph.voxelSize;
-  fit::NodeFitOptions fitOptions = options.fit;
-  fitOptions.circle.inlierThreshold = std::max(fitOptions.circle.inlierThreshold, options.minInlierBandVoxels * voxel);
-  res.fits.resize(n);
-  std::atomic<std::uint64_t> done{0};
-  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-    fit::NodeFitOptions fo = fitOptions;
-    fo.circle.seed = options.seed + i;
+recon::ReconstructionOptions reconstructionOptions(const AutoSkeletonOptions& options, double voxel) {
+  recon::ReconstructionOptions ro;
+  ro.fit = options.fit;
+  ro.fit.circle.inlierThreshold = std::max(ro.fit.circle.inlierThreshold, options.minInlierBandVoxels * voxel);
+  ro.sweep.ringVertices = options.ringVertices;
+  ro.seed = options.seed;
+  return ro;
+}
+
+/// Step 2: the fit pass. Every node but the leaf pieces is fitted from the cloud by recon.
+std::vector<fit::NodeResult> fitPass(recon::Reconstruction& rec, const sketch::Sketch& skeletonSketch,
+                                     const std::vector<SkeletonNode>& nodes, const AutoSkeletonOptions& options,
+                                     const ProgressFn& progress) {
+  sketch::Sketch s = skeletonSketch;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (!isLeafPiece(nodes[i], options)) continue;
     const auto id = static_cast<sketch::NodeId>(i);
+    sketch::SamplingParams p = s.node(id).params;
+    p.enabled = false;
+    s.setParams(id, p);
+  }
+  rec.update(s, progress);
+  std::vector<fit::NodeResult> fits(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (isLeafPiece(nodes[i], options)) {
-      res.fits[i].status = fit::NodeStatus::Skipped;
-      res.fits[i].reason = "leaf piece (mostly flat voxels): not fitted";
+      fits[i].status = fit::NodeStatus::Skipped;
+      fits[i].reason = "leaf piece (mostly flat voxels): not fitted";
     } else {
-      res.fits[i] = fit::fitNode(index, res.sketch.geometry(id), res.sketch.node(id).params, fo);
+      fits[i] = *rec.result(static_cast<sketch::NodeId>(i));
     }
-    const std::uint64_t d = ++done;
-    if (progress && (d % 64 == 0 || d == n)) progress(d, n);
-  });
-  res.fitMs = elapsedMs(t0);
+  }
+  return fits;
+}
 
-  t0 = std::chrono::steady_clock::now();
-  const RadiusRules& rules = options.radii;
-  res.fitAccepted.assign(n, 0);
-  std::vector<double> fitted(n, 0.0);
+/// Step 3: which fits to trust (RadiusRules), moving accepted nodes to their fit centres.
+std::vector<double> acceptFits(AutoSkeletonResult& res, const RadiusRules& rules, double voxel) {
+  const auto& nodes = res.skeleton.nodes;
+  const double slack = rules.slackVoxels * voxel;
+  std::vector<double> fitted(nodes.size(), 0.0);
+  res.fitAccepted.assign(nodes.size(), 0);
   res.model = nodes;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
     const auto& f = res.fits[i];
     if (f.status != fit::NodeStatus::Fitted) continue;
     const double est = nodes[i].radius;
-    const bool ok = f.radius <= rules.maxRadiusRatio * est + voxel &&
-                    (f.centre - nodes[i].position).norm() <= rules.maxCentreShiftRadii * est + voxel &&
-                    f.rms <= rules.maxRelativeRms * f.radius + 0.25 * voxel;
+    const bool ok = f.radius <= rules.maxRadiusRatio * est + slack &&
+                    (f.centre - nodes[i].position).norm() <= rules.maxCentreShiftRadii * est + slack &&
+                    f.rms <= rules.maxRelativeRms * f.radius + rules.rmsFloorVoxels * voxel;
     if (!ok) continue;
     res.fitAccepted[i] = 1;
     fitted[i] = f.radius;
     res.model[i].position = f.centre;
   }
-  if (options.trimUnfittedTips) {
-    // Reverse order visits children before parents.
-    std::vector<char> keep(n, 1);
-    for (std::size_t i = n; i-- > 1;) {
-      if (res.fitAccepted[i]) continue;
-      bool anyChild = false;
-      for (std::int32_t c : nodes[i].children) anyChild |= keep[c] != 0;
-      keep[i] = anyChild;
-    }
-    std::vector<std::int32_t> newIndex(n, -1);
-    std::vector<SkeletonNode> kept;
-    std::vector<fit::NodeResult> keptFits;
-    std::vector<char> keptAccepted;
-    std::vector<double> keptFitted;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!keep[i]) continue;
-      newIndex[i] = static_cast<std::int32_t>(kept.size());
-      SkeletonNode node = nodes[i];
-      node.parent = node.parent >= 0 ? newIndex[node.parent] : -1;
-      node.children.clear();
-      kept.push_back(node);
-      keptFits.push_back(std::move(res.fits[i]));
-      keptAccepted.push_back(res.fitAccepted[i]);
-      keptFitted.push_back(fitted[i]);
-    }
-    for (std::size_t i = 0; i < kept.size(); ++i)
-      if (kept[i].parent >= 0) kept[kept[i].parent].children.push_back(static_cast<std::int32_t>(i));
-    if (kept.size() != n) {
-      std::vector<geom::Vec3> centres;
-      for (std::size_t i = 0; i < n; ++i)
-        if (keep[i]) centres.push_back(res.model[i].position);
-      Skeleton trimmed;
-      trimmed.up = res.skeleton.up;
-      trimmed.graph.voxelSize = voxel;
-      trimmed.nodes = kept;
-      res.sketch = skeletonToSketch(trimmed, options.sketch);
-      res.model = kept;
-      for (std::size_t i = 0; i < kept.size(); ++i) res.model[i].position = centres[i];
-      res.fits = std::move(keptFits);
-      res.fitAccepted = std::move(keptAccepted);
-      fitted = std::move(keptFitted);
-      res.skeleton.nodes = std::move(kept);
-    }
-  }
-  const std::size_t m = res.model.size();
-  const std::vector<double> radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, rules);
-  for (std::size_t i = 0; i < m; ++i) res.model[i].radius = radii[i];
+  return fitted;
+}
 
-  std::vector<sweep::SweepNode> sweepNodes(m);
-  for (std::size_t i = 0; i < m; ++i) {
-    auto& s = sweepNodes[i];
-    s.id = static_cast<sketch::NodeId>(i);
-    s.parent = res.model[i].parent < 0 ? sketch::kNoNode : res.model[i].parent;
-    const bool fork = res.model[i].parent >= 0 && res.model[i].children.size() >= 2;
-    s.fitted = !(options.bridgeUnfittedForks && fork && !res.fitAccepted[i]);
-    s.disc = sweep::Disc{res.model[i].position, res.model[i].direction, radii[i]};
-    if (options.keepModelCircles) {
-      const auto id = static_cast<sketch::NodeId>(i);
-      if (s.fitted) {
-        res.sketch.setKeptCircle(id, sketch::KeptCircle{res.model[i].position, radii[i]});
-      } else {
-        sketch::SamplingParams p = res.sketch.node(id).params;
-        p.enabled = false;
-        res.sketch.setParams(id, p);
-      }
+/// Step 5: the model goes into the sketch: kept circles, bridged forks disabled.
+void handOver(AutoSkeletonResult& res, bool bridgeUnfittedForks) {
+  for (std::size_t i = 0; i < res.model.size(); ++i) {
+    const auto& node = res.model[i];
+    const auto id = static_cast<sketch::NodeId>(i);
+    const bool fork = node.parent >= 0 && node.children.size() >= 2;
+    if (bridgeUnfittedForks && fork && !res.fitAccepted[i]) {
+      sketch::SamplingParams p = res.sketch.node(id).params;
+      p.enabled = false;
+      res.sketch.setParams(id, p);
+    } else {
+      res.sketch.setKeptCircle(id, sketch::KeptCircle{node.position, node.radius});
     }
   }
-  sweep::SweepOptions so;
-  so.ringVertices = options.ringVertices;
-  res.mesh = sweep::sweepTubes(sweepNodes, so);
+}
+
+}  // namespace
+
+AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
+                                      const ProgressFn& progress) {
+  checkOptions(options);
+  AutoSkeletonResult res;
+  // 1. The skeleton and its sketch (no circles yet).
+  auto t0 = std::chrono::steady_clock::now();
+  res.skeleton = extractSkeleton(cloud, options.skeleton);
+  res.sketch = skeletonToSketch(res.skeleton, options.sketch);
+  res.skeletonMs = elapsedMs(t0);
+  const std::size_t n = res.skeleton.nodes.size();
+  if (n == 0) return res;
+
+  // 2. The fit pass (recon builds the slice index and fits every node).
+  t0 = std::chrono::steady_clock::now();
+  const double voxel = res.skeleton.graph.voxelSize;
+  recon::Reconstruction rec(cloud, reconstructionOptions(options, voxel));
+  res.fits = fitPass(rec, res.sketch, res.skeleton.nodes, options, progress);
+  res.fitMs = elapsedMs(t0);
+
+  // 3.-4. Accepted fits, regularised radii: the model.
+  t0 = std::chrono::steady_clock::now();
+  const std::vector<double> fitted = acceptFits(res, options.radii, voxel);
+  const std::vector<double> radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, options.radii);
+  for (std::size_t i = 0; i < n; ++i) res.model[i].radius = radii[i];
+
+  // 5.-6. The model into the sketch, and recon sweeps that sketch (kept circles need no fit).
+  handOver(res, options.bridgeUnfittedForks);
+  rec.update(res.sketch);
+  res.mesh = rec.mesh();
   res.sweepMs = elapsedMs(t0);
   return res;
 }

@@ -118,8 +118,8 @@ TEST(SkeletonSketch, AutoSketchFitsRadiiAndRegularises) {
 }
 
 // The sketch hands over the model: rebuilt by the sketch path (viewer, `reconstruct --sketch`),
-// after a trip through the sketch file, it gives the automatic mesh; with keepModelCircles off
-// the same rebuild fits every node from the cloud.
+// after a trip through the sketch file, it gives the automatic mesh; with the kept circles
+// cleared (`reconstruct --refit`) the same rebuild fits every node from the cloud.
 TEST(SkeletonSketch, TheSketchRebuildsTheAutomaticModel) {
   const auto cloud = test::sampleCylinders(test::threeLevelTree(), 0.02, 0.003, 2);
   for (double ratio : {2.0, 0.6}) {  // 0.6: many fits rejected, so forks are bridged
@@ -153,11 +153,56 @@ TEST(SkeletonSketch, TheSketchRebuildsTheAutomaticModel) {
     EXPECT_EQ(kept, res.sketch.keptCircleCount());
     EXPECT_EQ(kept + bridged, res.model.size());
   }
+  sketch::Sketch refit = skeleton::autoSkeletonSketch(cloud).sketch;
+  refit.clearKeptCircles();
+  EXPECT_EQ(refit.keptCircleCount(), 0u);
+  const auto fromCloud = recon::reconstruct(cloud, refit);
+  std::size_t fitted = 0;
+  for (const auto& [id, r] : fromCloud.results) {
+    EXPECT_FALSE(r.kept);
+    fitted += r.status == fit::NodeStatus::Fitted;
+  }
+  EXPECT_GE(fitted, fromCloud.results.size() / 2);
+}
+
+// The automatic path is a sketch source: its mesh is recon's sweep of its sketch, and its fits are
+// recon's fits of the skeleton's nodes (same seeds, same options), not a second fitting path.
+TEST(SkeletonSketch, FitsAndMeshComeFromRecon) {
+  const auto cloud = test::sampleCylinders(test::yTree(), 0.02, 0.003, 7);
   skeleton::AutoSkeletonOptions o;
-  o.keepModelCircles = false;
-  const auto plain = skeleton::autoSkeletonSketch(cloud, o);
-  EXPECT_EQ(plain.sketch.keptCircleCount(), 0u);
-  for (const auto& [id, node] : plain.sketch.nodes()) EXPECT_TRUE(node.params.enabled);
+  const auto res = skeleton::autoSkeletonSketch(cloud, o);
+  ASSERT_FALSE(res.model.empty());
+  recon::ReconstructionOptions ro;
+  ro.fit = o.fit;
+  ro.fit.circle.inlierThreshold =
+      std::max(ro.fit.circle.inlierThreshold, o.minInlierBandVoxels * res.skeleton.graph.voxelSize);
+  ro.seed = o.seed;
+  ro.sweep.ringVertices = o.ringVertices;
+  const auto direct = recon::reconstruct(cloud, skeleton::skeletonToSketch(res.skeleton), ro);
+  ASSERT_EQ(direct.results.size(), res.fits.size());
+  for (std::size_t i = 0; i < res.fits.size(); ++i) {
+    const auto& r = direct.results.at(static_cast<sketch::NodeId>(i));
+    EXPECT_EQ(r.status, res.fits[i].status) << "node " << i;
+    EXPECT_EQ(r.radius, res.fits[i].radius) << "node " << i;
+  }
+  std::vector<std::uint64_t> reported;
+  const auto again = skeleton::autoSkeletonSketch(cloud, o, [&](std::uint64_t done, std::uint64_t total) {
+    EXPECT_LE(done, total);
+    reported.push_back(done);
+  });
+  ASSERT_FALSE(reported.empty());
+  EXPECT_EQ(reported.back(), res.model.size());
+  EXPECT_EQ(again.mesh.triangles, res.mesh.triangles);
+}
+
+TEST(SkeletonSketch, PresetsNameTheCondition) {
+  const auto off = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOff, geom::UpAxis::Z);
+  const auto on = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOn, geom::UpAxis::Z);
+  EXPECT_EQ(off.skeleton.up, geom::UpAxis::Z);
+  EXPECT_EQ(on.skeleton.up, geom::UpAxis::Z);
+  EXPECT_FALSE(off.skeleton.leafEntryPositions);
+  EXPECT_TRUE(on.skeleton.leafEntryPositions);
+  EXPECT_EQ(on.skeleton.binWidthVoxels, skeleton::leafOnSkeletonOptions().binWidthVoxels);
 }
 
 // An edit in the handed-over sketch re-fits the node it touches, from the cloud, and no other.

@@ -395,8 +395,7 @@ TEST(Skeleton, LeafPiecesAreNotFitted) {
   // The automatic sketch skips the circle fit of nodes that are mostly leaf (their slice holds
   // blades, not a branch) and fits the others; 1 fits every node; out of range is refused.
   const auto cloud = stemWithBlade();
-  skeleton::AutoSkeletonOptions o;
-  o.skeleton = skeleton::leafOnSkeletonOptions();
+  auto o = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOn);
   o.skeleton.graph.voxelSize = 0.03;
   ASSERT_LT(o.maxFitFlatFraction, 1.0);
   const auto r = skeleton::autoSkeletonSketch(cloud, o);

@@ -15,6 +15,7 @@
 #include "treesketch/geom/tri_mesh.h"
 #include "treesketch/sketch/sketch.h"
 #include "treesketch/sweep/tube_mesh.h"
+#include "treesketch/util/progress.h"
 
 namespace treesketch::recon {
 
@@ -48,8 +49,9 @@ class Reconstruction {
   /// changed or it is new; removed nodes are dropped; re-parenting alone only re-sweeps. A node
   /// with a kept circle is not fitted: it takes that circle (fit::resolveNode). Returns the ids
   /// re-fitted (or re-resolved).
+  /// `progress` (optional) is told (nodes fitted, nodes to fit) as the fits finish.
   /// Throws OptionsError for an invalid sketch (see Sketch::validate).
-  std::vector<NodeId> update(const sketch::Sketch& sketch);
+  std::vector<NodeId> update(const sketch::Sketch& sketch, const ProgressFn& progress = {});
 
   /// Forgets every fit and the mesh (keeps the index): the next update fits every node.
   void reset();

@@ -1,9 +1,9 @@
-// From a skeleton to an editable sketch and a tree model: every skeleton node becomes a point
-// node of a sketch::Sketch (plane normal = local branch direction, sampling sizes scaled to the
-// local radius), each node is fitted with the fit module's slice + RANSAC circle (the same as a
-// user's node), and the radii are regularised along the branches (robust smoothing, no child
-// thicker than its parent, optional pipe model). The sketch is what `treesketch reconstruct` and
-// the viewer take as is; the user refines it from there.
+// The automatic skeleton as a sketch source. Every skeleton node becomes a point node of a
+// sketch::Sketch (plane normal = local branch direction, sampling sizes scaled to the local
+// radius); recon::Reconstruction fits them with the fit module's slice + RANSAC circle (the same
+// as a user's node); the radii are regularised along the branches (robust smoothing, no child
+// thicker than its parent, optional pipe model) and handed back in the sketch as kept circles.
+// The sketch is what `treesketch reconstruct` and the viewer take as is; the user refines it.
 #pragma once
 
 #include <cstdint>
@@ -35,22 +35,25 @@ struct SkeletonSketchOptions {
 
 /// Rules applied to the fitted radii, each with a default.
 struct RadiusRules {
-  /// A fit is rejected (its radius interpolated instead) when its radius exceeds
-  /// maxRadiusRatio × the skeleton's estimate + one voxel, or its centre is further than
-  /// maxCentreShiftRadii × estimate + one voxel from the skeleton node, or its RMS residual
-  /// exceeds maxRelativeRms × its radius + 0.25 voxel.
+  /// A fit is accepted only when its radius ≤ maxRadiusRatio × the skeleton's estimate + slack,
+  /// its centre ≤ maxCentreShiftRadii × estimate + slack from the skeleton node, and its RMS
+  /// residual ≤ maxRelativeRms × its radius + rmsFloorVoxels voxels: a skeleton node knows
+  /// roughly where and how thick its branch is, so a fit far from that took in something else.
   double maxRadiusRatio = 2.0;
   double maxCentreShiftRadii = 1.5;
   double maxRelativeRms = 0.35;
-  /// Running median over this many nodes along each branch (odd; 1 = off).
+  /// The slack above, in voxels: the skeleton's estimates are good to about one voxel.
+  double slackVoxels = 1.0;
+  /// The RMS floor above, in voxels: a thin twig's scan noise is a fraction of a voxel, not of its radius.
+  double rmsFloorVoxels = 0.25;
+  /// Running median over this many nodes along each branch (odd; 1 = off): one bad fit no longer shows.
   int medianWindow = 5;
   /// No node thicker than its parent (along a branch: radii never grow towards the tip).
   bool childNotThicker = true;
-  /// Pipe model at forks (Shinozaki et al. 1964): r_parent^e = Σ r_child^e, applied by growing a
-  /// fork's radius when its children need more (never shrinking it). Off by default: the fits
-  /// measure radii, the rule only fills in where they are unreliable.
+  /// Pipe model at forks (Shinozaki et al. 1964, area-preserving: r_parent² = Σ r_child²), applied
+  /// by growing a fork's radius when its children need more (never shrinking it). Off by default:
+  /// the fits measure radii, the rule only fills in where they are unreliable.
   bool pipeModel = false;
-  double pipeExponent = 2.0;
 };
 
 /// Builds the sketch: node i of `skeleton.nodes` becomes sketch node id i (point node at the
@@ -72,19 +75,10 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
 inline fit::NodeFitOptions autoNodeFitOptions() {
   fit::NodeFitOptions o;
   o.maxGrowthSteps = 3;
-  // No band relative to the radius (CircleFitOptions::inlierThresholdRelative): in RANSAC a
-  // relative band is the hypothesis's own, so larger circles get wider bands and more inliers,
-  // and the sampler drifts to circles that take in bark, neighbours and noise. Measured on the
-  // four ez-tree trees × sphere / TLS scanned without leaves (mean backward / forward RMS % of
-  // the diagonal): relative 0.15 (sessions 2-6) 0.143 / 0.180, 0.05 0.133 / 0.185, 0.03 0.125 /
-  // 0.189; none, fixed band 0.005 / 0.01 (default) / 0.02 / 0.04 units 0.121 / 0.099 / 0.105 /
-  // 0.110 backward at 0.186-0.188 forward. In leaf: 1.313 / 0.849 -> 1.313 / 0.866. The band is
-  // also at least AutoSkeletonOptions::minInlierBandVoxels (0.1 voxel: 0.011-0.026 units on those
-  // trees, 0.104 / 0.186), so that it follows the cloud's scale.
-  // 500 samples find an all-inlier triple with p = 0.999 down to ~24 % inliers; below that a
-  // skeleton node's slice is mostly something else (leaves) and its radius is interpolated
-  // anyway. Measured on the test trees: the same accuracy as the fit module's 2,000 in every
-  // condition, 40 % less fit time on leaf-on crowns.
+  // A fixed inlier band, not one relative to the hypothesis's radius: a relative band lets the
+  // sampler drift to large circles that take in bark, neighbours and noise.
+  // 500 samples find an all-inlier triple with p = 0.999 down to ~24 % inliers; below that the
+  // slice is mostly something else and the radius is interpolated anyway.
   o.circle.maxIterations = 500;
   return o;
 }
@@ -94,54 +88,31 @@ struct AutoSkeletonOptions {
   SkeletonSketchOptions sketch;
   fit::NodeFitOptions fit = autoNodeFitOptions();
   RadiusRules radii;
-  /// Foliage by fit: tips whose circle fit was rejected are trimmed, repeatedly (a chain of
-  /// unfitted nodes at a branch end is most often leaves, whose slices hold no circle). The
-  /// sketch, fits, model and skeleton.nodes then hold only the kept nodes (re-indexed). Off by
-  /// default: on sparse scans many real twigs fail their fits too (aspen leaf-off, 160k rays:
-  /// forward RMS 5.1 % -> 7.9 %), while leaf-on it helps (7.0 % -> 1.2 % with minTubularFraction 0).
-  bool trimUnfittedTips = false;
-  /// Forks without an accepted fit are bridged in the swept mesh (no ring of their own: the
-  /// children's tubes join the fork's parent ring). A fork's level set holds the bases of its
-  /// children, so its centroid often sits between the branches, off the wood; when its circle
-  /// fit was rejected there is nothing to move it onto. Those rings were half of the squared
-  /// backward error on the leaf-off test trees; bridging them measured (mean of the four
-  /// ez-tree trees, backward / forward RMS % of the diagonal) sphere 0.150 / 0.169 -> 0.136 /
-  /// 0.164 and TLS 0.163 / 0.204 -> 0.152 / 0.200. Bridging every fork (accepted or not) was
-  /// worse (sphere backward 0.193: long trunk bridges cut the corners of bends). The node stays
-  /// in `model`, the sketch and the cylinder table.
+  /// Forks without an accepted fit are bridged (disabled in the sketch, so the children's tubes
+  /// join the fork's parent ring): a fork's level set holds its children's bases, so its centroid
+  /// often sits between the branches, off the wood. The node stays in the model and the sketch.
   bool bridgeUnfittedForks = true;
-  /// Leaf pieces are not fitted: a node whose piece is more than this share flat voxels (leaves,
-  /// SkeletonNode::flatFraction; only the leaf-on settings run that test) keeps the skeleton's
-  /// position and radius (as a rejected fit does). A slice through a leaf cluster holds the
-  /// blades, not the twig hidden among them: such fits, when accepted, had radii 2.8-7.6 times the
-  /// true twig radius (median, leaf-on test trees). Measured on the four ez-tree trees × sphere /
-  /// TLS scanned in leaf (mean backward / forward RMS % of the diagonal, total fit time): every
-  /// node fitted 1.346 / 0.817, 9.6 s; above 0.8 not fitted 1.334 / 0.831, 2.1 s; above 0.5 (the
-  /// default) 1.334 / 0.836, 1.3 s; above 0.3 1.326 / 0.881, 1.0 s. 1 = fit every node. Leaf-off
-  /// settings are unaffected (flatFraction is 0).
+  /// Nodes whose piece is more than this share flat voxels (leaves; SkeletonNode::flatFraction,
+  /// only the leaf-on settings measure it) are not fitted: their slices hold blades, not the twig.
+  /// 1 = fit every node.
   double maxFitFlatFraction = 0.5;
-  /// The sketch hands over the model itself: every node carries its model circle as a kept
-  /// circle (sketch::Node::kept: the accepted fit, or the skeleton's position where the fit was
-  /// rejected or not run, with the regularised radius), and forks the mesh bridges are disabled.
-  /// A rebuild of the sketch (viewer, `reconstruct --sketch`) then gives this result's mesh, and
-  /// an edit re-fits only the nodes it touches. Without it a rebuild fits every node from the
-  /// cloud with no radius rules: measured on the four ez-tree trees × sphere / TLS (per scan,
-  /// backward / forward RMS % of the diagonal), leaf-off 0.07-0.15 / 0.12-0.31 (this mesh) became
-  /// 0.08-0.18 / 0.14-0.59, leaf-on 0.70-2.23 / 0.33-2.39 became 0.96-2.31 / 0.30-3.15.
-  bool keepModelCircles = true;
-  /// The fits' inlier band is at least this many voxels (fit.circle.inlierThreshold is in cloud
-  /// units, 0.01 by default: right for metres and for the test trees' units, but a cloud in
-  /// millimetres would be fitted with a 0.01 mm band, and its fits would fail). 0 = the band as
-  /// given. Measured on the four ez-tree trees × sphere / TLS without leaves, the same scans in
-  /// scene units and × 1000: 0 gave 0.099 / 0.188 and 0.195 / 0.167 (backward / forward RMS %),
-  /// 0.1 gives 0.104 / 0.186 at both scales; real scans in metres keep the 0.01 m band (0.1 voxel is
-  /// a few millimetres there).
+  /// The fits' inlier band is at least this many voxels, so it follows the cloud's units (the fit
+  /// module's 0.01-unit band would be 0.01 mm on a cloud in millimetres). 0 = the band as given.
   double minInlierBandVoxels = 0.1;
   /// Node i is fitted with seed `seed + i`.
   std::uint64_t seed = 1;
   /// Vertices per ring of the swept mesh.
   int ringVertices = 16;
 };
+// The measurements behind these defaults: docs/notes/auto_sketch_options.md.
+
+/// What the user says about the scan (never guessed from the data).
+enum class Foliage { LeafOff, LeafOn };
+
+/// The one named preset per condition: leaf-off = the defaults; leaf-on = the skeleton's
+/// leafOnSkeletonOptions() (finer level sets, weak cross-section rule, leaf-entry positions).
+/// `up` is the cloud's up axis.
+AutoSkeletonOptions autoSkeletonPreset(Foliage foliage, geom::UpAxis up = geom::UpAxis::Y);
 
 /// Whether autoSkeletonSketch leaves `node` unfitted as a leaf piece (see maxFitFlatFraction).
 inline bool isLeafPiece(const SkeletonNode& node, const AutoSkeletonOptions& options) {
@@ -150,19 +121,25 @@ inline bool isLeafPiece(const SkeletonNode& node, const AutoSkeletonOptions& opt
 
 struct AutoSkeletonResult {
   Skeleton skeleton;
+  /// The automatic model as an editable sketch: every node carries its model circle as a kept
+  /// circle (the accepted fit, or the skeleton's position with the regularised radius), bridged
+  /// forks are disabled. recon::Reconstruction rebuilds `mesh` from it exactly, and an edit
+  /// re-fits only the nodes it touches.
   sketch::Sketch sketch;
-  std::vector<fit::NodeResult> fits;  ///< per model node (= sketch id)
+  std::vector<fit::NodeResult> fits;  ///< the fit pass, per model node (= sketch id)
   std::vector<char> fitAccepted;      ///< the fit passed the RadiusRules checks
-  /// The final model: skeleton.nodes (minus trimmed tips, re-indexed; `raw` still points into
-  /// skeleton.rawNodes) with positions moved to the accepted fit centres and radii regularised
-  /// (what the writers and the sweep take).
+  /// skeleton.nodes with positions moved to the accepted fit centres and radii regularised (what
+  /// the cylinder table is written from).
   std::vector<SkeletonNode> model;
-  geom::TriMesh mesh;  ///< tubes swept through `model`
+  geom::TriMesh mesh;  ///< recon's tubes through `sketch`
   double skeletonMs = 0, fitMs = 0, sweepMs = 0;
 };
 
-/// One shot: extractSkeleton, skeletonToSketch, fit every node (TBB, in parallel), regularise
-/// the radii, sweep. Empty cloud → empty result. Throws OptionsError for bad options or NaN input.
+/// The automatic skeleton as a sketch source: extractSkeleton, skeletonToSketch, then
+/// recon::Reconstruction fits every node (the fit pass, in parallel), the RadiusRules accept fits
+/// and regularise the radii, the model goes into the sketch as kept circles, and the same
+/// Reconstruction sweeps that sketch. recon is the only place that fits and sweeps. Empty cloud →
+/// empty result. Throws OptionsError for bad options or NaN input.
 AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoSkeletonOptions& options = {},
                                       const ProgressFn& progress = {});
 
