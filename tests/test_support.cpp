@@ -1,11 +1,8 @@
 #include "test_support.h"
 
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <atomic>
-#include <cstdio>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -17,9 +14,8 @@ namespace fs = std::filesystem;
 TempDir::TempDir() {
   static std::atomic<int> counter{0};
   std::random_device rd;
-  path_ = fs::temp_directory_path() /
-          ("treesketch_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + "_" +
-           std::to_string(rd() % 100000));
+  path_ = fs::temp_directory_path() / ("treesketch_test_" + std::to_string(::getpid()) + "_" +
+                                       std::to_string(counter++) + "_" + std::to_string(rd() % 100000));
   fs::create_directories(path_);
 }
 
@@ -40,19 +36,6 @@ std::string readText(const fs::path& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-int runCli(const std::string& args, std::string* output) {
-  std::string cmd = std::string("'") + TS_CLI_PATH + "' " + args + " 2>&1";
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return -1;
-  std::string out;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  int status = ::pclose(pipe);
-  if (output) *output = out;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 }  // namespace treesketch::test

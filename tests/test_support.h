@@ -1,4 +1,5 @@
-// Helpers shared by the tests: temporary directories, paths to test data, running the CLI.
+// Helpers shared by the tests: temporary directories, paths to test data, whole-file text.
+// (Running the treesketch executable is in cli/cli_support.h, for the tests in cli/.)
 #pragma once
 
 #include <filesystem>
@@ -24,8 +25,4 @@ std::filesystem::path sharedDataDir();
 void writeText(const std::filesystem::path& path, const std::string& text);
 /// Reads a whole file.
 std::string readText(const std::filesystem::path& path);
-/// Runs the treesketch CLI with `args` (a shell-quoted string); returns its exit code and puts
-/// stdout+stderr in `output`.
-int runCli(const std::string& args, std::string* output = nullptr);
-
 }  // namespace treesketch::test

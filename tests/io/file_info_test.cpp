@@ -59,30 +59,5 @@ TEST(FileInfo, DescribesEachFormat) {
   expectError([&] { inspectFile(dir / "x.doc"); }, {"x.doc", "unknown"});
 }
 
-TEST(InfoCli, BadFileExitsWithInputCodeAndOneLineNamingIt) {
-  test::TempDir dir;
-  auto bad = dir / "bad.ply";
-  test::writeText(bad,
-                  "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
-                  "property float z\nend_header\n0 0 0\n1 1\n");
-  std::string out;
-  EXPECT_EQ(test::runCli("info '" + bad.string() + "'", &out), 3);
-  EXPECT_NE(out.find(bad.string()), std::string::npos) << out;
-  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
-  EXPECT_EQ(test::runCli("info '" + (dir / "missing.xyz").string() + "'", &out), 3);
-  EXPECT_NE(out.find("missing.xyz"), std::string::npos) << out;
-}
-
-TEST(InfoCli, GoodFilePrintsCounts) {
-  test::TempDir dir;
-  geom::PointCloud c;
-  for (int i = 0; i < 7; ++i) c.positions.emplace_back(i, 0, 0);
-  writePointCloud(dir / "c.xyz", c);
-  std::string out;
-  EXPECT_EQ(test::runCli("info '" + (dir / "c.xyz").string() + "'", &out), 0) << out;
-  EXPECT_NE(out.find("points: 7\n"), std::string::npos) << out;
-  EXPECT_NE(out.find("bbox diagonal: 6.000000"), std::string::npos) << out;
-}
-
 }  // namespace
 }  // namespace treesketch::io

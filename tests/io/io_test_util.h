@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
-#include <initializer_list>
 #include <random>
 #include <string>
 #include <vector>
@@ -20,7 +19,7 @@ namespace treesketch::io::testing {
 
 /// Runs `f`, expects an exception of type E whose message contains every one of `parts`.
 template <class E = InputError, class F>
-void expectError(F&& f, std::initializer_list<std::string> parts) {
+void expectError(F&& f, const std::vector<std::string>& parts) {
   try {
     f();
     ADD_FAILURE() << "expected an exception, none was thrown";

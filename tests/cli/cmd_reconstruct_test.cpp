@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_support.h"
 #include "fit/synthetic_cylinder.h"
 #include "test_support.h"
 #include "treesketch/io/mesh_io.h"
@@ -41,9 +42,9 @@ TEST(CmdReconstruct, WritesMeshAndReport) {
   Files f;
   std::string out;
   std::string mesh = (f.dir / "mesh.obj").string(), report = (f.dir / "report.json").string();
-  int rc = test::runCli("reconstruct " + f.cloud + " --sketch " + f.sketch + " -o " + mesh + " --report " + report +
-                            " --ring 8 --seed 3",
-                        &out);
+  int rc = test::runCli(
+      "reconstruct " + f.cloud + " --sketch " + f.sketch + " -o " + mesh + " --report " + report + " --ring 8 --seed 3",
+      &out);
   ASSERT_EQ(rc, 0) << out;
   EXPECT_NE(out.find("2 fitted, 1 skipped"), std::string::npos) << out;
   geom::TriMesh m = io::readMesh(mesh);
@@ -61,17 +62,16 @@ TEST(CmdReconstruct, BadInputs) {
   Files f;
   std::string out;
   std::string mesh = (f.dir / "m.obj").string();
-  EXPECT_EQ(test::runCli("reconstruct " + (f.dir / "missing.xyz").string() + " --sketch " + f.sketch + " -o " + mesh,
-                         &out),
-            3)
+  EXPECT_EQ(
+      test::runCli("reconstruct " + (f.dir / "missing.xyz").string() + " --sketch " + f.sketch + " -o " + mesh, &out),
+      3)
       << out;
   test::writeText(f.dir / "bad.json", "{ not json");
   EXPECT_EQ(test::runCli("reconstruct " + f.cloud + " --sketch " + (f.dir / "bad.json").string() + " -o " + mesh, &out),
             3)
       << out;
-  EXPECT_EQ(test::runCli("reconstruct " + f.cloud + " --sketch " + f.sketch + " -o " + (f.dir / "m.stl").string(),
-                         &out),
-            2)
+  EXPECT_EQ(
+      test::runCli("reconstruct " + f.cloud + " --sketch " + f.sketch + " -o " + (f.dir / "m.stl").string(), &out), 2)
       << out;
   EXPECT_EQ(test::runCli("reconstruct " + f.cloud + " --sketch " + f.sketch + " -o " + mesh + " --ring 2", &out), 2);
   EXPECT_EQ(test::runCli("reconstruct " + f.cloud + " --sketch " + f.sketch + " -o " + f.cloud, &out), 4) << out;

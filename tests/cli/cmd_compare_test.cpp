@@ -4,7 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "test_meshes.h"
+#include "cli_support.h"
+#include "compare/test_meshes.h"
 #include "test_support.h"
 #include "treesketch/io/mesh_io.h"
 
@@ -31,7 +32,7 @@ class CompareCli : public ::testing::Test {
       for (int i = 0; i <= 10; ++i) cloud << i * 0.1 << " " << j * 0.1 << " 0.5\n";
     test::writeText(dir / "c.xyz", cloud.str());
   }
-  std::string path(const std::string& name) const { return "'" + (dir / name).string() + "'"; }
+  std::string path(const std::string& name) const { return test::quoted(dir / name); }
   TempDir dir;
 };
 

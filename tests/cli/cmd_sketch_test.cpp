@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "cli_support.h"
 #include "test_support.h"
 #include "treesketch/io/sketch_file.h"
 
@@ -17,8 +18,10 @@ std::string cylinderXyz(bool zUp = false) {
     for (int k = 0; k < 12; ++k) {
       double a = 2 * M_PI * k / 12, h = 0.1 * i;
       double x = 0.2 * std::cos(a), y = 0.2 * std::sin(a);
-      if (zUp) s << x << " " << y << " " << h << "\n";
-      else s << x << " " << h << " " << y << "\n";
+      if (zUp)
+        s << x << " " << y << " " << h << "\n";
+      else
+        s << x << " " << h << " " << y << "\n";
     }
   return s.str();
 }
@@ -27,9 +30,8 @@ TEST(CmdSketch, AutoUniformWritesAChain) {
   test::TempDir dir;
   test::writeText(dir / "c.xyz", cylinderXyz());
   std::string out;
-  int rc = test::runCli("sketch auto '" + (dir / "c.xyz").string() + "' --nodes 7 --view side -o '" +
-                            (dir / "s.json").string() + "'",
-                        &out);
+  int rc = test::runCli(
+      "sketch auto " + test::quoted(dir / "c.xyz") + " --nodes 7 --view side -o " + test::quoted(dir / "s.json"), &out);
   ASSERT_EQ(rc, 0) << out;
   sketch::Sketch sk = io::readSketch(dir / "s.json");
   EXPECT_EQ(sk.size(), 7u);
@@ -43,8 +45,8 @@ TEST(CmdSketch, AutoWithZUpOrthoAndCameraFile) {
   test::TempDir dir;
   test::writeText(dir / "c.xyz", cylinderXyz(true));
   std::string out;
-  int rc = test::runCli("sketch auto '" + (dir / "c.xyz").string() + "' --nodes 4 --view front --up z --ortho -o '" +
-                            (dir / "s.json").string() + "'",
+  int rc = test::runCli("sketch auto " + test::quoted(dir / "c.xyz") + " --nodes 4 --view front --up z --ortho -o " +
+                            test::quoted(dir / "s.json"),
                         &out);
   ASSERT_EQ(rc, 0) << out;
   sketch::Sketch sk = io::readSketch(dir / "s.json");
@@ -54,8 +56,8 @@ TEST(CmdSketch, AutoWithZUpOrthoAndCameraFile) {
   EXPECT_NEAR(std::abs(sk.geometry(sk.root()).planeNormal.z()), 1.0, 1e-9);
   // The same camera through a camera file gives the same sketch.
   io::writeCamera(dir / "cam.json", sk.cameras().front());
-  rc = test::runCli("sketch auto '" + (dir / "c.xyz").string() + "' --nodes 4 --view '" + (dir / "cam.json").string() +
-                        "' --up z -o '" + (dir / "s2.json").string() + "'",
+  rc = test::runCli("sketch auto " + test::quoted(dir / "c.xyz") + " --nodes 4 --view " +
+                        test::quoted(dir / "cam.json") + " --up z -o " + test::quoted(dir / "s2.json"),
                     &out);
   ASSERT_EQ(rc, 0) << out;
   sketch::Sketch sk2 = io::readSketch(dir / "s2.json");
@@ -65,20 +67,19 @@ TEST(CmdSketch, AutoWithZUpOrthoAndCameraFile) {
 TEST(CmdSketch, BadInvocations) {
   test::TempDir dir;
   test::writeText(dir / "c.xyz", cylinderXyz());
-  std::string cloud = "'" + (dir / "c.xyz").string() + "'";
-  std::string out = " -o '" + (dir / "s.json").string() + "'";
+  std::string cloud = test::quoted(dir / "c.xyz");
+  std::string out = " -o " + test::quoted(dir / "s.json");
   std::string msg;
-  EXPECT_EQ(test::runCli("sketch auto '" + (dir / "missing.xyz").string() + "'" + out, &msg), 3) << msg;
+  EXPECT_EQ(test::runCli("sketch auto " + test::quoted(dir / "missing.xyz") + out, &msg), 3) << msg;
   EXPECT_EQ(test::runCli("sketch auto " + cloud + " --nodes 0" + out, &msg), 2) << msg;
   EXPECT_EQ(test::runCli("sketch auto " + cloud + " --method nope" + out, &msg), 2) << msg;
   EXPECT_EQ(test::runCli("sketch auto " + cloud + " --up x" + out, &msg), 2) << msg;
   EXPECT_EQ(test::runCli("sketch auto " + cloud, &msg), 2) << msg;  // no -o
   test::writeText(dir / "cam.json", "{\"view\": [1, 2]}");
-  EXPECT_EQ(test::runCli("sketch auto " + cloud + " --view '" + (dir / "cam.json").string() + "'" + out, &msg), 3)
-      << msg;
+  EXPECT_EQ(test::runCli("sketch auto " + cloud + " --view " + test::quoted(dir / "cam.json") + out, &msg), 3) << msg;
   EXPECT_NE(msg.find("cam.json"), std::string::npos) << msg;
   EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + cloud, &msg), 4) << msg;  // never overwrite the input
-  EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o '" + (dir / "no/such/dir.json").string() + "'", &msg), 4) << msg;
+  EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + test::quoted(dir / "no/such/dir.json"), &msg), 4) << msg;
   EXPECT_FALSE(std::filesystem::exists(dir / "s.json"));
 }
 

@@ -5,7 +5,8 @@
 #include <fstream>
 #include <string>
 
-#include "synthetic_tree.h"
+#include "cli_support.h"
+#include "skeleton/synthetic_tree.h"
 #include "test_support.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
@@ -14,12 +15,12 @@
 namespace treesketch {
 namespace {
 
-std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+using test::quoted;
 
 /// Writes the Y-shaped test tree's cloud to DIR/c.ply; returns that path, quoted for the shell.
 std::string yTreeCloud(const test::TempDir& dir) {
   io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
-  return q(dir / "c.ply");
+  return quoted(dir / "c.ply");
 }
 
 TEST(CmdAuto, ReconstructAutoWritesMeshSketchAndCylinders) {
@@ -27,8 +28,9 @@ TEST(CmdAuto, ReconstructAutoWritesMeshSketchAndCylinders) {
   io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
   for (const std::string extra : {"", " --leaf-on"}) {
     std::string out;
-    const int rc = test::runCli("reconstruct " + q(dir / "c.ply") + " --auto" + extra + " --sketch " +
-                                    q(dir / "s.json") + " --cylinders " + q(dir / "c.csv") + " -o " + q(dir / "m.ply"),
+    const int rc = test::runCli("reconstruct " + quoted(dir / "c.ply") + " --auto" + extra + " --sketch " +
+                                    quoted(dir / "s.json") + " --cylinders " + quoted(dir / "c.csv") + " -o " +
+                                    quoted(dir / "m.ply"),
                                 &out);
     ASSERT_EQ(rc, 0) << extra << ": " << out;
     EXPECT_NE(out.find("fits accepted"), std::string::npos) << out;
@@ -46,8 +48,8 @@ TEST(CmdAuto, LeafOnNeedsAuto) {
   test::TempDir dir;
   io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
   std::string out;
-  EXPECT_EQ(test::runCli("reconstruct " + q(dir / "c.ply") + " --sketch " + q(dir / "s.json") + " --leaf-on -o " +
-                             q(dir / "m.ply"),
+  EXPECT_EQ(test::runCli("reconstruct " + quoted(dir / "c.ply") + " --sketch " + quoted(dir / "s.json") +
+                             " --leaf-on -o " + quoted(dir / "m.ply"),
                          &out),
             2)
       << out;
@@ -59,8 +61,8 @@ TEST(CmdAuto, SketchAutoSkeletonLeafOn) {
   test::TempDir dir;
   io::writePointCloud(dir / "c.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
   std::string out;
-  const int rc =
-      test::runCli("sketch auto " + q(dir / "c.ply") + " --method skeleton --leaf-on -o " + q(dir / "s.json"), &out);
+  const int rc = test::runCli(
+      "sketch auto " + quoted(dir / "c.ply") + " --method skeleton --leaf-on -o " + quoted(dir / "s.json"), &out);
   ASSERT_EQ(rc, 0) << out;
   EXPECT_GE(io::readSketch(dir / "s.json").size(), 3u);
 }
@@ -69,28 +71,29 @@ TEST(CmdAuto, SketchAutoSkeletonLeafOn) {
 // circles); --refit fits every node from the cloud instead.
 TEST(CmdAuto, SavedSketchRebuildsTheAutomaticMeshAndRefitFitsIt) {
   test::TempDir dir;
-  const std::string cloud = yTreeCloud(dir), sketchFile = q(dir / "s.json");
+  const std::string cloud = yTreeCloud(dir), sketchFile = quoted(dir / "s.json");
   std::string out;
   ASSERT_EQ(
-      test::runCli("reconstruct " + cloud + " --auto --sketch " + sketchFile + " -o " + q(dir / "auto.ply"), &out), 0)
+      test::runCli("reconstruct " + cloud + " --auto --sketch " + sketchFile + " -o " + quoted(dir / "auto.ply"), &out),
+      0)
       << out;
   const sketch::Sketch sk = io::readSketch(dir / "s.json");
   ASSERT_GE(sk.keptCircleCount(), 3u);
-  const std::string again = "reconstruct " + cloud + " --sketch " + sketchFile + " --report " + q(dir / "r.json");
-  ASSERT_EQ(test::runCli(again + " -o " + q(dir / "again.ply"), &out), 0) << out;
+  const std::string again = "reconstruct " + cloud + " --sketch " + sketchFile + " --report " + quoted(dir / "r.json");
+  ASSERT_EQ(test::runCli(again + " -o " + quoted(dir / "again.ply"), &out), 0) << out;
   EXPECT_NE(out.find(std::to_string(sk.keptCircleCount()) + " kept circles"), std::string::npos) << out;
   const geom::TriMesh a = io::readMesh(dir / "auto.ply"), b = io::readMesh(dir / "again.ply");
   ASSERT_EQ(a.triangles, b.triangles);
   ASSERT_EQ(a.vertices.size(), b.vertices.size());
   for (std::size_t v = 0; v < a.vertices.size(); ++v) EXPECT_LT((a.vertices[v] - b.vertices[v]).norm(), 1e-6);
   EXPECT_NE(test::readText(dir / "r.json").find("\"kept\": true"), std::string::npos);
-  ASSERT_EQ(test::runCli(again + " --refit -o " + q(dir / "refit.ply"), &out), 0) << out;
+  ASSERT_EQ(test::runCli(again + " --refit -o " + quoted(dir / "refit.ply"), &out), 0) << out;
   EXPECT_NE(out.find(" 0 kept circles"), std::string::npos) << out;
   // `sketch auto --method skeleton` saves the same handed-over model.
-  ASSERT_EQ(test::runCli("sketch auto " + cloud + " --method skeleton -o " + q(dir / "s2.json"), &out), 0) << out;
+  ASSERT_EQ(test::runCli("sketch auto " + cloud + " --method skeleton -o " + quoted(dir / "s2.json"), &out), 0) << out;
   EXPECT_EQ(io::readSketch(dir / "s2.json").keptCircleCount(), sk.keptCircleCount());
   // --refit is for sketch files.
-  EXPECT_EQ(test::runCli("reconstruct " + cloud + " --auto --refit -o " + q(dir / "x.ply"), &out), 2) << out;
+  EXPECT_EQ(test::runCli("reconstruct " + cloud + " --auto --refit -o " + quoted(dir / "x.ply"), &out), 2) << out;
   EXPECT_NE(out.find("--refit"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.ply"));
 }

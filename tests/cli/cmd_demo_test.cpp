@@ -1,6 +1,7 @@
 // The `treesketch demo` subcommand (apps/cli/cmd_demo.cpp), run through the CLI.
 #include <gtest/gtest.h>
 
+#include "cli_support.h"
 #include "test_support.h"
 #include "treesketch/gen/skeleton_io.h"
 #include "treesketch/gen/tree_generator.h"
@@ -14,7 +15,7 @@ TEST(CmdDemo, WritesTheTreeTheScanAndASummary) {
   test::TempDir dir;
   const auto out = dir / "demo";  // does not exist yet: the demo creates it
   std::string output;
-  ASSERT_EQ(test::runCli("demo --out '" + out.string() + "' --seed 5 --subdiv 3", &output), 0) << output;
+  ASSERT_EQ(test::runCli("demo --out " + test::quoted(out) + " --seed 5 --subdiv 3", &output), 0) << output;
   EXPECT_NE(output.find("wood fraction"), std::string::npos) << output;
 
   TreeOptions o;
@@ -45,11 +46,11 @@ TEST(CmdDemo, WritesTheTreeTheScanAndASummary) {
 
 TEST(CmdDemo, BadOptionsAndUnwritableOutput) {
   test::TempDir dir;
-  EXPECT_EQ(test::runCli("demo --out '" + (dir / "a").string() + "' --subdiv 0"), 2);
-  EXPECT_EQ(test::runCli("demo --out '" + (dir / "a").string() + "' --preset palm"), 2);
+  EXPECT_EQ(test::runCli("demo --out " + test::quoted(dir / "a") + " --subdiv 0"), 2);
+  EXPECT_EQ(test::runCli("demo --out " + test::quoted(dir / "a") + " --preset palm"), 2);
   test::writeText(dir / "file", "x");
   // The output "directory" is below a regular file: cannot be created.
-  EXPECT_EQ(test::runCli("demo --out '" + (dir / "file" / "sub").string() + "' --subdiv 1"), 4);
+  EXPECT_EQ(test::runCli("demo --out " + test::quoted(dir / "file" / "sub") + " --subdiv 1"), 4);
 }
 
 }  // namespace

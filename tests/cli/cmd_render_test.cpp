@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "cli_support.h"
 #include "test_support.h"
 
 namespace treesketch {
@@ -23,13 +24,14 @@ TEST(CmdRender, RendersATinyCloudToPng) {
   test::writeText(dir / "c.xyz", tinyCloud());
   test::writeText(dir / "s.obj", "v 0 0 0\nv 0 0 2\nv 0.1 0 3\nl 1 2 3\n");
   std::string out;
-  int code = test::runCli("render --cloud '" + (dir / "c.xyz").string() + "' --skeleton '" + (dir / "s.obj").string() +
-                              "' --size 64x48 --view front -o '" + (dir / "c.png").string() + "'",
-                          &out);
+  int code =
+      test::runCli("render --cloud " + test::quoted(dir / "c.xyz") + " --skeleton " + test::quoted(dir / "s.obj") +
+                       " --size 64x48 --view front -o " + test::quoted(dir / "c.png"),
+                   &out);
   EXPECT_EQ(code, 0) << out;
   EXPECT_TRUE(isPng(test::readText(dir / "c.png")));
-  code = test::runCli("render --cloud '" + (dir / "c.xyz").string() + "' --color-by none --wireframe -o '" +
-                          (dir / "iso.png").string() + "'",
+  code = test::runCli("render --cloud " + test::quoted(dir / "c.xyz") + " --color-by none --wireframe -o " +
+                          test::quoted(dir / "iso.png"),
                       &out);
   EXPECT_EQ(code, 0) << out;
   EXPECT_TRUE(isPng(test::readText(dir / "iso.png")));
@@ -40,29 +42,27 @@ TEST(CmdRender, BadInputFileIsExit3AndLeavesNoOutput) {
   test::writeText(dir / "bad.xyz", "1 2 3\n4 five 6\n");
   std::string out;
   EXPECT_EQ(
-      test::runCli("render --cloud '" + (dir / "bad.xyz").string() + "' -o '" + (dir / "o.png").string() + "'", &out),
-      3)
+      test::runCli("render --cloud " + test::quoted(dir / "bad.xyz") + " -o " + test::quoted(dir / "o.png"), &out), 3)
       << out;
   EXPECT_NE(out.find("bad.xyz"), std::string::npos);
-  EXPECT_EQ(
-      test::runCli("render --cloud '" + (dir / "missing.ply").string() + "' -o '" + (dir / "o.png").string() + "'"), 3);
+  EXPECT_EQ(test::runCli("render --cloud " + test::quoted(dir / "missing.ply") + " -o " + test::quoted(dir / "o.png")),
+            3);
   test::writeText(dir / "noline.obj", "v 0 0 0\n");
   EXPECT_EQ(
-      test::runCli("render --skeleton '" + (dir / "noline.obj").string() + "' -o '" + (dir / "o.png").string() + "'"),
-      3);
+      test::runCli("render --skeleton " + test::quoted(dir / "noline.obj") + " -o " + test::quoted(dir / "o.png")), 3);
   EXPECT_FALSE(std::filesystem::exists(dir / "o.png"));
 }
 
 TEST(CmdRender, BadOptionsAreExit2) {
   test::TempDir dir;
   test::writeText(dir / "c.xyz", tinyCloud());
-  const std::string cloud = " --cloud '" + (dir / "c.xyz").string() + "'";
-  const std::string outPng = " -o '" + (dir / "o.png").string() + "'";
+  const std::string cloud = " --cloud " + test::quoted(dir / "c.xyz");
+  const std::string outPng = " -o " + test::quoted(dir / "o.png");
   EXPECT_EQ(test::runCli("render" + cloud + " --size 64by48" + outPng), 2);
   EXPECT_EQ(test::runCli("render" + cloud + " --view diagonal" + outPng), 2);
   EXPECT_EQ(test::runCli("render" + outPng), 2);  // nothing to draw
   EXPECT_EQ(test::runCli("render" + cloud), 2);   // no output
-  EXPECT_EQ(test::runCli("render" + cloud + " -o '" + (dir / "no" / "o.png").string() + "'"), 4);
+  EXPECT_EQ(test::runCli("render" + cloud + " -o " + test::quoted(dir / "no" / "o.png")), 4);
 }
 
 }  // namespace

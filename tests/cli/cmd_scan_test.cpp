@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cli_support.h"
 #include "test_support.h"
 #include "treesketch/io/point_cloud_io.h"
 
@@ -33,7 +34,7 @@ class ScanCli : public ::testing::Test {
     writeText(dir / "trunk.obj", boxObj(-0.1, 0, -0.1, 0.1, 3, 0.1));
     writeText(dir / "crown.obj", boxObj(-1, 2, -1, 1, 4, 1));
   }
-  std::string q(const std::string& name) { return "'" + (dir / name).string() + "'"; }
+  std::string q(const std::string& name) { return treesketch::test::quoted(dir / name); }
   TempDir dir;
 };
 

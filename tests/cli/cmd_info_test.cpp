@@ -1,0 +1,40 @@
+// The `treesketch info` subcommand (apps/cli/cmd_info.cpp), run as a process.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "cli_support.h"
+#include "test_support.h"
+#include "treesketch/io/point_cloud_io.h"
+
+namespace treesketch {
+namespace {
+
+TEST(InfoCli, BadFileExitsWithInputCodeAndOneLineNamingIt) {
+  test::TempDir dir;
+  auto bad = dir / "bad.ply";
+  test::writeText(bad,
+                  "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+                  "property float z\nend_header\n0 0 0\n1 1\n");
+  std::string out;
+  EXPECT_EQ(test::runCli("info " + test::quoted(bad), &out), 3);
+  EXPECT_NE(out.find(bad.string()), std::string::npos) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_EQ(test::runCli("info " + test::quoted(dir / "missing.xyz"), &out), 3);
+  EXPECT_NE(out.find("missing.xyz"), std::string::npos) << out;
+}
+
+TEST(InfoCli, GoodFilePrintsCounts) {
+  test::TempDir dir;
+  geom::PointCloud c;
+  for (int i = 0; i < 7; ++i) c.positions.emplace_back(i, 0, 0);
+  io::writePointCloud(dir / "c.xyz", c);
+  std::string out;
+  EXPECT_EQ(test::runCli("info " + test::quoted(dir / "c.xyz"), &out), 0) << out;
+  EXPECT_NE(out.find("points: 7\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("bbox diagonal: 6.000000"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace treesketch
