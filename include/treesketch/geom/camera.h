@@ -11,6 +11,10 @@ namespace treesketch::geom {
 
 struct Viewport {
   double x = 0, y = 0, width = 1280, height = 800;  ///< pixels
+
+  /// True unless the window point `p` (pixels) lies outside the rectangle (its edges count as
+  /// inside).
+  bool contains(const Vec2& p) const { return !(p.x() < x || p.y() < y || p.x() > x + width || p.y() > y + height); }
 };
 
 struct Camera {

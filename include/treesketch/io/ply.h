@@ -2,6 +2,7 @@
 // the PLY scalar types (char/int8 ... double/float64). Reads point clouds (the vertex element)
 // and triangle meshes (vertex + face lists, polygons fan-triangulated); writes binary little
 // endian with optional per-point station/mesh ints and per-vertex colour and MeshLab "quality".
+// Implemented in src/io/ply_header.cpp (the header), ply_read.cpp and ply_write.cpp.
 #pragma once
 
 #include <cstdint>
@@ -50,6 +51,10 @@ struct PlyHeader {
 const char* toString(PlyFormat f);
 /// PLY's canonical type name: "char", "uchar", "short", "ushort", "int", "uint", "float", "double".
 const char* toString(PlyType t);
+/// Bytes of one value of type `t` in a binary body (1, 2, 4 or 8).
+std::size_t typeSize(PlyType t);
+/// True for char ... uint, false for float and double.
+bool isIntegerType(PlyType t);
 
 /// Parses the header at the start of `data`. Throws InputError (with the header line) for a
 /// missing "ply" magic, missing/unsupported format line, unknown keyword or type, a property
