@@ -81,7 +81,7 @@ SurfaceSamples samplesOf(const geom::PointCloud& cloud, const SamplingOptions& o
 /// Every comparison: check the inputs, index the target (`Index`: the closest-point query for the
 /// target's kind), sample the other, measure.
 template <class Index, class Sampled, class Target>
-DistanceReport compare(const Sampled& sampled, const Target& target, const CompareOptions& options) {
+DistanceReport compareWith(const Sampled& sampled, const Target& target, const CompareOptions& options) {
   checkOptions(options);
   checkInput(sampled, "sampled");
   checkInput(target, "target");
@@ -92,17 +92,17 @@ DistanceReport compare(const Sampled& sampled, const Target& target, const Compa
 }  // namespace
 
 DistanceReport compareMeshes(const geom::TriMesh& sampled, const geom::TriMesh& target, const CompareOptions& options) {
-  return compare<accel::MeshClosestPoint>(sampled, target, options);
+  return compareWith<accel::MeshClosestPoint>(sampled, target, options);
 }
 
 DistanceReport compareMeshToCloud(const geom::TriMesh& sampled, const geom::PointCloud& target,
                                   const CompareOptions& options) {
-  return compare<accel::CloudClosestPoint>(sampled, target, options);
+  return compareWith<accel::CloudClosestPoint>(sampled, target, options);
 }
 
 DistanceReport compareCloudToMesh(const geom::PointCloud& sampled, const geom::TriMesh& target,
                                   const CompareOptions& options) {
-  return compare<accel::MeshClosestPoint>(sampled, target, options);
+  return compareWith<accel::MeshClosestPoint>(sampled, target, options);
 }
 
 void finishBoth(BothReport& r) {

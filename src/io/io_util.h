@@ -89,6 +89,14 @@ inline void appendNumber(std::string& s, std::uint64_t v) {
   auto r = std::to_chars(buf, buf + sizeof buf, v);
   s.append(buf, r.ptr);
 }
+/// Appends "x y z", each the shortest decimal that reads back exactly (a point of a text format).
+inline void appendXyz(std::string& s, double x, double y, double z) {
+  appendNumber(s, x);
+  s += ' ';
+  appendNumber(s, y);
+  s += ' ';
+  appendNumber(s, z);
+}
 
 template <class T>
 inline T byteSwap(T v) {

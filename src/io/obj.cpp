@@ -152,11 +152,7 @@ void writeObj(std::ostream& out, const geom::TriMesh& mesh) {
     const geom::Vec3& v = mesh.vertices[i];
     if (!v.allFinite()) throw OutputError("obj writer: vertex " + std::to_string(i) + " has a non-finite coordinate");
     buf += "v ";
-    detail::appendNumber(buf, v.x());
-    buf += ' ';
-    detail::appendNumber(buf, v.y());
-    buf += ' ';
-    detail::appendNumber(buf, v.z());
+    detail::appendXyz(buf, v.x(), v.y(), v.z());
     buf += '\n';
     detail::flushIfFull(out, buf);
   }

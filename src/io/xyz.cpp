@@ -92,11 +92,7 @@ void writeXyz(std::ostream& out, const geom::PointCloud& cloud) {
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const geom::Vec3& q = cloud.positions[i];
     if (!q.allFinite()) throw OutputError("xyz writer: point " + std::to_string(i) + " has a non-finite coordinate");
-    detail::appendNumber(buf, q.x());
-    buf += ' ';
-    detail::appendNumber(buf, q.y());
-    buf += ' ';
-    detail::appendNumber(buf, q.z());
+    detail::appendXyz(buf, q.x(), q.y(), q.z());
     buf += '\n';
     detail::flushIfFull(out, buf);
   }

@@ -96,7 +96,7 @@ const Expectation kExpectations[] = {
 
 /// The entry of `table` called `name`, or nullptr.
 template <class Entry, std::size_t N>
-const Entry* find(const Entry (&table)[N], const std::string& name) {
+const Entry* entryNamed(const Entry (&table)[N], const std::string& name) {
   for (const Entry& e : table)
     if (name == e.name) return &e;
   return nullptr;
@@ -174,7 +174,7 @@ class Parser {
       a.kind = Kind::View;
       a.name = arg;
       checkView(a.name, index);
-    } else if (find(kButtons, verb)) {
+    } else if (entryNamed(kButtons, verb)) {
       a.kind = Kind::Button;
       a.name = verb;
     } else if (verb == "wait") {
@@ -218,7 +218,7 @@ class Parser {
     } else if (j.contains("slider")) {
       a.kind = Kind::Slider;
       a.name = string(j["slider"], index, "slider");
-      if (!find(kSliders, a.name))
+      if (!entryNamed(kSliders, a.name))
         fail(index, "slider must be sliceHalfThickness, lineEpsilon or pointSize, got '" + a.name + "'");
       if (!j.contains("value")) fail(index, "slider needs a \"value\"");
       a.value = number(j["value"], index, "value");
@@ -231,7 +231,7 @@ class Parser {
         a.text = v.get<bool>() ? "true" : "false";
       else
         a.text = string(v, index, "value");
-      if (!find(kOptions, a.name)) fail(index, "unknown option '" + a.name + "'");
+      if (!entryNamed(kOptions, a.name)) fail(index, "unknown option '" + a.name + "'");
     } else if (j.contains("view")) {
       a.kind = Kind::View;
       a.name = string(j["view"], index, "view");
@@ -259,7 +259,7 @@ class Parser {
       const json& e = j["expect"];
       if (!e.is_object()) fail(index, "expect: expected an object");
       for (const auto& [k, v] : e.items()) {
-        if (!find(kExpectations, k)) fail(index, "expect: unknown key '" + k + "'");
+        if (!entryNamed(kExpectations, k)) fail(index, "expect: unknown key '" + k + "'");
         a.expect.emplace_back(k, number(v, index, "expect " + k));
       }
     } else {
@@ -311,14 +311,14 @@ const char* buttonName(MouseButton b) {
 }
 
 void applyOption(ViewerState& state, const std::string& name, const std::string& value) {
-  const Option* option = find(kOptions, name);
+  const Option* option = entryNamed(kOptions, name);
   if (!option) throw OptionsError("unknown option '" + name + "'");
   option->apply(state, value);
 }
 
 /// Checks one expectation; returns "" or what differs.
 std::string checkExpect(const ViewerState& state, const std::string& key, double want) {
-  const Expectation* e = find(kExpectations, key);
+  const Expectation* e = entryNamed(kExpectations, key);
   const double got = e ? e->read(state) : 0.0;
   if (e && e->atLeast) {
     if (got >= want) return {};
@@ -407,7 +407,7 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
           if (!state.keyPress(a.name, a.mods)) failure = "no action is bound to key '" + a.name + "'";
           break;
         case Kind::Slider:
-          if (const Slider* slider = find(kSliders, a.name)) slider->set(state, a.value);
+          if (const Slider* slider = entryNamed(kSliders, a.name)) slider->set(state, a.value);
           break;
         case Kind::Option:
           applyOption(state, a.name, a.text);
@@ -422,7 +422,7 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
           state.selectNode(static_cast<sketch::NodeId>(a.value));
           break;
         case Kind::Button:
-          if (const Button* button = find(kButtons, a.name)) button->press(state);
+          if (const Button* button = entryNamed(kButtons, a.name)) button->press(state);
           break;
         case Kind::Save:
         case Kind::Load: {

@@ -9,9 +9,6 @@
 namespace treesketch::viewer {
 
 using geom::Vec2;
-using geom::Vec3;
-using sketch::kNoNode;
-using sketch::NodeId;
 
 namespace {
 

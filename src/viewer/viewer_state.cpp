@@ -22,8 +22,6 @@ namespace treesketch::viewer {
 
 using geom::Vec2;
 using geom::Vec3;
-using sketch::kNoNode;
-using sketch::NodeId;
 
 namespace {
 
@@ -282,24 +280,23 @@ bool ViewerState::applyParams(const sketch::SamplingParams& params, const std::s
   });
 }
 
-bool ViewerState::setSliceHalfThickness(double value) {
+bool ViewerState::setSamplingSize(double sketch::SamplingParams::*size, double value, const std::string& name,
+                                  const std::string& key) {
   if (!(value > 0) || !std::isfinite(value)) {
-    error("slice half-thickness must be a positive number");
+    error(name + " must be a positive number");
     return false;
   }
   sketch::SamplingParams p = paramsForEdit();
-  p.sliceHalfThickness = value;
-  return applyParams(p, "set slice half-thickness", "slice");
+  p.*size = value;
+  return applyParams(p, "set " + name, key);
+}
+
+bool ViewerState::setSliceHalfThickness(double value) {
+  return setSamplingSize(&sketch::SamplingParams::sliceHalfThickness, value, "slice half-thickness", "slice");
 }
 
 bool ViewerState::setLineEpsilon(double value) {
-  if (!(value > 0) || !std::isfinite(value)) {
-    error("lineEpsilon must be a positive number");
-    return false;
-  }
-  sketch::SamplingParams p = paramsForEdit();
-  p.lineEpsilon = value;
-  return applyParams(p, "set lineEpsilon", "lineEpsilon");
+  return setSamplingSize(&sketch::SamplingParams::lineEpsilon, value, "lineEpsilon", "lineEpsilon");
 }
 
 bool ViewerState::setNodeEnabled(bool enabled) {

@@ -25,7 +25,8 @@ struct Circle3 {
 double distanceToCircle(const geom::Vec3& p, const Circle3& circle);
 
 /// One colour per point by its distance to the nearest of `circles` on render::viridis: 0 -> ramp
-/// start, `maxDistance` (world units, > 0) or more -> ramp end. With no circles every point gets the ramp's end colour.
+/// start, `maxDistance` (world units, > 0) or more -> ramp end. With no circles every point gets
+/// the ramp's end colour.
 /// Runs in parallel (TBB); about 1 ms per million point-circle pairs on two cores.
 std::vector<Rgb> circleDistanceColors(const geom::PointCloud& cloud, const std::vector<Circle3>& circles,
                                       double maxDistance);

@@ -32,6 +32,9 @@
 
 namespace treesketch::viewer {
 
+using sketch::kNoNode;
+using sketch::NodeId;
+
 enum class ColorMode { Height, CircleDistance, Plain };
 enum class MeshStyle { Solid, Wireframe, Hidden };
 enum class MouseButton { Left, Right, Middle };
@@ -299,6 +302,10 @@ class ViewerState {
   geom::Vec3 anchor(sketch::NodeId id) const;
   sketch::SamplingParams paramsForEdit() const;
   bool applyParams(const sketch::SamplingParams& params, const std::string& label, const std::string& key);
+  /// Sets one sampling size (`name` in messages, `key` merges repeats into one undo step);
+  /// rejects a value that is not a positive finite number.
+  bool setSamplingSize(double sketch::SamplingParams::*size, double value, const std::string& name,
+                       const std::string& key);
 
   ViewerOptions options_;
   ReconstructionFactory factory_;
