@@ -14,26 +14,6 @@ namespace treesketch::io {
 
 using detail::quoted;
 
-std::size_t typeSize(PlyType t) {
-  switch (t) {
-    case PlyType::Int8:
-    case PlyType::UInt8:
-      return 1;
-    case PlyType::Int16:
-    case PlyType::UInt16:
-      return 2;
-    case PlyType::Int32:
-    case PlyType::UInt32:
-    case PlyType::Float32:
-      return 4;
-    case PlyType::Float64:
-      return 8;
-  }
-  return 1;
-}
-
-bool isIntegerType(PlyType t) { return t != PlyType::Float32 && t != PlyType::Float64; }
-
 namespace {
 
 bool parseType(std::string_view s, PlyType& t) {
