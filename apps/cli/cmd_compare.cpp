@@ -4,7 +4,6 @@
 // .txt .csv .pts .las, or a .ply without faces). Prints a table; optionally writes the report as
 // JSON and A's error mesh (binary PLY, per-vertex distance as quality, red = near, blue = far).
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +20,7 @@
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/progress.h"
+#include "treesketch/util/text.h"
 
 namespace treesketch::cli {
 
@@ -48,11 +48,7 @@ struct Target {
   geom::PointCloud cloud;
 };
 
-std::string lowerExtension(const fs::path& p) {
-  std::string e = p.extension().string();
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
+std::string lowerExtension(const fs::path& p) { return lowercase(p.extension().string()); }
 
 Target readTarget(const fs::path& path) {
   Target t;

@@ -11,9 +11,9 @@
 #include "commands.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
+#include "treesketch/io/view_camera.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/sketch/auto_sketch.h"
-#include "treesketch/sketch/view_camera.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
 
@@ -64,7 +64,7 @@ void runAuto(const AutoOptions& o) {
   checkNotAnInput(o.output, {o.cloud});
   geom::PointCloud cloud = io::readPointCloud(o.cloud);
   geom::Viewport viewport{0, 0, static_cast<double>(o.width), static_cast<double>(o.height)};
-  geom::Camera camera = sketch::cameraForView(o.view, cloud.bounds(), up, viewport, o.ortho);
+  geom::Camera camera = io::cameraForView(o.view, cloud.bounds(), up, viewport, o.ortho);
   const auto& methods = autoSketchMethods();
   auto it = methods.find(o.method);
   if (it == methods.end()) throw OptionsError("--method: unknown method '" + o.method + "'");

@@ -276,7 +276,7 @@ void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pi
     for (const viewer::Line3& l : lines) {
       for (const Vec3* p : {&l.a, &l.b}) {
         for (int k = 0; k < 3; ++k) pos.push_back(static_cast<float>((*p)[k] - origin_[k]));
-        col.insert(col.end(), l.color.begin(), l.color.end());
+        col.insert(col.end(), {l.color.r, l.color.g, l.color.b});
       }
     }
     glUseProgram(pointProgram_);

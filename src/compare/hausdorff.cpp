@@ -16,7 +16,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-void checkMesh(const geom::TriMesh& mesh, const char* role) {
+void checkInput(const geom::TriMesh& mesh, const char* role) {
   if (mesh.triangles.empty()) throw OptionsError(std::string("comparison: the ") + role + " mesh has no triangles");
   const std::size_t nv = mesh.vertices.size();
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
@@ -30,7 +30,7 @@ void checkMesh(const geom::TriMesh& mesh, const char* role) {
                          " is NaN or infinite");
 }
 
-void checkCloud(const geom::PointCloud& cloud, const char* role) {
+void checkInput(const geom::PointCloud& cloud, const char* role) {
   if (cloud.empty()) throw OptionsError(std::string("comparison: the ") + role + " point cloud is empty");
   for (std::size_t i = 0; i < cloud.size(); ++i)
     if (!cloud.positions[i].allFinite())
@@ -75,32 +75,34 @@ DistanceReport measure(const SurfaceSamples& samples, double diagonal, const Ind
   return r;
 }
 
+SurfaceSamples samplesOf(const geom::TriMesh& mesh, const SamplingOptions& o) { return sampleSurface(mesh, o); }
+SurfaceSamples samplesOf(const geom::PointCloud& cloud, const SamplingOptions& o) { return sampleCloud(cloud, o); }
+
+/// Every comparison: check the inputs, index the target (`Index`: the closest-point query for the
+/// target's kind), sample the other, measure.
+template <class Index, class Sampled, class Target>
+DistanceReport compareWith(const Sampled& sampled, const Target& target, const CompareOptions& options) {
+  checkOptions(options);
+  checkInput(sampled, "sampled");
+  checkInput(target, "target");
+  Index index(target, options.accel);
+  return measure(samplesOf(sampled, options.sampling), sampled.bounds().diagonal(), index, options);
+}
+
 }  // namespace
 
 DistanceReport compareMeshes(const geom::TriMesh& sampled, const geom::TriMesh& target, const CompareOptions& options) {
-  checkOptions(options);
-  checkMesh(sampled, "sampled");
-  checkMesh(target, "target");
-  accel::MeshClosestPoint index(target, options.accel);
-  return measure(sampleSurface(sampled, options.sampling), sampled.bounds().diagonal(), index, options);
+  return compareWith<accel::MeshClosestPoint>(sampled, target, options);
 }
 
 DistanceReport compareMeshToCloud(const geom::TriMesh& sampled, const geom::PointCloud& target,
                                   const CompareOptions& options) {
-  checkOptions(options);
-  checkMesh(sampled, "sampled");
-  checkCloud(target, "target");
-  accel::CloudClosestPoint index(target, options.accel);
-  return measure(sampleSurface(sampled, options.sampling), sampled.bounds().diagonal(), index, options);
+  return compareWith<accel::CloudClosestPoint>(sampled, target, options);
 }
 
 DistanceReport compareCloudToMesh(const geom::PointCloud& sampled, const geom::TriMesh& target,
                                   const CompareOptions& options) {
-  checkOptions(options);
-  checkCloud(sampled, "sampled");
-  checkMesh(target, "target");
-  accel::MeshClosestPoint index(target, options.accel);
-  return measure(sampleCloud(sampled, options.sampling), sampled.bounds().diagonal(), index, options);
+  return compareWith<accel::MeshClosestPoint>(sampled, target, options);
 }
 
 void finishBoth(BothReport& r) {
@@ -131,8 +133,15 @@ nlohmann::json toJson(const BothReport& r) {
 
 namespace {
 
-template <class Index>
-void fillMissing(const geom::TriMesh& mesh, const Index& index, double maxDistance, std::vector<double>& distances) {
+/// Both fillVertexDistances: check the target and the mesh's vertices, index the target
+/// (`Index`: the closest-point query for its kind), measure the vertices still without a distance.
+template <class Index, class Target>
+void fillMissing(const geom::TriMesh& mesh, const Target& target, double maxDistance, std::vector<double>& distances) {
+  checkInput(target, "target");
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+    if (!mesh.vertices[i].allFinite())
+      throw OptionsError("comparison: vertex " + std::to_string(i) + " is NaN or infinite");
+  const Index index(target);
   distances.resize(mesh.vertices.size(), std::numeric_limits<double>::quiet_NaN());
   std::vector<std::size_t> todo;
   std::vector<Vec3> points;
@@ -149,20 +158,12 @@ void fillMissing(const geom::TriMesh& mesh, const Index& index, double maxDistan
 
 void fillVertexDistances(const geom::TriMesh& mesh, const geom::TriMesh& target, double maxDistance,
                          std::vector<double>& distances) {
-  checkMesh(target, "target");
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-    if (!mesh.vertices[i].allFinite())
-      throw OptionsError("comparison: vertex " + std::to_string(i) + " is NaN or infinite");
-  fillMissing(mesh, accel::MeshClosestPoint(target), maxDistance, distances);
+  fillMissing<accel::MeshClosestPoint>(mesh, target, maxDistance, distances);
 }
 
 void fillVertexDistances(const geom::TriMesh& mesh, const geom::PointCloud& target, double maxDistance,
                          std::vector<double>& distances) {
-  checkCloud(target, "target");
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-    if (!mesh.vertices[i].allFinite())
-      throw OptionsError("comparison: vertex " + std::to_string(i) + " is NaN or infinite");
-  fillMissing(mesh, accel::CloudClosestPoint(target), maxDistance, distances);
+  fillMissing<accel::CloudClosestPoint>(mesh, target, maxDistance, distances);
 }
 
 std::vector<double> vertexDistancesFromReport(const DistanceReport& report, std::size_t vertexCount) {

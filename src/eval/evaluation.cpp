@@ -11,13 +11,13 @@
 
 #include "treesketch/eval/mesh_distance.h"
 #include "treesketch/eval/svg_plot.h"
+#include "treesketch/io/view_camera.h"
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/scan/tls_scan.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/sketch/auto_sketch.h"
 #include "treesketch/sketch/polyline_sketch.h"
-#include "treesketch/sketch/view_camera.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
 
@@ -104,7 +104,7 @@ MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud&
 }
 
 geom::Camera viewCamera(const MethodInput& in) {
-  return sketch::cameraForView(in.options.view, in.cloud.bounds(), in.tree.up, kViewport, false);
+  return io::cameraForView(in.options.view, in.cloud.bounds(), in.tree.up, kViewport, false);
 }
 
 MethodOutput methodUniform(const MethodInput& in) {

@@ -1,15 +1,12 @@
 #include "treesketch/geom/types.h"
 
-#include <algorithm>
-#include <cctype>
-
 #include "treesketch/util/error.h"
+#include "treesketch/util/text.h"
 
 namespace treesketch::geom {
 
 UpAxis parseUpAxis(const std::string& s) {
-  std::string l = s;
-  std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string l = lowercase(s);
   if (l == "y") return UpAxis::Y;
   if (l == "z") return UpAxis::Z;
   throw OptionsError("up axis must be 'y' or 'z', got '" + s + "'");

@@ -1,10 +1,10 @@
 #include "io/io_util.h"
 
 #include <algorithm>
-#include <cctype>
 #include <fstream>
 
 #include "treesketch/util/error.h"
+#include "treesketch/util/text.h"
 
 namespace treesketch::io::detail {
 
@@ -45,11 +45,7 @@ std::string readFile(const fs::path& path) {
   return readAll(in, path.string());
 }
 
-std::string lowerExtension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
+std::string lowerExtension(const fs::path& path) { return lowercase(path.extension().string()); }
 
 std::string quoted(std::string_view s) {
   std::string out = "'";

@@ -1,5 +1,6 @@
-// Internal helpers of the io module: whole-stream reads, number parsing with std::from_chars,
-// shortest exact number formatting, little/big-endian loads and stores.
+// Internal helpers of the io module: whole-stream reads, walking the lines of a text, buffered
+// writes, number parsing with std::from_chars, shortest exact number formatting, little/big-endian
+// loads and stores.
 #pragma once
 
 #include <bit>
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <istream>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -24,6 +26,48 @@ std::string readFile(const std::filesystem::path& path);
 std::string lowerExtension(const std::filesystem::path& path);
 /// A short printable rendering of `s` for messages (at most ~40 chars, control bytes escaped).
 std::string quoted(std::string_view s);
+
+/// The lines of a text in order: each next() gives the following line without its '\n' ('\r' is
+/// kept: each format decides) and counts it, so number() is the 1-based number of the line just
+/// given. A last line without '\n' counts; nothing follows a final '\n'.
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : text_(text) {}
+  /// False (and `line` untouched) when the text is used up.
+  bool next(std::string_view& line) {
+    if (pos_ >= text_.size()) return false;
+    const std::size_t nl = text_.find('\n', pos_);
+    const std::size_t end = nl == std::string_view::npos ? text_.size() : nl;
+    line = text_.substr(pos_, end - pos_);
+    pos_ = nl == std::string_view::npos ? text_.size() : nl + 1;
+    ++number_;
+    return true;
+  }
+  std::size_t number() const { return number_; }
+  /// Byte offset of the first byte after the line just given (and its '\n').
+  std::size_t offset() const { return pos_; }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::size_t number_ = 0;
+};
+
+/// Writers build their output in a string and hand it to the stream in blocks of about this many
+/// bytes (one write per block instead of one per value; the bytes written are the same).
+constexpr std::size_t kWriteBlock = std::size_t(1) << 20;
+
+/// Writes `buf` to `out` and empties it once it holds kWriteBlock bytes or more (call after each
+/// record; write what is left at the end with writeAll).
+inline void flushIfFull(std::ostream& out, std::string& buf) {
+  if (buf.size() < kWriteBlock) return;
+  out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+  buf.clear();
+}
+inline void writeAll(std::ostream& out, std::string& buf) {
+  out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+  buf.clear();
+}
 
 /// Parses the whole of [b, e) as a double (a leading '+' is allowed). False if it is not a
 /// number or out of range. NaN and Inf parse (callers reject them where needed).
@@ -44,6 +88,14 @@ inline void appendNumber(std::string& s, std::uint64_t v) {
   char buf[24];
   auto r = std::to_chars(buf, buf + sizeof buf, v);
   s.append(buf, r.ptr);
+}
+/// Appends "x y z", each the shortest decimal that reads back exactly (a point of a text format).
+inline void appendXyz(std::string& s, double x, double y, double z) {
+  appendNumber(s, x);
+  s += ' ';
+  appendNumber(s, y);
+  s += ' ';
+  appendNumber(s, z);
 }
 
 template <class T>

@@ -44,18 +44,15 @@ ObjData parseObj(std::string_view data, const std::string& source, ObjStats* sta
   if (data.empty()) throw InputError(source + ": file is empty, expected OBJ 'v' and 'f' lines");
   ObjData out;
   ObjStats stats;
-  const char* p = data.data();
-  const char* end = p + data.size();
-  std::size_t lineNo = 0;
   auto shown = [](const char* b, const char* e) {
     return detail::quoted(std::string_view(b, static_cast<std::size_t>(e - b)));
   };
-  while (p < end) {
-    const char* nl = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
-    const char* le = nl ? nl : end;
-    const char* ls = p;
-    p = nl ? nl + 1 : end;
-    ++lineNo;
+  detail::Lines lines(data);
+  std::string_view line;
+  while (lines.next(line)) {
+    const std::size_t lineNo = lines.number();
+    const char* ls = line.data();
+    const char* le = ls + line.size();
     const char* q = ls;
     std::string_view key = nextWord(q, le);
     if (key.empty() || key[0] == '#') continue;
@@ -151,23 +148,13 @@ void writeObj(std::ostream& out, const geom::TriMesh& mesh) {
   mesh.checkConsistent();
   std::string buf = "# written by treesketch\n# " + std::to_string(mesh.vertices.size()) + " vertices, " +
                     std::to_string(mesh.triangles.size()) + " triangles\n";
-  auto flush = [&](bool force) {
-    if (force || buf.size() >= (1u << 20)) {
-      out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
-      buf.clear();
-    }
-  };
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const geom::Vec3& v = mesh.vertices[i];
     if (!v.allFinite()) throw OutputError("obj writer: vertex " + std::to_string(i) + " has a non-finite coordinate");
     buf += "v ";
-    detail::appendNumber(buf, v.x());
-    buf += ' ';
-    detail::appendNumber(buf, v.y());
-    buf += ' ';
-    detail::appendNumber(buf, v.z());
+    detail::appendXyz(buf, v.x(), v.y(), v.z());
     buf += '\n';
-    flush(false);
+    detail::flushIfFull(out, buf);
   }
   for (const auto& t : mesh.triangles) {
     buf += 'f';
@@ -176,9 +163,9 @@ void writeObj(std::ostream& out, const geom::TriMesh& mesh) {
       detail::appendNumber(buf, static_cast<std::uint64_t>(idx) + 1);
     }
     buf += '\n';
-    flush(false);
+    detail::flushIfFull(out, buf);
   }
-  flush(true);
+  detail::writeAll(out, buf);
 }
 
 void writeObj(const std::filesystem::path& path, const geom::TriMesh& mesh) {

@@ -32,19 +32,16 @@ int splitFields(const char* b, const char* e, std::string_view* fields, int maxF
 geom::PointCloud parseXyz(std::string_view data, const std::string& source, const CloudReadOptions& options) {
   geom::PointCloud cloud;
   // One point a line, and a point line takes at least 6 bytes ("0 0 0\n").
-  std::size_t lines = static_cast<std::size_t>(std::count(data.begin(), data.end(), '\n')) + 1;
-  cloud.positions.reserve(std::min(lines, data.size() / 6 + 1));
-  const char* p = data.data();
-  const char* end = p + data.size();
-  std::size_t lineNo = 0;
+  const std::size_t lineCount = static_cast<std::size_t>(std::count(data.begin(), data.end(), '\n')) + 1;
+  cloud.positions.reserve(std::min(lineCount, data.size() / 6 + 1));
   std::size_t headerLines = 0;
   std::string_view f[3];
-  while (p < end) {
-    const char* nl = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
-    const char* lineEnd = nl ? nl : end;
-    const char* lineStart = p;
-    p = nl ? nl + 1 : end;
-    ++lineNo;
+  detail::Lines lines(data);
+  std::string_view line;
+  while (lines.next(line)) {
+    const std::size_t lineNo = lines.number();
+    const char* lineStart = line.data();
+    const char* lineEnd = lineStart + line.size();
     int n = splitFields(lineStart, lineEnd, f, 3);
     if (n == 0) continue;                                                             // blank line
     if (f[0][0] == '#' || (f[0].size() >= 2 && f[0].substr(0, 2) == "//")) continue;  // comment
@@ -56,16 +53,14 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
         ++headerLines;
         continue;
       }
-      throw InputError(
-          atLine(source, lineNo,
-                 "expected 'x y z' (3 numbers separated by spaces, commas or semicolons), got " +
-                     detail::quoted(std::string_view(lineStart, static_cast<std::size_t>(lineEnd - lineStart)))));
+      throw InputError(atLine(
+          source, lineNo,
+          "expected 'x y z' (3 numbers separated by spaces, commas or semicolons), got " + detail::quoted(line)));
     }
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
       throw InputError(atLine(source, lineNo, "non-finite coordinate (NaN or Inf), expected finite numbers"));
     if (cloud.empty()) {
       // "1,5;2,5;3,5" would silently read as 1 5 2: refuse decimal commas on the first point line.
-      std::string_view line(lineStart, static_cast<std::size_t>(lineEnd - lineStart));
       if (line.find(';') != std::string_view::npos && line.find(',') != std::string_view::npos)
         throw InputError(
             atLine(source, lineNo, "line mixes ';' and ',' (decimal commas?); expected '.' as the decimal separator"));
@@ -74,7 +69,7 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
   }
   if (cloud.empty()) {
     if (data.empty()) throw InputError(source + ": file is empty, expected lines of 'x y z' numbers");
-    throw InputError(source + ": no point lines found in " + std::to_string(lineNo) +
+    throw InputError(source + ": no point lines found in " + std::to_string(lines.number()) +
                      " lines, expected lines of 'x y z' numbers");
   }
   checkCloudSize(cloud, source, options.minPoints);
@@ -93,22 +88,15 @@ geom::PointCloud readXyz(const std::filesystem::path& path, const CloudReadOptio
 
 void writeXyz(std::ostream& out, const geom::PointCloud& cloud) {
   std::string buf;
-  buf.reserve(1 << 20);
+  buf.reserve(detail::kWriteBlock + 100);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const geom::Vec3& q = cloud.positions[i];
     if (!q.allFinite()) throw OutputError("xyz writer: point " + std::to_string(i) + " has a non-finite coordinate");
-    detail::appendNumber(buf, q.x());
-    buf += ' ';
-    detail::appendNumber(buf, q.y());
-    buf += ' ';
-    detail::appendNumber(buf, q.z());
+    detail::appendXyz(buf, q.x(), q.y(), q.z());
     buf += '\n';
-    if (buf.size() > (1 << 20) - 100) {
-      out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
-      buf.clear();
-    }
+    detail::flushIfFull(out, buf);
   }
-  out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+  detail::writeAll(out, buf);
 }
 
 void writeXyz(const std::filesystem::path& path, const geom::PointCloud& cloud) {

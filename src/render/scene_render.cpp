@@ -4,12 +4,12 @@
 #include "treesketch/render/scene_render.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <map>
 
 #include "treesketch/render/color_map.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/text.h"
 
 namespace treesketch::render {
 
@@ -117,8 +117,7 @@ Image renderScene(const RenderScene& scene, const geom::Camera& camera, int widt
 }
 
 RenderView parseRenderView(const std::string& name) {
-  std::string s = name;
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string s = lowercase(name);
   if (s == "front") return RenderView::Front;
   if (s == "side") return RenderView::Side;
   if (s == "top") return RenderView::Top;

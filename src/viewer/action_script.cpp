@@ -14,6 +14,94 @@ using Kind = ScriptAction::Kind;
 
 namespace {
 
+// The script's vocabularies, each in one table that both the parser (which names exist) and the
+// runner (what a name does) read, so that the two cannot disagree.
+
+/// {"button": NAME} and the bare "NAME" verbs.
+struct Button {
+  const char* name;
+  void (*press)(ViewerState&);
+};
+const Button kButtons[] = {
+    {"undo", [](ViewerState& s) { s.undo(); }},
+    {"redo", [](ViewerState& s) { s.redo(); }},
+    {"fit", [](ViewerState& s) { s.fitView(); }},
+    {"clear", [](ViewerState& s) { s.clearSketch(); }},
+    {"autoSketch", [](ViewerState& s) { s.autoSketchUniform(); }},
+    {"autoSkeleton", [](ViewerState& s) { s.autoSketchSkeleton(); }},
+    {"delete", [](ViewerState& s) { s.deleteSelected(false); }},
+    {"deleteSubtree", [](ViewerState& s) { s.deleteSelected(true); }},
+    {"refit", [](ViewerState& s) { s.refitSelected(); }},
+    {"refitAll", [](ViewerState& s) { s.refitAll(); }},
+};
+
+/// {"slider": NAME, "value": number}.
+struct Slider {
+  const char* name;
+  void (*set)(ViewerState&, double);
+};
+const Slider kSliders[] = {
+    {"sliceHalfThickness", [](ViewerState& s, double v) { s.setSliceHalfThickness(v); }},
+    {"lineEpsilon", [](ViewerState& s, double v) { s.setLineEpsilon(v); }},
+    {"pointSize",
+     [](ViewerState& s, double v) {
+       if (!(v > 0)) throw OptionsError("pointSize must be positive");
+       s.display().pointSize = static_cast<float>(v);
+     }},
+};
+
+bool parseBool(const std::string& s) {
+  if (s == "true" || s == "on" || s == "1") return true;
+  if (s == "false" || s == "off" || s == "0") return false;
+  throw OptionsError("expected true or false, got '" + s + "'");
+}
+
+/// {"option": NAME, "value": ...}; the value arrives as text ("true"/"false" for booleans).
+struct Option {
+  const char* name;
+  void (*apply)(ViewerState&, const std::string&);
+};
+const Option kOptions[] = {
+    {"colorMode", [](ViewerState& s, const std::string& v) { s.display().colorMode = parseColorMode(v); }},
+    {"meshStyle", [](ViewerState& s, const std::string& v) { s.display().meshStyle = parseMeshStyle(v); }},
+    {"projection",
+     [](ViewerState& s, const std::string& v) {
+       if (v != "ortho" && v != "orthographic" && v != "perspective")
+         throw OptionsError("projection must be 'ortho' or 'perspective', got '" + v + "'");
+       s.setOrthographic(v != "perspective");
+     }},
+    {"showCloud", [](ViewerState& s, const std::string& v) { s.display().showCloud = parseBool(v); }},
+    {"showNodes", [](ViewerState& s, const std::string& v) { s.display().showNodes = parseBool(v); }},
+    {"showCircles", [](ViewerState& s, const std::string& v) { s.display().showCircles = parseBool(v); }},
+    {"showRegion", [](ViewerState& s, const std::string& v) { s.display().showSamplingRegion = parseBool(v); }},
+};
+
+/// {"expect": {NAME: n, ...}}: what each name reads from the state; `atLeast` keys pass with any
+/// value >= n (the mesh's triangle count depends on the fits' details), the others need n exactly.
+struct Expectation {
+  const char* name;
+  double (*read)(const ViewerState&);
+  bool atLeast;
+};
+const Expectation kExpectations[] = {
+    {"nodes", [](const ViewerState& s) { return double(s.sketch().size()); }, false},
+    {"fitted", [](const ViewerState& s) { return double(s.fittedCount()); }, false},
+    {"skipped", [](const ViewerState& s) { return double(s.skippedCount()); }, false},
+    {"selected", [](const ViewerState& s) { return double(s.selected()); }, false},
+    {"active", [](const ViewerState& s) { return double(s.active()); }, false},
+    {"errors", [](const ViewerState& s) { return double(s.errorCount()); }, false},
+    {"meshTriangles", [](const ViewerState& s) { return double(s.mesh().triangles.size()); }, true},
+    {"kept", [](const ViewerState& s) { return double(s.sketch().keptCircleCount()); }, false},
+};
+
+/// The entry of `table` called `name`, or nullptr.
+template <class Entry, std::size_t N>
+const Entry* entryNamed(const Entry (&table)[N], const std::string& name) {
+  for (const Entry& e : table)
+    if (name == e.name) return &e;
+  return nullptr;
+}
+
 class Parser {
  public:
   explicit Parser(std::string source) : source_(std::move(source)) {}
@@ -86,9 +174,7 @@ class Parser {
       a.kind = Kind::View;
       a.name = arg;
       checkView(a.name, index);
-    } else if (verb == "undo" || verb == "redo" || verb == "fit" || verb == "clear" || verb == "autoSketch" ||
-               verb == "autoSkeleton" || verb == "delete" || verb == "deleteSubtree" || verb == "refit" ||
-               verb == "refitAll") {
+    } else if (entryNamed(kButtons, verb)) {
       a.kind = Kind::Button;
       a.name = verb;
     } else if (verb == "wait") {
@@ -132,7 +218,7 @@ class Parser {
     } else if (j.contains("slider")) {
       a.kind = Kind::Slider;
       a.name = string(j["slider"], index, "slider");
-      if (a.name != "sliceHalfThickness" && a.name != "lineEpsilon" && a.name != "pointSize")
+      if (!entryNamed(kSliders, a.name))
         fail(index, "slider must be sliceHalfThickness, lineEpsilon or pointSize, got '" + a.name + "'");
       if (!j.contains("value")) fail(index, "slider needs a \"value\"");
       a.value = number(j["value"], index, "value");
@@ -145,11 +231,7 @@ class Parser {
         a.text = v.get<bool>() ? "true" : "false";
       else
         a.text = string(v, index, "value");
-      static const char* kOptions[] = {"colorMode", "meshStyle",   "projection", "showCloud",
-                                       "showNodes", "showCircles", "showRegion"};
-      bool known = false;
-      for (const char* o : kOptions) known |= a.name == o;
-      if (!known) fail(index, "unknown option '" + a.name + "'");
+      if (!entryNamed(kOptions, a.name)) fail(index, "unknown option '" + a.name + "'");
     } else if (j.contains("view")) {
       a.kind = Kind::View;
       a.name = string(j["view"], index, "view");
@@ -176,12 +258,8 @@ class Parser {
       a.kind = Kind::Expect;
       const json& e = j["expect"];
       if (!e.is_object()) fail(index, "expect: expected an object");
-      static const char* kKeys[] = {"nodes",  "fitted", "skipped",       "selected",
-                                    "active", "errors", "meshTriangles", "kept"};
       for (const auto& [k, v] : e.items()) {
-        bool known = false;
-        for (const char* key : kKeys) known |= k == key;
-        if (!known) fail(index, "expect: unknown key '" + k + "'");
+        if (!entryNamed(kExpectations, k)) fail(index, "expect: unknown key '" + k + "'");
         a.expect.emplace_back(k, number(v, index, "expect " + k));
       }
     } else {
@@ -232,53 +310,17 @@ const char* buttonName(MouseButton b) {
   return b == MouseButton::Left ? "left" : b == MouseButton::Right ? "right" : "middle";
 }
 
-bool parseBool(const std::string& s) {
-  if (s == "true" || s == "on" || s == "1") return true;
-  if (s == "false" || s == "off" || s == "0") return false;
-  throw OptionsError("expected true or false, got '" + s + "'");
-}
-
 void applyOption(ViewerState& state, const std::string& name, const std::string& value) {
-  DisplayOptions& d = state.display();
-  if (name == "colorMode")
-    d.colorMode = parseColorMode(value);
-  else if (name == "meshStyle")
-    d.meshStyle = parseMeshStyle(value);
-  else if (name == "projection") {
-    if (value != "ortho" && value != "orthographic" && value != "perspective")
-      throw OptionsError("projection must be 'ortho' or 'perspective', got '" + value + "'");
-    state.setOrthographic(value != "perspective");
-  } else if (name == "showCloud")
-    d.showCloud = parseBool(value);
-  else if (name == "showNodes")
-    d.showNodes = parseBool(value);
-  else if (name == "showCircles")
-    d.showCircles = parseBool(value);
-  else if (name == "showRegion")
-    d.showSamplingRegion = parseBool(value);
-  else
-    throw OptionsError("unknown option '" + name + "'");
+  const Option* option = entryNamed(kOptions, name);
+  if (!option) throw OptionsError("unknown option '" + name + "'");
+  option->apply(state, value);
 }
 
 /// Checks one expectation; returns "" or what differs.
 std::string checkExpect(const ViewerState& state, const std::string& key, double want) {
-  double got = 0;
-  if (key == "nodes")
-    got = static_cast<double>(state.sketch().size());
-  else if (key == "fitted")
-    got = static_cast<double>(state.fittedCount());
-  else if (key == "skipped")
-    got = static_cast<double>(state.skippedCount());
-  else if (key == "selected")
-    got = state.selected();
-  else if (key == "active")
-    got = state.active();
-  else if (key == "errors")
-    got = static_cast<double>(state.errorCount());
-  else if (key == "kept")
-    got = static_cast<double>(state.sketch().keptCircleCount());
-  else if (key == "meshTriangles") {
-    got = static_cast<double>(state.mesh().triangles.size());
+  const Expectation* e = entryNamed(kExpectations, key);
+  const double got = e ? e->read(state) : 0.0;
+  if (e && e->atLeast) {
     if (got >= want) return {};
     return key + ": expected at least " + std::to_string(static_cast<long long>(want)) + ", got " +
            std::to_string(static_cast<long long>(got));
@@ -354,16 +396,10 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
         case Kind::Click:
           state.clickAt(a.from, a.button, a.mods);
           break;
-        case Kind::Drag: {
+        case Kind::Drag:
           // Move in steps, drawing a frame after each, as a real drag would.
-          state.mouseDown(a.from, a.button, a.mods);
-          for (int i = 1; i <= a.steps; ++i) {
-            state.mouseMove(a.from + (a.to - a.from) * (double(i) / a.steps));
-            if (hooks.frame) hooks.frame();
-          }
-          state.mouseUp(a.to, a.button, a.mods);
+          state.dragTo(a.from, a.to, a.button, a.mods, a.steps, hooks.frame);
           break;
-        }
         case Kind::Scroll:
           state.scroll(a.value);
           break;
@@ -371,14 +407,7 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
           if (!state.keyPress(a.name, a.mods)) failure = "no action is bound to key '" + a.name + "'";
           break;
         case Kind::Slider:
-          if (a.name == "sliceHalfThickness")
-            state.setSliceHalfThickness(a.value);
-          else if (a.name == "lineEpsilon")
-            state.setLineEpsilon(a.value);
-          else if (a.name == "pointSize") {
-            if (!(a.value > 0)) throw OptionsError("pointSize must be positive");
-            state.display().pointSize = static_cast<float>(a.value);
-          }
+          if (const Slider* slider = entryNamed(kSliders, a.name)) slider->set(state, a.value);
           break;
         case Kind::Option:
           applyOption(state, a.name, a.text);
@@ -393,26 +422,7 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
           state.selectNode(static_cast<sketch::NodeId>(a.value));
           break;
         case Kind::Button:
-          if (a.name == "undo")
-            state.undo();
-          else if (a.name == "redo")
-            state.redo();
-          else if (a.name == "fit")
-            state.fitView();
-          else if (a.name == "clear")
-            state.clearSketch();
-          else if (a.name == "autoSketch")
-            state.autoSketchUniform();
-          else if (a.name == "autoSkeleton")
-            state.autoSketchSkeleton();
-          else if (a.name == "delete")
-            state.deleteSelected(false);
-          else if (a.name == "deleteSubtree")
-            state.deleteSelected(true);
-          else if (a.name == "refit")
-            state.refitSelected();
-          else if (a.name == "refitAll")
-            state.refitAll();
+          if (const Button* button = entryNamed(kButtons, a.name)) button->press(state);
           break;
         case Kind::Save:
         case Kind::Load: {

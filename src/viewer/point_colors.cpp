@@ -13,20 +13,6 @@ namespace treesketch::viewer {
 
 using geom::Vec3;
 
-Rgb rampColor(double t) {
-  // One ramp for the whole project: the offline renderer's (pictures and the viewer agree).
-  const render::Rgb c = render::viridis(t);
-  return {c.r, c.g, c.b};
-}
-
-std::vector<Rgb> heightColors(const geom::PointCloud& cloud, geom::UpAxis up) {
-  // The renderer's height colouring, in the viewer's colour type.
-  std::vector<Rgb> colors;
-  colors.reserve(cloud.size());
-  for (const render::Rgb& c : render::heightColors(cloud.positions, up)) colors.push_back({c.r, c.g, c.b});
-  return colors;
-}
-
 double distanceToCircle(const Vec3& p, const Circle3& circle) {
   Vec3 d = p - circle.centre;
   double h = d.dot(circle.normal);
@@ -37,14 +23,14 @@ double distanceToCircle(const Vec3& p, const Circle3& circle) {
 
 std::vector<Rgb> circleDistanceColors(const geom::PointCloud& cloud, const std::vector<Circle3>& circles,
                                       double maxDistance) {
-  std::vector<Rgb> colors(cloud.size(), rampColor(1.0));
+  std::vector<Rgb> colors(cloud.size(), render::viridis(1.0));
   if (circles.empty() || cloud.empty()) return colors;
   double scale = maxDistance > 0 ? 1.0 / maxDistance : 1.0;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 8192), [&](const auto& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) {
       double best = std::numeric_limits<double>::infinity();
       for (const Circle3& c : circles) best = std::min(best, distanceToCircle(cloud.positions[i], c));
-      colors[i] = rampColor(best * scale);
+      colors[i] = render::viridis(best * scale);
     }
   });
   return colors;

@@ -8,6 +8,7 @@
 #include "test_support.h"
 #include "treesketch/gen/random.h"
 #include "treesketch/io/sketch_file.h"
+#include "treesketch/render/color_map.h"
 
 namespace treesketch::viewer {
 namespace {
@@ -200,7 +201,8 @@ TEST(ViewerState, SelectedNodeShowsItsSamplingRegionAndSlice) {
 
 TEST(ViewerState, ColourModes) {
   Fixture f;
-  EXPECT_EQ(f.state.pointColors().size(), f.state.cloud().size());
+  // Height colours are the renderer's (one colour module for pictures and the window).
+  EXPECT_EQ(f.state.pointColors(), render::heightColors(f.state.cloud().positions, f.state.up()));
   std::uint64_t v = f.state.colorsVersion();
   f.state.setColorMode(ColorMode::Plain);
   EXPECT_EQ(f.state.pointColors()[0], f.state.options().plainColor);
@@ -213,7 +215,7 @@ TEST(ViewerState, ColourModes) {
   for (std::size_t i = 0; i < colors.size(); ++i) {
     if (std::abs(f.state.cloud().positions[i].y() - 2.0) < 0.005) {
       ++near;
-      onCircle += colors[i] == rampColor(0.0) || colors[i][2] > 60;
+      onCircle += colors[i] == render::viridis(0.0) || colors[i].b > 60;
     }
   }
   EXPECT_GT(near, 0);

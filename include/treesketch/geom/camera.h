@@ -11,6 +11,10 @@ namespace treesketch::geom {
 
 struct Viewport {
   double x = 0, y = 0, width = 1280, height = 800;  ///< pixels
+
+  /// Whether the window point `p` (pixels) is in the rectangle, edges included (written as "not
+  /// outside", so a NaN coordinate is not rejected here, as the viewer's checks always did).
+  bool contains(const Vec2& p) const { return !(p.x() < x || p.y() < y || p.x() > x + width || p.y() > y + height); }
 };
 
 struct Camera {

@@ -2,6 +2,7 @@
 // the PLY scalar types (char/int8 ... double/float64). Reads point clouds (the vertex element)
 // and triangle meshes (vertex + face lists, polygons fan-triangulated); writes binary little
 // endian with optional per-point station/mesh ints and per-vertex colour and MeshLab "quality".
+// Implemented in src/io/ply_header.cpp (the header), ply_read.cpp and ply_write.cpp.
 #pragma once
 
 #include <cstdint>
@@ -50,6 +51,27 @@ struct PlyHeader {
 const char* toString(PlyFormat f);
 /// PLY's canonical type name: "char", "uchar", "short", "ushort", "int", "uint", "float", "double".
 const char* toString(PlyType t);
+/// Bytes of one value of type `t` in a binary body (1, 2, 4 or 8). Inline: the binary reader
+/// asks for every value it reads.
+constexpr std::size_t typeSize(PlyType t) {
+  switch (t) {
+    case PlyType::Int8:
+    case PlyType::UInt8:
+      return 1;
+    case PlyType::Int16:
+    case PlyType::UInt16:
+      return 2;
+    case PlyType::Int32:
+    case PlyType::UInt32:
+    case PlyType::Float32:
+      return 4;
+    case PlyType::Float64:
+      return 8;
+  }
+  return 1;
+}
+/// True for char ... uint, false for float and double.
+constexpr bool isIntegerType(PlyType t) { return t != PlyType::Float32 && t != PlyType::Float64; }
 
 /// Parses the header at the start of `data`. Throws InputError (with the header line) for a
 /// missing "ply" magic, missing/unsupported format line, unknown keyword or type, a property

@@ -13,6 +13,8 @@
 // instead of a fit); it was added within version 1 (older files have none, older readers ignore
 // it and fit the node).
 // A camera file holds one camera object: {"view":[16],"projection":[16],"viewport":[4]}.
+// Dependency direction: io reads and writes the sketch model, so io includes sketch/sketch.h and
+// nothing in sketch/ includes io (whatever reads a file, such as io/view_camera.h, lives here).
 #pragma once
 
 #include <filesystem>

@@ -1,5 +1,8 @@
-// Colour maps for the offline renderer: a viridis-like height ramp, colours per point by
-// height, and distinct colours for several overlaid meshes.
+// The project's colour maps, one module for the offline renderer (PNG pictures) and the viewer
+// (point colours), so that a picture and the window colour a cloud alike: a viridis-like ramp,
+// colours per point by height, distinct colours for several overlaid meshes, blending. Plain
+// bytes (render::Rgb), no GL. (The error meshes' red-to-blue ramp follows MeshLab and stays in
+// compare/error_mesh.h.)
 #pragma once
 
 #include <vector>

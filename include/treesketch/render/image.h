@@ -12,6 +12,9 @@ struct Rgb {
   std::uint8_t r = 0, g = 0, b = 0;
   bool operator==(const Rgb&) const = default;
 };
+// Three bytes, no padding: the viewer uploads its std::vector<Rgb> point colours to OpenGL as
+// packed bytes.
+static_assert(sizeof(Rgb) == 3);
 
 /// Pixels row by row from the top-left; `channels` is 3 (RGB) or 4 (RGBA).
 struct Image {

@@ -7,6 +7,10 @@
 //    Because each node keeps its own camera, one sketch can mix nodes drawn from several views
 //    (thesis §6.3, future work).
 //  - point nodes: a 3D point and a plane normal given directly (automatic methods).
+//
+// Module rule: sketch is the model and depends only on geom and util. Reading and writing
+// sketches (and camera files) is io's job (io/sketch_file.h): io may include sketch, sketch never
+// includes io, so the two cannot form a cycle.
 #pragma once
 
 #include <cstdint>
@@ -17,11 +21,10 @@
 
 #include "treesketch/geom/camera.h"
 #include "treesketch/geom/types.h"
+#include "treesketch/sketch/node_id.h"
 
 namespace treesketch::sketch {
 
-using NodeId = std::int32_t;
-constexpr NodeId kNoNode = -1;
 /// Sine of the angle below which two view rays count as parallel in Sketch::geometry (a numerical
 /// tolerance, not a tunable: one pixel of a 30° perspective view at 1280 px is ~4e-4 rad).
 constexpr double kParallelTolerance = 1e-6;

@@ -21,7 +21,7 @@
 
 #include "treesketch/geom/tri_mesh.h"
 #include "treesketch/geom/types.h"
-#include "treesketch/sketch/sketch.h"
+#include "treesketch/sketch/node_id.h"
 
 namespace treesketch::sweep {
 

@@ -1,18 +1,18 @@
-// Point colours for the viewer: by height (a perceptual ramp from the lowest to the highest
-// point), by distance to the nearest fitted circle (how well the reconstruction explains each
-// point), or plain. Plain C++, no GL; RGB bytes, one per point.
+// Point colours for the viewer: by distance to the nearest fitted circle (how well the
+// reconstruction explains each point) on the project's ramp, or plain; the ramp and the height
+// colouring are render/color_map.h's (one colour module for pictures and the window). Plain C++,
+// no GL; RGB bytes, one per point.
 #pragma once
 
-#include <array>
-#include <cstdint>
 #include <vector>
 
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/types.h"
+#include "treesketch/render/image.h"
 
 namespace treesketch::viewer {
 
-using Rgb = std::array<std::uint8_t, 3>;
+using render::Rgb;
 
 /// A circle in 3D (a fitted cross-section): centre, unit normal of its plane, radius (world units).
 struct Circle3 {
@@ -21,19 +21,12 @@ struct Circle3 {
   double radius = 0.0;
 };
 
-/// Colour of `t` in [0, 1] on the project's viridis-like ramp (render::viridis); t is clamped,
-/// NaN maps to 0.
-Rgb rampColor(double t);
-
-/// One colour per point by its height along `up`, the ramp spanning the cloud's height range.
-/// A flat cloud (zero height range) gets the ramp's middle colour; an empty cloud gives {}.
-std::vector<Rgb> heightColors(const geom::PointCloud& cloud, geom::UpAxis up);
-
 /// Euclidean distance from `p` to the circle (its curve, not its disc), world units.
 double distanceToCircle(const geom::Vec3& p, const Circle3& circle);
 
-/// One colour per point by its distance to the nearest of `circles`: 0 -> ramp start, `maxDistance`
-/// (world units, > 0) or more -> ramp end. With no circles every point gets the ramp's end colour.
+/// One colour per point by its distance to the nearest of `circles` on render::viridis: 0 -> ramp
+/// start, `maxDistance` (world units, > 0) or more -> ramp end. With no circles every point gets
+/// the ramp's end colour.
 /// Runs in parallel (TBB); about 1 ms per million point-circle pairs on two cores.
 std::vector<Rgb> circleDistanceColors(const geom::PointCloud& cloud, const std::vector<Circle3>& circles,
                                       double maxDistance);

@@ -5,6 +5,10 @@
 // points, the tube mesh). The desktop window (apps/viewer) only draws this and forwards input;
 // tests and the script runner drive it directly. No action ever throws: a failure becomes an error
 // status message and the sketch is kept.
+// ViewerState is implemented in three files by concern: src/viewer/viewer_state.cpp (the state
+// and its edit commands: cloud, sketch edits, undo, save/load), viewer_input.cpp (mouse, wheel,
+// keys and the view they steer) and viewer_draw.cpp (what is drawn: colours, markers, lines,
+// status).
 #pragma once
 
 #include <array>
@@ -27,6 +31,9 @@
 #include "treesketch/viewer/undo_stack.h"
 
 namespace treesketch::viewer {
+
+using sketch::kNoNode;
+using sketch::NodeId;
 
 enum class ColorMode { Height, CircleDistance, Plain };
 enum class MeshStyle { Solid, Wireframe, Hidden };
@@ -193,9 +200,10 @@ class ViewerState {
   void scroll(double steps);
   /// Press and release at `pos`.
   void clickAt(const geom::Vec2& pos, MouseButton button = MouseButton::Left, int mods = kModNone);
-  /// Press at `from`, move to `to` in `steps` equal moves, release.
+  /// Press at `from`, move to `to` in `steps` equal moves (calling `afterEachMove`, if any, after
+  /// each: the script runner draws a frame there, as a real drag would), release.
   void dragTo(const geom::Vec2& from, const geom::Vec2& to, MouseButton button = MouseButton::Left, int mods = kModNone,
-              int steps = 8);
+              int steps = 8, const std::function<void()>& afterEachMove = {});
   /// A key press by name: "delete"/"backspace" (delete selected, children re-attached; with Shift
   /// the subtree too), "ctrl+z"-style names are accepted (mods parsed from the prefix), "z" with
   /// Ctrl (undo), "y" with Ctrl or "z" with Ctrl+Shift (redo), "s" with Ctrl (save to sketchPath()), "escape"
@@ -294,6 +302,10 @@ class ViewerState {
   geom::Vec3 anchor(sketch::NodeId id) const;
   sketch::SamplingParams paramsForEdit() const;
   bool applyParams(const sketch::SamplingParams& params, const std::string& label, const std::string& key);
+  /// Sets one sampling size (`name` in messages, `key` merges repeats into one undo step);
+  /// rejects a value that is not a positive finite number.
+  bool setSamplingSize(double sketch::SamplingParams::*size, double value, const std::string& name,
+                       const std::string& key);
 
   ViewerOptions options_;
   ReconstructionFactory factory_;

@@ -1,12 +1,13 @@
-// Choosing the camera of an automatic sketch: a preset view of the cloud's bounding box or a
-// camera saved as JSON (for the CLI's --view option).
+// The camera named by a `--view` argument (the CLI's `sketch auto` and the evaluation): a preset
+// view of the cloud's bounding box, or a camera file. It lives in io, not in sketch, because it
+// may read a file: sketch is the model and never depends on io (see io/sketch_file.h).
 #pragma once
 
 #include <string>
 
 #include "treesketch/geom/camera.h"
 
-namespace treesketch::sketch {
+namespace treesketch::io {
 
 /// `view` is "front", "side" or "top": geom::presetCamera framing `bounds` (world) with `up`,
 /// `viewport` and `orthographic`. Anything else is the path of a camera file
@@ -17,4 +18,4 @@ namespace treesketch::sketch {
 geom::Camera cameraForView(const std::string& view, const geom::BBox& bounds, geom::UpAxis up,
                            const geom::Viewport& viewport = {}, bool orthographic = false);
 
-}  // namespace treesketch::sketch
+}  // namespace treesketch::io

@@ -1,12 +1,12 @@
-// Choosing the camera of an automatic sketch (see view_camera.h).
-#include "treesketch/sketch/view_camera.h"
+// The camera named by a `--view` argument (see view_camera.h).
+#include "treesketch/io/view_camera.h"
 
 #include <filesystem>
 
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/util/error.h"
 
-namespace treesketch::sketch {
+namespace treesketch::io {
 
 geom::Camera cameraForView(const std::string& view, const geom::BBox& bounds, geom::UpAxis up,
                            const geom::Viewport& viewport, bool orthographic) {
@@ -16,7 +16,7 @@ geom::Camera cameraForView(const std::string& view, const geom::BBox& bounds, ge
   std::error_code ec;
   if (!std::filesystem::is_regular_file(view, ec))
     throw OptionsError("view '" + view + "': expected 'front', 'side', 'top' or an existing camera file");
-  return io::readCamera(std::filesystem::path(view));
+  return readCamera(std::filesystem::path(view));
 }
 
-}  // namespace treesketch::sketch
+}  // namespace treesketch::io

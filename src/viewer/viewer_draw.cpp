@@ -1,0 +1,292 @@
+// ViewerState, part 3 of 3: what is drawn — display option names, point colours, node markers
+// (and picking them), 3D lines for circles and the selected node's sampling region, highlighted
+// points, the mesh, counts and status messages. See viewer_state.cpp for the map of the three
+// parts.
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+
+#include "treesketch/render/color_map.h"
+#include "treesketch/util/error.h"
+#include "treesketch/util/text.h"
+#include "treesketch/viewer/viewer_state.h"
+
+namespace treesketch::viewer {
+
+using geom::Vec2;
+using geom::Vec3;
+
+namespace {
+
+constexpr Rgb kCircleColor = {255, 150, 30};
+constexpr Rgb kSelectedCircleColor = {255, 50, 50};
+constexpr Rgb kSlabColor = {40, 200, 255};
+constexpr Rgb kCylinderColor = {255, 60, 255};
+
+/// Appends a polyline ring (circle of `radius` around `centre` in the plane of unit `normal`).
+void addRing(std::vector<Line3>& out, const Vec3& centre, const Vec3& normal, double radius, int segments,
+             const Rgb& color) {
+  Vec3 u = geom::anyPerpendicular(normal);
+  Vec3 v = normal.normalized().cross(u);
+  segments = std::max(segments, 3);
+  Vec3 prev = centre + radius * u;
+  for (int i = 1; i <= segments; ++i) {
+    double a = 2.0 * M_PI * i / segments;
+    Vec3 p = centre + radius * (std::cos(a) * u + std::sin(a) * v);
+    out.push_back(Line3{prev, p, color});
+    prev = p;
+  }
+}
+
+/// The parameter range [t0, t1] where the line p + t d passes through `box` grown by `margin`;
+/// false when it misses.
+bool clipLineToBox(const Vec3& p, const Vec3& d, const geom::BBox& box, double margin, double* t0, double* t1) {
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    double mn = box.min[k] - margin, mx = box.max[k] + margin;
+    if (std::abs(d[k]) < 1e-15) {
+      if (p[k] < mn || p[k] > mx) return false;
+      continue;
+    }
+    double a = (mn - p[k]) / d[k], b = (mx - p[k]) / d[k];
+    lo = std::max(lo, std::min(a, b));
+    hi = std::min(hi, std::max(a, b));
+  }
+  if (!(lo <= hi)) return false;
+  *t0 = lo;
+  *t1 = hi;
+  return true;
+}
+
+}  // namespace
+
+ColorMode parseColorMode(const std::string& s) {
+  std::string k = lowercase(s);
+  if (k == "height") return ColorMode::Height;
+  if (k == "distance" || k == "circle-distance") return ColorMode::CircleDistance;
+  if (k == "plain") return ColorMode::Plain;
+  throw OptionsError("colour mode must be 'height', 'distance' or 'plain', got '" + s + "'");
+}
+
+MeshStyle parseMeshStyle(const std::string& s) {
+  std::string k = lowercase(s);
+  if (k == "solid") return MeshStyle::Solid;
+  if (k == "wireframe") return MeshStyle::Wireframe;
+  if (k == "hidden") return MeshStyle::Hidden;
+  throw OptionsError("mesh style must be 'solid', 'wireframe' or 'hidden', got '" + s + "'");
+}
+
+const char* toString(ColorMode mode) {
+  switch (mode) {
+    case ColorMode::Height:
+      return "height";
+    case ColorMode::CircleDistance:
+      return "distance";
+    case ColorMode::Plain:
+      return "plain";
+  }
+  return "?";
+}
+
+const char* toString(MeshStyle style) {
+  switch (style) {
+    case MeshStyle::Solid:
+      return "solid";
+    case MeshStyle::Wireframe:
+      return "wireframe";
+    case MeshStyle::Hidden:
+      return "hidden";
+  }
+  return "?";
+}
+
+const char* toString(NodeStatus status) {
+  switch (status) {
+    case NodeStatus::Pending:
+      return "pending";
+    case NodeStatus::Fitted:
+      return "fitted";
+    case NodeStatus::Skipped:
+      return "skipped";
+  }
+  return "?";
+}
+
+// ---- display and status --------------------------------------------------------------------------
+
+void ViewerState::setColorMode(ColorMode mode) { display_.colorMode = mode; }
+
+void ViewerState::info(const std::string& text) { messages_.push_back(StatusMessage{false, text}); }
+
+void ViewerState::error(const std::string& text) {
+  messages_.push_back(StatusMessage{true, text});
+  ++errorCount_;
+}
+
+// ---- what to draw --------------------------------------------------------------------------------
+
+const std::vector<Rgb>& ViewerState::pointColors() {
+  if (colorsStale_ || colorsMode_ != display_.colorMode || colors_.size() != cloud_.size()) {
+    colorsMode_ = display_.colorMode;
+    switch (colorsMode_) {
+      case ColorMode::Height:
+        colors_ = render::heightColors(cloud_.positions, up_);
+        break;
+      case ColorMode::Plain:
+        colors_ = plainColors(cloud_, options_.plainColor);
+        break;
+      case ColorMode::CircleDistance: {
+        std::vector<Circle3> circles;
+        for (NodeId id : sketch_.ids()) {
+          NodeFitView f = recon_->nodeFit(id);
+          if (f.status == NodeStatus::Fitted) circles.push_back(f.circle);
+        }
+        double scale = options_.distanceColorScale * std::max(bounds_.diagonal(), 1e-12);
+        colors_ = circleDistanceColors(cloud_, circles, scale);
+        break;
+      }
+    }
+    colorsStale_ = false;
+    ++colorsVersion_;
+  }
+  return colors_;
+}
+
+NodeFitView ViewerState::nodeFit(NodeId id) const { return recon_->nodeFit(id); }
+
+std::vector<NodeMarker> ViewerState::nodeMarkers() const {
+  std::vector<NodeMarker> markers;
+  geom::Camera cur = orbit_.camera();
+  markers.reserve(sketch_.size());
+  for (const auto& [id, node] : sketch_.nodes()) {
+    NodeMarker m;
+    m.id = id;
+    m.parent = node.parent;
+    m.selected = id == selected_;
+    m.active = id == active_;
+    m.status = recon_->nodeFit(id).status;
+    if (node.isScreenNode() && sameAsCurrent(sketch_.cameras()[node.camera])) {
+      m.screen = node.screen;
+      m.inCurrentView = true;
+      m.visible = true;
+    } else {
+      m.inCurrentView = false;
+      try {
+        Vec3 s = cur.project(anchor(id));
+        m.screen = s.head<2>();
+        m.visible = s.allFinite() && s.z() >= 0.0 && s.z() <= 1.0;
+      } catch (const std::exception&) {
+        m.visible = false;
+      }
+    }
+    markers.push_back(m);
+  }
+  return markers;
+}
+
+NodeId ViewerState::nodeAt(const Vec2& screen) const {
+  NodeId best = kNoNode;
+  double bestD = options_.pickRadiusPx;
+  for (const NodeMarker& m : nodeMarkers()) {
+    if (!m.visible) continue;
+    double d = (m.screen - screen).norm();
+    if (d <= bestD) {
+      bestD = d;
+      best = m.id;
+    }
+  }
+  return best;
+}
+
+SamplingRegion ViewerState::samplingRegion() const {
+  SamplingRegion r;
+  if (selected_ == kNoNode || !sketch_.contains(selected_)) return r;
+  try {
+    const sketch::Node& node = sketch_.node(selected_);
+    r.geometry = sketch_.geometry(selected_);
+    r.sliceHalfThickness = node.params.sliceHalfThickness;
+    NodeFitView f = recon_->nodeFit(selected_);
+    r.lineEpsilon = f.finalLineEpsilon > 0 ? f.finalLineEpsilon : node.params.lineEpsilon;
+    r.valid = true;
+  } catch (const std::exception&) {
+    r.valid = false;
+  }
+  return r;
+}
+
+std::vector<Line3> ViewerState::sceneLines() const {
+  std::vector<Line3> lines;
+  if (display_.showCircles) {
+    for (NodeId id : sketch_.ids()) {
+      NodeFitView f = recon_->nodeFit(id);
+      if (f.status != NodeStatus::Fitted) continue;
+      addRing(lines, f.circle.centre, f.circle.normal, f.circle.radius, options_.circleSegments,
+              id == selected_ ? kSelectedCircleColor : kCircleColor);
+    }
+  }
+  SamplingRegion r = samplingRegion();
+  if (!display_.showSamplingRegion || !r.valid) return lines;
+  const sketch::NodeGeometry& g = r.geometry;
+  Vec3 n = g.planeNormal.normalized();
+  Vec3 centre = anchor(selected_);
+  // The slab: two squares at ±ε around the node's region, joined at the corners.
+  Vec3 u = g.hasLine ? g.lineDir.normalized() : geom::anyPerpendicular(n);
+  Vec3 v = n.cross(u).normalized();
+  const geom::BBox& box = bounds_;
+  double half = std::max(1.5 * r.lineEpsilon, 0.05 * box.diagonal());
+  Vec3 corners[4] = {centre + half * (u + v), centre + half * (-u + v), centre + half * (-u - v),
+                     centre + half * (u - v)};
+  for (int side = -1; side <= 1; side += 2) {
+    Vec3 off = side * r.sliceHalfThickness * n;
+    for (int i = 0; i < 4; ++i) lines.push_back(Line3{corners[i] + off, corners[(i + 1) % 4] + off, kSlabColor});
+  }
+  for (int i = 0; i < 4; ++i)
+    lines.push_back(Line3{corners[i] - r.sliceHalfThickness * n, corners[i] + r.sliceHalfThickness * n, kSlabColor});
+  // The test region: the cylinder of radius lineEpsilon around L within the cloud's box, or the
+  // disc around a point node's point.
+  if (g.hasLine) {
+    Vec3 d = g.lineDir.normalized();
+    double t0, t1;
+    if (clipLineToBox(g.linePoint, d, box, r.lineEpsilon, &t0, &t1)) {
+      Vec3 a = g.linePoint + t0 * d, b = g.linePoint + t1 * d;
+      addRing(lines, a, d, r.lineEpsilon, options_.circleSegments, kCylinderColor);
+      addRing(lines, b, d, r.lineEpsilon, options_.circleSegments, kCylinderColor);
+      Vec3 p = geom::anyPerpendicular(d), q = d.cross(p);
+      for (int i = 0; i < 8; ++i) {
+        double ang = 2.0 * M_PI * i / 8;
+        Vec3 off = r.lineEpsilon * (std::cos(ang) * p + std::sin(ang) * q);
+        lines.push_back(Line3{a + off, b + off, kCylinderColor});
+      }
+    }
+  } else {
+    addRing(lines, g.planePoint, n, r.lineEpsilon, options_.circleSegments, kCylinderColor);
+  }
+  return lines;
+}
+
+std::vector<std::uint32_t> ViewerState::highlightedSlicePoints() const {
+  if (!display_.showSamplingRegion || selected_ == kNoNode) return {};
+  return recon_->slicePoints(selected_);
+}
+
+std::vector<std::uint32_t> ViewerState::highlightedInliers() const {
+  if (!display_.showSamplingRegion || selected_ == kNoNode) return {};
+  return recon_->inlierPoints(selected_);
+}
+
+const geom::TriMesh& ViewerState::mesh() const { return recon_ ? recon_->mesh() : emptyMesh_; }
+
+std::size_t ViewerState::fittedCount() const {
+  std::size_t n = 0;
+  for (NodeId id : sketch_.ids()) n += recon_->nodeFit(id).status == NodeStatus::Fitted;
+  return n;
+}
+
+std::size_t ViewerState::skippedCount() const {
+  std::size_t n = 0;
+  for (NodeId id : sketch_.ids()) n += recon_->nodeFit(id).status == NodeStatus::Skipped;
+  return n;
+}
+
+}  // namespace treesketch::viewer
