@@ -115,7 +115,9 @@ void registerScan(CLI::App& app, Action& action) {
   auto a = std::make_shared<ScanArgs>();
   sub->add_option("meshes", a->meshes, "Mesh files (.obj .ply); with several, the first is counted as wood")
       ->required();
-  sub->add_option("-o,--output", a->output, "Output cloud (.ply keeps station/mesh ids, .xyz .txt)")->required();
+  sub->add_option("-o,--output", a->output,
+                  "Output cloud (.ply keeps station/mesh ids and scanner positions, .xyz .txt)")
+      ->required();
   sub->add_option("--pattern", a->pattern, "sphere (thesis §4.2) or tls (terrestrial stations)")
       ->check(CLI::IsMember({"sphere", "tls"}))
       ->capture_default_str();
@@ -131,7 +133,8 @@ void registerScan(CLI::App& app, Action& action) {
       ->capture_default_str();
   auto* noise =
       sub->add_option("--noise", a->noise, "Gaussian range noise sigma, metres (default: 0 for sphere, 0.002 for tls)");
-  sub->add_option("--seed", a->seed, "Random seed (jitter, noise)")->capture_default_str();
+  sub->add_option("--seed", a->seed, "Random seed (jitter, noise, beam ring, registration error)")
+      ->capture_default_str();
   sub->add_option("--up", a->up, "tls: up axis, y or z")->capture_default_str();
   sub->add_option("--stations", a->stations, "tls: number of stations on a ring around the tree")
       ->capture_default_str();

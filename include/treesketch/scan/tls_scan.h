@@ -25,8 +25,9 @@ namespace treesketch::scan {
 
 /// The residual of registering the stations into one cloud: each station's points are moved by
 /// a small random rigid transform about the station, p' = s + R (p - s) + t, drawn per station
-/// from the seed. Rotation and shift are Gaussian per axis (R from a rotation vector). Target-
-/// based TLS registration leaves ~1-5 mm and ~0.005-0.02 degrees; both 0 (the default) = perfect.
+/// from the seed. Rotation and shift are Gaussian per axis (R from a rotation vector). Residuals
+/// of a few millimetres and hundredths of a degree are typical of registered TLS surveys; both 0
+/// (the default) = perfect registration.
 struct RegistrationError {
   double rotationSigmaDeg = 0.0;  ///< per axis, degrees
   double translationSigma = 0.0;  ///< per axis, metres
