@@ -39,6 +39,7 @@ void runInfo(const std::string& file) {
     std::printf("points: %zu\n", info.cloud.size());
     if (!info.cloud.station.empty()) std::printf("per-point station: yes\n");
     if (!info.cloud.meshId.empty()) std::printf("per-point mesh id: yes\n");
+    if (!info.cloud.scanner.empty()) std::printf("per-point scanner position: yes\n");
     printBounds(info.cloud.bounds());
   }
 }

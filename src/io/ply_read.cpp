@@ -195,11 +195,27 @@ void skipElement(Cursor& c, const PlyElement& e) {
 struct VertexData {
   std::vector<geom::Vec3> positions;
   std::vector<std::int32_t> station, meshId;
+  std::vector<geom::Vec3> scanner;
   std::vector<std::array<std::uint8_t, 3>> colors;
   std::vector<double> quality;
 };
 
-enum Role { kNone, kX, kY, kZ, kStation, kMesh, kRed, kGreen, kBlue, kQuality };
+enum Role {
+  kNone,
+  kX,
+  kY,
+  kZ,
+  kStation,
+  kMesh,
+  kScannerX,
+  kScannerY,
+  kScannerZ,
+  kRed,
+  kGreen,
+  kBlue,
+  kQuality,
+  kRoles
+};
 
 std::int32_t toInt32(Cursor& c, double v, const char* name) {
   if (!std::isfinite(v) || v < -2147483648.0 || v > 2147483647.0 || v != std::floor(v))
@@ -217,7 +233,7 @@ std::uint8_t toColor(double v, PlyType t) {
 VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bool meshAttributes) {
   c.beginElement(e);
   std::vector<Role> roles(e.properties.size(), kNone);
-  bool has[10] = {};
+  bool has[kRoles] = {};
   for (std::size_t i = 0; i < e.properties.size(); ++i) {
     const PlyProperty& p = e.properties[i];
     if (p.isList) continue;
@@ -232,6 +248,12 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
       r = kStation;
     else if (cloudAttributes && p.name == "mesh")
       r = kMesh;
+    else if (cloudAttributes && p.name == "scanner_x")
+      r = kScannerX;
+    else if (cloudAttributes && p.name == "scanner_y")
+      r = kScannerY;
+    else if (cloudAttributes && p.name == "scanner_z")
+      r = kScannerZ;
     else if (meshAttributes && (p.name == "red" || p.name == "r"))
       r = kRed;
     else if (meshAttributes && (p.name == "green" || p.name == "g"))
@@ -248,15 +270,18 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
   std::size_t reserve = cappedReserve(e.count, c, e);
   out.positions.reserve(reserve);
   bool wantColors = has[kRed] && has[kGreen] && has[kBlue];
+  // The scanner position is kept only when all three coordinates are there.
+  bool wantScanner = has[kScannerX] && has[kScannerY] && has[kScannerZ];
   if (has[kStation]) out.station.reserve(reserve);
   if (has[kMesh]) out.meshId.reserve(reserve);
   if (wantColors) out.colors.reserve(reserve);
+  if (wantScanner) out.scanner.reserve(reserve);
   if (has[kQuality]) out.quality.reserve(reserve);
   std::size_t rs = c.ascii() ? 0 : fixedRecordSize(e);
   if (rs > 0) c.requireRecords(e.count, rs);
   for (std::uint64_t i = 0; i < e.count; ++i) {
     c.beginRecord(i);
-    geom::Vec3 pt;
+    geom::Vec3 pt, sc;
     std::array<std::uint8_t, 3> rgb{};
     for (std::size_t k = 0; k < roles.size(); ++k) {
       const PlyProperty& p = e.properties[k];
@@ -281,6 +306,15 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
         case kMesh:
           out.meshId.push_back(toInt32(c, v, "mesh"));
           break;
+        case kScannerX:
+          sc.x() = v;
+          break;
+        case kScannerY:
+          sc.y() = v;
+          break;
+        case kScannerZ:
+          sc.z() = v;
+          break;
         case kRed:
           rgb[0] = toColor(v, p.type);
           break;
@@ -294,12 +328,17 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
           out.quality.push_back(v);
           break;
         case kNone:
+        case kRoles:
           break;
       }
     }
     if (!pt.allFinite()) c.failAtRecord("non-finite vertex coordinate (NaN or Inf), expected finite x, y, z");
     out.positions.push_back(pt);
     if (wantColors) out.colors.push_back(rgb);
+    if (wantScanner) {
+      if (!sc.allFinite()) c.failAtRecord("non-finite scanner position (NaN or Inf), expected finite scanner_x, y, z");
+      out.scanner.push_back(sc);
+    }
   }
   return out;
 }
@@ -367,6 +406,7 @@ geom::PointCloud parsePlyCloud(std::string_view data, const std::string& source,
       cloud.positions = std::move(v.positions);
       cloud.station = std::move(v.station);
       cloud.meshId = std::move(v.meshId);
+      cloud.scanner = std::move(v.scanner);
       break;  // nothing after the vertices is needed
     }
     skipElement(c, e);

@@ -10,11 +10,12 @@ namespace treesketch::io {
 
 void writePlyPointCloud(std::ostream& out, const geom::PointCloud& cloud) {
   cloud.checkConsistent();
-  bool st = !cloud.station.empty(), me = !cloud.meshId.empty();
+  bool st = !cloud.station.empty(), me = !cloud.meshId.empty(), sc = !cloud.scanner.empty();
   std::string buf = "ply\nformat binary_little_endian 1.0\ncomment written by treesketch\nelement vertex " +
                     std::to_string(cloud.size()) + "\nproperty double x\nproperty double y\nproperty double z\n";
   if (st) buf += "property int station\n";
   if (me) buf += "property int mesh\n";
+  if (sc) buf += "property double scanner_x\nproperty double scanner_y\nproperty double scanner_z\n";
   buf += "end_header\n";
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const geom::Vec3& p = cloud.positions[i];
@@ -24,6 +25,14 @@ void writePlyPointCloud(std::ostream& out, const geom::PointCloud& cloud) {
     detail::storeLE(buf, p.z());
     if (st) detail::storeLE(buf, cloud.station[i]);
     if (me) detail::storeLE(buf, cloud.meshId[i]);
+    if (sc) {
+      const geom::Vec3& o = cloud.scanner[i];
+      if (!o.allFinite())
+        throw OutputError("ply writer: point " + std::to_string(i) + " has a non-finite scanner position");
+      detail::storeLE(buf, o.x());
+      detail::storeLE(buf, o.y());
+      detail::storeLE(buf, o.z());
+    }
     detail::flushIfFull(out, buf);
   }
   detail::writeAll(out, buf);

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 
 #include "treesketch/scan/counter_rng.h"
 #include "treesketch/util/error.h"
@@ -19,14 +20,18 @@ namespace {
 
 // Rays per chunk: a unit of work and of progress reports; results do not depend on it.
 constexpr std::uint64_t kRaysPerChunk = 4096;
-// counterGaussian streams used for range noise (sphere jitter uses streams 0, 1).
+// counterGaussian streams used for range noise (sphere jitter uses streams 16 and up).
 constexpr std::uint32_t kNoiseStream = 8;
+// counterUniform stream of the beam footprint's ring phase.
+constexpr std::uint32_t kBeamStream = 10;
 
 struct ChunkOut {
   std::vector<geom::Vec3> positions;
   std::vector<std::int32_t> meshId;
   std::vector<std::int32_t> station;
+  std::vector<geom::Vec3> scanner;
   std::vector<std::uint64_t> hitsPerMesh;
+  std::uint64_t mixed = 0, partial = 0, weak = 0;
 };
 
 }  // namespace
@@ -43,6 +48,10 @@ ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, con
                        const CastOptions& options, const ProgressFn& progress) {
   if (!(options.rangeNoise >= 0.0) || !std::isfinite(options.rangeNoise))
     throw OptionsError("scan: range noise must be a finite number >= 0, got " + std::to_string(options.rangeNoise));
+  if (!(options.unitMetres > 0.0) || !std::isfinite(options.unitMetres))
+    throw OptionsError("scan: the scene unit must be a finite number of metres > 0, got " +
+                       std::to_string(options.unitMetres));
+  checkBeamFootprint(options.beam);
   const auto start = std::chrono::steady_clock::now();
   ScanResult result;
   result.stats.raysCast = rayCount;
@@ -52,7 +61,8 @@ ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, con
   const std::uint64_t chunkCount = (rayCount + kRaysPerChunk - 1) / kRaysPerChunk;
   std::vector<ChunkOut> chunks(chunkCount);
   std::atomic<std::uint64_t> done{0};
-  const double sigma = options.rangeNoise;
+  const double sigma = options.rangeNoise / options.unitMetres;  // scene units
+  const bool footprint = options.beam.enabled;
 
   tbb::parallel_for(
       tbb::blocked_range<std::uint64_t>(0, chunkCount, 1), [&](const tbb::blocked_range<std::uint64_t>& r) {
@@ -67,15 +77,30 @@ ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, con
             generator(b, count, batch);
             for (std::size_t k = 0; k < count; ++k) {
               const ScanRay& sr = batch[k];
-              const accel::RayHit hit = scene.intersect(sr.ray);
-              if (!hit.hit()) continue;
-              geom::Vec3 p = hit.point;
+              geom::Vec3 p;
+              std::int32_t mesh = -1;
+              if (footprint) {
+                const double phase = 2.0 * std::numbers::pi * counterUniform(options.seed, b + k, kBeamStream);
+                const BeamReturn beam = castBeam(scene, sr.ray, options.beam, options.unitMetres, phase);
+                out.weak += beam.weak;
+                if (!beam.hit) continue;
+                out.mixed += beam.mixed;
+                out.partial += beam.partial;
+                p = beam.point;
+                mesh = beam.meshIndex;
+              } else {
+                const accel::RayHit hit = scene.intersect(sr.ray);
+                if (!hit.hit()) continue;
+                p = hit.point;
+                mesh = hit.meshIndex;
+              }
               if (sigma > 0.0)
                 p += (sigma * counterGaussian(options.seed, b + k, kNoiseStream)) * sr.ray.dir.normalized();
               out.positions.push_back(p);
-              ++out.hitsPerMesh[static_cast<std::size_t>(hit.meshIndex)];
-              if (options.recordMesh) out.meshId.push_back(hit.meshIndex);
+              ++out.hitsPerMesh[static_cast<std::size_t>(mesh)];
+              if (options.recordMesh) out.meshId.push_back(mesh);
               if (options.recordStation) out.station.push_back(sr.station);
+              if (options.recordScanner) out.scanner.push_back(sr.ray.origin);
             }
           }
           if (progress) progress(done.fetch_add(last - first) + (last - first), rayCount);
@@ -89,13 +114,19 @@ ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, con
   cloud.positions.reserve(total);
   if (options.recordMesh) cloud.meshId.reserve(total);
   if (options.recordStation) cloud.station.reserve(total);
+  if (options.recordScanner) cloud.scanner.reserve(total);
   std::vector<std::uint64_t>& perMesh = result.stats.hitsPerMesh;
   for (ChunkOut& c : chunks) {
     cloud.positions.insert(cloud.positions.end(), c.positions.begin(), c.positions.end());
     cloud.meshId.insert(cloud.meshId.end(), c.meshId.begin(), c.meshId.end());
     cloud.station.insert(cloud.station.end(), c.station.begin(), c.station.end());
+    cloud.scanner.insert(cloud.scanner.end(), c.scanner.begin(), c.scanner.end());
+    result.stats.mixed += c.mixed;
+    result.stats.partial += c.partial;
+    result.stats.weak += c.weak;
     for (std::size_t m = 0; m < perMesh.size(); ++m) perMesh[m] += c.hitsPerMesh[m];
     ChunkOut().positions.swap(c.positions);  // free as we go
+    ChunkOut().scanner.swap(c.scanner);
   }
   result.stats.hits = total;
   result.stats.milliseconds =

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "scan/orthonormal_basis.h"
 #include "treesketch/scan/counter_rng.h"
 #include "treesketch/util/error.h"
 
@@ -30,6 +31,10 @@ void checkOptions(const SphereScanOptions& o) {
     throw OptionsError("sphere scan: jitter must be in [0, 90] degrees, got " + std::to_string(o.jitterDeg));
   if (!(o.rangeNoise >= 0.0) || !std::isfinite(o.rangeNoise))
     throw OptionsError("sphere scan: range noise must be a finite number >= 0, got " + std::to_string(o.rangeNoise));
+  if (!(o.unitMetres > 0.0) || !std::isfinite(o.unitMetres))
+    throw OptionsError("sphere scan: the scene unit must be a finite number of metres > 0, got " +
+                       std::to_string(o.unitMetres));
+  checkBeamFootprint(o.beam);
 }
 
 }  // namespace
@@ -104,16 +109,6 @@ Vec3 sphereGridDirection(std::uint64_t n, std::uint64_t index) { return cellDire
 
 namespace {
 
-// An orthonormal basis (e1, e2) perpendicular to the unit vector d, branch-free (Duff et al.,
-// "Building an Orthonormal Basis, Revisited", JCGT 2017).
-inline void orthonormalBasis(const Vec3& d, Vec3& e1, Vec3& e2) {
-  const double sign = std::copysign(1.0, d.z());
-  const double a = -1.0 / (sign + d.z());
-  const double b = d.x() * d.y() * a;
-  e1 = Vec3(1.0 + sign * d.x() * d.x() * a, sign * b, -sign * d.x());
-  e2 = Vec3(b, sign + d.y() * d.y() * a, -d.y());
-}
-
 // A direction uniform in the spherical cap of cosine cosJitter around unit d, drawn from
 // (seed, index). Marsaglia's trick: a point (x, y) uniform in the unit disc has s = x^2 + y^2
 // uniform in [0, 1] and an angle independent of s, so s gives the cap's cosine
@@ -180,9 +175,12 @@ ScanResult sphereScan(const accel::RayScene& scene, const SphereScanOptions& opt
   checkOptions(options);
   const std::uint64_t n = sphereGridSize(options);
   CastOptions cast;
+  cast.unitMetres = options.unitMetres;
   cast.rangeNoise = options.rangeNoise;
+  cast.beam = options.beam;
   cast.seed = options.seed;
   cast.recordMesh = options.recordMesh;
+  cast.recordScanner = options.recordScanner;
   const geom::BBox& box = scene.bounds();
   if (box.empty()) return castPattern(scene, 0, RayBatchGenerator{}, cast, progress);
 

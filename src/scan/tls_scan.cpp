@@ -2,10 +2,14 @@
 // include/treesketch/scan/tls_scan.h.
 #include "treesketch/scan/tls_scan.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 #include <numbers>
 #include <string>
 
+#include "treesketch/scan/counter_rng.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::scan {
@@ -19,6 +23,10 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kStepSlack = 1e-9;
 // Refuse patterns beyond this many rays (memory for the points would be the problem first).
 constexpr std::uint64_t kMaxRays = 1ull << 36;
+// counter_rng streams of the registration error, indexed by station (rays use streams 8-10 and
+// 16 and up, indexed by ray: distinct streams keep the two independent): rotation vector x, y, z
+// then shift x, y, z, two streams each (counterGaussian).
+constexpr std::uint32_t kRegistrationStream = 200;
 
 void checkOptions(const TlsScanOptions& o) {
   if (!(o.stepDeg > 0.0) || !std::isfinite(o.stepDeg))
@@ -37,6 +45,16 @@ void checkOptions(const TlsScanOptions& o) {
   if (!(o.rangeNoise >= 0.0) || !std::isfinite(o.rangeNoise))
     throw OptionsError("TLS scan: range noise must be a finite number >= 0, got " + std::to_string(o.rangeNoise));
   if (!(o.maxRange > 0.0)) throw OptionsError("TLS scan: maximum range must be > 0, got " + std::to_string(o.maxRange));
+  if (!(o.unitMetres > 0.0) || !std::isfinite(o.unitMetres))
+    throw OptionsError("TLS scan: the scene unit must be a finite number of metres > 0, got " +
+                       std::to_string(o.unitMetres));
+  const RegistrationError& r = o.registration;
+  if (!(r.rotationSigmaDeg >= 0.0) || !std::isfinite(r.rotationSigmaDeg) || !(r.translationSigma >= 0.0) ||
+      !std::isfinite(r.translationSigma))
+    throw OptionsError("TLS scan: registration sigmas must be finite numbers >= 0, got " +
+                       std::to_string(r.rotationSigmaDeg) + " degrees and " + std::to_string(r.translationSigma) +
+                       " m");
+  checkBeamFootprint(o.beam);
 }
 
 // Horizontal axes (e1, e2) with e1 x e2 = up.
@@ -89,7 +107,8 @@ std::vector<Vec3> tlsStationPositions(const TlsScanOptions& o, const geom::BBox&
   horizontalAxes(o.up, e1, e2);
   const Vec3 upv = geom::upVector(o.up);
   const Vec3 c = bounds.center();
-  const Vec3 base = c - upv * geom::height(c, o.up) + upv * (geom::height(bounds.min, o.up) + o.stationHeight);
+  const Vec3 base =
+      c - upv * geom::height(c, o.up) + upv * (geom::height(bounds.min, o.up) + o.stationHeight / o.unitMetres);
   const double radius = o.stationRadius > 0.0 ? o.stationRadius : o.radiusFactor * bounds.diagonal();
   std::vector<Vec3> out;
   for (int s = 0; s < o.stationCount; ++s) {
@@ -97,6 +116,23 @@ std::vector<Vec3> tlsStationPositions(const TlsScanOptions& o, const geom::BBox&
     out.push_back(base + radius * (std::cos(a) * e1 + std::sin(a) * e2));
   }
   return out;
+}
+
+std::vector<StationPose> tlsRegistrationErrors(const TlsScanOptions& options, std::size_t stationCount) {
+  checkOptions(options);
+  std::vector<StationPose> poses(stationCount);
+  const RegistrationError& r = options.registration;
+  if (!r.enabled()) return poses;
+  const double angleSigma = r.rotationSigmaDeg * kDeg;
+  const double shiftSigma = r.translationSigma / options.unitMetres;  // scene units
+  for (std::size_t s = 0; s < stationCount; ++s) {
+    auto draw = [&](std::uint32_t k) { return counterGaussian(options.seed, s, kRegistrationStream + 2 * k); };
+    const Vec3 w(angleSigma * draw(0), angleSigma * draw(1), angleSigma * draw(2));
+    const double angle = w.norm();
+    if (angle > 0.0) poses[s].rotation = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+    poses[s].translation = Vec3(shiftSigma * draw(3), shiftSigma * draw(4), shiftSigma * draw(5));
+  }
+  return poses;
 }
 
 ScanResult tlsScan(const accel::RayScene& scene, const TlsScanOptions& options, const ProgressFn& progress) {
@@ -109,7 +145,7 @@ ScanResult tlsScan(const accel::RayScene& scene, const TlsScanOptions& options, 
   horizontalAxes(options.up, e1, e2);
   const Vec3 upv = geom::upVector(options.up);
   const double step = options.stepDeg * kDeg, zen0 = options.zenithMinDeg * kDeg;
-  const double maxRange = options.maxRange;
+  const double maxRange = options.maxRange / options.unitMetres;  // scene units (rays are unit length)
 
   // Direction tables: the sweep is a grid, so no trigonometry per ray.
   std::vector<double> cosAz(nAz), sinAz(nAz), cosZen(nZen), sinZen(nZen);
@@ -141,11 +177,32 @@ ScanResult tlsScan(const accel::RayScene& scene, const TlsScanOptions& options, 
     }
   };
   CastOptions cast;
+  cast.unitMetres = options.unitMetres;
   cast.rangeNoise = options.rangeNoise;
+  cast.beam = options.beam;
   cast.seed = options.seed;
   cast.recordMesh = options.recordMesh;
   cast.recordStation = true;
-  return castPattern(scene, total, generator, cast, progress);
+  cast.recordScanner = options.recordScanner;
+  ScanResult result = castPattern(scene, total, generator, cast, progress);
+
+  // The registration residual: each station's points move rigidly about the station, as when
+  // a real station's scan is placed into the common frame with a slightly wrong transform.
+  if (options.registration.enabled()) {
+    const std::vector<StationPose> poses = tlsRegistrationErrors(options, stations.size());
+    geom::PointCloud& cloud = result.cloud;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1 << 14),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                          const auto s = static_cast<std::size_t>(cloud.station[i]);
+                          const StationPose& pose = poses[s];
+                          const Vec3& at = stations[s];
+                          cloud.positions[i] = at + pose.rotation * (cloud.positions[i] - at) + pose.translation;
+                          if (!cloud.scanner.empty()) cloud.scanner[i] += pose.translation;
+                        }
+                      });
+  }
+  return result;
 }
 
 ScanResult tlsScan(const std::vector<geom::TriMesh>& meshes, const TlsScanOptions& options,

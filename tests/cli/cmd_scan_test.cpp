@@ -1,6 +1,7 @@
 // Tests of `treesketch scan` (apps/cli/cmd_scan.cpp): outputs, summary line, exit codes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -70,6 +71,38 @@ TEST_F(ScanCli, TlsScanWritesStations) {
   }
 }
 
+TEST_F(ScanCli, RealisticTlsKeepsScannerPositionsAndCountsMixedReturns) {
+  // The trunk box in decimetres (0.2 x 3 x 0.2 units = 2 cm x 30 cm x 2 cm) in front of the crown
+  // box: edges over the crown give mixed returns.
+  std::string out;
+  const std::string common = "scan " + q("trunk.obj") + " " + q("crown.obj") +
+                             " --pattern tls --step 1 --stations 2 --station-radius 6 --up y --units-metres 0.1 "
+                             "--noise 0.001 --seed 3 --record-scanner";
+  ASSERT_EQ(runCli(common + " -o " + q("thin.ply"), &out), 0) << out;
+  EXPECT_EQ(out.find("footprint"), std::string::npos) << out;
+  ASSERT_EQ(runCli(common + " -o " + q("r.ply") +
+                       " --registration-translation 0.01 --registration-rotation 0.05 --footprint --beam-divergence 5"
+                       " --beam-diameter 0.01 --beam-rays 8 --beam-min-share 0.25 --beam-tolerance 0.005",
+                   &out),
+            0)
+      << out;
+  EXPECT_NE(out.find(" mixed, "), std::string::npos) << out;
+  EXPECT_EQ(out.find("footprint: 0 mixed"), std::string::npos) << out;
+  const treesketch::geom::PointCloud thin = treesketch::io::readPointCloud(dir / "thin.ply");
+  const treesketch::geom::PointCloud cloud = treesketch::io::readPointCloud(dir / "r.ply");
+  ASSERT_GT(cloud.size(), 0u);
+  ASSERT_EQ(cloud.scanner.size(), cloud.size());
+  ASSERT_EQ(thin.scanner.size(), thin.size());
+  // Stations 1.5 m = 15 units above the scene's bottom (y = 0); with registration error they move
+  // by a few millimetres (tenths of a unit) only.
+  for (std::size_t i = 0; i < thin.size(); ++i) ASSERT_NEAR(thin.scanner[i].y(), 15.0, 1e-12);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    ASSERT_NEAR(cloud.scanner[i].y(), 15.0, 0.6);
+    ASSERT_NEAR(std::hypot(cloud.scanner[i].x(), cloud.scanner[i].z()), 6.0, 0.6);
+  }
+  EXPECT_NE(cloud.scanner.front(), thin.scanner.front());
+}
+
 TEST_F(ScanCli, BadInputAndOptionsGiveDistinctExitCodes) {
   const std::string trunk = q("trunk.obj");
   EXPECT_EQ(runCli("scan " + q("missing.obj") + " -o " + q("x.ply")), 3);
@@ -82,6 +115,12 @@ TEST_F(ScanCli, BadInputAndOptionsGiveDistinctExitCodes) {
   EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply") + " --pattern tls --step 0"), 2);
   EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply") + " --pattern tls --noise -1"), 2);
   EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply") + " --pattern tls --up w --step 10"), 2);
+  EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply") + " --units-metres 0"), 2);
+  EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply") + " --subdiv 1 --registration-rotation 0.1"), 2);  // sphere
+  EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply") + " --pattern tls --step 10 --registration-translation -1"),
+            2);
+  EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply") + " --subdiv 1 --footprint --beam-rays 2"), 2);
+  EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply") + " --subdiv 1 --footprint --beam-min-share 2"), 2);
   EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply")), 0);
   EXPECT_EQ(runCli("scan " + trunk + " -o " + trunk), 4);  // never overwrite an input
   EXPECT_EQ(runCli("scan " + trunk + " -o " + q("no/such/dir/x.ply") + " --subdiv 1"), 4);

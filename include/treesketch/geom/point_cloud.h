@@ -21,6 +21,11 @@ struct PointCloud {
   /// Optional: index of the input mesh each point was sampled from (scanner); empty or one per
   /// point.
   std::vector<std::int32_t> meshId;
+  /// Optional: position of the scanner that measured each point (its ray's origin, world
+  /// coordinates, after any registration); empty or one per point. Per point rather than per
+  /// station because the sphere pattern fires every ray from its own origin, and because that is
+  /// how other tools read a sensor position from a PLY (three scalar fields, see io/ply.h).
+  std::vector<Vec3> scanner;
 
   std::size_t size() const { return positions.size(); }
   bool empty() const { return positions.empty(); }

@@ -1,8 +1,8 @@
 // PLY (Stanford polygon file format): ascii, binary_little_endian and binary_big_endian, any of
 // the PLY scalar types (char/int8 ... double/float64). Reads point clouds (the vertex element)
 // and triangle meshes (vertex + face lists, polygons fan-triangulated); writes binary little
-// endian with optional per-point station/mesh ints and per-vertex colour and MeshLab "quality".
-// Implemented in src/io/ply_header.cpp (the header), ply_read.cpp and ply_write.cpp.
+// endian with optional per-point station/mesh ints, scanner position and per-vertex colour and
+// MeshLab "quality". Implemented in src/io/ply_header.cpp (the header), ply_read.cpp and ply_write.cpp.
 #pragma once
 
 #include <cstdint>
@@ -81,7 +81,8 @@ PlyHeader parsePlyHeader(std::string_view data, const std::string& source);
 PlyHeader readPlyHeader(const std::filesystem::path& path);
 
 /// Reads the vertex element's x/y/z (any scalar types) as a point cloud, plus integer
-/// properties "station" and "mesh" into PointCloud::station / meshId when present. Other
+/// properties "station" and "mesh" into PointCloud::station / meshId and "scanner_x",
+/// "scanner_y", "scanner_z" (all three) into PointCloud::scanner when present. Other
 /// properties and elements (faces, edges, lists) are skipped, so a PLY mesh reads as its
 /// vertices. Throws InputError (line for ascii, byte offset for binary) for: truncated data,
 /// a non-number, NaN/Inf coordinates, no vertex element or no x/y/z, fewer than
@@ -98,8 +99,10 @@ geom::TriMesh readPlyMesh(std::istream& in, const std::string& source);
 geom::TriMesh readPlyMesh(const std::filesystem::path& path);
 
 /// Writes a binary little-endian PLY: double x/y/z (doubles keep UTM coordinates exact), plus
-/// "int station" / "int mesh" when the cloud has them (one per point). Throws OutputError for a
-/// non-finite coordinate; OptionsError for inconsistent attribute arrays.
+/// "int station" / "int mesh" and "double scanner_x scanner_y scanner_z" (the position of the
+/// scanner that measured the point: per-point scalar fields, as CloudCompare and PDAL read extra
+/// PLY properties) when the cloud has them (one per point). Throws OutputError for a non-finite
+/// coordinate; OptionsError for inconsistent attribute arrays.
 void writePlyPointCloud(std::ostream& out, const geom::PointCloud& cloud);
 void writePlyPointCloud(const std::filesystem::path& path, const geom::PointCloud& cloud);
 

@@ -40,12 +40,19 @@ struct SphereScanOptions {
   /// §4.2: "randomized by a small amount to avoid regularity"; the amount is not given).
   /// Directions are uniform over that spherical cap.
   double jitterDeg = 2.0;
-  /// Gaussian range noise along each ray, scene units (0 = none, as in the thesis).
+  /// Size of one scene unit in metres (0.1: the scene is in decimetres). Converts the metre
+  /// figures below (range noise, beam); the pattern's own lengths (radius) are scene units.
+  double unitMetres = 1.0;
+  /// Gaussian range noise along each ray, metres (0 = none, as in the thesis).
   double rangeNoise = 0.0;
+  /// Beam width and mixed returns at edges (beam_footprint.h); off by default.
+  BeamFootprint beam;
   /// Seed of jitter and noise; each ray's values depend only on (seed, ray index).
   std::uint64_t seed = 1;
   /// Record PointCloud::meshId (which input mesh each point lies on).
   bool recordMesh = false;
+  /// Record PointCloud::scanner (each point's ray origin on the sphere).
+  bool recordScanner = false;
 };
 
 /// Octahedron grid size n for the options (n = 3 * 2^(k-1), or from `rays`). Throws
@@ -66,8 +73,8 @@ accel::Ray sphereScanRay(const SphereScanOptions& options, const geom::BBox& bou
 /// Scans `scene` with the sphere pattern centred on the scene's bounding-box centre. Returns the
 /// nearest hits (world coordinates, ray order, misses dropped) and stats. An empty scene gives an
 /// empty cloud with raysCast = 0. Throws OptionsError for invalid options (radius or jitter not
-/// finite, jitter outside [0, 90], negative noise...). Deterministic for a given seed whatever
-/// the thread count. `progress`: see castPattern.
+/// finite, jitter outside [0, 90], negative noise, unitMetres not > 0, a bad footprint...).
+/// Deterministic for a given seed whatever the thread count. `progress`: see castPattern.
 ScanResult sphereScan(const accel::RayScene& scene, const SphereScanOptions& options = {},
                       const ProgressFn& progress = {});
 /// Convenience: builds a RayScene over `meshes` (mesh i -> meshId i) and scans it.
