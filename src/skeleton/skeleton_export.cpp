@@ -16,16 +16,15 @@ void writeCylinderCsv(std::ostream& out, const std::vector<SkeletonNode>& nodes)
     if (n.parent < 0) continue;
     const auto& p = nodes[n.parent];
     const std::int64_t parentCylinder = p.parent < 0 ? -1 : n.parent;
-    out << i << ',' << parentCylinder << ',' << p.position.x() << ',' << p.position.y() << ',' << p.position.z() << ','
-        << n.position.x() << ',' << n.position.y() << ',' << n.position.z() << ',' << n.radius << ','
+    out << i << ',' << parentCylinder << ',' << p.position.x() << ',' << p.position.y() << ',' << p.position.z()
+        << ',' << n.position.x() << ',' << n.position.y() << ',' << n.position.z() << ',' << n.radius << ','
         << (n.position - p.position).norm() << ',' << n.branchOrder << ',' << p.radius << '\n';
   }
   if (!out) throw OutputError("cylinder table: write failed");
 }
 
 void writeCylinderCsv(const std::filesystem::path& path, const std::vector<SkeletonNode>& nodes) {
-  writeFileAtomically(
-      path, [&](std::ostream& out) { writeCylinderCsv(out, nodes); }, false);
+  writeFileAtomically(path, [&](std::ostream& out) { writeCylinderCsv(out, nodes); }, false);
 }
 
 void writeSkeletonObj(std::ostream& out, const std::vector<SkeletonNode>& nodes) {
@@ -38,8 +37,7 @@ void writeSkeletonObj(std::ostream& out, const std::vector<SkeletonNode>& nodes)
 }
 
 void writeSkeletonObj(const std::filesystem::path& path, const std::vector<SkeletonNode>& nodes) {
-  writeFileAtomically(
-      path, [&](std::ostream& out) { writeSkeletonObj(out, nodes); }, false);
+  writeFileAtomically(path, [&](std::ostream& out) { writeSkeletonObj(out, nodes); }, false);
 }
 
 }  // namespace treesketch::skeleton
