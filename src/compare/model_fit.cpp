@@ -29,7 +29,10 @@ double segmentDistance2d(double t, double rho, double at, double arho, double bt
   const double wt = t - at, wr = rho - arho;
   const double ee = et * et + er * er;
   const double s = ee > 0 ? std::clamp((wt * et + wr * er) / ee, 0.0, 1.0) : 0.0;
-  return std::hypot(wt - s * et, wr - s * er);
+  const double dt = wt - s * et, dr = wr - s * er;
+  // Not std::hypot: nothing overflows at tree scales, and its care made the whole measure 1.5×
+  // slower (bench_model_fit).
+  return std::sqrt(dt * dt + dr * dr);
 }
 
 }  // namespace
