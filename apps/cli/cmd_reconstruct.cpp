@@ -34,7 +34,7 @@ struct ReconstructArgs {
   bool leafOn = false;              // --leaf-on (with --auto): settings for trees in leaf
   bool refit = false;               // --refit: drop the sketch's kept circles, fit every node
   std::string up = "y", cylinders;  // --up, --cylinders (with --auto)
-  double unitMetres = 1.0;          // --units-metres: for the report's centimetre thresholds
+  double unitMetres = 0.0;          // --units-metres (with --report; 0 = not given: metres)
 };
 
 nlohmann::json vec(const geom::Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
@@ -67,6 +67,7 @@ geom::CylinderModel sketchModel(const recon::ReconstructionResult& r) {
 /// diameter), and the one-line summary printed.
 nlohmann::json measureModel(const geom::PointCloud& cloud, const geom::CylinderModel& model, geom::UpAxis up,
                             double unitMetres, std::string* summary) {
+  if (unitMetres == 0.0) unitMetres = 1.0;
   compare::ModelFitOptions o;
   o.unitMetres = unitMetres;
   const compare::ModelFitReport fit = compare::measureModelFit(cloud, model, o);
@@ -176,6 +177,8 @@ void runAutoReconstruct(const ReconstructArgs& a) {
 }
 
 void runReconstruct(const ReconstructArgs& a) {
+  if (a.unitMetres != 0.0 && a.report.empty())
+    throw OptionsError("--units-metres applies to the report's figures: it needs --report");
   if (a.autoSkeleton) return runAutoReconstruct(a);
   if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
   if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");

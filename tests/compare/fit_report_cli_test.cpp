@@ -170,7 +170,10 @@ TEST_F(FitReportCli, ReconstructAutoReportMatchesItsCylinderTable) {
   EXPECT_GT(k["model"]["fit"]["within2cm"].get<double>(), 0.9) << k["model"].dump();
   EXPECT_NEAR(k["model"]["figures"]["volumeM3"].get<double>(), r["model"]["figures"]["volumeM3"].get<double>(),
               0.1 * r["model"]["figures"]["volumeM3"].get<double>());
-  // --units-metres is checked like fit-report's.
+  // --units-metres is checked like fit-report's, and only goes with --report.
+  EXPECT_EQ(runCli("reconstruct " + q(dir / "y.ply") + " --auto --units-metres 0.001 -o " + q(dir / "y3.obj"), &out), 2)
+      << out;
+  EXPECT_NE(out.find("needs --report"), std::string::npos) << out;
   EXPECT_EQ(runCli("reconstruct " + q(dir / "y.ply") + " --auto --report " + q(dir / "r2.json") +
                        " --units-metres 0 -o " + q(dir / "y2.obj"),
                    &out),
