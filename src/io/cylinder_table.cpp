@@ -232,6 +232,7 @@ class TableReader {
       }
       if (cols_.branchOrder >= 0) {
         const double o = integer(f, cols_.branchOrder, line.number);
+        if (o > 1e9) fail(line.number, cols_.branchOrder, "expected a branch order (at most 10^9)");
         c.branchOrder = o >= 0 ? static_cast<std::int32_t>(o) : -1;
       }
       if (cols_.id >= 0) row.id = integer(f, cols_.id, line.number);

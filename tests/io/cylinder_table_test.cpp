@@ -151,6 +151,21 @@ TEST(CylinderTable, MalformedTablesNameTheLineAndColumn) {
   expectError([] { readCylinderTable(std::filesystem::path("/nonexistent/q.csv")); }, {"q.csv", "not found"});
 }
 
+TEST(CylinderTable, DamagedTablesOnlyThrowInputErrors) {
+  const std::string sf =
+      " ID, parentID, startX, startY, startZ, endX, endY, endZ, radius, length, growthLength, branchOrder\n"
+      "0,-1,0.76,-16.35,253.88,0.75,-16.36,253.93,0.047,0.049,31.4,0\n"
+      "1,0,0.75,-16.36,253.93,0.77,-16.35,253.98,0.048,0.052,31.3,0\n"
+      "7,1,0.77,-16.35,253.98,0.8,-16.3,254.0,0.01,0.06,1.0,2\n";
+  const std::string tq =
+      "0.1\t2\t1\t1\t0\t0\t0\t1\t0\t2\t0\t0.1\t1\t0\t1\n"
+      "0.05\t1\t1\t1\t2\t0\t3\t4\t1\t0\t0\t0.05\t2\t1\t1\n";
+  for (const std::string& bytes : {sf, tq})
+    testing::expectOnlyInputErrors(bytes, [](const std::string& b) { parseCylinderTable(b, "fuzz"); });
+  expectError([] { parse("radius,start_x,start_y,start_z,end_x,end_y,end_z,branch_order\n1,0,0,0,0,0,1,5e12\n"); },
+              {"t.csv:2:", "'branch_order'", "at most"});
+}
+
 TEST(CylinderTable, PublishedSimpleForestModel) {
   const auto path = test::sharedDataDir() / "real" / "rtwig_QSM_simpleforest.csv";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
