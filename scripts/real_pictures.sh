@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Redraws docs/real_*.png: the automatic skeleton reconstruction of each real leaf-off cloud in
-# ../shared/data/real (grey: the cloud; brown: the mesh), and prints the rtwig comparison with its
-# SimpleForest cylinder model (wood volume Σπr²L, trunk-base radius, branch length).
+# ../shared/data/real (grey: the cloud; brown: the mesh), prints how well each model explains its
+# cloud (reconstruct --report: points within ±1/2/5 cm, missed, volume, length, trunk diameter)
+# and the same for rtwig's published SimpleForest cylinder model (fit-report), and the rtwig
+# comparison with that model (wood volume Σπr²L, trunk-base radius, branch length).
 # Usage: scripts/real_pictures.sh [BUILD_DIR]   (default build)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -10,12 +12,13 @@ real="$here/../shared/data/real"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 draw() {  # name cloud
-  "$bin" reconstruct "$real/$2" --auto --up z --cylinders "$tmp/$1.csv" -o "$tmp/$1.ply"
+  "$bin" reconstruct "$real/$2" --auto --up z --cylinders "$tmp/$1.csv" --report "$tmp/$1.json" -o "$tmp/$1.ply"
   "$bin" render --cloud "$real/$2" --mesh "$tmp/$1.ply" --color-by none --view front --up z -o "$here/docs/real_$1.png"
 }
 draw rtwig rtwig_cloud.txt
 draw adtree7 adtree_tree7.xyz
 draw archi_tree2 archi_Tree_2_point_cloud.las
+"$bin" fit-report "$real/rtwig_cloud.txt" "$real/rtwig_QSM_simpleforest.csv"
 python3 - "$tmp/rtwig.csv" "$real/rtwig_QSM_simpleforest.csv" <<'PY'
 import csv, math, sys
 def table(path):

@@ -1,13 +1,17 @@
 // `treesketch reconstruct CLOUD --sketch SKETCH.json -o MESH.obj|.ply [--report REPORT.json]`:
 // fits a circle at every sketch node and sweeps the tube mesh (thesis §3.1.3–3.1.4, §4.4).
-// Prints a one-line summary; the optional JSON report lists every node's fit.
+// Prints a one-line summary; the optional JSON report lists every node's fit (or, with --auto,
+// the automatic model's counts and timings) and how well the model explains the cloud
+// (compare/model_fit.h: signed distances of the points to the model's frustums, QSM figures).
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "commands.h"
+#include "treesketch/compare/model_fit.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
@@ -30,9 +34,47 @@ struct ReconstructArgs {
   bool leafOn = false;              // --leaf-on (with --auto): settings for trees in leaf
   bool refit = false;               // --refit: drop the sketch's kept circles, fit every node
   std::string up = "y", cylinders;  // --up, --cylinders (with --auto)
+  double unitMetres = 0.0;          // --units-metres (with --report; 0 = not given: metres)
 };
 
 nlohmann::json vec(const geom::Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+/// The sketch model as frustums: each fitted node joined to its nearest fitted ancestor (the
+/// bands the sweep makes; skipped and disabled nodes are bridged).
+geom::CylinderModel sketchModel(const recon::ReconstructionResult& r) {
+  std::vector<geom::ModelNode> nodes;
+  std::map<sketch::NodeId, std::int64_t> index;  // fitted node → its place in `nodes`
+  for (sketch::NodeId id : r.order) {
+    const fit::NodeResult& n = r.results.at(id);
+    if (n.status != fit::NodeStatus::Fitted || !(n.radius > 0) || !n.centre.allFinite()) continue;
+    geom::ModelNode m;
+    m.position = n.centre;
+    m.radius = n.radius;
+    for (sketch::NodeId p = r.parents.at(id); p != sketch::kNoNode; p = r.parents.at(p)) {
+      auto it = index.find(p);
+      if (it != index.end()) {
+        m.parent = it->second;
+        break;
+      }
+    }
+    index[id] = static_cast<std::int64_t>(nodes.size());
+    nodes.push_back(m);
+  }
+  return geom::cylinderModelFromNodes(nodes);
+}
+
+/// The model-fit part of a report: "fit" (shares, median) and "figures" (volume, length, trunk
+/// diameter), and the one-line summary printed.
+nlohmann::json measureModel(const geom::PointCloud& cloud, const geom::CylinderModel& model, geom::UpAxis up,
+                            double unitMetres, std::string* summary) {
+  if (unitMetres == 0.0) unitMetres = 1.0;
+  compare::ModelFitOptions o;
+  o.unitMetres = unitMetres;
+  const compare::ModelFitReport fit = compare::measureModelFit(cloud, model, o);
+  const compare::ModelFigures fig = compare::modelFigures(model, up, unitMetres);
+  *summary = compare::summaryLine(fit) + "; " + compare::summaryLine(fig);
+  return {{"fit", compare::toJson(fit)}, {"figures", compare::toJson(fig)}};
+}
 
 nlohmann::json reportJson(const ReconstructArgs& a, const recon::ReconstructionResult& r, std::size_t cloudSize) {
   nlohmann::json nodes = nlohmann::json::array();
@@ -82,7 +124,7 @@ nlohmann::json reportJson(const ReconstructArgs& a, const recon::ReconstructionR
 void runAutoReconstruct(const ReconstructArgs& a) {
   checkNotAnInput(a.output, {a.cloud});
   if (!a.sketch.empty()) checkNotAnInput(a.sketch, {a.cloud});
-  if (!a.report.empty()) throw OptionsError("--report is not available with --auto");
+  if (!a.report.empty()) checkNotAnInput(a.report, {a.cloud});
   if (a.refit) throw OptionsError("--refit applies to a sketch file (--sketch without --auto)");
   try {
     io::meshFormatFromPath(a.output);
@@ -101,6 +143,27 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   io::writeMesh(a.output, r.mesh);
   if (!a.sketch.empty()) io::writeSketch(std::filesystem::path(a.sketch), r.sketch);
   if (!a.cylinders.empty()) skeleton::writeCylinderCsv(a.cylinders, r.model);
+  std::string fitSummary;
+  if (!a.report.empty()) {
+    const geom::CylinderModel model = compare::cylinderModelFromSkeleton(r.model);
+    nlohmann::json j;
+    j["cloud"] = a.cloud;
+    j["mesh"] = a.output;
+    j["auto"] = true;
+    j["leafOn"] = a.leafOn;
+    j["up"] = geom::toString(opt.skeleton.up);
+    j["points"] = cloud.size();
+    j["seed"] = a.seed;
+    j["skeletonNodes"] = r.model.size();
+    j["forks"] = skeleton::countBranchPoints(r.model);
+    j["vertices"] = r.mesh.vertices.size();
+    j["triangles"] = r.mesh.triangles.size();
+    j["timings"] = {{"skeletonMs", r.skeletonMs}, {"fitMs", r.fitMs}, {"sweepMs", r.sweepMs}};
+    j["model"] = measureModel(cloud, model, opt.skeleton.up, a.unitMetres, &fitSummary);
+    const std::string text = j.dump(2) + "\n";
+    writeFileAtomically(
+        a.report, [&](std::ostream& os) { os << text; }, false);
+  }
   std::size_t accepted = 0, leaf = 0;
   for (char c : r.fitAccepted) accepted += c != 0;
   for (const auto& n : r.model) leaf += skeleton::isLeafPiece(n, opt);
@@ -109,9 +172,12 @@ void runAutoReconstruct(const ReconstructArgs& a) {
       "%zu vertices, %zu triangles; skeleton %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
       r.model.size(), skeleton::countBranchPoints(r.model), accepted, leaf, r.mesh.vertices.size(),
       r.mesh.triangles.size(), r.skeletonMs, r.fitMs, r.sweepMs, a.output.c_str());
+  if (!a.report.empty()) std::printf("model fit: %s -> %s\n", fitSummary.c_str(), a.report.c_str());
 }
 
 void runReconstruct(const ReconstructArgs& a) {
+  if (a.unitMetres != 0.0 && a.report.empty())
+    throw OptionsError("--units-metres applies to the report's figures: it needs --report");
   if (a.autoSkeleton) return runAutoReconstruct(a);
   if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
   if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");
@@ -140,8 +206,11 @@ void runReconstruct(const ReconstructArgs& a) {
     skipped += n.status == fit::NodeStatus::Skipped;
     disabled += n.status == fit::NodeStatus::Disabled;
   }
+  std::string fitSummary;
   if (!a.report.empty()) {
-    std::string text = reportJson(a, r, cloud.size()).dump(2) + "\n";
+    nlohmann::json j = reportJson(a, r, cloud.size());
+    j["model"] = measureModel(cloud, sketchModel(r), sk.up, a.unitMetres, &fitSummary);  // the sketch's up
+    std::string text = j.dump(2) + "\n";
     writeFileAtomically(
         a.report, [&](std::ostream& os) { os << text; }, false);
   }
@@ -155,6 +224,7 @@ void runReconstruct(const ReconstructArgs& a) {
       "triangles; index %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
       r.results.size(), fitted, skipped, disabled, kept, r.mesh.vertices.size(), r.mesh.triangles.size(),
       r.timings.indexMs, r.timings.fitMs, r.timings.sweepMs, a.output.c_str());
+  if (!a.report.empty()) std::printf("model fit: %s -> %s\n", fitSummary.c_str(), a.report.c_str());
 }
 
 }  // namespace
@@ -171,7 +241,13 @@ void registerReconstruct(CLI::App& app, Action& action) {
                 "With --auto: the tree was scanned in leaf (finer voxels, weaker foliage rule)");
   sub->add_option("--cylinders", a->cylinders, "With --auto: also write the cylinder table (.csv)");
   sub->add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
-  sub->add_option("--report", a->report, "Write a JSON report of every node's fit");
+  sub->add_option("--report", a->report,
+                  "Write a JSON report: every node's fit (or the automatic model's counts), and how well the model "
+                  "explains the cloud (points within 1/2/5 cm, missed, median signed distance, volume, length, "
+                  "trunk diameter at 1.3 m)");
+  sub->add_option("--units-metres", a->unitMetres,
+                  "With --report: metres per cloud unit, for the centimetre figures (default 1)")
+      ->check(CLI::PositiveNumber);
   sub->add_flag("--refit", a->refit,
                 "Fit every node from the cloud, ignoring the circles the sketch keeps (an automatic sketch's model)");
   sub->add_option("--ring", a->ring, "Vertices per ring (default 16)")->check(CLI::Range(3, 4096));

@@ -23,6 +23,7 @@ enum ExitCode : int {
 void registerCompare(CLI::App& app, Action& action);
 void registerDemo(CLI::App& app, Action& action);
 void registerEvaluate(CLI::App& app, Action& action);
+void registerFitReport(CLI::App& app, Action& action);
 void registerGui(CLI::App& app, Action& action);
 void registerInfo(CLI::App& app, Action& action);
 void registerReconstruct(CLI::App& app, Action& action);

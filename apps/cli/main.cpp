@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   registerCompare(app, action);
   registerDemo(app, action);
   registerEvaluate(app, action);
+  registerFitReport(app, action);
   registerGui(app, action);
   registerInfo(app, action);
   registerReconstruct(app, action);

@@ -18,7 +18,7 @@ void writeCylinderCsv(std::ostream& out, const std::vector<SkeletonNode>& nodes)
     const std::int64_t parentCylinder = p.parent < 0 ? -1 : n.parent;
     out << i << ',' << parentCylinder << ',' << p.position.x() << ',' << p.position.y() << ',' << p.position.z()
         << ',' << n.position.x() << ',' << n.position.y() << ',' << n.position.z() << ',' << n.radius << ','
-        << (n.position - p.position).norm() << ',' << n.branchOrder << '\n';
+        << (n.position - p.position).norm() << ',' << n.branchOrder << ',' << p.radius << '\n';
   }
   if (!out) throw OutputError("cylinder table: write failed");
 }

@@ -29,7 +29,7 @@ TEST(SkeletonExport, CsvAndObjParseBack) {
     std::vector<double> v;
     std::string cell;
     while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
-    ASSERT_EQ(v.size(), 11u);
+    ASSERT_EQ(v.size(), 12u);
     const auto id = static_cast<std::size_t>(v[0]);
     ASSERT_LT(id, s.nodes.size());
     const auto& n = s.nodes[id];
@@ -40,6 +40,7 @@ TEST(SkeletonExport, CsvAndObjParseBack) {
     EXPECT_NEAR(v[8], n.radius, 1e-6);
     EXPECT_NEAR(v[9], (n.position - p.position).norm(), 1e-6);
     EXPECT_EQ(static_cast<int>(v[10]), n.branchOrder);
+    EXPECT_NEAR(v[11], p.radius, 1e-6);
     ++rows;
   }
   EXPECT_EQ(rows, s.nodes.size() - 1);

@@ -13,13 +13,15 @@ namespace treesketch::skeleton {
 
 /// Header line of the cylinder table.
 inline constexpr const char* kCylinderCsvHeader =
-    "id,parent,start_x,start_y,start_z,end_x,end_y,end_z,radius,length,branch_order";
+    "id,parent,start_x,start_y,start_z,end_x,end_y,end_z,radius,length,branch_order,start_radius";
 
 /// One row per non-root node i: the segment from its parent's
 /// position to its own, radius = the node's radius, length in world units, branch order of the
-/// node. Cylinder ids are the node indices; `parent` is the parent node's cylinder id, or -1 when
-/// the parent is the root (which has no cylinder). Numbers with 9 significant digits. Empty or
-/// single-node skeleton → header only.
+/// node, start_radius = the parent's radius (the row is the frustum between the two nodes'
+/// circles, as the swept tube is; io/cylinder_table.h reads it back). Cylinder ids are the node
+/// indices; `parent` is the parent node's cylinder id, or -1 when the parent is the root (which
+/// has no cylinder). Numbers with 9 significant digits. Empty or single-node skeleton → header
+/// only.
 void writeCylinderCsv(std::ostream& out, const std::vector<SkeletonNode>& nodes);
 /// Same, to a file (atomic). Throws OutputError when it cannot be written.
 void writeCylinderCsv(const std::filesystem::path& path, const std::vector<SkeletonNode>& nodes);

@@ -1,0 +1,50 @@
+// Reading published cylinder tables (QSMs) into a geom::CylinderModel, so that a model made by
+// another tool can be measured against its cloud (compare/model_fit.h) beside treesketch's own.
+//
+// Recognised (comma, tab, semicolon or whitespace separated; '#' lines and blank lines skipped):
+// - treesketch's cylinder CSV (skeleton/skeleton_export.h): id, parent, start_x/y/z, end_x/y/z,
+//   radius, length, branch_order[, start_radius]. Each row is the segment from the parent node to
+//   the row's node, with the node's radius at its end; its start radius is `start_radius`, or, in
+//   tables written before that column existed, the parent row's radius (its own for a row whose
+//   parent is the root) — the frustums the swept mesh follows.
+// - SimpleForest's QSM CSV (as published with rTwig): ID, parentID, startX..endZ, radius, length,
+//   ..., branchOrder, ... — plain cylinders.
+// - TreeQSM's cylinder table with a header: columns named radius, length, start_x/y/z (or one
+//   `start_point` name for three columns, as TreeQSM's text export writes it), axis_x/y/z (or
+//   `axis_direction`), parent, BranchOrder (or branch_order); the end is start + axis · length.
+// - TreeQSM's table without a header (the cylinder matrix saved as numbers, TreeQSM 2.3 order):
+//   radius, length, start x y z, axis x y z[, parent, extension, added, UnmodRadius, branch,
+//   BranchOrder, PositionInBranch]; the branch order is taken when a row has those 15 columns.
+// Any other header works when it names a radius, the start, and the end or the axis and length.
+// Column names are matched case-insensitively, ignoring spaces, underscores and a trailing unit
+// in parentheses ("radius (m)"). With an id column, `parent` holds ids (negative or absent = none);
+// without one, it holds 1-based row numbers (0 = none), TreeQSM's convention.
+#pragma once
+
+#include <filesystem>
+#include <istream>
+#include <string>
+
+#include "treesketch/geom/cylinder_model.h"
+
+namespace treesketch::io {
+
+enum class CylinderTableFormat { Treesketch, SimpleForest, TreeQsm, TreeQsmNoHeader, Generic };
+
+/// "treesketch", "SimpleForest", "TreeQSM", "TreeQSM (no header)", "cylinder table".
+const char* toString(CylinderTableFormat format);
+
+struct CylinderTable {
+  geom::CylinderModel model;
+  CylinderTableFormat format = CylinderTableFormat::Generic;
+};
+
+/// Reads a cylinder table. Throws InputError naming the source, the line and what was expected
+/// (a missing column, a field that is not a number, a row with the wrong number of fields, a
+/// negative radius or length, a zero axis, a parent that names no row). A header with no rows
+/// gives an empty model.
+CylinderTable readCylinderTable(const std::filesystem::path& path);
+CylinderTable readCylinderTable(std::istream& in, const std::string& source);
+CylinderTable parseCylinderTable(std::string_view text, const std::string& source);
+
+}  // namespace treesketch::io

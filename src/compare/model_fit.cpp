@@ -1,0 +1,390 @@
+// Signed distances from cloud points to a cylinder model, through a bounding-volume hierarchy
+// over the pieces' boxes, and the QSM figures (volume, length, trunk diameter at 1.3 m).
+#include "treesketch/compare/model_fit.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <string>
+
+#include "treesketch/util/error.h"
+
+namespace treesketch::compare {
+
+using geom::Vec3;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Distance in the (axial t, radial ρ) half-plane from (t, ρ) to the segment a→b.
+double segmentDistance2d(double t, double rho, double at, double arho, double bt, double brho) {
+  const double et = bt - at, er = brho - arho;
+  const double wt = t - at, wr = rho - arho;
+  const double ee = et * et + er * er;
+  const double s = ee > 0 ? std::clamp((wt * et + wr * er) / ee, 0.0, 1.0) : 0.0;
+  const double dt = wt - s * et, dr = wr - s * er;
+  // Not std::hypot: nothing overflows at tree scales, and its care made the whole measure 1.5×
+  // slower (bench_model_fit).
+  return std::sqrt(dt * dt + dr * dr);
+}
+
+}  // namespace
+
+double signedDistance(const Vec3& p, const geom::ModelCylinder& c, bool openStart, bool openEnd) {
+  // A frustum is a solid of revolution: in the half-plane through its axis and p it is the
+  // trapezoid (0,0) (0,r0) (L,r1) (L,0), whose boundary (apart from the axis, which is interior)
+  // is the two caps and the slanted side. The closest surface point lies in that half-plane.
+  const Vec3 d = c.end - c.start;
+  const double len = d.norm();
+  if (!(len > 0)) return kInf;
+  const Vec3 u = d / len;
+  const Vec3 w = p - c.start;
+  const double t = w.dot(u);
+  const double rho = (w - t * u).norm();
+  const double r0 = c.startRadius, r1 = c.endRadius;
+  const double cap0 = segmentDistance2d(t, rho, 0, 0, 0, r0);
+  const double cap1 = segmentDistance2d(t, rho, len, 0, len, r1);
+  const double side = segmentDistance2d(t, rho, 0, r0, len, r1);
+  const bool inside = t >= 0 && t <= len && rho <= r0 + (r1 - r0) * (t / len);
+  if (!inside) return std::min({cap0, cap1, side});
+  // Inside, an open cap (joined to the next piece) is no surface: the depth is to the rest.
+  return -std::min({openStart ? kInf : cap0, openEnd ? kInf : cap1, side});
+}
+
+double signedDistance(const Vec3& p, const geom::ModelCylinder& c) { return signedDistance(p, c, false, false); }
+
+// ---- the hierarchy ----------------------------------------------------------------------------
+
+struct CylinderModelIndex::Impl {
+  struct Node {
+    geom::BBox box;
+    std::uint32_t first = 0, count = 0;  // leaf: range in `order`; inner: count = 0
+    std::uint32_t left = 0, right = 0;   // inner: children
+  };
+  std::vector<geom::ModelCylinder> pieces;
+  std::vector<std::array<bool, 2>> open;  // per piece: start cap, end cap joined to a neighbour
+  std::vector<std::int64_t> modelIndex;   // piece → index in the model
+  std::vector<geom::BBox> boxes;
+  std::vector<std::uint32_t> order;  // pieces, grouped by leaf
+  std::vector<Node> nodes;
+
+  static constexpr std::uint32_t kLeafSize = 4;
+
+  std::uint32_t build(std::uint32_t first, std::uint32_t count, const std::vector<Vec3>& centres) {
+    const auto id = static_cast<std::uint32_t>(nodes.size());
+    nodes.emplace_back();
+    geom::BBox box, centreBox;
+    for (std::uint32_t i = first; i < first + count; ++i) {
+      box.add(boxes[order[i]]);
+      centreBox.add(centres[order[i]]);
+    }
+    nodes[id].box = box;
+    if (count <= kLeafSize) {
+      nodes[id].first = first;
+      nodes[id].count = count;
+      return id;
+    }
+    // Median split along the longest axis of the centres' box: balanced, so the depth is
+    // log2(n / kLeafSize) whatever the layout (a tree's pieces are far from uniform in space).
+    int axis = 0;
+    centreBox.extent().maxCoeff(&axis);
+    const std::uint32_t half = count / 2;
+    std::nth_element(order.begin() + first, order.begin() + first + half, order.begin() + first + count,
+                     [&](std::uint32_t a, std::uint32_t b) { return centres[a][axis] < centres[b][axis]; });
+    const std::uint32_t left = build(first, half, centres);
+    const std::uint32_t right = build(first + half, count - half, centres);
+    nodes[id].left = left;
+    nodes[id].right = right;
+    return id;
+  }
+
+  /// A lower bound of the signed distance from p to anything inside `box`: its distance outside
+  /// the box, -inf inside (a piece there may hold p).
+  static double lowerBound(const Vec3& p, const geom::BBox& box) {
+    const Vec3 below = (box.min - p).cwiseMax(0.0);
+    const Vec3 above = (p - box.max).cwiseMax(0.0);
+    const double d2 = below.squaredNorm() + above.squaredNorm();
+    return d2 > 0 ? std::sqrt(d2) : -kInf;
+  }
+
+  double query(const Vec3& p, std::int64_t* piece) const {
+    double best = kInf;
+    std::int64_t bestPiece = -1;
+    if (nodes.empty()) {
+      if (piece) *piece = -1;
+      return best;
+    }
+    std::uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes[stack[--top]];
+      if (lowerBound(p, n.box) >= best) continue;
+      if (n.count > 0) {
+        for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+          const std::uint32_t k = order[i];
+          const double d = compare::signedDistance(p, pieces[k], open[k][0], open[k][1]);
+          if (d < best) {
+            best = d;
+            bestPiece = modelIndex[order[i]];
+          }
+        }
+        continue;
+      }
+      // Nearer child last, so it is searched first and tightens `best` for the other.
+      const double dl = lowerBound(p, nodes[n.left].box), dr = lowerBound(p, nodes[n.right].box);
+      if (dl < dr) {
+        stack[top++] = n.right;
+        stack[top++] = n.left;
+      } else {
+        stack[top++] = n.left;
+        stack[top++] = n.right;
+      }
+    }
+    if (piece) *piece = bestPiece;
+    return best;
+  }
+};
+
+CylinderModelIndex::CylinderModelIndex(const geom::CylinderModel& model) : impl_(std::make_unique<Impl>()) {
+  for (std::size_t i = 0; i < model.cylinders.size(); ++i) {
+    const geom::ModelCylinder& c = model.cylinders[i];
+    if (!c.start.allFinite() || !c.end.allFinite())
+      throw OptionsError("cylinder model: piece " + std::to_string(i) + " has a non-finite end point");
+    if (!std::isfinite(c.startRadius) || !std::isfinite(c.endRadius) || c.startRadius < 0 || c.endRadius < 0)
+      throw OptionsError("cylinder model: piece " + std::to_string(i) + " has radii " + std::to_string(c.startRadius) +
+                         ", " + std::to_string(c.endRadius) + ", expected finite values >= 0");
+    if (c.parent < -1 || c.parent >= static_cast<std::int64_t>(model.size()))
+      throw OptionsError("cylinder model: piece " + std::to_string(i) + " has parent " + std::to_string(c.parent) +
+                         " of " + std::to_string(model.size()) + " pieces");
+  }
+  // Joints: a piece that starts where its parent ends (a chain of segments, a fork) joins it
+  // there, and the two caps at the joint lie inside the union. Within a tenth of the radius, for
+  // tables that round their coordinates (TreeQSM's text export keeps 0.1 mm).
+  std::vector<std::array<bool, 2>> open(model.size(), {false, false});
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    const geom::ModelCylinder& c = model.cylinders[i];
+    if (c.parent < 0 || static_cast<std::size_t>(c.parent) == i) continue;
+    const geom::ModelCylinder& p = model.cylinders[c.parent];
+    if (p.length() > 0 && (c.start - p.end).norm() <= 0.1 * std::max(c.startRadius, p.endRadius)) {
+      open[i][0] = true;
+      open[c.parent][1] = true;
+    }
+  }
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    const geom::ModelCylinder& c = model.cylinders[i];
+    if (!(c.length() > 0)) continue;
+    impl_->pieces.push_back(c);
+    impl_->open.push_back(open[i]);
+    impl_->modelIndex.push_back(static_cast<std::int64_t>(i));
+    impl_->boxes.push_back(c.bounds());
+  }
+  const auto n = static_cast<std::uint32_t>(impl_->pieces.size());
+  if (n == 0) return;
+  std::vector<Vec3> centres(n);
+  for (std::uint32_t i = 0; i < n; ++i) centres[i] = impl_->boxes[i].center();
+  impl_->order.resize(n);
+  std::iota(impl_->order.begin(), impl_->order.end(), 0u);
+  impl_->nodes.reserve(2 * (n / Impl::kLeafSize + 1));
+  impl_->build(0, n, centres);
+}
+
+CylinderModelIndex::~CylinderModelIndex() = default;
+CylinderModelIndex::CylinderModelIndex(CylinderModelIndex&&) noexcept = default;
+CylinderModelIndex& CylinderModelIndex::operator=(CylinderModelIndex&&) noexcept = default;
+
+double CylinderModelIndex::signedDistance(const Vec3& p, std::int64_t* piece) const { return impl_->query(p, piece); }
+
+std::size_t CylinderModelIndex::size() const { return impl_->pieces.size(); }
+
+// ---- the report -------------------------------------------------------------------------------
+
+namespace {
+
+void checkUnit(double unitMetres) {
+  if (!std::isfinite(unitMetres) || unitMetres <= 0)
+    throw OptionsError("model fit: metres per cloud unit must be > 0, got " + std::to_string(unitMetres));
+}
+
+}  // namespace
+
+ModelFitReport measureModelFit(const geom::PointCloud& cloud, const CylinderModelIndex& index,
+                               const ModelFitOptions& options) {
+  checkUnit(options.unitMetres);
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (!cloud.positions[i].allFinite())
+      throw OptionsError("model fit: the cloud's point " + std::to_string(i) + " is NaN or infinite");
+  const std::size_t n = cloud.size();
+  std::vector<double> d(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) d[i] = index.signedDistance(cloud.positions[i]);
+  });
+
+  ModelFitReport rep;
+  rep.points = n;
+  rep.unitMetres = options.unitMetres;
+  if (n > 0) {
+    // Thresholds in cloud units; a point exactly at a threshold counts as within it.
+    const double u = options.unitMetres;
+    const double c1 = 0.01 / u, c2 = 0.02 / u, c5 = 0.05 / u;
+    std::size_t w1 = 0, w2 = 0, w5 = 0, deep = 0, missed = 0;
+    for (double v : d) {
+      const double a = std::abs(v);
+      w1 += a <= c1;
+      w2 += a <= c2;
+      w5 += a <= c5;
+      deep += v < -c2;
+      missed += v > c5;
+    }
+    const double dn = static_cast<double>(n);
+    rep.within1cm = static_cast<double>(w1) / dn;
+    rep.within2cm = static_cast<double>(w2) / dn;
+    rep.within5cm = static_cast<double>(w5) / dn;
+    rep.insideDeeper2cm = static_cast<double>(deep) / dn;
+    rep.outsideFarther5cm = static_cast<double>(missed) / dn;
+    std::vector<double> s = d;
+    const std::size_t mid = n / 2;
+    std::nth_element(s.begin(), s.begin() + mid, s.end());
+    double median = s[mid];
+    if (n % 2 == 0) median = 0.5 * (median + *std::max_element(s.begin(), s.begin() + mid));
+    rep.medianSigned = median * u;  // +inf (every point missed by an empty model) stays +inf
+  }
+  if (options.keepDistances) rep.distances = std::move(d);
+  return rep;
+}
+
+ModelFitReport measureModelFit(const geom::PointCloud& cloud, const geom::CylinderModel& model,
+                               const ModelFitOptions& options) {
+  checkUnit(options.unitMetres);
+  return measureModelFit(cloud, CylinderModelIndex(model), options);
+}
+
+// ---- figures ----------------------------------------------------------------------------------
+
+ModelFigures modelFigures(const geom::CylinderModel& model, geom::UpAxis up, double unitMetres,
+                          double breastHeightMetres) {
+  checkUnit(unitMetres);
+  if (!std::isfinite(breastHeightMetres) || breastHeightMetres < 0)
+    throw OptionsError("model figures: breast height must be >= 0 metres, got " + std::to_string(breastHeightMetres));
+  ModelFigures f;
+  f.cylinders = model.size();
+  f.breastHeight = breastHeightMetres;
+  double volume = 0, length = 0;
+  bool hasOrders = false;
+  for (const auto& c : model.cylinders) {
+    volume += c.volume();
+    length += c.length();
+    hasOrders = hasOrders || c.branchOrder >= 0;
+    const double lo = std::min(geom::height(c.start, up), geom::height(c.end, up));
+    if (!(lo >= f.baseHeight)) f.baseHeight = lo;  // also replaces the initial NaN
+  }
+  f.volume = volume * unitMetres * unitMetres * unitMetres;
+  f.length = length * unitMetres;
+  if (model.empty()) return f;
+
+  // The trunk at breast height: the pieces whose axis spans that height (a piece lying flat at
+  // exactly that height has no single crossing point and is left out).
+  const double h = f.baseHeight + breastHeightMetres / unitMetres;
+  double bestRadius = -1;
+  for (int pass = 0; pass < 2 && f.trunkPiece < 0; ++pass) {
+    // First the trunk's pieces (branch order 0) when the model gives orders, then any piece.
+    if (pass == 0 && !hasOrders) continue;
+    for (std::size_t i = 0; i < model.size(); ++i) {
+      const auto& c = model.cylinders[i];
+      if (pass == 0 && c.branchOrder != 0) continue;
+      const double h0 = geom::height(c.start, up), h1 = geom::height(c.end, up);
+      if (h0 == h1 || h < std::min(h0, h1) || h > std::max(h0, h1)) continue;
+      const double s = (h - h0) / (h1 - h0);
+      const double r = c.startRadius + s * (c.endRadius - c.startRadius);
+      if (r > bestRadius) {
+        bestRadius = r;
+        f.trunkPiece = static_cast<std::int64_t>(i);
+      }
+    }
+  }
+  if (f.trunkPiece >= 0) f.trunkDiameter = 2 * bestRadius * unitMetres;
+  return f;
+}
+
+geom::CylinderModel cylinderModelFromSkeleton(const std::vector<skeleton::SkeletonNode>& nodes) {
+  std::vector<geom::ModelNode> m(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    m[i].position = nodes[i].position;
+    m[i].radius = nodes[i].radius;
+    m[i].parent = nodes[i].parent;
+    m[i].branchOrder = nodes[i].branchOrder;
+  }
+  return geom::cylinderModelFromNodes(m);
+}
+
+// ---- output -----------------------------------------------------------------------------------
+
+namespace {
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+std::string percent(double share) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * share);
+  return buf;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const ModelFitReport& r) {
+  nlohmann::json j;
+  j["points"] = r.points;
+  j["unitMetres"] = r.unitMetres;
+  j["within1cm"] = number(r.within1cm);
+  j["within2cm"] = number(r.within2cm);
+  j["within5cm"] = number(r.within5cm);
+  j["insideDeeper2cm"] = number(r.insideDeeper2cm);
+  j["outsideFarther5cm"] = number(r.outsideFarther5cm);
+  j["medianSignedDistanceM"] = number(r.medianSigned);
+  return j;
+}
+
+nlohmann::json toJson(const ModelFigures& f) {
+  nlohmann::json j;
+  j["cylinders"] = f.cylinders;
+  j["volumeM3"] = f.volume;
+  j["lengthM"] = f.length;
+  j["baseHeight"] = number(f.baseHeight);
+  j["breastHeightM"] = f.breastHeight;
+  j["trunkDiameterM"] = number(f.trunkDiameter);
+  j["trunkPiece"] = f.trunkPiece;
+  return j;
+}
+
+std::string summaryLine(const ModelFitReport& r) {
+  if (r.points == 0) return "no points measured";
+  char median[48];
+  if (std::isfinite(r.medianSigned))
+    std::snprintf(median, sizeof median, "%+.2f cm", 100.0 * r.medianSigned);
+  else
+    std::snprintf(median, sizeof median, "none (no model)");
+  return percent(r.within2cm) + " within ±2 cm (±1: " + percent(r.within1cm) + ", ±5: " + percent(r.within5cm) + "), " +
+         percent(r.outsideFarther5cm) + " missed (> 5 cm outside), " + percent(r.insideDeeper2cm) +
+         " > 2 cm inside, median signed distance " + median;
+}
+
+std::string summaryLine(const ModelFigures& f) {
+  char buf[256];
+  char dbh[64];
+  if (std::isfinite(f.trunkDiameter))
+    std::snprintf(dbh, sizeof dbh, "%.1f cm", 100.0 * f.trunkDiameter);
+  else
+    std::snprintf(dbh, sizeof dbh, "none (no piece crosses it)");
+  std::snprintf(buf, sizeof buf, "volume %.4f m³ (%.1f L), length %.2f m, trunk diameter at %.2g m %s (%zu pieces)",
+                f.volume, 1000.0 * f.volume, f.length, f.breastHeight, dbh, f.cylinders);
+  return buf;
+}
+
+}  // namespace treesketch::compare
