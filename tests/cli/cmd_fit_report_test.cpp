@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "cli_support.h"
 #include "skeleton/synthetic_tree.h"
 #include "test_support.h"
 #include "treesketch/io/point_cloud_io.h"
@@ -16,7 +17,7 @@ namespace {
 using test::runCli;
 using test::TempDir;
 
-std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+std::string q(const std::filesystem::path& p) { return test::quoted(p); }
 
 /// 400 points on a cylinder of radius 0.1 along z from 0 to 2 (ring by ring), 100 points 0.3 off
 /// its side (missed wood), all times `scale` (1 = metres, 1000 = millimetres).
