@@ -358,9 +358,8 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
     return false;
   }
   return edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
-    skeleton::AutoSkeletonOptions options;
-    if (leafOn) options.skeleton = skeleton::leafOnSkeletonOptions();
-    options.skeleton.up = up_;
+    const skeleton::AutoSkeletonOptions options =
+        skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, up_);
     skeleton::AutoSkeletonResult result = skeleton::autoSkeletonSketch(cloud_, options);
     if (result.sketch.empty()) throw OptionsError("no skeleton found in this cloud");
     sketch_ = std::move(result.sketch);
