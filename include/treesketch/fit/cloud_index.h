@@ -115,6 +115,10 @@ class CloudIndex {
   /// or ball contains the whole bounding box), i.e. the region equals its slab within the cloud.
   bool regionCoversCloud(const SliceRegion& region) const;
 
+  /// Original indices of the stored (finite) points in storage order, the order every query
+  /// answers in. For callers that must reproduce that order with another index.
+  const std::vector<std::uint32_t>& storageOrder() const { return ids_; }
+
   std::size_t size() const { return ids_.size(); }
   const geom::BBox& bounds() const { return bounds_; }
   double cellSize() const { return cell_; }
