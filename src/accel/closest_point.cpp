@@ -177,7 +177,7 @@ struct CloudClosestPoint::Impl {
     if (!nearest) return hit;
     const double d = std::sqrt(nearest->distance2);
     if (d > maxDistance) return hit;
-    hit.point = index->points()[nearest->index];
+    hit.point = index->point(nearest->index);
     hit.distance = d;
     hit.index = nearest->index;
     return hit;

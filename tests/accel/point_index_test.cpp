@@ -40,11 +40,17 @@ std::vector<std::uint32_t> bruteBall(const std::vector<Vec3>& pts, const Vec3& c
   return out;
 }
 
-TEST(PointIndex, BallQueriesEqualABruteForceScan) {
+class PointIndexLeaves : public ::testing::TestWithParam<std::size_t> {};
+
+// Every leaf size: one point a leaf (every node cut by some ball), a few, the default.
+INSTANTIATE_TEST_SUITE_P(LeafSizes, PointIndexLeaves, ::testing::Values(1, 3, 16, PointIndexOptions{}.leafSize));
+
+TEST_P(PointIndexLeaves, BallQueriesEqualABruteForceScan) {
   std::mt19937_64 rng(5);
   const auto pts = randomPoints(rng, 3000);
-  const PointIndex index(pts);
+  const PointIndex index(pts, PointIndexOptions{GetParam()});
   ASSERT_EQ(index.size(), pts.size());
+  for (std::uint32_t i = 0; i < pts.size(); i += 97) EXPECT_EQ(index.point(i), pts[i]);
   std::uniform_real_distribution<double> uni(-1.1, 1.1), rad(0.0, 0.4);
   std::vector<std::uint32_t> got;
   std::size_t nonEmpty = 0;
@@ -93,10 +99,10 @@ TEST(PointIndex, BallByDistanceIsSortedNearestFirstWithIndexTies) {
   EXPECT_EQ(ids, expected);
 }
 
-TEST(PointIndex, NearestEqualABruteForceScan) {
+TEST_P(PointIndexLeaves, NearestEqualABruteForceScan) {
   std::mt19937_64 rng(7);
   const auto pts = randomPoints(rng, 2000);
-  const PointIndex index(pts);
+  const PointIndex index(pts, PointIndexOptions{GetParam()});
   std::uniform_real_distribution<double> uni(-1.5, 1.5);
   for (int q = 0; q < 200; ++q) {
     const Vec3 c(uni(rng), uni(rng), uni(rng));
@@ -136,6 +142,7 @@ TEST(PointIndex, EmptyTinyAndInvalidInputs) {
 
   EXPECT_THROW(PointIndex(std::vector<Vec3>{Vec3(0, 0, 0), Vec3(nan, 0, 0)}), OptionsError);
   EXPECT_THROW(PointIndex(std::vector<Vec3>{Vec3(std::numeric_limits<double>::infinity(), 0, 0)}), OptionsError);
+  EXPECT_THROW(PointIndex(std::vector<Vec3>{Vec3::Zero()}, PointIndexOptions{0}), OptionsError);
 }
 
 }  // namespace
