@@ -7,18 +7,24 @@
 
 #include <algorithm>
 #include <atomic>
+#include <limits>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "treesketch/accel/closest_point.h"
+#include "treesketch/util/error.h"
 
 namespace treesketch::accel::detail {
 
 // Runs `answerOne(queryIndex, warmState)` over all queries, Morton-ordered, in parallel blocks.
+// Throws OptionsError for more queries than 32-bit indices hold.
 template <class AnswerFn>
 void runBatch(const std::vector<geom::Vec3>& points, const ClosestPointOptions& options, const ProgressFn& progress,
               AnswerFn&& answerOne) {
   const std::size_t n = points.size();
+  if (n >= std::numeric_limits<std::uint32_t>::max())
+    throw OptionsError("closest point: too many queries (" + std::to_string(n) + ")");
   std::vector<std::uint32_t> order;
   if (options.mortonOrder) {
     order = mortonOrder(points);

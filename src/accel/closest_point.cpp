@@ -204,8 +204,6 @@ ClosestHit CloudClosestPoint::query(const Vec3& p, double maxDistance) const { r
 
 std::vector<ClosestHit> CloudClosestPoint::queryAll(const std::vector<Vec3>& points, double maxDistance,
                                                     const ProgressFn& progress) const {
-  if (points.size() >= std::numeric_limits<std::uint32_t>::max())
-    throw OptionsError("closest point: too many queries (" + std::to_string(points.size()) + ")");
   std::vector<ClosestHit> hits(points.size());
   const Impl& im = *impl_;
   detail::runBatch(points, im.options, progress, [&](std::uint32_t qi, std::int64_t warm) {

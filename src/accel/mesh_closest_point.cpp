@@ -445,8 +445,6 @@ ClosestHit MeshClosestPoint::query(const Vec3& p, double maxDistance) const {
 
 std::vector<ClosestHit> MeshClosestPoint::queryAll(const std::vector<Vec3>& points, double maxDistance,
                                                    const ProgressFn& progress) const {
-  if (points.size() >= std::numeric_limits<std::uint32_t>::max())
-    throw OptionsError("closest point: too many queries (" + std::to_string(points.size()) + ")");
   std::vector<ClosestHit> hits(points.size());
   const Impl& im = *impl_;
   const ClosestPointOptions& o = im.options;

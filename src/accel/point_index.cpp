@@ -44,18 +44,24 @@ using Node = KdTree::Node;
 // (templates, so that only the spelling present is looked up).
 template <class Tree>
 auto& permutation(Tree& t) {
-  if constexpr (requires { t.vAcc_; }) return t.vAcc_;
-  else return t.vAcc;
+  if constexpr (requires { t.vAcc_; })
+    return t.vAcc_;
+  else
+    return t.vAcc;
 }
 template <class Tree>
 const Node* rootNode(const Tree& t) {
-  if constexpr (requires { t.root_node_; }) return t.root_node_;
-  else return t.root_node;
+  if constexpr (requires { t.root_node_; })
+    return t.root_node_;
+  else
+    return t.root_node;
 }
 template <class Tree>
 const auto& rootBox(const Tree& t) {
-  if constexpr (requires { t.root_bbox_; }) return t.root_bbox_;
-  else return t.root_bbox;
+  if constexpr (requires { t.root_bbox_; })
+    return t.root_bbox_;
+  else
+    return t.root_bbox;
 }
 
 // A node is pruned when its box is farther than the radius, and taken whole when its farthest
@@ -143,8 +149,10 @@ void PointIndex::Impl::ball(const Node* n, Box box, const Vec3& c, double r2, bo
     double near = 0, far = 0;
     for (int a = 0; a < 3; ++a) {
       const double lo = box.lo[a] - c[a], hi = box.hi[a] - c[a];
-      if (lo > 0) near += lo * lo;
-      else if (hi < 0) near += hi * hi;
+      if (lo > 0)
+        near += lo * lo;
+      else if (hi < 0)
+        near += hi * hi;
       const double m = std::max(-lo, hi);
       far += m * m;
     }
@@ -191,8 +199,7 @@ void PointIndex::Impl::ballRuns(const Vec3& centre, double radius, std::vector<s
   ball(rootNode(*tree), box, centre, radius * radius, false, out, runs);
 }
 
-PointIndex::PointIndex(std::vector<Vec3> points, const PointIndexOptions& options)
-    : impl_(std::make_unique<Impl>()) {
+PointIndex::PointIndex(std::vector<Vec3> points, const PointIndexOptions& options) : impl_(std::make_unique<Impl>()) {
   for (std::size_t i = 0; i < points.size(); ++i)
     if (!points[i].allFinite()) throw OptionsError("point index: point " + std::to_string(i) + " is NaN or infinite");
   if (points.size() >= std::numeric_limits<std::uint32_t>::max())

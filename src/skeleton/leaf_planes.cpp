@@ -182,8 +182,9 @@ std::vector<std::uint32_t> convergencePlanes(const VoxelGraph& graph, const std:
 // (evenly strided down to kMaxPlanes). Directions the planes leave free (eigenvalues of their normal
 // matrix below leafConvergenceFreeShare × the plane count) are not moved along; the move is
 // clamped to `radius`.
-Vec3 planeMeetingMove(const VoxelGraph& graph, const std::vector<Vec3>& normal, const std::vector<std::uint32_t>& planes,
-                      const std::vector<std::uint32_t>& near, const Vec3& p, double radius, double freeShare) {
+Vec3 planeMeetingMove(const VoxelGraph& graph, const std::vector<Vec3>& normal,
+                      const std::vector<std::uint32_t>& planes, const std::vector<std::uint32_t>& near, const Vec3& p,
+                      double radius, double freeShare) {
   const std::size_t stride = (near.size() + kMaxPlanes - 1) / kMaxPlanes;
   Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();

@@ -257,7 +257,8 @@ GeodesicLevels computeGeodesicLevels(const VoxelGraph& g, const SkeletonOptions&
   lv.rootVertices = rootRegion(g, options);
   dijkstra(g, lv);
   for (std::size_t i = 0; i < n; ++i)
-    if (std::isfinite(lv.distance[i])) lv.level[i] = static_cast<std::int32_t>(std::floor(lv.distance[i] / lv.binWidth));
+    if (std::isfinite(lv.distance[i]))
+      lv.level[i] = static_cast<std::int32_t>(std::floor(lv.distance[i] / lv.binWidth));
   return lv;
 }
 

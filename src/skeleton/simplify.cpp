@@ -14,8 +14,8 @@
 namespace treesketch::skeleton {
 namespace {
 
-using geom::Vec3;
 using detail::mainChild;
+using geom::Vec3;
 
 // The line a fork is put back on runs through its ancestors from the fork zone's lower end down to
 // this many times the zone's depth below the fork...
@@ -28,10 +28,10 @@ constexpr double kTinyLength = 1e-12;
 // What the pruning steps know of the raw nodes.
 struct RawTree {
   const std::vector<SkeletonNode>& raw;
-  std::vector<double> reach;          ///< longest path down each subtree, world units
-  std::vector<std::int32_t> mainOf;   ///< the child continuing each node's branch, -1 for none
-  std::vector<double> radius;         ///< smoothed radii
-  std::vector<double> tubularShare;   ///< tubular points / points of each subtree
+  std::vector<double> reach;         ///< longest path down each subtree, world units
+  std::vector<std::int32_t> mainOf;  ///< the child continuing each node's branch, -1 for none
+  std::vector<double> radius;        ///< smoothed radii
+  std::vector<double> tubularShare;  ///< tubular points / points of each subtree
 };
 
 // Radius: running median over radiusMedianWindow nodes along the main chain through each node.

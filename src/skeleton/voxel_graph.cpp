@@ -22,8 +22,8 @@
 namespace treesketch::skeleton {
 namespace {
 
-using geom::Vec3;
 using detail::VoxelHash;
+using geom::Vec3;
 
 // Capacity hints for the voxel hashes (they grow as needed): a scan puts several points in a
 // voxel, and a shape cell holds several voxels.
@@ -40,6 +40,10 @@ constexpr double kMinSizeGrowth = 1.05;
 constexpr int kMinAxisVoxels = 3;
 // Floor of the largest eigenvalue when dividing by it (a cell of coincident voxels).
 constexpr double kTinyEigenvalue = 1e-30;
+// Parallel tasks: shape cells and bridge searches (a PCA, a ball query each) and voxels' edge rows
+// (cheap) per task, enough to amortise the scheduling.
+constexpr std::size_t kCellsPerTask = 256;
+constexpr std::size_t kRowsPerTask = 1024;
 
 void checkOptions(const VoxelGraphOptions& o) {
   auto positive = [](double v, const char* name) {
@@ -140,38 +144,39 @@ void computeFeatures(VoxelGraph& g, const std::vector<std::uint64_t>& keys, doub
   const std::size_t cells = moments.size();
   std::vector<float> lin(cells), pla(cells), sca(cells);
   std::vector<geom::Vec3f> dir(cells);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      std::int64_t x, y, z;
-      detail::unpackKey(cellKeys[c], x, y, z);
-      Moments m;
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dz = -1; dz <= 1; ++dz) {
-            if (x + dx < 0 || y + dy < 0 || z + dz < 0) continue;
-            const std::uint32_t id = cellHash.find(detail::packKey(x + dx, y + dy, z + dz));
-            if (id == VoxelHash::kMissing) continue;
-            m.n += moments[id].n;
-            m.s += moments[id].s;
-            m.ss += moments[id].ss;
-          }
-      lin[c] = 0;
-      pla[c] = 0;
-      sca[c] = 1;
-      dir[c] = geom::Vec3f::UnitX();
-      if (m.n < kMinAxisVoxels) continue;
-      const Vec3 mean = m.s / m.n;
-      const Eigen::Matrix3d cov = m.ss / m.n - mean * mean.transpose();
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect(cov);
-      const Vec3 ev = eig.eigenvalues();  // increasing
-      const double l1 = std::max(ev(2), kTinyEigenvalue), l2 = std::max(ev(1), 0.0), l3 = std::max(ev(0), 0.0);
-      lin[c] = static_cast<float>((l1 - l2) / l1);
-      pla[c] = static_cast<float>((l2 - l3) / l1);
-      sca[c] = static_cast<float>(l3 / l1);
-      dir[c] = eig.eigenvectors().col(2).cast<float>().normalized();
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, cells, kCellsPerTask), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t c = r.begin(); c != r.end(); ++c) {
+          std::int64_t x, y, z;
+          detail::unpackKey(cellKeys[c], x, y, z);
+          Moments m;
+          for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dz = -1; dz <= 1; ++dz) {
+                if (x + dx < 0 || y + dy < 0 || z + dz < 0) continue;
+                const std::uint32_t id = cellHash.find(detail::packKey(x + dx, y + dy, z + dz));
+                if (id == VoxelHash::kMissing) continue;
+                m.n += moments[id].n;
+                m.s += moments[id].s;
+                m.ss += moments[id].ss;
+              }
+          lin[c] = 0;
+          pla[c] = 0;
+          sca[c] = 1;
+          dir[c] = geom::Vec3f::UnitX();
+          if (m.n < kMinAxisVoxels) continue;
+          const Vec3 mean = m.s / m.n;
+          const Eigen::Matrix3d cov = m.ss / m.n - mean * mean.transpose();
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+          eig.computeDirect(cov);
+          const Vec3 ev = eig.eigenvalues();  // increasing
+          const double l1 = std::max(ev(2), kTinyEigenvalue), l2 = std::max(ev(1), 0.0), l3 = std::max(ev(0), 0.0);
+          lin[c] = static_cast<float>((l1 - l2) / l1);
+          pla[c] = static_cast<float>((l2 - l3) / l1);
+          sca[c] = static_cast<float>(l3 / l1);
+          dir[c] = eig.eigenvectors().col(2).cast<float>().normalized();
+        }
+      });
   g.linearity.resize(n);
   g.planarity.resize(n);
   g.scattering.resize(n);
@@ -200,7 +205,7 @@ void buildGridEdges(VoxelGraph& g, const Voxelized& v, int reach) {
         }
   };
   std::vector<std::uint32_t> degree(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kRowsPerTask), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       std::uint32_t d = 0;
       forNeighbours(i, [&](std::uint32_t) { ++d; });
@@ -211,7 +216,7 @@ void buildGridEdges(VoxelGraph& g, const Voxelized& v, int reach) {
   for (std::size_t i = 0; i < n; ++i) g.offsets[i + 1] = g.offsets[i] + degree[i];
   g.targets.resize(g.offsets[n]);
   g.weights.resize(g.offsets[n]);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kRowsPerTask), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       std::uint32_t k = g.offsets[i];
       forNeighbours(i, [&](std::uint32_t j) {
@@ -251,18 +256,19 @@ std::vector<Candidate> bridgeCandidates(const VoxelGraph& g, const accel::PointI
   const std::size_t n = g.size();
   const double maxGap = o.maxGapVoxels * g.voxelSize;
   std::vector<Candidate> best(n, Candidate{-1, 0, 0});
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::vector<accel::Neighbour> hits;
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      if (g.piece[i] == 0 || !eligible[g.piece[i]]) continue;
-      index.withinRadiusByDistance(g.positions[i], maxGap, hits);
-      for (const auto& [j, d2] : hits) {
-        if (g.piece[j] == g.piece[i] || !eligible[g.piece[j]]) continue;
-        best[i] = Candidate{std::sqrt(d2), j, static_cast<std::uint32_t>(i)};
-        break;
-      }
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kCellsPerTask),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      std::vector<accel::Neighbour> hits;
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        if (g.piece[i] == 0 || !eligible[g.piece[i]]) continue;
+                        index.withinRadiusByDistance(g.positions[i], maxGap, hits);
+                        for (const auto& [j, d2] : hits) {
+                          if (g.piece[j] == g.piece[i] || !eligible[g.piece[j]]) continue;
+                          best[i] = Candidate{std::sqrt(d2), j, static_cast<std::uint32_t>(i)};
+                          break;
+                        }
+                      }
+                    });
   std::vector<Candidate> candidates;
   for (const Candidate& c : best)
     if (c.length >= 0) candidates.push_back(c);

@@ -139,8 +139,8 @@ class CloudIndex {
   /// cellStart_'s bytes, mostly cached) instead of reading cellStart_ for the many empty cells
   /// around a branch's surface.
   std::vector<std::uint64_t> occupied_;
-  std::vector<geom::Vec3> sorted_;        ///< finite positions, sorted by cell
-  std::vector<std::uint32_t> ids_;        ///< original index of each sorted point
+  std::vector<geom::Vec3> sorted_;  ///< finite positions, sorted by cell
+  std::vector<std::uint32_t> ids_;  ///< original index of each sorted point
   /// Float copy of sorted_ relative to centre_ (one array per axis, so the pre-test vectorizes):
   /// a conservative pre-test that streams half the bytes; points it cannot decide are tested
   /// exactly on sorted_. Padded with 8 zeros: the pre-test reads blocks of 4 (8 with AVX2).

@@ -62,10 +62,10 @@ struct Bridge {
 /// Undirected graph over occupied voxels, adjacency in compressed rows (both directions stored).
 struct VoxelGraph {
   double voxelSize = 0;
-  geom::Vec3 origin = geom::Vec3::Zero();        ///< corner of voxel (0,0,0)
-  std::vector<geom::Vec3> positions;             ///< centroid of each voxel's points
-  std::vector<std::int32_t> pointCount;          ///< input points in each voxel
-  std::vector<std::uint32_t> pointVoxel;         ///< voxel index of each input point
+  geom::Vec3 origin = geom::Vec3::Zero();  ///< corner of voxel (0,0,0)
+  std::vector<geom::Vec3> positions;       ///< centroid of each voxel's points
+  std::vector<std::int32_t> pointCount;    ///< input points in each voxel
+  std::vector<std::uint32_t> pointVoxel;   ///< voxel index of each input point
   /// Local shape of each vertex's neighbourhood from the eigenvalues l1 ≥ l2 ≥ l3 of its
   /// covariance: linearity (l1-l2)/l1, planarity (l2-l3)/l1, scattering l3/l1; and the principal
   /// direction (unit). Thin branches are linear; leaves planar or scattered.
@@ -73,7 +73,7 @@ struct VoxelGraph {
   std::vector<geom::Vec3f> principal;
   std::vector<std::uint32_t> offsets;  ///< size = vertices + 1
   std::vector<std::uint32_t> targets;
-  std::vector<float> weights;          ///< edge lengths, world units
+  std::vector<float> weights;  ///< edge lengths, world units
   /// Connected piece of each vertex before bridging; pieces numbered from 0 by decreasing point
   /// count (0 = the main piece).
   std::vector<std::int32_t> piece;
