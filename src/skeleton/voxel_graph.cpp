@@ -11,18 +11,39 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <nanoflann.hpp>
 #include <numeric>
 #include <sstream>
 
 #include "skeleton/voxel_hash.h"
+#include "treesketch/accel/point_index.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/union_find.h"
 
 namespace treesketch::skeleton {
 namespace {
 
-using geom::Vec3;
 using detail::VoxelHash;
+using geom::Vec3;
+
+// Capacity hints for the voxel hashes (they grow as needed): a scan puts several points in a
+// voxel, and a shape cell holds several voxels.
+constexpr std::size_t kPointsPerVoxelGuess = 8;
+constexpr std::size_t kVoxelsPerCellGuess = 4;
+// The grid starts half a cell below the cloud's box, and its extent keeps a few cells of the
+// packed-key range free, so that rounding never puts a point outside the grid.
+constexpr double kOriginMarginCells = 0.5;
+constexpr std::int64_t kSpareAxisCells = 4;
+// Automatic voxel size: at most this many growth steps towards maxVoxels, each at least 5 %.
+constexpr int kMaxSizeSteps = 8;
+constexpr double kMinSizeGrowth = 1.05;
+// A covariance (local shape, a piece's axis) needs at least three points to have a direction.
+constexpr int kMinAxisVoxels = 3;
+// Floor of the largest eigenvalue when dividing by it (a cell of coincident voxels).
+constexpr double kTinyEigenvalue = 1e-30;
+// Parallel tasks: shape cells and bridge searches (a PCA, a ball query each) and voxels' edge rows
+// (cheap) per task, enough to amortise the scheduling.
+constexpr std::size_t kCellsPerTask = 256;
+constexpr std::size_t kRowsPerTask = 1024;
 
 void checkOptions(const VoxelGraphOptions& o) {
   auto positive = [](double v, const char* name) {
@@ -54,11 +75,11 @@ void checkFinite(const geom::PointCloud& cloud) {
 }
 
 /// Grid corner a little below the box so every point maps to non-negative cells.
-Vec3 gridOrigin(const geom::BBox& box, double cell) { return box.min - Vec3::Constant(0.5 * cell); }
+Vec3 gridOrigin(const geom::BBox& box, double cell) { return box.min - Vec3::Constant(kOriginMarginCells * cell); }
 
 /// Number of occupied voxels of size `cell`.
 std::size_t countVoxels(const geom::PointCloud& cloud, const Vec3& origin, double cell) {
-  VoxelHash hash(cloud.size() / 8 + 16);
+  VoxelHash hash(cloud.size() / kPointsPerVoxelGuess + 16);
   for (const Vec3& p : cloud.positions) hash.findOrInsert(detail::cellKey(p, origin, cell), 0);
   return hash.size();
 }
@@ -102,7 +123,7 @@ void computeFeatures(VoxelGraph& g, const std::vector<std::uint64_t>& keys, doub
     Vec3 s = Vec3::Zero();
     Eigen::Matrix3d ss = Eigen::Matrix3d::Zero();
   };
-  VoxelHash cellHash(n / 4 + 16);
+  VoxelHash cellHash(n / kVoxelsPerCellGuess + 16);
   std::vector<Moments> moments;
   std::vector<std::uint64_t> cellKeys;
   std::vector<std::uint32_t> voxelCell(n);
@@ -123,38 +144,39 @@ void computeFeatures(VoxelGraph& g, const std::vector<std::uint64_t>& keys, doub
   const std::size_t cells = moments.size();
   std::vector<float> lin(cells), pla(cells), sca(cells);
   std::vector<geom::Vec3f> dir(cells);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      std::int64_t x, y, z;
-      detail::unpackKey(cellKeys[c], x, y, z);
-      Moments m;
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dz = -1; dz <= 1; ++dz) {
-            if (x + dx < 0 || y + dy < 0 || z + dz < 0) continue;
-            const std::uint32_t id = cellHash.find(detail::packKey(x + dx, y + dy, z + dz));
-            if (id == VoxelHash::kMissing) continue;
-            m.n += moments[id].n;
-            m.s += moments[id].s;
-            m.ss += moments[id].ss;
-          }
-      lin[c] = 0;
-      pla[c] = 0;
-      sca[c] = 1;
-      dir[c] = geom::Vec3f::UnitX();
-      if (m.n < 3) continue;
-      const Vec3 mean = m.s / m.n;
-      const Eigen::Matrix3d cov = m.ss / m.n - mean * mean.transpose();
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect(cov);
-      const Vec3 ev = eig.eigenvalues();  // increasing
-      const double l1 = std::max(ev(2), 1e-30), l2 = std::max(ev(1), 0.0), l3 = std::max(ev(0), 0.0);
-      lin[c] = static_cast<float>((l1 - l2) / l1);
-      pla[c] = static_cast<float>((l2 - l3) / l1);
-      sca[c] = static_cast<float>(l3 / l1);
-      dir[c] = eig.eigenvectors().col(2).cast<float>().normalized();
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, cells, kCellsPerTask), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t c = r.begin(); c != r.end(); ++c) {
+          std::int64_t x, y, z;
+          detail::unpackKey(cellKeys[c], x, y, z);
+          Moments m;
+          for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dz = -1; dz <= 1; ++dz) {
+                if (x + dx < 0 || y + dy < 0 || z + dz < 0) continue;
+                const std::uint32_t id = cellHash.find(detail::packKey(x + dx, y + dy, z + dz));
+                if (id == VoxelHash::kMissing) continue;
+                m.n += moments[id].n;
+                m.s += moments[id].s;
+                m.ss += moments[id].ss;
+              }
+          lin[c] = 0;
+          pla[c] = 0;
+          sca[c] = 1;
+          dir[c] = geom::Vec3f::UnitX();
+          if (m.n < kMinAxisVoxels) continue;
+          const Vec3 mean = m.s / m.n;
+          const Eigen::Matrix3d cov = m.ss / m.n - mean * mean.transpose();
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+          eig.computeDirect(cov);
+          const Vec3 ev = eig.eigenvalues();  // increasing
+          const double l1 = std::max(ev(2), kTinyEigenvalue), l2 = std::max(ev(1), 0.0), l3 = std::max(ev(0), 0.0);
+          lin[c] = static_cast<float>((l1 - l2) / l1);
+          pla[c] = static_cast<float>((l2 - l3) / l1);
+          sca[c] = static_cast<float>(l3 / l1);
+          dir[c] = eig.eigenvectors().col(2).cast<float>().normalized();
+        }
+      });
   g.linearity.resize(n);
   g.planarity.resize(n);
   g.scattering.resize(n);
@@ -183,7 +205,7 @@ void buildGridEdges(VoxelGraph& g, const Voxelized& v, int reach) {
         }
   };
   std::vector<std::uint32_t> degree(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kRowsPerTask), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       std::uint32_t d = 0;
       forNeighbours(i, [&](std::uint32_t) { ++d; });
@@ -194,7 +216,7 @@ void buildGridEdges(VoxelGraph& g, const Voxelized& v, int reach) {
   for (std::size_t i = 0; i < n; ++i) g.offsets[i + 1] = g.offsets[i] + degree[i];
   g.targets.resize(g.offsets[n]);
   g.weights.resize(g.offsets[n]);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kRowsPerTask), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       std::uint32_t k = g.offsets[i];
       forNeighbours(i, [&](std::uint32_t j) {
@@ -208,148 +230,87 @@ void buildGridEdges(VoxelGraph& g, const Voxelized& v, int reach) {
 
 /// Connected pieces, numbered by decreasing point count (ties: lowest first vertex).
 void labelPieces(VoxelGraph& g) {
-  const std::size_t n = g.size();
-  std::vector<std::int32_t> label(n, -1);
-  std::vector<std::int64_t> pieceCount;
-  std::vector<std::uint32_t> stack;
-  for (std::size_t s = 0; s < n; ++s) {
-    if (label[s] >= 0) continue;
-    const auto id = static_cast<std::int32_t>(pieceCount.size());
-    pieceCount.push_back(0);
-    label[s] = id;
-    stack.assign(1, static_cast<std::uint32_t>(s));
-    while (!stack.empty()) {
-      const std::uint32_t v = stack.back();
-      stack.pop_back();
-      pieceCount[id] += g.pointCount[v];
-      for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
-        const std::uint32_t w = g.targets[k];
-        if (label[w] < 0) {
-          label[w] = id;
-          stack.push_back(w);
-        }
-      }
-    }
-  }
-  std::vector<std::int32_t> order(pieceCount.size());
+  std::int32_t pieces = 0;
+  const std::vector<std::int32_t> label = util::labelComponents(g.offsets, g.targets, &pieces);
+  std::vector<std::int64_t> pieceCount(pieces, 0);
+  for (std::size_t v = 0; v < g.size(); ++v) pieceCount[label[v]] += g.pointCount[v];
+  std::vector<std::int32_t> order(pieces);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return pieceCount[a] > pieceCount[b]; });
   std::vector<std::int32_t> rank(order.size());
   for (std::size_t r = 0; r < order.size(); ++r) rank[order[r]] = static_cast<std::int32_t>(r);
-  g.piece.resize(n);
-  for (std::size_t i = 0; i < n; ++i) g.piece[i] = rank[label[i]];
+  g.piece.resize(g.size());
+  for (std::size_t i = 0; i < g.size(); ++i) g.piece[i] = rank[label[i]];
 }
 
-struct CloudAdaptor {
-  const std::vector<Vec3>& pts;
-  std::size_t kdtree_get_point_count() const { return pts.size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const { return pts[i][static_cast<int>(d)]; }
-  template <class B>
-  bool kdtree_get_bbox(B&) const {
-    return false;
-  }
-};
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>, CloudAdaptor, 3,
-                                                   std::uint32_t>;
-
-struct UnionFind {
-  std::vector<std::int32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::int32_t find(std::int32_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  }
-  /// Joins, keeping the smaller label as the representative (piece 0 stays the main one).
-  void unite(std::int32_t a, std::int32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (a < b) parent[b] = a;
-    else parent[a] = b;
-  }
+// A bridge candidate: the shortest gap from a voxel of an unconnected piece to another piece.
+struct Candidate {
+  double length;
+  std::uint32_t from, to;  // to = vertex of the piece being attached
 };
 
-/// Bridges pieces to the main piece (Kruskal over the shortest gap of each voxel).
-void bridgePieces(VoxelGraph& g, const VoxelGraphOptions& o) {
+/// Per voxel of a bridgeable piece (other than the main one): its nearest voxel of another
+/// bridgeable piece within maxGapVoxels; sorted by length (ties: by vertex).
+std::vector<Candidate> bridgeCandidates(const VoxelGraph& g, const accel::PointIndex& index,
+                                        const std::vector<char>& eligible, const VoxelGraphOptions& o) {
   const std::size_t n = g.size();
-  const std::int32_t pieces = n == 0 ? 0 : *std::max_element(g.piece.begin(), g.piece.end()) + 1;
-  if (pieces <= 1 || o.maxGapVoxels <= 0) return;
-  std::vector<std::int64_t> piecePoints(pieces, 0);
-  for (std::size_t i = 0; i < n; ++i) piecePoints[g.piece[i]] += g.pointCount[i];
-  auto eligible = [&](std::int32_t p) { return p == 0 || piecePoints[p] >= o.minBridgePoints; };
-
-  CloudAdaptor adaptor{g.positions};
-  KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tree.buildIndex();
   const double maxGap = o.maxGapVoxels * g.voxelSize;
-
-  struct Candidate {
-    double length;
-    std::uint32_t from, to;  // to = vertex of the piece being attached
-  };
   std::vector<Candidate> best(n, Candidate{-1, 0, 0});
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::vector<std::pair<std::uint32_t, double>> hits;
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      if (g.piece[i] == 0 || !eligible(g.piece[i])) continue;
-      hits.clear();
-      nanoflann::SearchParams params;
-      params.sorted = true;
-      tree.radiusSearch(g.positions[i].data(), maxGap * maxGap, hits, params);
-      for (const auto& [j, d2] : hits) {
-        if (g.piece[j] == g.piece[i] || !eligible(g.piece[j])) continue;
-        best[i] = Candidate{std::sqrt(d2), j, static_cast<std::uint32_t>(i)};
-        break;
-      }
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kCellsPerTask),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      std::vector<accel::Neighbour> hits;
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        if (g.piece[i] == 0 || !eligible[g.piece[i]]) continue;
+                        index.withinRadiusByDistance(g.positions[i], maxGap, hits);
+                        for (const auto& [j, d2] : hits) {
+                          if (g.piece[j] == g.piece[i] || !eligible[g.piece[j]]) continue;
+                          best[i] = Candidate{std::sqrt(d2), j, static_cast<std::uint32_t>(i)};
+                          break;
+                        }
+                      }
+                    });
   std::vector<Candidate> candidates;
   for (const Candidate& c : best)
     if (c.length >= 0) candidates.push_back(c);
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
     return std::tie(a.length, a.to, a.from) < std::tie(b.length, b.to, b.from);
   });
+  return candidates;
+}
 
-  const double freeGap = o.freeGapVoxels * g.voxelSize;
-  const double coneCos = std::cos(o.coneAngleDeg * M_PI / 180.0);
-  const double coneRadius = o.coneRadiusVoxels * g.voxelSize;
-  UnionFind uf(pieces);
-  std::vector<std::pair<std::uint32_t, double>> hits;
-  for (const Candidate& c : candidates) {
-    if (uf.find(g.piece[c.from]) == uf.find(g.piece[c.to])) continue;
-    if (c.length > freeGap) {
-      // Axis of the attached piece near its joint.
-      hits.clear();
-      tree.radiusSearch(g.positions[c.to].data(), coneRadius * coneRadius, hits, nanoflann::SearchParams());
-      Vec3 mean = Vec3::Zero();
-      int count = 0;
-      for (const auto& h : hits)
-        if (g.piece[h.first] == g.piece[c.to]) {
-          mean += g.positions[h.first];
-          ++count;
-        }
-      if (count < 3) continue;
-      mean /= count;
-      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-      for (const auto& h : hits)
-        if (g.piece[h.first] == g.piece[c.to]) {
-          const Vec3 d = g.positions[h.first] - mean;
-          cov += d * d.transpose();
-        }
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect(cov);
-      const Vec3 axis = eig.eigenvectors().col(2);
-      const double l1 = std::max(eig.eigenvalues()(2), 1e-30), l2 = std::max(eig.eigenvalues()(1), 0.0);
-      if ((l1 - l2) / l1 < o.minBridgeLinearity) continue;
-      const Vec3 gap = (g.positions[c.from] - g.positions[c.to]) / c.length;
-      if (std::abs(axis.dot(gap)) < coneCos) continue;
+/// Whether a long gap may be bridged: the attached piece is elongated near its joint
+/// (minBridgeLinearity) and the gap runs within coneAngleDeg of its axis there.
+bool gapFollowsAxis(const VoxelGraph& g, const accel::PointIndex& index, const Candidate& c,
+                    const VoxelGraphOptions& o) {
+  thread_local std::vector<accel::Neighbour> hits;
+  index.withinRadiusByDistance(g.positions[c.to], o.coneRadiusVoxels * g.voxelSize, hits);
+  Vec3 mean = Vec3::Zero();
+  int count = 0;
+  for (const auto& h : hits)
+    if (g.piece[h.index] == g.piece[c.to]) {
+      mean += g.positions[h.index];
+      ++count;
     }
-    uf.unite(g.piece[c.from], g.piece[c.to]);
-    g.bridges.push_back(Bridge{c.from, c.to, c.length});
-  }
-  if (g.bridges.empty()) return;
+  if (count < kMinAxisVoxels) return false;
+  mean /= count;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& h : hits)
+    if (g.piece[h.index] == g.piece[c.to]) {
+      const Vec3 d = g.positions[h.index] - mean;
+      cov += d * d.transpose();
+    }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(cov);
+  const Vec3 axis = eig.eigenvectors().col(2);
+  const double l1 = std::max(eig.eigenvalues()(2), kTinyEigenvalue), l2 = std::max(eig.eigenvalues()(1), 0.0);
+  if ((l1 - l2) / l1 < o.minBridgeLinearity) return false;
+  const Vec3 gap = (g.positions[c.from] - g.positions[c.to]) / c.length;
+  return std::abs(axis.dot(gap)) >= std::cos(o.coneAngleDeg * M_PI / 180.0);
+}
 
-  // Rebuild the rows with the bridge edges appended.
+/// The graph's rows rebuilt with the bridge edges appended (both directions).
+void addBridgeEdges(VoxelGraph& g) {
+  const std::size_t n = g.size();
   std::vector<std::uint32_t> extra(n, 0);
   for (const Bridge& b : g.bridges) {
     ++extra[b.from];
@@ -379,6 +340,29 @@ void bridgePieces(VoxelGraph& g, const VoxelGraphOptions& o) {
   g.weights = std::move(weights);
 }
 
+/// Bridges pieces to the main piece (Kruskal over the shortest gap of each voxel): gaps up to
+/// freeGapVoxels always, longer ones when they follow the attached piece's axis.
+void bridgePieces(VoxelGraph& g, const VoxelGraphOptions& o) {
+  const std::size_t n = g.size();
+  const std::int32_t pieces = n == 0 ? 0 : *std::max_element(g.piece.begin(), g.piece.end()) + 1;
+  if (pieces <= 1 || o.maxGapVoxels <= 0) return;
+  std::vector<std::int64_t> piecePoints(pieces, 0);
+  for (std::size_t i = 0; i < n; ++i) piecePoints[g.piece[i]] += g.pointCount[i];
+  std::vector<char> eligible(pieces);
+  for (std::int32_t p = 0; p < pieces; ++p) eligible[p] = p == 0 || piecePoints[p] >= o.minBridgePoints;
+  const accel::PointIndex index(g.positions);
+  const double freeGap = o.freeGapVoxels * g.voxelSize;
+  util::UnionFind uf(static_cast<std::size_t>(pieces));
+  for (const Candidate& c : bridgeCandidates(g, index, eligible, o)) {
+    const auto a = static_cast<std::uint32_t>(g.piece[c.from]), b = static_cast<std::uint32_t>(g.piece[c.to]);
+    if (uf.find(a) == uf.find(b)) continue;
+    if (c.length > freeGap && !gapFollowsAxis(g, index, c, o)) continue;
+    uf.unite(a, b);
+    g.bridges.push_back(Bridge{c.from, c.to, c.length});
+  }
+  if (!g.bridges.empty()) addBridgeEdges(g);
+}
+
 }  // namespace
 
 double chooseVoxelSize(const geom::PointCloud& cloud, const VoxelGraphOptions& options) {
@@ -394,11 +378,11 @@ double chooseVoxelSize(const geom::PointCloud& cloud, const VoxelGraphOptions& o
   const double spacing = size / std::sqrt(std::max(perVoxel, 1.0));
   size = std::max(size, options.autoSpacingFactor * spacing);
   // Keep the grid below the packing limit and the voxel count below the budget.
-  size = std::max(size, box.extent().maxCoeff() / static_cast<double>(detail::kAxisCells - 4));
-  for (int iter = 0; iter < 8; ++iter) {
+  size = std::max(size, box.extent().maxCoeff() / static_cast<double>(detail::kAxisCells - kSpareAxisCells));
+  for (int step = 0; step < kMaxSizeSteps; ++step) {
     const std::size_t count = countVoxels(cloud, gridOrigin(box, size), size);
     if (count <= options.maxVoxels) break;
-    size *= std::max(1.05, std::sqrt(static_cast<double>(count) / static_cast<double>(options.maxVoxels)));
+    size *= std::max(kMinSizeGrowth, std::sqrt(static_cast<double>(count) / static_cast<double>(options.maxVoxels)));
   }
   return size;
 }
@@ -411,7 +395,7 @@ VoxelGraph buildVoxelGraph(const geom::PointCloud& cloud, const VoxelGraphOption
   g.offsets.assign(1, 0);
   if (cloud.empty()) return g;
   const geom::BBox box = cloud.bounds();
-  if (box.extent().maxCoeff() / g.voxelSize > static_cast<double>(detail::kAxisCells - 4))
+  if (box.extent().maxCoeff() / g.voxelSize > static_cast<double>(detail::kAxisCells - kSpareAxisCells))
     throw OptionsError("skeleton graph: voxelSize too small for the cloud's extent (over 2^21 voxels per axis)");
   g.origin = gridOrigin(box, g.voxelSize);
   Voxelized v = voxelize(cloud, g.origin, g.voxelSize);

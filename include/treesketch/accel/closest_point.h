@@ -88,7 +88,7 @@ class MeshClosestPoint {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Nearest point of a point cloud (nanoflann k-d tree), with the same batch interface.
+/// Nearest point of a point cloud (accel::PointIndex, a k-d tree), with the same batch interface.
 class CloudClosestPoint {
  public:
   /// Builds a k-d tree over the cloud's positions (copied). An empty cloud finds nothing.

@@ -115,6 +115,10 @@ class CloudIndex {
   /// or ball contains the whole bounding box), i.e. the region equals its slab within the cloud.
   bool regionCoversCloud(const SliceRegion& region) const;
 
+  /// Original indices of the stored (finite) points in storage order, the order every query
+  /// answers in. For callers that must reproduce that order with another index.
+  const std::vector<std::uint32_t>& storageOrder() const { return ids_; }
+
   std::size_t size() const { return ids_.size(); }
   const geom::BBox& bounds() const { return bounds_; }
   double cellSize() const { return cell_; }
@@ -135,8 +139,8 @@ class CloudIndex {
   /// cellStart_'s bytes, mostly cached) instead of reading cellStart_ for the many empty cells
   /// around a branch's surface.
   std::vector<std::uint64_t> occupied_;
-  std::vector<geom::Vec3> sorted_;        ///< finite positions, sorted by cell
-  std::vector<std::uint32_t> ids_;        ///< original index of each sorted point
+  std::vector<geom::Vec3> sorted_;  ///< finite positions, sorted by cell
+  std::vector<std::uint32_t> ids_;  ///< original index of each sorted point
   /// Float copy of sorted_ relative to centre_ (one array per axis, so the pre-test vectorizes):
   /// a conservative pre-test that streams half the bytes; points it cannot decide are tested
   /// exactly on sorted_. Padded with 8 zeros: the pre-test reads blocks of 4 (8 with AVX2).

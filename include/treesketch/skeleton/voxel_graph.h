@@ -14,39 +14,39 @@
 
 namespace treesketch::skeleton {
 
+/// Tunables of the voxel graph. Lengths in voxels follow the voxel size; the measurements behind
+/// the defaults: docs/notes/skeleton_options.md.
 struct VoxelGraphOptions {
-  /// Voxel edge length, world units. 0 = automatic: the largest of `autoDiagonalFraction` × the
-  /// cloud's bounding-box diagonal and `autoSpacingFactor` × the estimated point spacing, grown
-  /// until at most `maxVoxels` voxels are occupied.
+  /// Voxel edge length, world units; 0 = automatic: max(autoDiagonalFraction × bbox diagonal,
+  /// autoSpacingFactor × point spacing), grown until at most maxVoxels voxels are occupied.
   double voxelSize = 0;
-  /// Automatic voxel size as a fraction of the bbox diagonal (1/400: ~0.18 units for a 65-unit
-  /// tree). On the four test trees' 160k-ray sphere scans (leaf-off) 1/250 measured mean forward /
-  /// backward RMS of 1.64 % / 0.28 % of the diagonal (1/333 with reach 2: 1.72 % / 0.32 %); 1/400
-  /// is kept as the default because it resolves the small synthetic test trees better.
+  /// Automatic size as a fraction of the bbox diagonal: 1/400 resolves the small synthetic test
+  /// trees (1/250 measured a little better on the 160k-point scans).
   double autoDiagonalFraction = 1.0 / 400.0;
-  /// Automatic voxel size as a multiple of the point spacing (≥ 2 keeps a surface connected in the
-  /// 26-neighbourhood).
+  /// Automatic size as a multiple of the point spacing: ≥ 2 keeps a sampled surface connected in
+  /// the 26-neighbourhood.
   double autoSpacingFactor = 2.5;
-  /// Upper bound on occupied voxels for the automatic size (keeps 1M-point clouds within budget).
+  /// Most occupied voxels for the automatic size: keeps 1M-point clouds within the time budget.
   std::size_t maxVoxels = 200000;
-  /// Edges join voxels whose integer coordinates differ by at most this much per axis (1 = the
-  /// 26-neighbourhood).
+  /// Edges join voxels whose integer coordinates differ by at most this per axis: 1, the
+  /// 26-neighbourhood, is what autoSpacingFactor keeps connected (2 joins 124 neighbours).
   int reach = 1;
-  /// Side of the cells the local shape (PCA) is measured on, in voxels; each vertex takes the
-  /// features of its cell's 3×3×3 cell neighbourhood (so a neighbourhood ~ 3 × this wide).
+  /// Side of the cells the local shape (PCA) is measured on, voxels; a vertex takes its cell's
+  /// 3×3×3 block, ~6 voxels wide: a twig's surface and some of its length.
   double shapeCellVoxels = 2.0;
 
   /// Occlusion gaps: a piece not connected to the main piece is bridged if its nearest voxel is
-  /// within `maxGapVoxels` voxels of an already connected voxel...
+  /// within this many voxels of an already connected one...
   double maxGapVoxels = 8.0;
-  /// ...and, for gaps longer than `freeGapVoxels`, the gap's direction lies within this angle of
-  /// the piece's own axis near the joint (principal direction of its voxels within
-  /// `coneRadiusVoxels`), degrees. Xu et al. 2007 use a 45° cone.
+  /// ...and, for gaps longer than freeGapVoxels voxels (always bridged: a missed scan line or
+  /// two), the gap lies within this angle of the piece's own axis near the joint, degrees (Xu et al.).
   double coneAngleDeg = 45.0;
   double freeGapVoxels = 2.5;
+  /// Radius around the joint over which the piece's axis is measured, voxels: several branch
+  /// widths, so that it is the branch's axis and not its surface's.
   double coneRadiusVoxels = 12.0;
-  /// ...and the piece is elongated there: linearity (l1-l2)/l1 of those voxels at least this (a
-  /// cut-off branch is a tube; a leaf or a clump of leaves is flat or round).
+  /// ...and the piece is elongated there: linearity (l1-l2)/l1 at least this (a cut-off branch is
+  /// a tube; a leaf or a clump of leaves is flat or round).
   double minBridgeLinearity = 0.4;
   /// Pieces with fewer points than this are never bridged (isolated noise).
   int minBridgePoints = 3;
@@ -62,10 +62,10 @@ struct Bridge {
 /// Undirected graph over occupied voxels, adjacency in compressed rows (both directions stored).
 struct VoxelGraph {
   double voxelSize = 0;
-  geom::Vec3 origin = geom::Vec3::Zero();        ///< corner of voxel (0,0,0)
-  std::vector<geom::Vec3> positions;             ///< centroid of each voxel's points
-  std::vector<std::int32_t> pointCount;          ///< input points in each voxel
-  std::vector<std::uint32_t> pointVoxel;         ///< voxel index of each input point
+  geom::Vec3 origin = geom::Vec3::Zero();  ///< corner of voxel (0,0,0)
+  std::vector<geom::Vec3> positions;       ///< centroid of each voxel's points
+  std::vector<std::int32_t> pointCount;    ///< input points in each voxel
+  std::vector<std::uint32_t> pointVoxel;   ///< voxel index of each input point
   /// Local shape of each vertex's neighbourhood from the eigenvalues l1 ≥ l2 ≥ l3 of its
   /// covariance: linearity (l1-l2)/l1, planarity (l2-l3)/l1, scattering l3/l1; and the principal
   /// direction (unit). Thin branches are linear; leaves planar or scattered.
@@ -73,7 +73,7 @@ struct VoxelGraph {
   std::vector<geom::Vec3f> principal;
   std::vector<std::uint32_t> offsets;  ///< size = vertices + 1
   std::vector<std::uint32_t> targets;
-  std::vector<float> weights;          ///< edge lengths, world units
+  std::vector<float> weights;  ///< edge lengths, world units
   /// Connected piece of each vertex before bridging; pieces numbered from 0 by decreasing point
   /// count (0 = the main piece).
   std::vector<std::int32_t> piece;

@@ -1,0 +1,25 @@
+// Internal: helpers on node lists (parents before children), shared by the level-set nodes and
+// their simplification.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "treesketch/geom/types.h"
+#include "treesketch/skeleton/skeleton.h"
+
+namespace treesketch::skeleton::detail {
+
+/// `v` normalized, or `fallback` when `v` is (nearly) zero.
+geom::Vec3 safeNormalized(const geom::Vec3& v, const geom::Vec3& fallback);
+
+/// Children lists rebuilt from parents (increasing indices).
+void linkChildren(std::vector<SkeletonNode>& nodes);
+
+/// Longest path (world length) from each node down its subtree; nodes must be parent-first.
+std::vector<double> subtreeReach(const std::vector<SkeletonNode>& nodes);
+
+/// The child continuing node i's branch: longest reach (ties: lowest index); -1 for none.
+std::int32_t mainChild(const std::vector<SkeletonNode>& nodes, const std::vector<double>& reach, std::size_t i);
+
+}  // namespace treesketch::skeleton::detail

@@ -1,0 +1,294 @@
+// Pruning and simplification of the raw level-set nodes, as named steps: radii smoothed along
+// the main chains, side sub-trees dropped as spurs or foliage, partial tips dropped, forks put back
+// on their parent chain's line, chains between forks and ends simplified (Douglas–Peucker), and
+// the kept nodes re-linked with their directions and branch orders.
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "skeleton/checks.h"
+#include "skeleton/node_tree.h"
+#include "treesketch/skeleton/skeleton.h"
+
+namespace treesketch::skeleton {
+namespace {
+
+using detail::mainChild;
+using geom::Vec3;
+
+// The line a fork is put back on runs through its ancestors from the fork zone's lower end down to
+// this many times the zone's depth below the fork...
+constexpr double kForkLineDepths = 3;
+// ...and needs at least this many of them to have a direction.
+constexpr int kMinForkLineNodes = 3;
+// Chords and tolerances shorter than this are treated as zero (coincident nodes).
+constexpr double kTinyLength = 1e-12;
+
+// What the pruning steps know of the raw nodes.
+struct RawTree {
+  const std::vector<SkeletonNode>& raw;
+  std::vector<double> reach;         ///< longest path down each subtree, world units
+  std::vector<std::int32_t> mainOf;  ///< the child continuing each node's branch, -1 for none
+  std::vector<double> radius;        ///< smoothed radii
+  std::vector<double> tubularShare;  ///< tubular points / points of each subtree
+};
+
+// Radius: running median over radiusMedianWindow nodes along the main chain through each node.
+std::vector<double> smoothRadii(const std::vector<SkeletonNode>& raw, const std::vector<std::int32_t>& mainOf,
+                                int window) {
+  std::vector<double> radius(raw.size());
+  const int half = window / 2;
+  std::vector<double> values;
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    values.assign(1, raw[i].radius);
+    std::int32_t up = raw[i].parent, down = mainOf[i];
+    for (int k = 0; k < half; ++k) {
+      if (up >= 0) {
+        values.push_back(raw[up].radius);
+        up = raw[up].parent;
+      }
+      if (down >= 0) {
+        values.push_back(raw[down].radius);
+        down = mainOf[down];
+      }
+    }
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    radius[i] = values[values.size() / 2];
+  }
+  return radius;
+}
+
+// Share of each subtree's points (support) in tubular pieces, bottom-up.
+std::vector<double> tubularShares(const std::vector<SkeletonNode>& raw) {
+  const std::size_t n = raw.size();
+  std::vector<double> tubSum(n), supSum(n);
+  for (std::size_t i = n; i-- > 0;) {
+    tubSum[i] += raw[i].tubular ? raw[i].support : 0;
+    supSum[i] += raw[i].support;
+    if (raw[i].parent >= 0) {
+      tubSum[raw[i].parent] += tubSum[i];
+      supSum[raw[i].parent] += supSum[i];
+    }
+  }
+  std::vector<double> share(n);
+  for (std::size_t i = 0; i < n; ++i) share[i] = supSum[i] > 0 ? tubSum[i] / supSum[i] : 0.0;
+  return share;
+}
+
+RawTree describe(const std::vector<SkeletonNode>& raw, const SkeletonOptions& options) {
+  RawTree t{raw, detail::subtreeReach(raw), {}, {}, {}};
+  t.mainOf.resize(raw.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) t.mainOf[i] = mainChild(raw, t.reach, i);
+  t.radius = smoothRadii(raw, t.mainOf, options.radiusMedianWindow);
+  t.tubularShare = tubularShares(raw);
+  return t;
+}
+
+// Drop spurs and foliage: a side child c of node i is kept when its sub-tree is long enough not to
+// be a spur and tubular enough not to be leaves (long sub-trees need a smaller share).
+bool keepSideBranch(const RawTree& t, std::size_t i, std::int32_t c, double binWidth, const SkeletonOptions& o) {
+  const double spur = std::max(o.spurLengthRadii * t.radius[i], o.spurLengthBins * binWidth);
+  const double length = t.reach[c] + (t.raw[c].position - t.raw[i].position).norm();
+  const double minTub = length >= o.longBranchBins * binWidth ? std::min(o.minTubularFraction, o.minTubularFractionLong)
+                                                              : o.minTubularFraction;
+  return length >= spur && t.tubularShare[c] >= minTub;
+}
+
+// Pruning, from the root down (a dropped node takes its sub-tree with it): main children are kept,
+// side children by keepSideBranch; then partial tips are dropped: an end with less support than
+// minEndSupportFraction of its parent's.
+std::vector<char> pruneNodes(const RawTree& t, double binWidth, const SkeletonOptions& o) {
+  const auto& raw = t.raw;
+  std::vector<char> kept(raw.size(), 0);
+  kept[0] = 1;
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    if (!kept[i]) continue;
+    for (std::int32_t c : raw[i].children) kept[c] = c == t.mainOf[i] || keepSideBranch(t, i, c, binWidth, o);
+    for (std::int32_t c : raw[i].children)
+      if (kept[c] && raw[c].children.empty() && raw[c].support < o.minEndSupportFraction * raw[i].support) kept[c] = 0;
+  }
+  return kept;
+}
+
+// Straighten forks: a fork's level set holds the parent's ring and the children's bases, so its
+// centroid (and those of the few pieces below it) drift towards the children. They are put back on
+// the support-weighted line through the parent chain further down. Returns the nodes' positions.
+std::vector<Vec3> straightenForks(const RawTree& t, const std::vector<char>& kept,
+                                  const std::vector<std::vector<std::int32_t>>& keptChildren, double binWidth,
+                                  const SkeletonOptions& o) {
+  const auto& raw = t.raw;
+  std::vector<Vec3> position(raw.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) position[i] = raw[i].position;
+  for (std::size_t f = 0; f < raw.size(); ++f) {
+    if (!kept[f] || keptChildren[f].size() < 2) continue;
+    const double near = o.forkZoneRadii * t.radius[f] + binWidth;
+    std::int32_t a1 = raw[f].parent;
+    while (a1 >= 0 && raw[f].distance - raw[a1].distance < near) a1 = raw[a1].parent;
+    auto inLine = [&](std::int32_t a) { return a >= 0 && raw[f].distance - raw[a].distance < kForkLineDepths * near; };
+    Vec3 mean = Vec3::Zero();
+    double weight = 0;
+    int count = 0;
+    for (std::int32_t a = a1; inLine(a); a = raw[a].parent) {
+      mean += raw[a].support * raw[a].position;
+      weight += raw[a].support;
+      ++count;
+    }
+    if (count < kMinForkLineNodes || weight <= 0) continue;
+    mean /= weight;
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::int32_t a = a1; inLine(a); a = raw[a].parent) {
+      const Vec3 d = raw[a].position - mean;
+      cov += raw[a].support * d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(cov);
+    const Vec3 axis = eig.eigenvectors().col(2).normalized();
+    for (std::int32_t j = static_cast<std::int32_t>(f); j != a1; j = raw[j].parent)
+      position[j] = mean + (raw[j].position - mean).dot(axis) * axis;
+  }
+  return position;
+}
+
+// Douglas–Peucker on pts[first..last]: marks the kept interior indices. A node is kept when it lies
+// farther than its tolerance from the chord; a straight chord longer than the smaller maxSegment
+// of its ends is split at the node nearest its middle.
+void douglasPeucker(const std::vector<Vec3>& pts, const std::vector<double>& tolerance,
+                    const std::vector<double>& maxSegment, std::size_t first, std::size_t last,
+                    std::vector<char>& keep) {
+  if (last <= first + 1) return;
+  const Vec3 a = pts[first], b = pts[last];
+  const Vec3 ab = b - a;
+  const double len = ab.norm();
+  double worst = -1;
+  std::size_t worstIndex = first;
+  for (std::size_t i = first + 1; i < last; ++i) {
+    double d;
+    if (len < kTinyLength) {
+      d = (pts[i] - a).norm();
+    } else {
+      const double t = std::clamp((pts[i] - a).dot(ab) / (len * len), 0.0, 1.0);
+      d = (pts[i] - (a + t * ab)).norm();
+    }
+    const double excess = d / std::max(tolerance[i], kTinyLength);
+    if (excess > worst) {
+      worst = excess;
+      worstIndex = i;
+    }
+  }
+  const bool tooFar = len > std::min(maxSegment[first], maxSegment[last]);
+  if (worst <= 1.0 && !tooFar) return;
+  if (worst <= 1.0) {
+    double bestGap = std::numeric_limits<double>::infinity();
+    for (std::size_t i = first + 1; i < last; ++i) {
+      const double gap = std::abs((pts[i] - a).dot(ab) / len - 0.5 * len);
+      if (gap < bestGap) {
+        bestGap = gap;
+        worstIndex = i;
+      }
+    }
+  }
+  keep[worstIndex] = 1;
+  douglasPeucker(pts, tolerance, maxSegment, first, worstIndex, keep);
+  douglasPeucker(pts, tolerance, maxSegment, worstIndex, last, keep);
+}
+
+// Simplify chains: the nodes kept after Douglas–Peucker on each chain between key nodes (root,
+// forks, ends), with tolerances and segment limits from each node's radius.
+std::vector<char> simplifyChains(const RawTree& t, const std::vector<char>& kept,
+                                 const std::vector<std::vector<std::int32_t>>& keptChildren,
+                                 const std::vector<Vec3>& position, double voxelSize, double binWidth,
+                                 const SkeletonOptions& o) {
+  const std::size_t n = t.raw.size();
+  std::vector<char> select(n, 0);
+  select[0] = 1;
+  auto isKey = [&](std::size_t i) { return i == 0 || keptChildren[i].size() != 1; };
+  std::vector<std::int32_t> chain;
+  std::vector<Vec3> pts;
+  std::vector<double> tol, maxSeg;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!kept[k] || !isKey(k)) continue;
+    select[k] = 1;
+    for (std::int32_t c : keptChildren[k]) {
+      chain.assign(1, static_cast<std::int32_t>(k));
+      for (std::int32_t cur = c;; cur = keptChildren[cur].front()) {
+        chain.push_back(cur);
+        if (isKey(cur)) break;
+      }
+      pts.clear();
+      tol.clear();
+      maxSeg.clear();
+      for (std::int32_t id : chain) {
+        pts.push_back(position[id]);
+        tol.push_back(std::max(o.collinearToleranceRadii * t.radius[id], o.collinearToleranceVoxels * voxelSize));
+        maxSeg.push_back(std::max(o.maxSegmentRadii * t.radius[id], o.maxSegmentBins * binWidth));
+      }
+      std::vector<char> keep(chain.size(), 0);
+      keep.front() = keep.back() = 1;
+      douglasPeucker(pts, tol, maxSeg, 0, chain.size() - 1, keep);
+      for (std::size_t j = 0; j < chain.size(); ++j)
+        if (keep[j]) select[chain[j]] = 1;
+    }
+  }
+  return select;
+}
+
+// The selected nodes, re-indexed (raw order is parent-first, so the result is too), each linked to
+// its nearest selected ancestor, with its straightened position and smoothed radius.
+std::vector<SkeletonNode> selectedNodes(const RawTree& t, const std::vector<char>& select,
+                                        const std::vector<Vec3>& position) {
+  const auto& raw = t.raw;
+  std::vector<SkeletonNode> out;
+  std::vector<std::int32_t> newIndex(raw.size(), -1);
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    if (!select[i]) continue;
+    newIndex[i] = static_cast<std::int32_t>(out.size());
+    SkeletonNode node = raw[i];
+    node.raw = static_cast<std::int32_t>(i);
+    node.position = position[i];
+    node.radius = t.radius[i];
+    node.children.clear();
+    std::int32_t p = raw[i].parent;
+    while (p >= 0 && !select[p]) p = raw[p].parent;
+    node.parent = p >= 0 ? newIndex[p] : -1;
+    out.push_back(node);
+  }
+  detail::linkChildren(out);
+  return out;
+}
+
+// Directions (from the previous to the next node along the main chain) and branch orders (+1 for
+// a side child) of the simplified nodes.
+void setDirectionsAndOrders(std::vector<SkeletonNode>& out, geom::UpAxis upAxis) {
+  const std::vector<double> reach = detail::subtreeReach(out);
+  const Vec3 up = geom::upVector(upAxis);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    auto& node = out[i];
+    const std::int32_t m = mainChild(out, reach, i);
+    const Vec3 next = m >= 0 ? out[m].position : node.position;
+    const Vec3 prev = node.parent >= 0 ? out[node.parent].position : node.position;
+    node.direction = detail::safeNormalized(next - prev, node.direction.norm() > 0 ? node.direction : up);
+    node.branchOrder = node.parent < 0 ? 0 : out[node.parent].branchOrder;
+    if (node.parent >= 0 && mainChild(out, reach, node.parent) != static_cast<std::int32_t>(i)) ++node.branchOrder;
+  }
+}
+
+}  // namespace
+
+std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw, double voxelSize, double binWidth,
+                                           const SkeletonOptions& options) {
+  detail::checkOptions(options);
+  if (raw.empty()) return {};
+  const RawTree tree = describe(raw, options);
+  const std::vector<char> kept = pruneNodes(tree, binWidth, options);
+  std::vector<std::vector<std::int32_t>> keptChildren(raw.size());
+  for (std::size_t i = 1; i < raw.size(); ++i)
+    if (kept[i]) keptChildren[raw[i].parent].push_back(static_cast<std::int32_t>(i));
+  const std::vector<Vec3> position = straightenForks(tree, kept, keptChildren, binWidth, options);
+  const std::vector<char> select = simplifyChains(tree, kept, keptChildren, position, voxelSize, binWidth, options);
+  std::vector<SkeletonNode> out = selectedNodes(tree, select, position);
+  setDirectionsAndOrders(out, options.up);
+  return out;
+}
+
+}  // namespace treesketch::skeleton
