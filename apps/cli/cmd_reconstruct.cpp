@@ -145,7 +145,7 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   if (!a.cylinders.empty()) skeleton::writeCylinderCsv(a.cylinders, r.model);
   std::string fitSummary;
   if (!a.report.empty()) {
-    const geom::CylinderModel model = compare::cylinderModelFromSkeleton(r.model);
+    const geom::CylinderModel model = skeleton::cylinderModelFromSkeleton(r.model);
     nlohmann::json j;
     j["cloud"] = a.cloud;
     j["mesh"] = a.output;

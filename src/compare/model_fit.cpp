@@ -313,17 +313,6 @@ ModelFigures modelFigures(const geom::CylinderModel& model, geom::UpAxis up, dou
   return f;
 }
 
-geom::CylinderModel cylinderModelFromSkeleton(const std::vector<skeleton::SkeletonNode>& nodes) {
-  std::vector<geom::ModelNode> m(nodes.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    m[i].position = nodes[i].position;
-    m[i].radius = nodes[i].radius;
-    m[i].parent = nodes[i].parent;
-    m[i].branchOrder = nodes[i].branchOrder;
-  }
-  return geom::cylinderModelFromNodes(m);
-}
-
 // ---- output -----------------------------------------------------------------------------------
 
 namespace {

@@ -16,15 +16,16 @@ void writeCylinderCsv(std::ostream& out, const std::vector<SkeletonNode>& nodes)
     if (n.parent < 0) continue;
     const auto& p = nodes[n.parent];
     const std::int64_t parentCylinder = p.parent < 0 ? -1 : n.parent;
-    out << i << ',' << parentCylinder << ',' << p.position.x() << ',' << p.position.y() << ',' << p.position.z()
-        << ',' << n.position.x() << ',' << n.position.y() << ',' << n.position.z() << ',' << n.radius << ','
+    out << i << ',' << parentCylinder << ',' << p.position.x() << ',' << p.position.y() << ',' << p.position.z() << ','
+        << n.position.x() << ',' << n.position.y() << ',' << n.position.z() << ',' << n.radius << ','
         << (n.position - p.position).norm() << ',' << n.branchOrder << ',' << p.radius << '\n';
   }
   if (!out) throw OutputError("cylinder table: write failed");
 }
 
 void writeCylinderCsv(const std::filesystem::path& path, const std::vector<SkeletonNode>& nodes) {
-  writeFileAtomically(path, [&](std::ostream& out) { writeCylinderCsv(out, nodes); }, false);
+  writeFileAtomically(
+      path, [&](std::ostream& out) { writeCylinderCsv(out, nodes); }, false);
 }
 
 void writeSkeletonObj(std::ostream& out, const std::vector<SkeletonNode>& nodes) {
@@ -37,7 +38,19 @@ void writeSkeletonObj(std::ostream& out, const std::vector<SkeletonNode>& nodes)
 }
 
 void writeSkeletonObj(const std::filesystem::path& path, const std::vector<SkeletonNode>& nodes) {
-  writeFileAtomically(path, [&](std::ostream& out) { writeSkeletonObj(out, nodes); }, false);
+  writeFileAtomically(
+      path, [&](std::ostream& out) { writeSkeletonObj(out, nodes); }, false);
+}
+
+geom::CylinderModel cylinderModelFromSkeleton(const std::vector<SkeletonNode>& nodes) {
+  std::vector<geom::ModelNode> m(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    m[i].position = nodes[i].position;
+    m[i].radius = nodes[i].radius;
+    m[i].parent = nodes[i].parent;
+    m[i].branchOrder = nodes[i].branchOrder;
+  }
+  return geom::cylinderModelFromNodes(m);
 }
 
 }  // namespace treesketch::skeleton

@@ -222,33 +222,5 @@ TEST(ModelFitFigures, VolumeLengthTrunkDiameter) {
   EXPECT_NE(summaryLine(f).find("trunk diameter at 1.3 m 28.4 cm"), std::string::npos) << summaryLine(f);
 }
 
-TEST(ModelFitFigures, SkeletonModelIsFrustumsBetweenNodes) {
-  std::vector<skeleton::SkeletonNode> nodes(4);
-  nodes[0].position = {0, 0, 0};
-  nodes[0].radius = 0.3;
-  nodes[1].position = {0, 0, 1};
-  nodes[1].radius = 0.2;
-  nodes[1].parent = 0;
-  nodes[2].position = {0, 0, 2};
-  nodes[2].radius = 0.1;
-  nodes[2].parent = 1;
-  nodes[3].position = {1, 0, 1};
-  nodes[3].radius = 0.05;
-  nodes[3].parent = 1;
-  nodes[3].branchOrder = 1;
-  const CylinderModel m = cylinderModelFromSkeleton(nodes);
-  ASSERT_EQ(m.size(), 3u);
-  EXPECT_EQ(m.cylinders[0].start, Vec3(0, 0, 0));
-  EXPECT_DOUBLE_EQ(m.cylinders[0].startRadius, 0.3);
-  EXPECT_DOUBLE_EQ(m.cylinders[0].endRadius, 0.2);
-  EXPECT_EQ(m.cylinders[0].parent, -1);
-  EXPECT_EQ(m.cylinders[1].parent, 0);
-  EXPECT_DOUBLE_EQ(m.cylinders[2].startRadius, 0.2);  // a side branch starts with its fork's radius
-  EXPECT_EQ(m.cylinders[2].parent, 0);
-  EXPECT_EQ(m.cylinders[2].branchOrder, 1);
-  nodes[3].parent = 9;
-  EXPECT_THROW(cylinderModelFromSkeleton(nodes), OptionsError);
-}
-
 }  // namespace
 }  // namespace treesketch::compare

@@ -77,3 +77,30 @@ TEST(SkeletonExport, UnwritablePathThrowsAndLeavesNothing) {
   skeleton::writeCylinderCsv(dir / "empty.csv", {});
   EXPECT_EQ(test::readText(dir / "empty.csv"), std::string(skeleton::kCylinderCsvHeader) + "\n");
 }
+TEST(SkeletonExport, SkeletonModelIsFrustumsBetweenNodes) {
+  std::vector<skeleton::SkeletonNode> nodes(4);
+  nodes[0].position = {0, 0, 0};
+  nodes[0].radius = 0.3;
+  nodes[1].position = {0, 0, 1};
+  nodes[1].radius = 0.2;
+  nodes[1].parent = 0;
+  nodes[2].position = {0, 0, 2};
+  nodes[2].radius = 0.1;
+  nodes[2].parent = 1;
+  nodes[3].position = {1, 0, 1};
+  nodes[3].radius = 0.05;
+  nodes[3].parent = 1;
+  nodes[3].branchOrder = 1;
+  const geom::CylinderModel m = skeleton::cylinderModelFromSkeleton(nodes);
+  ASSERT_EQ(m.size(), 3u);
+  EXPECT_EQ(m.cylinders[0].start, geom::Vec3(0, 0, 0));
+  EXPECT_DOUBLE_EQ(m.cylinders[0].startRadius, 0.3);
+  EXPECT_DOUBLE_EQ(m.cylinders[0].endRadius, 0.2);
+  EXPECT_EQ(m.cylinders[0].parent, -1);
+  EXPECT_EQ(m.cylinders[1].parent, 0);
+  EXPECT_DOUBLE_EQ(m.cylinders[2].startRadius, 0.2);  // a side branch starts with its fork's radius
+  EXPECT_EQ(m.cylinders[2].parent, 0);
+  EXPECT_EQ(m.cylinders[2].branchOrder, 1);
+  nodes[3].parent = 9;
+  EXPECT_THROW(skeleton::cylinderModelFromSkeleton(nodes), OptionsError);
+}

@@ -28,7 +28,6 @@
 #include "treesketch/geom/cylinder_model.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/types.h"
-#include "treesketch/skeleton/skeleton.h"
 
 namespace treesketch::compare {
 
@@ -115,9 +114,7 @@ struct ModelFigures {
 ModelFigures modelFigures(const geom::CylinderModel& model, geom::UpAxis up, double unitMetres = 1.0,
                           double breastHeightMetres = 1.3);
 
-/// A skeleton model (skeleton::AutoSkeletonResult::model, SkeletonNode list) as frustums: one per
-/// parent→child link, with the two nodes' radii, branch order of the child.
-geom::CylinderModel cylinderModelFromSkeleton(const std::vector<skeleton::SkeletonNode>& nodes);
+/// (A skeleton model becomes a CylinderModel with skeleton::cylinderModelFromSkeleton.)
 
 /// JSON forms: shares as fractions (0-1), lengths in metres, NaN as null.
 nlohmann::json toJson(const ModelFitReport& report);

@@ -7,6 +7,7 @@
 #include <ostream>
 #include <vector>
 
+#include "treesketch/geom/cylinder_model.h"
 #include "treesketch/skeleton/skeleton.h"
 
 namespace treesketch::skeleton {
@@ -25,6 +26,10 @@ inline constexpr const char* kCylinderCsvHeader =
 void writeCylinderCsv(std::ostream& out, const std::vector<SkeletonNode>& nodes);
 /// Same, to a file (atomic). Throws OutputError when it cannot be written.
 void writeCylinderCsv(const std::filesystem::path& path, const std::vector<SkeletonNode>& nodes);
+
+/// The model as frustums (geom::CylinderModel, what compare::measureModelFit takes): one per
+/// parent→child link, with the two nodes' radii, branch order of the child.
+geom::CylinderModel cylinderModelFromSkeleton(const std::vector<SkeletonNode>& nodes);
 
 /// OBJ polyline: a comment line, `v x y z` for every node in order, `l p c` (1-based) for every
 /// parent→child link.
