@@ -97,7 +97,7 @@ struct RawScene {
   Vec3 offset;
   explicit RawScene(RTCBuildQuality quality) {
     const TriMesh& m = treeMesh();
-    offset = m.bounds().center();
+    offset = m.bounds().centre();
     device = rtcNewDevice(nullptr);
     if (!device) throw std::runtime_error("no Embree device");
     scene = rtcNewScene(device);
@@ -170,7 +170,7 @@ BENCHMARK(BM_RawEmbreeIntersect1)
 void BM_RaySceneIntersectAll(benchmark::State& state) {
   tbb::global_control gc(tbb::global_control::max_allowed_parallelism, state.range(0));
   const accel::RayScene scene(treeMesh());
-  const Vec3 offset = treeMesh().bounds().center();
+  const Vec3 offset = treeMesh().bounds().centre();
   std::vector<accel::Ray> rays;
   for (const RTCRay& r : scannerRays(offset)) {
     accel::Ray a;

@@ -84,7 +84,7 @@ void runRender(const RenderArgs& a) {
   }
   if (sk) {
     geom::BBox focusBox = scene.bounds();
-    geom::Vec3 focus = focusBox.empty() ? geom::Vec3::Zero() : focusBox.center();
+    geom::Vec3 focus = focusBox.empty() ? geom::Vec3::Zero() : focusBox.centre();
     std::size_t placed = render::addSketch(scene, *sk, focus, {220, 30, 30});
     if (placed < sk->size())
       std::fprintf(stderr, "render: %zu of %zu sketch nodes had no usable position and were skipped\n",

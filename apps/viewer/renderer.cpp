@@ -144,7 +144,7 @@ void Renderer::uploadCloud(viewer::ViewerState& state) {
   const geom::PointCloud& cloud = state.cloud();
   if (cloudVersion_ != state.cloudVersion()) {
     cloudVersion_ = state.cloudVersion();
-    origin_ = cloud.empty() ? Vec3::Zero() : state.bounds().center();
+    origin_ = cloud.empty() ? Vec3::Zero() : state.bounds().centre();
     std::vector<float> pos(3 * cloud.size());
     for (std::size_t i = 0; i < cloud.size(); ++i)
       for (int k = 0; k < 3; ++k) pos[3 * i + k] = static_cast<float>(cloud.positions[i][k] - origin_[k]);

@@ -176,10 +176,10 @@ void MeshClosestPoint::Impl::build(const geom::TriMesh& mesh) {
   for (std::size_t i = 0; i < nt; ++i) {
     const auto& t = mesh.triangles[i];
     for (auto v : t) boxes[i].add(mesh.vertices[v]);
-    centroids[i] = boxes[i].center();
+    centroids[i] = boxes[i].centre();
     all.add(boxes[i]);
   }
-  origin = all.center();
+  origin = all.centre();
   scale = all.diagonal();
   triangles = nt;
   std::vector<std::uint32_t> ids(nt);

@@ -149,7 +149,7 @@ RayScene::RayScene(const std::vector<geom::TriMesh>& meshes, const RaySceneOptio
     s.triangleCount += in.triangles.size();
     if (!in.triangles.empty()) s.bounds.add(in.bounds());
   }
-  s.centre = s.bounds.empty() ? Vec3::Zero() : s.bounds.center();
+  s.centre = s.bounds.empty() ? Vec3::Zero() : s.bounds.centre();
 
   s.device = rtcNewDevice(nullptr);
   if (!s.device)

@@ -189,7 +189,7 @@ CylinderModelIndex::CylinderModelIndex(const geom::CylinderModel& model) : impl_
   const auto n = static_cast<std::uint32_t>(impl_->pieces.size());
   if (n == 0) return;
   std::vector<Vec3> centres(n);
-  for (std::uint32_t i = 0; i < n; ++i) centres[i] = impl_->boxes[i].center();
+  for (std::uint32_t i = 0; i < n; ++i) centres[i] = impl_->boxes[i].centre();
   impl_->order.resize(n);
   std::iota(impl_->order.begin(), impl_->order.end(), 0u);
   impl_->nodes.reserve(2 * (n / Impl::kLeafSize + 1));

@@ -23,7 +23,7 @@ TreeCase treeCaseFromGenerated(const std::string& name, const gen::GeneratedTree
     sketch::BranchPolyline pl;
     std::vector<double> radii;
     for (const auto& s : b.sections) {
-      pl.points.push_back(s.center);
+      pl.points.push_back(s.centre);
       radii.push_back(s.radius);
     }
     pl.parent = b.parent;
@@ -86,7 +86,7 @@ void readEzTreeAxes(const fs::path& jsonPath, std::vector<sketch::BranchPolyline
     for (std::size_t s = 0; s < limb["sections"].size(); ++s) {
       const auto& sec = limb["sections"][s];
       pl.points.push_back(readVec3(sec.value("center", nlohmann::json()), source,
-                                   where + ".sections[" + std::to_string(s) + "].center"));
+                                   where + ".sections[" + std::to_string(s) + "].centre"));
       r.push_back(sec.value("radius", 0.0));
     }
     int parentLimb = -1;

@@ -141,7 +141,7 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
     sorted_[slot] = pts[i];
     ids_[slot] = std::uint32_t(i);
   }
-  centre_ = bounds_.center();
+  centre_ = bounds_.centre();
   for (int a = 0; a < 3; ++a) {
     fpos_[a].assign(nFinite + 8, 0.0f);  // padded: the pre-test reads blocks of 4 (8 with AVX2)
     for (std::size_t s = 0; s < nFinite; ++s) fpos_[a][s] = float(sorted_[s][a] - centre_[a]);

@@ -61,7 +61,7 @@ BranchMesh buildBranchMesh(const Skeleton& skeleton, const BranchMeshOptions& op
       const Vec3 v = s.axis.cross(u[i]);
       for (int j = 0; j < n; ++j) {
         double angle = 2.0 * std::numbers::pi * j / n;
-        verts.push_back(s.center + s.radius * (std::cos(angle) * u[i] + std::sin(angle) * v));
+        verts.push_back(s.centre + s.radius * (std::cos(angle) * u[i] + std::sin(angle) * v));
         out.vertexBranch.push_back(b.id);
         out.vertexSection.push_back(static_cast<std::int32_t>(i));
       }

@@ -26,7 +26,7 @@ int Skeleton::maxLevel() const {
 double branchLength(const SkeletonBranch& branch) {
   double length = 0;
   for (std::size_t i = 1; i < branch.sections.size(); ++i)
-    length += (branch.sections[i].center - branch.sections[i - 1].center).norm();
+    length += (branch.sections[i].centre - branch.sections[i - 1].centre).norm();
   return length;
 }
 
@@ -40,8 +40,8 @@ geom::BBox bounds(const Skeleton& skeleton) {
   geom::BBox box;
   for (const auto& b : skeleton.branches)
     for (const auto& s : b.sections) {
-      box.add(s.center - Vec3::Constant(s.radius));
-      box.add(s.center + Vec3::Constant(s.radius));
+      box.add(s.centre - Vec3::Constant(s.radius));
+      box.add(s.centre + Vec3::Constant(s.radius));
     }
   return box;
 }
@@ -50,7 +50,7 @@ double woodVolume(const Skeleton& skeleton) {
   double volume = 0;
   for (const auto& b : skeleton.branches)
     for (std::size_t i = 1; i < b.sections.size(); ++i) {
-      double h = (b.sections[i].center - b.sections[i - 1].center).norm();
+      double h = (b.sections[i].centre - b.sections[i - 1].centre).norm();
       double r0 = b.sections[i - 1].radius, r1 = b.sections[i].radius;
       volume += std::numbers::pi * h * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
     }
@@ -62,7 +62,7 @@ NearestSection nearestSection(const Skeleton& skeleton, const Vec3& p) {
   double bestSq = std::numeric_limits<double>::infinity();
   for (const auto& b : skeleton.branches)
     for (std::size_t i = 0; i < b.sections.size(); ++i) {
-      double d2 = (b.sections[i].center - p).squaredNorm();
+      double d2 = (b.sections[i].centre - p).squaredNorm();
       if (d2 < bestSq) {
         bestSq = d2;
         best.branch = b.id;
@@ -74,7 +74,7 @@ NearestSection nearestSection(const Skeleton& skeleton, const Vec3& p) {
 }
 
 double distanceToSectionAxis(const Section& s, const Vec3& p) {
-  Vec3 d = p - s.center;
+  Vec3 d = p - s.centre;
   return (d - d.dot(s.axis) * s.axis).norm();
 }
 
@@ -97,7 +97,7 @@ std::string findSkeletonProblem(const Skeleton& skeleton) {
     for (std::size_t si = 0; si < b.sections.size(); ++si) {
       const Section& s = b.sections[si];
       std::string at = where + " section " + std::to_string(si);
-      if (!s.center.allFinite()) return at + ": centre is not finite";
+      if (!s.centre.allFinite()) return at + ": centre is not finite";
       if (!std::isfinite(s.radius) || s.radius <= 0) return at + ": radius must be positive and finite";
       if (!s.axis.allFinite() || std::abs(s.axis.norm() - 1.0) > 1e-6) return at + ": axis must be a unit vector";
     }
@@ -115,7 +115,7 @@ void convertUpAxis(Skeleton& skeleton, geom::UpAxis to) {
   if (skeleton.up == to) return;
   for (auto& b : skeleton.branches)
     for (auto& s : b.sections) {
-      s.center = convertUpAxis(s.center, skeleton.up, to);
+      s.centre = convertUpAxis(s.centre, skeleton.up, to);
       s.axis = convertUpAxis(s.axis, skeleton.up, to);
     }
   skeleton.up = to;
@@ -141,8 +141,8 @@ Skeleton refineSkeleton(const Skeleton& skeleton, int factor) {
     // Catmull–Rom tangents (uniform parameter), one-sided at the ends.
     std::vector<Vec3> tangent(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec3& prev = s[i == 0 ? 0 : i - 1].center;
-      const Vec3& next = s[i + 1 == n ? n - 1 : i + 1].center;
+      const Vec3& prev = s[i == 0 ? 0 : i - 1].centre;
+      const Vec3& next = s[i + 1 == n ? n - 1 : i + 1].centre;
       tangent[i] = (i == 0 || i + 1 == n) ? Vec3(next - prev) : Vec3(0.5 * (next - prev));
     }
     for (std::size_t i = 0; i + 1 < n; ++i) {
@@ -154,8 +154,8 @@ Skeleton refineSkeleton(const Skeleton& skeleton, int factor) {
         double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
         double d00 = 6 * t2 - 6 * t, d10 = 3 * t2 - 4 * t + 1, d01 = -6 * t2 + 6 * t, d11 = 3 * t2 - 2 * t;
         Section q;
-        q.center = h00 * s[i].center + h10 * tangent[i] + h01 * s[i + 1].center + h11 * tangent[i + 1];
-        Vec3 d = d00 * s[i].center + d10 * tangent[i] + d01 * s[i + 1].center + d11 * tangent[i + 1];
+        q.centre = h00 * s[i].centre + h10 * tangent[i] + h01 * s[i + 1].centre + h11 * tangent[i + 1];
+        Vec3 d = d00 * s[i].centre + d10 * tangent[i] + d01 * s[i + 1].centre + d11 * tangent[i + 1];
         double dn = d.norm();
         q.axis = dn > 0 ? Vec3(d / dn) : Vec3(((1 - t) * s[i].axis + t * s[i + 1].axis).normalized());
         q.radius = (1 - t) * s[i].radius + t * s[i + 1].radius;

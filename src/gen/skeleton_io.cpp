@@ -60,7 +60,7 @@ json skeletonToJson(const Skeleton& skeleton) {
   for (const SkeletonBranch& b : skeleton.branches) {
     json sections = json::array();
     for (const Section& s : b.sections)
-      sections.push_back({{"center", vecToJson(s.center)}, {"radius", s.radius}, {"axis", vecToJson(s.axis)}});
+      sections.push_back({{"center", vecToJson(s.centre)}, {"radius", s.radius}, {"axis", vecToJson(s.axis)}});
     branches.push_back({{"id", b.id},
                         {"parent", b.parent},
                         {"parent_section", b.parentSection},
@@ -105,7 +105,7 @@ Skeleton skeletonFromJson(const json& j, const std::string& source) {
     for (std::size_t si = 0; si < sections.size(); ++si) {
       const std::string sp = bp + ".sections[" + std::to_string(si) + "]";
       Section s;
-      s.center = r.vec3(r.field(sections[si], sp, "center"), sp + ".center");
+      s.centre = r.vec3(r.field(sections[si], sp, "center"), sp + ".centre");
       s.radius = r.number(r.field(sections[si], sp, "radius"), sp + ".radius");
       s.axis = r.vec3(r.field(sections[si], sp, "axis"), sp + ".axis");
       b.sections.push_back(s);

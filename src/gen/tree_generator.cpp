@@ -62,7 +62,7 @@ SkeletonBranch growBranch(const Bud& bud, const LevelOptions& lo, double minRadi
   b.level = bud.level;
   for (int i = 0; i < n; ++i) {
     Section s;
-    s.center = centres[i];
+    s.centre = centres[i];
     Vec3 tangent = centres[std::min(i + 1, n - 1)] - centres[std::max(i - 1, 0)];
     s.axis = tangent.normalized();
     double t = static_cast<double>(i) / (n - 1);
@@ -106,7 +106,7 @@ void budChildren(const SkeletonBranch& b, const TreeOptions& options, Rng& rng, 
     bud.parent = b.id;
     bud.parentSection = k;
     bud.level = b.level + 1;
-    bud.start = at.center;
+    bud.start = at.centre;
     bud.direction = (std::cos(theta) * at.axis + std::sin(theta) * (std::cos(phi) * fu + std::sin(phi) * fv)).normalized();
     double jitter = std::clamp(1.0 + child.lengthJitter * rng.normal(), 0.3, 1.7);
     bud.length = child.length * length * (1.0 - lo.childLengthTaper * u) * jitter;
@@ -125,7 +125,7 @@ geom::TriMesh growLeaves(const Skeleton& skeleton, const TreeOptions& options) {
     Rng rng = Rng::substream(options.seed, static_cast<std::uint64_t>(b.id), kSaltLeaves);
     std::vector<double> cumulative{0.0};
     for (std::size_t i = 1; i < b.sections.size(); ++i)
-      cumulative.push_back(cumulative.back() + (b.sections[i].center - b.sections[i - 1].center).norm());
+      cumulative.push_back(cumulative.back() + (b.sections[i].centre - b.sections[i - 1].centre).norm());
     const double length = cumulative.back();
     if (length <= 0) continue;
     for (int l = 0; l < options.leavesPerBranch; ++l) {
@@ -135,8 +135,8 @@ geom::TriMesh growLeaves(const Skeleton& skeleton, const TreeOptions& options) {
       const Section &s0 = b.sections[i - 1], &s1 = b.sections[i];
       double seg = cumulative[i] - cumulative[i - 1];
       double f = seg > 0 ? std::clamp((at - cumulative[i - 1]) / seg, 0.0, 1.0) : 0.0;
-      Vec3 axis = (s1.center - s0.center).normalized();
-      Vec3 centre = (1 - f) * s0.center + f * s1.center;
+      Vec3 axis = (s1.centre - s0.centre).normalized();
+      Vec3 centre = (1 - f) * s0.centre + f * s1.centre;
       double radius = (1 - f) * s0.radius + f * s1.radius;
       Vec3 pu = geom::anyPerpendicular(axis), pv = axis.cross(pu);
       double phi = rng.uniform(0.0, 2.0 * std::numbers::pi);

@@ -105,7 +105,7 @@ Camera presetCamera(PresetView view, const BBox& box, UpAxis up, const Viewport&
     camUp = up == UpAxis::Y ? Vec3(0, 0, -1) : Vec3(0, 1, 0);
   }
   (void)depthAx;
-  Vec3 c = box.center();
+  Vec3 c = box.centre();
   double radius = 0.5 * std::max(box.diagonal(), 1e-9);
   Vec3 right = dir.cross(camUp).normalized();
   Vec3 ext = box.extent();

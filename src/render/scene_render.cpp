@@ -46,7 +46,7 @@ geom::Camera isoCamera(const geom::BBox& box, geom::UpAxis up, int width, int he
   const double tanV = std::tan(0.5 * kIsoFovYDeg * M_PI / 180.0) * kFrameFill, tanH = tanV * aspect;
   const double radius = 0.5 * box.diagonal();
 
-  Vec3 target = box.center();
+  Vec3 target = box.centre();
   double dist = 0;
   for (int pass = 0; pass < 3; ++pass) {  // solve the distance, then re-centre the picture on the box
     geom::Mat4 rot = geom::lookAt(target + toEye, target, upV);
@@ -131,7 +131,7 @@ geom::Camera fitCamera(const geom::BBox& box, RenderView view, geom::UpAxis up, 
   if (!box.min.allFinite() || !box.max.allFinite()) throw OptionsError("render: bounding box has NaN or Inf");
   geom::BBox b = box;
   if (b.diagonal() < 1e-9) {  // a single point: frame a small cube around it
-    double pad = 1e-3 * std::max(1.0, b.center().norm());
+    double pad = 1e-3 * std::max(1.0, b.centre().norm());
     b.add(Vec3(b.min.array() - pad));
     b.add(Vec3(b.max.array() + pad));
   }

@@ -79,7 +79,7 @@ BeamReturn castBeam(const accel::RayScene& scene, const accel::Ray& ray, const B
   // the 7 traversals are skipped (the test costs less than one ray's setup).
   const geom::BBox& box = scene.bounds();
   if (box.empty()) return out;
-  const double reach = std::min(rangeFar, (ray.origin - box.center()).norm() + 0.5 * box.diagonal());
+  const double reach = std::min(rangeFar, (ray.origin - box.centre()).norm() + 0.5 * box.diagonal());
   const double margin = 0.5 * beam.exitDiameter / unitMetres + 0.5 * beam.divergenceMrad * 1e-3 * reach;
   if (!segmentMeetsBox(ray.origin, d, reach, box, margin)) return out;
 

@@ -145,7 +145,7 @@ struct SpherePattern {
 
   SpherePattern(const SphereScanOptions& options, const geom::BBox& box)
       : n(sphereGridSize(options)),
-        centre(box.center()),
+        centre(box.centre()),
         radius(options.radius > 0.0 ? options.radius : options.radiusFactor * box.diagonal()),
         cosJitter(std::cos(options.jitterDeg * std::numbers::pi / 180.0)),
         seed(options.seed) {}

@@ -106,7 +106,7 @@ std::vector<Vec3> tlsStationPositions(const TlsScanOptions& o, const geom::BBox&
   Vec3 e1, e2;
   horizontalAxes(o.up, e1, e2);
   const Vec3 upv = geom::upVector(o.up);
-  const Vec3 c = bounds.center();
+  const Vec3 c = bounds.centre();
   const Vec3 base =
       c - upv * geom::height(c, o.up) + upv * (geom::height(bounds.min, o.up) + o.stationHeight / o.unitMetres);
   const double radius = o.stationRadius > 0.0 ? o.stationRadius : o.radiusFactor * bounds.diagonal();

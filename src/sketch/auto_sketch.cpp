@@ -77,7 +77,7 @@ Sketch uniformAutoSketch(const geom::PointCloud& cloud, const geom::Camera& came
   double band = (yMax - yMin) / nodeCount;  // pixels
 
   // World size of one pixel at the depth of the cloud's centre (exact for orthographic cameras).
-  Vec3 c = camera.project(bounds.center());
+  Vec3 c = camera.project(bounds.centre());
   double depth = (c.allFinite() && c.z() >= 0.0 && c.z() <= 1.0) ? c.z() : 0.5;
   Vec2 cs(x, 0.5 * (yMin + yMax));
   double pixel = (camera.unproject(cs + Vec2(0, 1), depth) - camera.unproject(cs, depth)).norm();

@@ -34,7 +34,7 @@ void OrbitCamera::fit() {
     setDistance(1.0 / tanHalf);
     return;
   }
-  target_ = scene_.center();
+  target_ = scene_.centre();
   // The box's corners in the eye axes: its half-extents across and along the view.
   geom::Mat3 m = orientation_.toRotationMatrix();
   double halfW = 0, halfH = 0, halfD = 0;
@@ -117,7 +117,7 @@ geom::Camera OrbitCamera::camera() const {
   cam.view.block<3, 3>(0, 0) = m.transpose();
   cam.view.block<3, 1>(0, 3) = -m.transpose() * eye;
   // Depth range: the scene's bounding sphere as seen along the view axis, with some slack.
-  Vec3 centre = scene_.empty() ? target_ : scene_.center();
+  Vec3 centre = scene_.empty() ? target_ : scene_.centre();
   double r = sceneRadius() * 1.1;
   double dc = (centre - eye).dot(-m.col(2));
   double aspect = viewport_.width / viewport_.height;

@@ -217,7 +217,7 @@ Vec3 ViewerState::anchor(NodeId id) const {
   if (f.status == NodeStatus::Fitted) return f.circle.centre;
   sketch::NodeGeometry g = sketch_.geometry(id);
   if (!g.hasLine) return g.planePoint;
-  Vec3 c = cloud_.empty() ? g.linePoint : bounds_.center();
+  Vec3 c = cloud_.empty() ? g.linePoint : bounds_.centre();
   return g.linePoint + (c - g.linePoint).dot(g.lineDir) * g.lineDir;
 }
 

@@ -23,7 +23,7 @@ TEST(CmdDemo, WritesTheTreeTheScanAndASummary) {
   GeneratedTree expected = generateTree(o);
   Skeleton skeleton = readSkeletonJson(out / "tree_skeleton.json");
   ASSERT_EQ(skeleton.branches.size(), expected.skeleton.branches.size());
-  EXPECT_EQ(skeleton.branches.back().sections.back().center, expected.skeleton.branches.back().sections.back().center);
+  EXPECT_EQ(skeleton.branches.back().sections.back().centre, expected.skeleton.branches.back().sections.back().centre);
 
   geom::TriMesh branches = io::readMesh(out / "tree_branches.obj");
   EXPECT_EQ(branches.triangles.size(), expected.branches.mesh.triangles.size());

@@ -68,14 +68,14 @@ TEST(BranchMesh, RingsLieOnTheirSectionsAndDoNotTwist) {
   child.parentSection = 5;
   child.level = 1;
   for (int i = 0; i < 4; ++i)
-    child.sections.push_back({trunk.sections[5].center + Vec3(0.3 * i, 0.1 * i, 0), 0.03, Vec3(3, 1, 0).normalized()});
+    child.sections.push_back({trunk.sections[5].centre + Vec3(0.3 * i, 0.1 * i, 0), 0.03, Vec3(3, 1, 0).normalized()});
   s.branches = {trunk, child};
   BranchMesh bm = buildBranchMesh(s, BranchMeshOptions{{8, 5}});
   ASSERT_EQ(bm.vertexBranch.size(), bm.mesh.vertices.size());
   EXPECT_EQ(bm.mesh.vertices.size(), 12u * 8 + 4u * 5);
   for (std::size_t v = 0; v < bm.mesh.vertices.size(); ++v) {
     const Section& sec = s.branches[bm.vertexBranch[v]].sections[bm.vertexSection[v]];
-    Vec3 d = bm.mesh.vertices[v] - sec.center;
+    Vec3 d = bm.mesh.vertices[v] - sec.centre;
     EXPECT_NEAR(d.norm(), sec.radius, 1e-12);
     EXPECT_NEAR(d.dot(sec.axis), 0.0, 1e-12);
     EXPECT_NEAR(distanceToSectionAxis(sec, bm.mesh.vertices[v]), sec.radius, 1e-12);
@@ -83,8 +83,8 @@ TEST(BranchMesh, RingsLieOnTheirSectionsAndDoNotTwist) {
   // No twist: vertex 0 of consecutive rings moves by a minimal rotation, so its direction
   // stays close (the axis turns by a small angle per section here).
   for (int i = 1; i < n; ++i) {
-    Vec3 a = (bm.mesh.vertices[(i - 1) * 8] - s.branches[0].sections[i - 1].center).normalized();
-    Vec3 b = (bm.mesh.vertices[i * 8] - s.branches[0].sections[i].center).normalized();
+    Vec3 a = (bm.mesh.vertices[(i - 1) * 8] - s.branches[0].sections[i - 1].centre).normalized();
+    Vec3 b = (bm.mesh.vertices[i * 8] - s.branches[0].sections[i].centre).normalized();
     double turn = std::acos(std::clamp(s.branches[0].sections[i - 1].axis.dot(s.branches[0].sections[i].axis), -1.0, 1.0));
     EXPECT_LE(std::acos(std::clamp(a.dot(b), -1.0, 1.0)), turn + 1e-9);
   }

@@ -25,7 +25,7 @@ void expectIdentical(const Skeleton& a, const Skeleton& b) {
     EXPECT_EQ(x.level, y.level);
     ASSERT_EQ(x.sections.size(), y.sections.size());
     for (std::size_t k = 0; k < x.sections.size(); ++k) {
-      EXPECT_EQ(x.sections[k].center, y.sections[k].center);  // bit-exact
+      EXPECT_EQ(x.sections[k].centre, y.sections[k].centre);  // bit-exact
       EXPECT_EQ(x.sections[k].radius, y.sections[k].radius);
       EXPECT_EQ(x.sections[k].axis, y.sections[k].axis);
     }
@@ -74,7 +74,7 @@ TEST(SkeletonIo, FileRoundTripIsExactAndHasTheFormatTag) {
 TEST(SkeletonIo, ReadsAHandWrittenFile) {
   Skeleton s = parse(validText());
   ASSERT_EQ(s.branches.size(), 1u);
-  EXPECT_EQ(s.branches[0].sections[1].center, Vec3(0, 1, 0));
+  EXPECT_EQ(s.branches[0].sections[1].centre, Vec3(0, 1, 0));
   EXPECT_EQ(s.branches[0].sections[1].radius, 0.05);
   EXPECT_EQ(parse(R"({"format":"treesketch-skeleton","version":1,"up":"z","branches":[]})").branches.size(), 0u);
 }
@@ -105,7 +105,7 @@ TEST(SkeletonIo, RejectsBadInput) {
   expectError(replaced(ok, "\"radius\":0.05", "\"radius\":\"a\""), "branches[0].sections[1].radius");
   expectError(replaced(ok, "\"radius\":0.05", "\"radius\":-1"), "radius must be positive");
   expectError(replaced(ok, "\"radius\":0.05", "\"radius\":1e999"), "finite numbers");
-  expectError(replaced(ok, "\"center\":[0,1,0]", "\"center\":[0,1]"), "branches[0].sections[1].center");
+  expectError(replaced(ok, "\"center\":[0,1,0]", "\"center\":[0,1]"), "branches[0].sections[1].centre");
   expectError(replaced(ok, "\"axis\":[0,1,0]}]", "\"axis\":[0,0,0]}]"), "unit vector");
   expectError(replaced(ok, ",\"level\":0", ""), "missing field \"level\"");
   expectError(replaced(ok, "\"parent\":-1", "\"parent\":0"), "parent 0 does not come before");

@@ -86,7 +86,7 @@ TEST(Skeleton, ProblemsAreFound) {
   s.branches[0].sections[1].radius = 0;
   expectProblem(s, "radius");
   s = smallTree();
-  s.branches[0].sections[1].center.x() = std::nan("");
+  s.branches[0].sections[1].centre.x() = std::nan("");
   expectProblem(s, "not finite");
   s = smallTree();
   s.branches[0].sections[1].axis = Vec3(0, 0, 0);
@@ -102,7 +102,7 @@ TEST(Skeleton, UpAxisConversionIsARotationAndRoundTrips) {
   convertUpAxis(z, geom::UpAxis::Z);
   EXPECT_EQ(z.up, geom::UpAxis::Z);
   // The trunk now grows along +Z; lengths are preserved.
-  EXPECT_EQ(z.branches[0].sections[4].center, Vec3(0, 0, 4));
+  EXPECT_EQ(z.branches[0].sections[4].centre, Vec3(0, 0, 4));
   EXPECT_EQ(z.branches[0].sections[0].axis, Vec3(0, 0, 1));
   EXPECT_DOUBLE_EQ(totalLength(z), totalLength(s));
   // Right-handed: x cross y = z is kept.
@@ -113,7 +113,7 @@ TEST(Skeleton, UpAxisConversionIsARotationAndRoundTrips) {
   convertUpAxis(z, geom::UpAxis::Y);
   for (std::size_t b = 0; b < s.branches.size(); ++b)
     for (std::size_t i = 0; i < s.branches[b].sections.size(); ++i) {
-      EXPECT_EQ(z.branches[b].sections[i].center, s.branches[b].sections[i].center);
+      EXPECT_EQ(z.branches[b].sections[i].centre, s.branches[b].sections[i].centre);
       EXPECT_EQ(z.branches[b].sections[i].axis, s.branches[b].sections[i].axis);
     }
 }
@@ -125,13 +125,13 @@ TEST(Skeleton, RefineKeepsOriginalSectionsAndRemapsParents) {
   EXPECT_EQ(r.branches[0].sections.size(), 13u);  // 4 segments * 3 + 1
   EXPECT_EQ(r.branches[1].sections.size(), 7u);
   EXPECT_EQ(r.branches[1].parentSection, 6);
-  EXPECT_EQ(r.branches[1].sections[0].center, r.branches[0].sections[6].center);
-  for (int i = 0; i < 5; ++i) EXPECT_EQ(r.branches[0].sections[3 * i].center, s.branches[0].sections[i].center);
+  EXPECT_EQ(r.branches[1].sections[0].centre, r.branches[0].sections[6].centre);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(r.branches[0].sections[3 * i].centre, s.branches[0].sections[i].centre);
   // A straight trunk stays straight; radii are interpolated linearly.
   for (const Section& q : r.branches[0].sections) {
-    EXPECT_NEAR(q.center.x(), 0.0, 1e-12);
+    EXPECT_NEAR(q.centre.x(), 0.0, 1e-12);
     EXPECT_NEAR((q.axis - Vec3(0, 1, 0)).norm(), 0.0, 1e-12);
-    EXPECT_NEAR(q.radius, 0.2 - 0.02 * q.center.y(), 1e-12);
+    EXPECT_NEAR(q.radius, 0.2 - 0.02 * q.centre.y(), 1e-12);
   }
   EXPECT_EQ(findSkeletonProblem(r), "");
   EXPECT_NEAR(totalLength(r), totalLength(s), 1e-12);
@@ -153,8 +153,8 @@ TEST(Skeleton, RefineFollowsACurve) {
   Skeleton r = refineSkeleton(s, 4);
   for (std::size_t i = 4; i + 4 < r.branches[0].sections.size(); ++i) {  // away from the one-sided ends
     const Section& q = r.branches[0].sections[i];
-    EXPECT_NEAR(q.center.norm(), 1.0, 2e-3);
-    EXPECT_NEAR(q.axis.dot(q.center.normalized()), 0.0, 2e-2);
+    EXPECT_NEAR(q.centre.norm(), 1.0, 2e-3);
+    EXPECT_NEAR(q.axis.dot(q.centre.normalized()), 0.0, 2e-2);
   }
 }
 

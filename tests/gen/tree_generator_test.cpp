@@ -52,7 +52,7 @@ TEST(TreeGenerator, DefaultLooksLikeASmallTree) {
   EXPECT_GT(box.max.y(), 6.0);
   EXPECT_LT(box.max.y(), 11.0);
   EXPECT_NEAR(box.min.y(), -0.15, 0.05);  // the capped base ring (trunk axis tilts a little)
-  EXPECT_EQ(s.branches[0].sections[0].center, Vec3::Zero());
+  EXPECT_EQ(s.branches[0].sections[0].centre, Vec3::Zero());
   EXPECT_EQ(s.branches[0].sections[0].radius, 0.15);
   int firstOrder = 0;
   for (const auto& b : s.branches) firstOrder += b.level == 1;
@@ -63,8 +63,8 @@ TEST(TreeGenerator, DefaultLooksLikeASmallTree) {
   EXPECT_LE(t.branches.mesh.triangles.size(), 40000u);
   EXPECT_GT(t.leaves.triangles.size(), 500u);
   // The trunk grows up, not sideways.
-  EXPECT_GT(s.branches[0].sections.back().center.y(), 5.0);
-  EXPECT_LT(std::hypot(s.branches[0].sections.back().center.x(), s.branches[0].sections.back().center.z()), 2.0);
+  EXPECT_GT(s.branches[0].sections.back().centre.y(), 5.0);
+  EXPECT_LT(std::hypot(s.branches[0].sections.back().centre.x(), s.branches[0].sections.back().centre.z()), 2.0);
 }
 
 TEST(TreeGenerator, MeshIsConsistentAndVerticesSitOnTheirSections) {
@@ -76,7 +76,7 @@ TEST(TreeGenerator, MeshIsConsistentAndVerticesSitOnTheirSections) {
     ASSERT_TRUE(m.vertices[v].allFinite());
     const Section& sec = t.skeleton.branches[t.branches.vertexBranch[v]].sections[t.branches.vertexSection[v]];
     ASSERT_NEAR(distanceToSectionAxis(sec, m.vertices[v]), sec.radius, 1e-9 + 1e-9 * sec.radius);
-    ASSERT_NEAR((m.vertices[v] - sec.center).dot(sec.axis), 0.0, 1e-9);
+    ASSERT_NEAR((m.vertices[v] - sec.centre).dot(sec.axis), 0.0, 1e-9);
   }
   for (const auto& tri : m.triangles) {
     double area = 0.5 * (m.vertices[tri[1]] - m.vertices[tri[0]]).cross(m.vertices[tri[2]] - m.vertices[tri[0]]).norm();
@@ -97,7 +97,7 @@ TEST(TreeGenerator, HierarchyFollowsThePipeModel) {
       const SkeletonBranch& p = s.branches[b.parent];
       EXPECT_EQ(b.level, p.level + 1);
       EXPECT_LE(b.sections[0].radius, p.sections[b.parentSection].radius);
-      EXPECT_EQ(b.sections[0].center, p.sections[b.parentSection].center);  // starts on the parent's axis
+      EXPECT_EQ(b.sections[0].centre, p.sections[b.parentSection].centre);  // starts on the parent's axis
       EXPECT_GE(b.sections[0].radius, TreeOptions{}.minRadius);
     }
   }
@@ -120,10 +120,10 @@ TEST(TreeGenerator, ZUpIsTheYUpTreeRotated) {
   for (std::size_t i = 0; i < y.leaves.vertices.size(); ++i)
     ASSERT_EQ(z.leaves.vertices[i], convertUpAxis(y.leaves.vertices[i], geom::UpAxis::Y, geom::UpAxis::Z));
   const Section& tip = z.skeleton.branches[0].sections.back();
-  EXPECT_GT(tip.center.z(), 5.0);
+  EXPECT_GT(tip.centre.z(), 5.0);
   Skeleton back = z.skeleton;
   convertUpAxis(back, geom::UpAxis::Y);
-  EXPECT_EQ(back.branches[0].sections.back().center, y.skeleton.branches[0].sections.back().center);
+  EXPECT_EQ(back.branches[0].sections.back().centre, y.skeleton.branches[0].sections.back().centre);
 }
 
 TEST(TreeGenerator, DetailRefinesTheSameTree) {
@@ -137,7 +137,7 @@ TEST(TreeGenerator, DetailRefinesTheSameTree) {
     const auto& cs = coarse.skeleton.branches[b].sections;
     const auto& fs = fine.skeleton.branches[b].sections;
     ASSERT_EQ(fs.size(), 2 * cs.size() - 1);
-    for (std::size_t i = 0; i < cs.size(); ++i) EXPECT_EQ(fs[2 * i].center, cs[i].center);
+    for (std::size_t i = 0; i < cs.size(); ++i) EXPECT_EQ(fs[2 * i].centre, cs[i].centre);
   }
   double ratio = double(fine.branches.mesh.triangles.size()) / double(coarse.branches.mesh.triangles.size());
   EXPECT_GT(ratio, 3.5);
@@ -160,7 +160,7 @@ TEST(TreeGenerator, LeavesAreQuadsOnTheHighestLevelAndDoNotChangeTheBranches) {
   EXPECT_EQ(b.leaves.triangles.size(), 6u * twigs);
   // Every leaf's first corner pair straddles a point on the surface of a top-level branch.
   geom::BBox box = bounds(a.skeleton);
-  for (const Vec3& v : a.leaves.vertices) EXPECT_LT((v - box.center()).norm(), box.diagonal());
+  for (const Vec3& v : a.leaves.vertices) EXPECT_LT((v - box.centre()).norm(), box.diagonal());
 }
 
 TEST(TreeGenerator, PresetsAndBadOptions) {

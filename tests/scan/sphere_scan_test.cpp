@@ -166,9 +166,9 @@ TEST(SphereScan, RaysAreJitteredWithinTheCapAndAimedAtTheCentre) {
   const std::uint64_t count = scan::sphereRayCount(o);
   for (std::uint64_t i = 0; i < count; ++i) {
     const accel::Ray r = scan::sphereScanRay(o, box, i);
-    EXPECT_NEAR((r.origin - box.center()).norm(), box.diagonal(), 1e-9);  // radiusFactor 1
+    EXPECT_NEAR((r.origin - box.centre()).norm(), box.diagonal(), 1e-9);  // radiusFactor 1
     EXPECT_NEAR(r.dir.norm(), 1.0, 1e-12);
-    const double c = std::clamp(r.dir.dot((box.center() - r.origin).normalized()), -1.0, 1.0);
+    const double c = std::clamp(r.dir.dot((box.centre() - r.origin).normalized()), -1.0, 1.0);
     maxAngle = std::max(maxAngle, std::acos(c));
     sumCos += c;
   }

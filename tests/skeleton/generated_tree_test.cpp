@@ -16,7 +16,7 @@ double distanceToTrueAxes(const gen::Skeleton& truth, const Vec3& p) {
   double best = 1e300;
   for (const auto& b : truth.branches)
     for (std::size_t k = 0; k + 1 < b.sections.size(); ++k) {
-      const Vec3 a = b.sections[k].center, c = b.sections[k + 1].center, ac = c - a;
+      const Vec3 a = b.sections[k].centre, c = b.sections[k + 1].centre, ac = c - a;
       const double t = ac.squaredNorm() > 0 ? std::clamp((p - a).dot(ac) / ac.squaredNorm(), 0.0, 1.0) : 0.0;
       best = std::min(best, (p - (a + t * ac)).norm());
     }
@@ -76,7 +76,7 @@ TEST(GeneratedTree, LeafyLimbsAreFollowed) {
       for (const auto& s : b.sections) {
         ++all;
         for (const auto& n : res.model)
-          if ((n.position - s.center).norm() < reach) {
+          if ((n.position - s.centre).norm() < reach) {
             ++near;
             break;
           }

@@ -13,7 +13,7 @@ namespace treesketch::gen {
 
 /// One circular cross-section of a branch.
 struct Section {
-  geom::Vec3 center = geom::Vec3::Zero();  ///< world, m
+  geom::Vec3 centre = geom::Vec3::Zero();  ///< world, m
   double radius = 0;                       ///< m, > 0
   geom::Vec3 axis = geom::Vec3::UnitY();   ///< unit growth direction; the ring lies in the plane normal to it
 };
@@ -56,7 +56,7 @@ struct NearestSection {
 /// lowest branch id, then section index). Returns branch = -1 for an empty skeleton.
 NearestSection nearestSection(const Skeleton& skeleton, const geom::Vec3& p);
 
-/// Distance from `p` to the line through `s.center` along `s.axis`, m.
+/// Distance from `p` to the line through `s.centre` along `s.axis`, m.
 double distanceToSectionAxis(const Section& s, const geom::Vec3& p);
 
 /// Empty string when the skeleton is well formed; otherwise the first problem found, naming the

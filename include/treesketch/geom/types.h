@@ -30,7 +30,7 @@ struct BBox {
     add(b.min);
     add(b.max);
   }
-  Vec3 center() const { return 0.5 * (min + max); }
+  Vec3 centre() const { return 0.5 * (min + max); }
   Vec3 extent() const { return empty() ? Vec3::Zero() : Vec3(max - min); }
   /// Length of the diagonal; 0 for an empty box.
   double diagonal() const { return empty() ? 0.0 : (max - min).norm(); }
