@@ -45,46 +45,47 @@ constexpr std::size_t kLeafLengthPercentile = 90;
 
 // Ball queries answered in the order of fit::CloudIndex's cells, the index that answered them
 // until issue 17: the plane test draws its RANSAC samples by position in the answer and both
-// stages sum in that order, so keeping the order keeps their results bit for bit.
+// stages sum in that order, so keeping the order keeps their results bit for bit. The points are
+// kept in that order too, so that reading the hits' positions walks memory forwards.
 class BallQuery {
  public:
-  explicit BallQuery(const std::vector<Vec3>& points) : order_(cellOrder(points)), index_(permuted(points, order_)) {}
-  /// Indices into the constructor's points within `radius` of `p`, in cell order.
+  explicit BallQuery(const geom::PointCloud& points)
+      : order_(fit::CloudIndex(points).storageOrder()),
+        ordered_(permuted(points.positions, order_)),
+        index_(ordered_) {}
+  /// The points within `radius` of `p`, as positions in cell order (see position, input).
   void operator()(const Vec3& p, double radius, std::vector<std::uint32_t>& out) const {
     index_.withinRadius(p, radius, out);
-    for (auto& i : out) i = order_[i];
   }
+  const Vec3& position(std::uint32_t hit) const { return ordered_[hit]; }
+  /// Index into the constructor's points.
+  std::uint32_t input(std::uint32_t hit) const { return order_[hit]; }
 
  private:
-  static std::vector<std::uint32_t> cellOrder(const std::vector<Vec3>& points) {
-    geom::PointCloud cloud;
-    cloud.positions = points;
-    return fit::CloudIndex(cloud).storageOrder();
-  }
   static std::vector<Vec3> permuted(const std::vector<Vec3>& points, const std::vector<std::uint32_t>& order) {
     std::vector<Vec3> out(order.size());
     for (std::size_t i = 0; i < order.size(); ++i) out[i] = points[order[i]];
     return out;
   }
-  std::vector<std::uint32_t> order_;  ///< index position -> input index
+  std::vector<std::uint32_t> order_;  ///< cell order -> input index
+  std::vector<Vec3> ordered_;         ///< the points in cell order
   accel::PointIndex index_;
 };
 
-// The plane test's points: all of them, or an even stride through each voxel's points down to at
-// most `cap` (scan order, every station's points alike), so that the cost of the ball queries and
-// plane passes stays bounded on dense scans.
-std::vector<Vec3> planeTestPoints(const geom::PointCloud& cloud, const VoxelGraph& graph, int cap) {
+// The plane test's points: all of them (returns false: no voxel holds more than `cap`), or in
+// `sample` an even stride through each voxel's points down to at most `cap` (scan order, every
+// station's points alike), so that the cost of the ball queries and plane passes stays bounded.
+bool thinPlaneTestPoints(const geom::PointCloud& cloud, const VoxelGraph& graph, int cap, geom::PointCloud& sample) {
   const bool thin = cap > 0 && std::any_of(graph.pointCount.begin(), graph.pointCount.end(),
                                            [cap](std::int32_t c) { return c > cap; });
-  if (!thin) return cloud.positions;
-  std::vector<Vec3> sample;
+  if (!thin) return false;
   std::vector<std::int32_t> seen(graph.size(), 0);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const std::uint32_t v = graph.pointVoxel[i];
     const std::int32_t stride = (graph.pointCount[v] + cap - 1) / cap;
-    if (seen[v]++ % stride == 0) sample.push_back(cloud.positions[i]);
+    if (seen[v]++ % stride == 0) sample.positions.push_back(cloud.positions[i]);
   }
-  return sample;
+  return true;
 }
 
 struct LeafPlane {
@@ -145,8 +146,9 @@ void flatVoxels(const geom::PointCloud& cloud, const VoxelGraph& graph, const Sk
   const std::size_t nv = graph.size();
   flat.assign(nv, 0);
   normal.assign(nv, Vec3::UnitZ());
-  const std::vector<Vec3> points = planeTestPoints(cloud, graph, o.leafPlaneMaxPointsPerVoxel);
-  const BallQuery ball(points);
+  geom::PointCloud sample;
+  const bool thin = thinPlaneTestPoints(cloud, graph, o.leafPlaneMaxPointsPerVoxel, sample);
+  const BallQuery ball(thin ? sample : cloud);
   const double radius = o.leafPlaneRadiusVoxels * graph.voxelSize;
   const double band = o.leafPlaneBandVoxels * graph.voxelSize;
   tbb::parallel_for(std::size_t{0}, nv, [&](std::size_t k) {
@@ -155,7 +157,7 @@ void flatVoxels(const geom::PointCloud& cloud, const VoxelGraph& graph, const Sk
     thread_local std::vector<Vec3> near;
     ball(graph.positions[k], radius, hits);
     near.resize(hits.size());
-    for (std::size_t i = 0; i < hits.size(); ++i) near[i] = points[hits[i]];
+    for (std::size_t i = 0; i < hits.size(); ++i) near[i] = ball.position(hits[i]);
     const LeafPlane plane = fitLeafPlane(near, graph.positions[k], k, radius, band, o);
     flat[k] = plane.flat;
     normal[k] = plane.normal;
@@ -183,14 +185,14 @@ std::vector<std::uint32_t> convergencePlanes(const VoxelGraph& graph, const std:
 // matrix below leafConvergenceFreeShare × the plane count) are not moved along; the move is
 // clamped to `radius`.
 Vec3 planeMeetingMove(const VoxelGraph& graph, const std::vector<Vec3>& normal,
-                      const std::vector<std::uint32_t>& planes, const std::vector<std::uint32_t>& near, const Vec3& p,
-                      double radius, double freeShare) {
+                      const std::vector<std::uint32_t>& planes, const BallQuery& ball,
+                      const std::vector<std::uint32_t>& near, const Vec3& p, double radius, double freeShare) {
   const std::size_t stride = (near.size() + kMaxPlanes - 1) / kMaxPlanes;
   Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   int count = 0;
   for (std::size_t q = 0; q < near.size(); q += stride) {
-    const std::uint32_t j = planes[near[q]];
+    const std::uint32_t j = planes[ball.input(near[q])];
     const Eigen::Matrix3d nn = normal[j] * normal[j].transpose();
     a += nn;
     b += nn * (graph.positions[j] - p);
@@ -217,14 +219,15 @@ std::vector<Vec3> planeConvergenceMoves(const VoxelGraph& graph, const std::vect
   const double radius = radiusVoxels * graph.voxelSize;
   const std::vector<std::uint32_t> planes = convergencePlanes(graph, flat, radius);
   if (planes.empty()) return moves;
-  std::vector<Vec3> planePositions(planes.size());
-  for (std::size_t i = 0; i < planes.size(); ++i) planePositions[i] = graph.positions[planes[i]];
+  geom::PointCloud planePositions;
+  planePositions.positions.resize(planes.size());
+  for (std::size_t i = 0; i < planes.size(); ++i) planePositions.positions[i] = graph.positions[planes[i]];
   const BallQuery ball(planePositions);
   tbb::parallel_for(std::size_t{0}, origins.size(), [&](std::size_t o) {
     thread_local std::vector<std::uint32_t> near;
     const Vec3 p = graph.positions[origins[o]];
     ball(p, radius, near);
-    moves[o] = planeMeetingMove(graph, normal, planes, near, p, radius, freeShare);
+    moves[o] = planeMeetingMove(graph, normal, planes, ball, near, p, radius, freeShare);
   });
   return moves;
 }
