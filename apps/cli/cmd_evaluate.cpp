@@ -1,4 +1,5 @@
-// treesketch evaluate: the thesis's experiment (chapter 5) in one command.
+// treesketch evaluate: the thesis's experiment (chapter 5) in one command, and the robustness
+// matrix of scan conditions (issue 16).
 #include <iostream>
 
 #include "commands.h"
@@ -12,7 +13,8 @@ void registerEvaluate(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "evaluate",
       "Scan test trees (with and without leaves), reconstruct them with several sketch methods and compare each "
-      "result with the branch mesh (Hausdorff, both directions); writes table.md, results.csv and SVG plots");
+      "result with the branch mesh (Hausdorff, both directions); writes table.md, summary.md, results.csv, "
+      "summary.csv and SVG plots. --matrix runs the scan-condition matrix");
   struct Opts {
     std::string trees;
     int builtin = 3;
@@ -22,6 +24,11 @@ void registerEvaluate(CLI::App& app, Action& action) {
     std::vector<int> sweep;
     bool noSweep = false;
     bool noLeafOn = false, noLeafOff = false;
+    std::string matrix;
+    std::vector<std::string> conditions;
+    std::string split = "all";
+    double metresPerUnit = eval::kEzTreeMetresPerUnit;
+    bool list = false;
     eval::EvalOptions e;
   };
   auto o = std::make_shared<Opts>();
@@ -32,6 +39,21 @@ void registerEvaluate(CLI::App& app, Action& action) {
       ->capture_default_str()
       ->check(CLI::Range(1, 30));
   cmd->add_option("--out", o->out, "Output folder")->capture_default_str();
+  cmd->add_option("--matrix", o->matrix,
+                  "Scan-condition matrix: quick (a small subset, runs in the tests) or full (see the README); "
+                  "replaces --pattern and the point and TLS options")
+      ->check(CLI::IsMember({"quick", "full"}));
+  cmd->add_option("--conditions", o->conditions, "With --matrix: run only these rows (names as --list shows)");
+  cmd->add_flag("--list", o->list, "With --matrix: print the matrix's conditions and exit");
+  cmd->add_option("--split", o->split,
+                  "Trees to run: the tuning half, the held-out half or all (the report shows the halves apart)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"tune", "held-out", "all"}));
+  cmd->add_option("--metres-per-unit", o->metresPerUnit,
+                  "Scale of the --trees folder's meshes, metres per unit (ez-tree trees: decimetres); scan noise "
+                  "and station height are converted with it")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--pattern", o->patterns, "Scan patterns: sphere, tls (several allowed)")
       ->capture_default_str()
       ->check(CLI::IsMember({"sphere", "tls"}));
@@ -59,10 +81,25 @@ void registerEvaluate(CLI::App& app, Action& action) {
   cmd->add_option("--seed", o->e.seed, "Seed of scans, sketches and sampling")->capture_default_str();
   cmd->callback([cmd, o, &action] {
     bool cmdRaysGiven = cmd->count("--rays") > 0;
-    action = [o, cmdRaysGiven] {
+    std::string legacyGiven;  // an option of the former single condition, checked when the action runs
+    for (const char* opt : {"--pattern", "--points", "--rays", "--tls-points", "--tls-stations"})
+      if (cmd->count(opt) > 0 && legacyGiven.empty()) legacyGiven = opt;
+    action = [o, cmdRaysGiven, legacyGiven] {
+      if (!o->matrix.empty() && !legacyGiven.empty())
+        throw OptionsError(legacyGiven + " sets the former single condition; it does not combine with --matrix");
+      if (o->matrix.empty() && (!o->conditions.empty() || o->list))
+        throw OptionsError("--conditions and --list need --matrix quick|full");
       eval::EvalOptions e = o->e;
       if (cmdRaysGiven) e.sphereTargetPoints = 0;
       e.patterns = o->patterns;
+      if (!o->matrix.empty()) {
+        e.conditions = eval::conditionMatrix(o->matrix);
+        if (!o->conditions.empty()) e.conditions = eval::selectConditions(e.conditions, o->conditions);
+        if (o->list) {
+          std::cout << eval::conditionTable(e.conditions);
+          return;
+        }
+      }
       if (!o->methods.empty())
         e.methods = o->methods;
       else
@@ -73,12 +110,19 @@ void registerEvaluate(CLI::App& app, Action& action) {
       e.leafOff = !o->noLeafOff;
       if (!e.leafOn && !e.leafOff) throw OptionsError("--no-leaf-on and --no-leaf-off leave nothing to evaluate");
       e.log = [](const std::string& line) { std::cerr << line << "\n"; };
-      std::vector<eval::TreeCase> trees =
-          o->trees.empty() ? eval::builtinTrees(o->builtin) : eval::loadTreeFolder(o->trees);
+      std::vector<eval::TreeCase> all =
+          o->trees.empty() ? eval::builtinTrees(o->builtin) : eval::loadTreeFolder(o->trees, o->metresPerUnit);
+      std::vector<eval::TreeCase> trees;
+      for (auto& t : all)
+        if (eval::splitSelects(o->split, eval::treeHalf(t.name))) trees.push_back(std::move(t));
+      if (trees.empty()) throw OptionsError("--split " + o->split + " selects none of the trees");
+      const std::vector<eval::ScanCondition> conditions = eval::evaluationConditions(e);
       std::vector<eval::EvalRow> rows = eval::runEvaluation(trees, e);
-      eval::writeReport(o->out, rows);
-      std::cout << eval::markdownTable(rows);
-      std::cout << "wrote " << o->out << "/table.md, results.csv and fig_5_12/5_13/5_14 SVG plots\n";
+      eval::writeReport(o->out, rows, conditions);
+      std::cout << eval::markdownSummary(rows, conditions);
+      std::cout << "wrote " << o->out
+                << "/table.md, summary.md, results.csv, summary.csv and SVG plots (figures 5.12-5.14, RMS vs wood "
+                   "points and vs noise)\n";
     };
   });
 }

@@ -1,6 +1,7 @@
 #include "treesketch/eval/tree_suite.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -41,8 +42,8 @@ std::vector<TreeCase> builtinTrees(int count) {
     std::string preset = kPresets[i % 3];
     gen::TreeOptions options = gen::presetOptions(preset);
     options.seed = static_cast<std::uint64_t>(i + 1);
-    trees.push_back(treeCaseFromGenerated("builtin_" + preset + "_s" + std::to_string(options.seed),
-                                          gen::generateTree(options)));
+    trees.push_back(
+        treeCaseFromGenerated("builtin_" + preset + "_s" + std::to_string(options.seed), gen::generateTree(options)));
   }
   return trees;
 }
@@ -100,7 +101,8 @@ void readEzTreeAxes(const fs::path& jsonPath, std::vector<sketch::BranchPolyline
   for (auto& pl : axes) {
     if (pl.parent < 0) continue;
     auto it = std::find(limbIds.begin(), limbIds.end(), pl.parent);
-    if (it == limbIds.end()) throw InputError(source + ": a limb names unknown parent limb " + std::to_string(pl.parent));
+    if (it == limbIds.end())
+      throw InputError(source + ": a limb names unknown parent limb " + std::to_string(pl.parent));
     pl.parent = static_cast<int>(it - limbIds.begin());
     const auto& parentPts = axes[pl.parent].points;
     std::size_t best = 0;
@@ -122,7 +124,8 @@ void readEzTreeAxes(const fs::path& jsonPath, std::vector<sketch::BranchPolyline
     int first = -1;
     for (std::size_t i = 0; i < axes.size(); ++i) {
       if (axes[i].parent >= 0) continue;
-      if (first < 0) first = static_cast<int>(i);
+      if (first < 0)
+        first = static_cast<int>(i);
       else {
         axes[i].parent = first;
         axes[i].parentVertex = 0;
@@ -131,7 +134,9 @@ void readEzTreeAxes(const fs::path& jsonPath, std::vector<sketch::BranchPolyline
   }
 }
 
-std::vector<TreeCase> loadTreeFolder(const fs::path& folder) {
+std::vector<TreeCase> loadTreeFolder(const fs::path& folder, double metresPerUnit) {
+  if (!(metresPerUnit > 0) || !std::isfinite(metresPerUnit))
+    throw OptionsError("metres per scene unit must be positive and finite (got " + std::to_string(metresPerUnit) + ")");
   if (!fs::is_directory(folder)) throw InputError(folder.string() + ": not a directory");
   std::vector<fs::path> jsons;
   for (const auto& e : fs::directory_iterator(folder)) {
@@ -151,6 +156,7 @@ std::vector<TreeCase> loadTreeFolder(const fs::path& folder) {
     tc.branches = io::readMesh(stem.string() + ".branches.obj");
     if (fs::exists(stem.string() + ".leaves.obj")) tc.leaves = io::readMesh(stem.string() + ".leaves.obj");
     tc.up = geom::UpAxis::Y;
+    tc.metresPerUnit = metresPerUnit;
     readEzTreeAxes(j, tc.axes, tc.axisRadii);
     trees.push_back(std::move(tc));
   }

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "test_support.h"
 #include "treesketch/util/error.h"
@@ -28,7 +30,11 @@ TEST(Evaluation, RunsEveryMethodAndTheSweep) {
   auto rows = runEvaluation(trees, smallOptions());
   ASSERT_EQ(rows.size(), 3u + 2u);
   for (const auto& r : rows) {
-    EXPECT_EQ(r.condition, "leaf-on");
+    EXPECT_EQ(r.leaf, "leaf-on");
+    EXPECT_EQ(r.condition, "reference");
+    EXPECT_EQ(r.half, halfName(treeHalf(trees[0].name)));
+    EXPECT_EQ(r.woodPoints, static_cast<std::size_t>(std::lround(r.woodFraction * r.points)));
+    EXPECT_GT(r.rays, r.points);
     EXPECT_GT(r.points, 1000u);
     EXPECT_GT(r.woodFraction, 0.0);
     EXPECT_LT(r.woodFraction, 1.0);  // the leaves were scanned too
@@ -41,6 +47,12 @@ TEST(Evaluation, RunsEveryMethodAndTheSweep) {
     EXPECT_LE(r.backwardMean, r.backwardRms + 1e-12);
     EXPECT_LE(r.backwardRms, r.backwardMax + 1e-12);
   }
+  // The ideal sketch's root node is the true trunk base: the root check passes.
+  for (const auto& r : rows)
+    if (r.method == "ideal") {
+      EXPECT_TRUE(r.rootAtBase) << r.rootOffsetPct;
+      EXPECT_LT(r.rootOffsetPct, kRootAtBasePct);
+    }
   // The uniform chain is one chain: one tip.
   for (const auto& r : rows)
     if (r.method == "uniform") EXPECT_EQ(r.tips, 1);
@@ -90,7 +102,10 @@ TEST(Evaluation, IsDeterministic) {
 TEST(Evaluation, WritesTableCsvAndPlots) {
   EvalRow r;
   r.tree = "t1";
-  r.condition = "leaf-on";
+  r.half = "tune";
+  r.condition = "reference";
+  r.factor = "reference";
+  r.leaf = "leaf-on";
   r.pattern = "sphere";
   r.method = "user";
   r.nodes = 10;
@@ -106,17 +121,20 @@ TEST(Evaluation, WritesTableCsvAndPlots) {
   u.method = "uniform";
   std::vector<EvalRow> rows{r, s, u};
   std::string md = markdownTable(rows);
-  EXPECT_NE(md.find("| t1 | user | 10 (9) | 3 (7) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| t1 | tune | user | 10 (9) | 3 (7) |"), std::string::npos) << md;
   EXPECT_EQ(md.find("20 ("), std::string::npos) << "sweep rows stay out of the main table";
   std::string csv = csvTable(rows);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
-  EXPECT_NE(csv.find(",tips,reference_limbs\n"), std::string::npos);
-  EXPECT_NE(csv.find(",3,7\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",tips,reference_limbs,"), std::string::npos);
+  EXPECT_NE(csv.find(",3,7,"), std::string::npos) << csv;
   test::TempDir dir;
   writeReport(dir / "report", rows);
-  for (const char* f : {"table.md", "results.csv", "fig_5_12_backward_vs_forward.svg", "fig_5_13_user_vs_auto.svg",
-                        "fig_5_14_rms_vs_nodes.svg"})
+  for (const char* f : {"table.md", "summary.md", "results.csv", "summary.csv", "fig_5_12_backward_vs_forward.svg",
+                        "fig_5_13_user_vs_auto.svg", "fig_5_14_rms_vs_nodes.svg", "fig_backward_vs_wood_points.svg",
+                        "fig_forward_vs_wood_points.svg"})
     EXPECT_TRUE(std::filesystem::exists(dir / "report" / f)) << f;
+  // No noise conditions among the rows: no noise plot.
+  EXPECT_FALSE(std::filesystem::exists(dir / "report" / "fig_backward_vs_noise.svg"));
 }
 
 TEST(Evaluation, RejectsUnknownNames) {
@@ -127,6 +145,169 @@ TEST(Evaluation, RejectsUnknownNames) {
   o.methods = {"user"};
   o.patterns = {"helix"};
   EXPECT_THROW(runEvaluation(trees, o), OptionsError);
+  o.patterns = {"sphere"};
+  o.conditions = {referenceCondition(), referenceCondition()};
+  EXPECT_THROW(runEvaluation(trees, o), OptionsError) << "duplicate condition names";
+}
+
+TEST(Evaluation, FormerOptionsGiveTheReferenceConditions) {
+  EvalOptions o;
+  o.patterns = {"sphere", "tls"};
+  auto c = evaluationConditions(o);
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0].name, "reference");
+  EXPECT_EQ(describeCondition(c[0]), describeCondition(referenceCondition()));
+  EXPECT_EQ(c[1].name, "reference-tls");
+  EXPECT_EQ(c[1].stepDeg, 0.0);  // chosen per tree for ~160k points, as before
+  EXPECT_EQ(c[1].targetPoints, 160000u);
+  o.conditions = quickMatrix();
+  EXPECT_EQ(evaluationConditions(o).size(), quickMatrix().size());
+}
+
+/// A main row of the summary tests.
+EvalRow caseRow(const std::string& tree, const std::string& half, double back, double fwd, int tips = 10) {
+  EvalRow r;
+  r.tree = tree;
+  r.half = half;
+  r.condition = "tls-base";
+  r.factor = "base";
+  r.leaf = "leaf-off";
+  r.pattern = "tls";
+  r.method = "skeleton";
+  r.woodPoints = 20000;
+  r.backwardRms = back;
+  r.forwardRms = fwd;
+  r.tips = tips;
+  r.referenceLimbs = 10;
+  r.rootOffsetPct = 0.5;
+  r.rootAtBase = true;
+  return r;
+}
+
+TEST(Evaluation, SummaryHasMeanAndWorstPerHalf) {
+  std::vector<EvalRow> rows;
+  rows.push_back(caseRow("a", "tune", 0.1, 0.2, 9));
+  rows.push_back(caseRow("b", "tune", 0.3, 0.6, 14));
+  rows.push_back(caseRow("c", "tune", 0.2, 1.0, 10));
+  rows.back().rootOffsetPct = 7.5;
+  rows.back().rootAtBase = false;
+  rows.push_back(caseRow("d", "held-out", 0.4, 0.5));
+  rows.push_back(caseRow("e", "held-out", 9.0, 9.0));  // sparse: reported, not judged
+  rows.back().woodPoints = 4000;
+  rows.back().sparse = true;
+  rows.push_back(caseRow("f", "held-out", NAN, NAN));  // no mesh
+  rows.back().rootOffsetPct = NAN;
+  rows.back().rootAtBase = false;
+  EvalRow sweep = caseRow("a", "tune", 50, 50);
+  sweep.sweep = true;  // sweep rows stay out
+  rows.push_back(sweep);
+
+  auto s = summarize(rows);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s[0].half, "tune");
+  EXPECT_EQ(s[1].half, "held-out");
+  EXPECT_EQ(s[2].half, "all");
+  const ConditionSummary& tune = s[0];
+  EXPECT_EQ(tune.condition, "tls-base");
+  EXPECT_EQ(tune.factor, "base");
+  EXPECT_EQ(tune.cases, 3);
+  EXPECT_EQ(tune.judged, 3);
+  EXPECT_NEAR(tune.backwardMean, 0.2, 1e-12);
+  EXPECT_DOUBLE_EQ(tune.backwardWorst, 0.3);
+  EXPECT_EQ(tune.backwardWorstTree, "b");
+  EXPECT_NEAR(tune.forwardMean, 0.6, 1e-12);
+  EXPECT_DOUBLE_EQ(tune.forwardWorst, 1.0);
+  EXPECT_EQ(tune.forwardWorstTree, "c");
+  EXPECT_DOUBLE_EQ(tune.tipsRatioMin, 0.9);
+  EXPECT_DOUBLE_EQ(tune.tipsRatioMax, 1.4);
+  EXPECT_EQ(tune.tipsRatioInBand, 2);
+  EXPECT_EQ(tune.rootAtBase, 2);
+  EXPECT_DOUBLE_EQ(tune.rootOffsetWorst, 7.5);
+  EXPECT_TRUE(tune.forwardJudged);
+
+  const ConditionSummary& held = s[1];
+  EXPECT_EQ(held.cases, 3);
+  EXPECT_EQ(held.sparse, 1);
+  EXPECT_EQ(held.noMesh, 1);
+  EXPECT_EQ(held.judged, 1);
+  EXPECT_DOUBLE_EQ(held.backwardMean, 0.4);
+  EXPECT_DOUBLE_EQ(held.backwardWorst, 0.4);  // the sparse case's 9 % is not the worst judged case
+  EXPECT_EQ(held.woodPointsMin, 4000u);
+  EXPECT_EQ(held.woodPointsMax, 20000u);
+
+  const ConditionSummary& all = s[2];
+  EXPECT_EQ(all.cases, 6);
+  EXPECT_EQ(all.judged, 4);
+  EXPECT_NEAR(all.backwardMean, 0.25, 1e-12);
+  EXPECT_DOUBLE_EQ(all.backwardWorst, 0.4);
+  EXPECT_EQ(all.backwardWorstTree, "d");
+  EXPECT_DOUBLE_EQ(all.forwardWorst, 1.0);
+
+  // One station: forward not judged, shown in parentheses.
+  for (auto& r : rows) {
+    r.condition = "tls-1-station";
+    r.backwardOnly = true;
+  }
+  auto one = summarize(rows);
+  EXPECT_FALSE(one[0].forwardJudged);
+  std::string md = markdownSummary(rows);
+  EXPECT_NE(md.find("| tls-1-station | base |"), std::string::npos) << md;
+  EXPECT_NE(md.find("(0.600) / (0.500)"), std::string::npos) << md;
+  EXPECT_NE(md.find("tune / held-out"), std::string::npos) << md;
+  EXPECT_NE(md.find("1 scene unit = 1 m"), std::string::npos) << md;
+  // A root not located counts as the worst offset.
+  rows[5].sparse = false;
+  rows[5].backwardRms = rows[5].forwardRms = 0.1;
+  EXPECT_TRUE(std::isinf(summarize(rows)[1].rootOffsetWorst));
+}
+
+TEST(Evaluation, CsvHasTheMatrixColumns) {
+  EvalRow r = caseRow("t", "held-out", 0.25, 0.5);
+  r.rangeNoiseMm = 5;
+  r.stations = 4;
+  r.stepDeg = 0.2;
+  r.metresPerUnit = 0.1;
+  r.points = 30000;
+  std::string csv = csvTable({r});
+  std::istringstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  std::getline(in, line);
+  auto split = [](const std::string& s) {
+    std::vector<std::string> out;
+    std::string cell;
+    std::istringstream is(s);
+    while (std::getline(is, cell, ',')) out.push_back(cell);
+    return out;
+  };
+  auto names = split(header);
+  auto cells = split(line);
+  ASSERT_EQ(names.size(), cells.size());
+  auto col = [&](const std::string& name) -> std::string {
+    auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end()) return "<missing " + name + ">";
+    return cells[it - names.begin()];
+  };
+  EXPECT_EQ(col("tree"), "t");
+  EXPECT_EQ(col("half"), "held-out");
+  EXPECT_EQ(col("condition"), "tls-base");
+  EXPECT_EQ(col("factor"), "base");
+  EXPECT_EQ(col("leaf"), "leaf-off");
+  EXPECT_EQ(col("wood_points"), "20000");
+  EXPECT_EQ(col("points"), "30000");
+  EXPECT_EQ(col("range_noise_mm"), "5");
+  EXPECT_EQ(col("stations"), "4");
+  EXPECT_EQ(col("step_deg"), "0.2");
+  EXPECT_EQ(col("metres_per_unit"), "0.1");
+  EXPECT_EQ(col("backward_rms_pct"), "0.25");
+  EXPECT_EQ(col("forward_rms_pct"), "0.5");
+  EXPECT_EQ(col("root_offset_pct"), "0.5");
+  EXPECT_EQ(col("root_at_base"), "1");
+  EXPECT_EQ(col("sparse"), "0");
+  EXPECT_EQ(col("backward_only"), "0");
+  std::string sum = csvSummary(summarize({r}));
+  EXPECT_EQ(sum.substr(0, sum.find('\n')).find("backward_rms_worst_pct") != std::string::npos, true);
+  EXPECT_EQ(std::count(sum.begin(), sum.end(), '\n'), 3);  // header + held-out + all
 }
 
 }  // namespace

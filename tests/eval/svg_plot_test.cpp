@@ -36,5 +36,25 @@ TEST(SvgPlot, LineChartPlotsEveryPoint) {
   EXPECT_EQ(count(svg, "<polyline"), 2u);
 }
 
+TEST(SvgPlot, LogAxesAndStyles) {
+  LineChart c;
+  c.series = {"a", "b"};
+  c.xs = {{5000, 20000, 1e6}, {1e4, 0.0}};
+  c.ys = {{0.1, 0.5, 20}, {1, 2}};
+  c.styles = {SeriesStyle{0, false, false, false}, SeriesStyle{0, true, true, true}};
+  c.logX = c.logY = true;
+  std::string svg = renderSvg(c);
+  // Markers only for "a"; "b" loses its x = 0 point on the log axis and is dashed and hollow.
+  EXPECT_EQ(count(svg, "<polyline"), 1u);
+  EXPECT_EQ(count(svg, "stroke-dasharray"), 2u);                  // line + legend
+  EXPECT_EQ(count(svg, "fill=\"none\" stroke=\"#1f77b4\""), 1u);  // the hollow marker (legend: the dash)
+  EXPECT_EQ(count(svg, "<circle"), 3u + 1u);
+  // Whole decades: 1000 .. 1e6 on x, 0.1 .. 100 on y.
+  EXPECT_NE(svg.find(">1e+06<"), std::string::npos) << svg;
+  EXPECT_NE(svg.find(">1000<"), std::string::npos);
+  EXPECT_NE(svg.find(">0.1<"), std::string::npos);
+  EXPECT_NE(svg.find(">100<"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace treesketch::eval

@@ -1,7 +1,9 @@
 // The thesis's evaluation (Leavenworth 2012, §3.6 and chapter 5, Tables 5.1/5.2, Figures
-// 5.12-5.14) as one library call: scan each test tree (with leaves, and as a second condition
-// the branches alone), reconstruct it with several sketch methods, compare each result with the
-// branch mesh both ways, and write a Markdown table, a CSV and SVG plots.
+// 5.12-5.14) as one library call, extended into a robustness evaluation (issue 16): scan each
+// test tree under each scan condition (condition_matrix.h: the former favourable setting and a
+// matrix of realistic ones), leaf-on and leaf-off, reconstruct it with several sketch methods,
+// compare each result with the branch mesh both ways, and write a Markdown table, a summary per
+// condition (mean and worst case, tuning and held-out trees apart), CSVs and SVG plots.
 //
 // Methods (each a name in EvalOptions::methods):
 //  - "uniform": the thesis's automatic baseline (sketch::uniformAutoSketch, front view).
@@ -17,12 +19,15 @@
 // reconstruction's own diagonal; a reconstruction with stray parts would look better there).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "treesketch/eval/condition_matrix.h"
 #include "treesketch/eval/tree_suite.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/tri_mesh.h"
@@ -31,6 +36,10 @@
 namespace treesketch::eval {
 
 struct EvalOptions {
+  /// The scan conditions (condition_matrix.h). When empty, the former evaluation: one condition
+  /// per entry of `patterns` ("reference" for sphere, "reference-tls" for tls), set by the
+  /// sphere* and tls* fields below.
+  std::vector<ScanCondition> conditions;
   /// Scan pattern: "sphere" (thesis) or "tls" (4 stations).
   std::vector<std::string> patterns = {"sphere"};
   /// Sphere pattern: the cloud size to aim for. The ray count is scaled from a 100k-ray pilot
@@ -52,7 +61,8 @@ struct EvalOptions {
   int tlsStations = 4;
   double tlsStepDeg = 0.0;
   std::uint64_t tlsTargetPoints = 160000;
-  /// Conditions: scan branches + leaves ("leaf-on") and branches only ("leaf-off").
+  /// Leaf states: scan branches + leaves ("leaf-on") and branches only ("leaf-off"); with
+  /// `conditions`, a leaf state runs where both this and the condition allow it.
   bool leafOn = true;
   bool leafOff = true;
   /// Methods to run, see the header comment.
@@ -78,24 +88,41 @@ struct EvalOptions {
 /// One reconstruction of one tree under one condition by one method.
 struct EvalRow {
   std::string tree;
-  std::string condition;  ///< "leaf-on" or "leaf-off"
+  std::string half;       ///< "tune" or "held-out" (treeHalf)
+  std::string condition;  ///< the scan condition's name (ScanCondition::name)
+  std::string factor;     ///< the factor that condition varies (ScanCondition::factor)
+  std::string leaf;       ///< "leaf-on" or "leaf-off"
   std::string pattern;    ///< "sphere" or "tls"
   std::string method;
-  bool sweep = false;     ///< part of the node-count sweep (Figure 5.14), not the main table
-  int nodes = 0;          ///< sketch nodes
-  int fitted = 0;         ///< nodes with a circle
+  bool sweep = false;  ///< part of the node-count sweep (Figure 5.14), not the main table
+  int nodes = 0;       ///< sketch nodes
+  int fitted = 0;      ///< nodes with a circle
   /// Topology, which the distances do not see (a spurious fork adds little area): tips (nodes
   /// without children) of the method's sketch, against the reference's limbs (one tip each).
   int tips = 0;
   int referenceLimbs = 0;
-  std::size_t points = 0;       ///< cloud size
-  double woodFraction = 0.0;    ///< share of the cloud's points on the branch mesh
-  double reconstructMs = 0.0;   ///< sketch + fit + sweep wall time
-  std::size_t samples = 0;      ///< comparison samples (forward direction)
-  double bboxDiagonal = 0.0;    ///< reference bounding-box diagonal (scene units)
+  std::size_t points = 0;      ///< cloud size
+  std::size_t woodPoints = 0;  ///< cloud points on the branch mesh
+  double woodFraction = 0.0;   ///< share of the cloud's points on the branch mesh
+  std::uint64_t rays = 0;      ///< rays cast by the scan (pilot scans not counted)
+  int stations = 0;            ///< TLS stations (0: sphere pattern)
+  double stepDeg = 0.0;        ///< TLS angular step, degrees (0: sphere pattern)
+  double rangeNoiseMm = 0.0;   ///< range noise sigma, millimetres
+  double metresPerUnit = 1.0;  ///< the tree's scale (TreeCase::metresPerUnit)
+  /// Flags: fewer than kSparseWoodPoints wood points (reported, not judged); forward error not
+  /// judged (one TLS station).
+  bool sparse = false;
+  bool backwardOnly = false;
+  double reconstructMs = 0.0;                                 ///< sketch + fit + sweep wall time
+  std::size_t samples = 0;                                    ///< comparison samples (forward direction)
+  double bboxDiagonal = 0.0;                                  ///< reference bounding-box diagonal (scene units)
   double backwardMax = 0, backwardMean = 0, backwardRms = 0;  ///< % of bboxDiagonal
   double forwardMax = 0, forwardMean = 0, forwardRms = 0;     ///< % of bboxDiagonal
   std::size_t meshTriangles = 0;
+  /// Root check: distance from the method's sketch root (MethodOutput::root) to the reference
+  /// trunk base (trunkBase), % of bboxDiagonal; NaN when the sketch has no located root.
+  double rootOffsetPct = 0.0;
+  bool rootAtBase = false;  ///< rootOffsetPct <= kRootAtBasePct
 };
 
 /// What a method returns: the reconstructed mesh, the sketch node counts and its time.
@@ -105,6 +132,9 @@ struct MethodOutput {
   int nodes = 0;
   int fitted = 0;
   double ms = 0.0;
+  /// Where the sketch's root is in 3D (world): its circle's centre when it has one (fitted or
+  /// kept), else a point node's point; empty when unknown (an unfitted screen node has no depth).
+  std::optional<geom::Vec3> root;
 };
 
 struct MethodInput {
@@ -124,18 +154,72 @@ std::vector<std::string> methodNames();
 /// Runs one method by name; throws OptionsError for an unknown name.
 MethodOutput runMethod(const std::string& name, const MethodInput& input);
 
-/// Scans a tree as the evaluation does. leafOn: branches + leaves (meshId 0 = wood, 1 = leaves).
-geom::PointCloud scanTree(const TreeCase& tree, const std::string& pattern, bool leafOn, const EvalOptions& options);
+/// The conditions `options` asks for: `options.conditions`, or the former evaluation's
+/// ("reference" for sphere, "reference-tls" for tls, from the sphere* / tls* fields). Throws
+/// OptionsError for an unknown pattern or duplicate condition names.
+std::vector<ScanCondition> evaluationConditions(const EvalOptions& options);
 
-/// Runs the whole evaluation over `trees`. Deterministic for a fixed seed.
+/// A scan of one tree under one condition.
+struct TreeScan {
+  geom::PointCloud cloud;  ///< meshId 0 = wood, 1 = leaves
+  std::uint64_t rays = 0;  ///< rays of the final scan
+  double stepDeg = 0.0;    ///< TLS: the angular step used (0: sphere pattern)
+};
+/// Scans a tree under `condition` (physical settings converted with tree.metresPerUnit).
+/// leafOn: branches + leaves. Throws OptionsError for an unknown pattern or invalid settings.
+TreeScan scanTree(const TreeCase& tree, const ScanCondition& condition, bool leafOn, std::uint64_t seed);
+
+/// The reference trunk base: the first centre of the tree's root axis (the first axis without a
+/// parent; a bush's stems hang on the first stem's base).
+geom::Vec3 trunkBase(const TreeCase& tree);
+
+/// Runs the whole evaluation over `trees`: tree by tree, condition by condition, leaf-on before
+/// leaf-off. Deterministic for a fixed seed.
 std::vector<EvalRow> runEvaluation(const std::vector<TreeCase>& trees, const EvalOptions& options);
 
-/// Table 5.1/5.2 layout, one table per condition and pattern (main rows only).
+/// Mean and worst case of one method under one condition and leaf state over one half of the
+/// trees (main rows only). Judged cases: sparse cases (< kSparseWoodPoints wood points) are left
+/// out of every statistic; so are cases without a mesh (NaN distances: counted in noMesh). On a
+/// backward-only condition (one TLS station) the forward statistics and the tips ratio are
+/// computed but not judged (forwardJudged = false).
+struct ConditionSummary {
+  std::string condition, factor, leaf, method;
+  std::string half;  ///< "tune", "held-out" or "all" (both pooled)
+  int cases = 0;     ///< trees
+  int sparse = 0;    ///< flagged sparse, left out
+  int noMesh = 0;    ///< no mesh, left out
+  int judged = 0;    ///< cases in the statistics below
+  bool forwardJudged = true;
+  std::size_t woodPointsMin = 0, woodPointsMax = 0;  ///< over all cases
+  double backwardMean = NAN, backwardWorst = NAN;    ///< RMS, % of the diagonal; worst = max over trees
+  double forwardMean = NAN, forwardWorst = NAN;
+  std::string backwardWorstTree, forwardWorstTree;
+  double tipsRatioMin = NAN, tipsRatioMax = NAN;  ///< tips / reference limbs
+  int tipsRatioInBand = 0;                        ///< within [kTipsRatioMin, kTipsRatioMax]
+  int rootAtBase = 0;                             ///< judged cases whose root is at the trunk base
+  double rootOffsetWorst = NAN;                   ///< % of the diagonal; inf when a root was not located
+};
+/// Summaries in the rows' order of conditions, leaf states and methods; for each, the halves
+/// present ("tune" first, then "held-out") and then "all".
+std::vector<ConditionSummary> summarize(const std::vector<EvalRow>& rows);
+
+/// Table 5.1/5.2 layout, one table per condition and leaf state (main rows only), each followed
+/// by its means per method and half.
 std::string markdownTable(const std::vector<EvalRow>& rows);
+/// The per-condition summary: scale, split, flags and root check stated, then per method and
+/// leaf state one table with a row per condition, every cell "tune / held-out".
+std::string markdownSummary(const std::vector<EvalRow>& rows, const std::vector<ScanCondition>& conditions = {});
 /// All rows, with a header line.
 std::string csvTable(const std::vector<EvalRow>& rows);
-/// Writes table.md, results.csv and the plots fig_5_12_backward_vs_forward.svg,
-/// fig_5_13_user_vs_auto.svg, fig_5_14_rms_vs_nodes.svg into `folder` (created if missing).
-void writeReport(const std::filesystem::path& folder, const std::vector<EvalRow>& rows);
+/// summarize() as CSV.
+std::string csvSummary(const std::vector<ConditionSummary>& summaries);
+/// Writes into `folder` (created if missing): table.md, summary.md, results.csv, summary.csv, the
+/// thesis's plots from the first condition (fig_5_12_backward_vs_forward.svg,
+/// fig_5_13_user_vs_auto.svg, fig_5_14_rms_vs_nodes.svg) and the robustness plots
+/// (fig_{backward,forward}_vs_wood_points.svg: every case, log-log; fig_{backward,forward}_vs_noise.svg:
+/// mean per method and half over the noise conditions). `conditions` (optional) adds the
+/// matrix's settings to summary.md.
+void writeReport(const std::filesystem::path& folder, const std::vector<EvalRow>& rows,
+                 const std::vector<ScanCondition>& conditions = {});
 
 }  // namespace treesketch::eval

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "treesketch/eval/condition_matrix.h"
 #include "treesketch/gen/tree_generator.h"
 #include "treesketch/geom/tri_mesh.h"
 #include "treesketch/geom/types.h"
@@ -18,11 +19,15 @@ namespace treesketch::eval {
 
 struct TreeCase {
   std::string name;
-  geom::TriMesh branches;                       ///< reference surface (trunk and branches)
-  geom::TriMesh leaves;                         ///< may be empty
-  std::vector<sketch::BranchPolyline> axes;     ///< true branch axes, trunk first
-  std::vector<std::vector<double>> axisRadii;   ///< radius at each axis vertex (same shape as axes)
+  geom::TriMesh branches;                      ///< reference surface (trunk and branches)
+  geom::TriMesh leaves;                        ///< may be empty
+  std::vector<sketch::BranchPolyline> axes;    ///< true branch axes, trunk first
+  std::vector<std::vector<double>> axisRadii;  ///< radius at each axis vertex (same shape as axes)
   geom::UpAxis up = geom::UpAxis::Y;
+  /// Physical scale: metres per scene unit (the scan conditions' millimetres and metres are
+  /// converted with it). The built-in generator works in metres (1); the ez-tree trees have no
+  /// unit and are taken as decimetres (kEzTreeMetresPerUnit, 0.1).
+  double metresPerUnit = 1.0;
 };
 
 /// A generated tree as a test case (axes = the skeleton's branch centre lines).
@@ -36,8 +41,9 @@ std::vector<TreeCase> builtinTrees(int count);
 /// the leaf mesh when <name>.leaves.obj exists, and the limbs of the JSON skeleton as axes
 /// (each limb's parent vertex = its parent limb's section nearest to the limb's first centre).
 /// Sorted by name. Throws InputError naming the file for a malformed JSON or mesh, and when the
-/// folder holds no tree.
-std::vector<TreeCase> loadTreeFolder(const std::filesystem::path& folder);
+/// folder holds no tree. Scale: `metresPerUnit` for every tree (default: decimetres, the
+/// convention for ez-tree trees); throws OptionsError when it is not positive.
+std::vector<TreeCase> loadTreeFolder(const std::filesystem::path& folder, double metresPerUnit = kEzTreeMetresPerUnit);
 
 /// Reads one ez-tree JSON skeleton's limbs as axes (and radii). Throws InputError naming the file.
 void readEzTreeAxes(const std::filesystem::path& json, std::vector<sketch::BranchPolyline>& axes,
