@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.h"
 #include "test_support.h"
 #include "treesketch/eval/condition_matrix.h"
 #include "treesketch/eval/tree_suite.h"
