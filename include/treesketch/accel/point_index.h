@@ -23,7 +23,7 @@ struct Neighbour {
 struct PointIndexOptions {
   /// Most points in a leaf of the tree. Large leaves suit both query kinds here: a ball takes or
   /// rejects whole leaves, and a leaf's points are read contiguously. On the 1 M-point leafy
-  /// benchmark scan, balls of ~260 points ran 1.4× faster at 128 than at 64 (256 about as 128), and
+  /// benchmark scan, balls of ~260 points ran 1.2× faster at 128 than at 64 (256 about as 128), and
   /// nearest points at 128 as fast as at 32-64.
   std::size_t leafSize = 128;
 };

@@ -14,7 +14,8 @@
 // centroids of one-sided (occluded) rings are biased towards the visible side (the circle fits
 // that follow correct this). Foliage is the weak point: on leaf-on scans the default cross-section
 // rule drops most limbs together with the leaves, while leafOnSkeletonOptions() follows the crown
-// out to the twigs at the price of nodes half a leaf off them (leaf-entry positions halve that).
+// out to the twigs at the price of nodes half a leaf off them (leaf-entry positions cut that by a
+// third).
 // The measurements behind every default: docs/notes/skeleton_options.md.
 #pragma once
 
