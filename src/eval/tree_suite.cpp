@@ -87,7 +87,7 @@ void readEzTreeAxes(const fs::path& jsonPath, std::vector<sketch::BranchPolyline
     for (std::size_t s = 0; s < limb["sections"].size(); ++s) {
       const auto& sec = limb["sections"][s];
       pl.points.push_back(readVec3(sec.value("center", nlohmann::json()), source,
-                                   where + ".sections[" + std::to_string(s) + "].centre"));
+                                   where + ".sections[" + std::to_string(s) + "].center"));
       r.push_back(sec.value("radius", 0.0));
     }
     int parentLimb = -1;

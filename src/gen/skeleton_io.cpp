@@ -105,7 +105,7 @@ Skeleton skeletonFromJson(const json& j, const std::string& source) {
     for (std::size_t si = 0; si < sections.size(); ++si) {
       const std::string sp = bp + ".sections[" + std::to_string(si) + "]";
       Section s;
-      s.centre = r.vec3(r.field(sections[si], sp, "center"), sp + ".centre");
+      s.centre = r.vec3(r.field(sections[si], sp, "center"), sp + ".center");
       s.radius = r.number(r.field(sections[si], sp, "radius"), sp + ".radius");
       s.axis = r.vec3(r.field(sections[si], sp, "axis"), sp + ".axis");
       b.sections.push_back(s);
