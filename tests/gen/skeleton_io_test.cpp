@@ -105,7 +105,7 @@ TEST(SkeletonIo, RejectsBadInput) {
   expectError(replaced(ok, "\"radius\":0.05", "\"radius\":\"a\""), "branches[0].sections[1].radius");
   expectError(replaced(ok, "\"radius\":0.05", "\"radius\":-1"), "radius must be positive");
   expectError(replaced(ok, "\"radius\":0.05", "\"radius\":1e999"), "finite numbers");
-  expectError(replaced(ok, "\"center\":[0,1,0]", "\"center\":[0,1]"), "branches[0].sections[1].centre");
+  expectError(replaced(ok, "\"center\":[0,1,0]", "\"center\":[0,1]"), "branches[0].sections[1].center");
   expectError(replaced(ok, "\"axis\":[0,1,0]}]", "\"axis\":[0,0,0]}]"), "unit vector");
   expectError(replaced(ok, ",\"level\":0", ""), "missing field \"level\"");
   expectError(replaced(ok, "\"parent\":-1", "\"parent\":0"), "parent 0 does not come before");
