@@ -99,6 +99,10 @@ SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base) {
   base.graph.autoSpacingFactor = 1.5;
   base.binWidthVoxels = 1.0;
   base.minTubularFraction = 0.2;
+  base.minTubularFractionLong = 0.3;
+  base.graph.maxGapVoxels = 8.0;
+  base.graph.coneAngleDeg = 45.0;
+  base.graph.minBridgeLinearity = 0.4;
   base.minEndSupportFraction = 0.5;  // partial tips in a crown are leaf ends (see the option)
   base.leafEntryPositions = true;
   return base;

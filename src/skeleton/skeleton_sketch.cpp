@@ -3,9 +3,11 @@
 #include "treesketch/skeleton/skeleton_sketch.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
 
+#include "skeleton/radius_allometry.h"
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/util/error.h"
 
@@ -31,6 +33,8 @@ void checkRules(const RadiusRules& r) {
   if (!(r.maxRadiusRatio > 0) || !(r.maxCentreShiftRadii > 0) || !(r.maxRelativeRms > 0))
     throw OptionsError("skeleton radii: maxRadiusRatio, maxCentreShiftRadii and maxRelativeRms must be > 0");
   if (r.medianWindow < 1) throw OptionsError("skeleton radii: medianWindow must be >= 1");
+  if (!(r.allometryMaxRatio == 0 || r.allometryMaxRatio >= 1) || !std::isfinite(r.allometryMaxRatio))
+    throw OptionsError("skeleton radii: allometryMaxRatio must be 0 (off) or >= 1");
   if (!(r.slackVoxels >= 0) || !(r.rmsFloorVoxels >= 0) || !std::isfinite(r.slackVoxels) ||
       !std::isfinite(r.rmsFloorVoxels))
     throw OptionsError("skeleton radii: slackVoxels and rmsFloorVoxels must be finite numbers >= 0");
@@ -90,6 +94,17 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
     ok[i] = valid[i] && std::isfinite(fitted[i]) && fitted[i] > 0;
     r[i] = ok[i] ? fitted[i] : nodes[i].radius;
   }
+  // 0. Fits much thicker than the tree's own allometry (radius against the length it carries)
+  // are rejected; no radius ends above that bound (step 5).
+  detail::Allometry allometry;
+  if (rules.allometryMaxRatio > 0) {
+    allometry = detail::fitAllometry(nodes, r, ok);
+    if (allometry.valid)
+      for (std::size_t i = 0; i < n; ++i) {
+        const double p = allometry.predict(i);
+        if (ok[i] && r[i] > p * rules.allometryMaxRatio) ok[i] = 0;
+      }
+  }
   const auto chains = branchChains(nodes);
   // 1. Interpolate rejected fits along each branch by arc length (the fork at a side branch's
   // start is the parent's node: it is read, not written).
@@ -146,6 +161,12 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
   if (rules.childNotThicker)
     for (std::size_t i = 0; i < n; ++i)
       if (nodes[i].parent >= 0) r[i] = std::min(r[i], r[nodes[i].parent]);
+  // 5. Not above the allometry's bound.
+  if (allometry.valid)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double p = allometry.predict(i);
+      r[i] = std::min(r[i], p * rules.allometryMaxRatio);
+    }
   return r;
 }
 

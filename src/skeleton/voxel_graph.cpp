@@ -61,6 +61,8 @@ void checkOptions(const VoxelGraphOptions& o) {
   if (o.reach < 1 || o.reach > 3) throw OptionsError("skeleton graph: reach must be 1, 2 or 3");
   if (!(o.minBridgeLinearity >= 0) || o.minBridgeLinearity > 1)
     throw OptionsError("skeleton graph: minBridgeLinearity must be in [0, 1]");
+  if (o.sparseLinkNeighbours < 0 || o.sparseLinkNeighbours > 26)
+    throw OptionsError("skeleton graph: sparseLinkNeighbours must be in [0, 26]");
   if (o.maxVoxels < 1) throw OptionsError("skeleton graph: maxVoxels must be >= 1");
 }
 
@@ -228,6 +230,44 @@ void buildGridEdges(VoxelGraph& g, const Voxelized& v, int reach) {
   });
 }
 
+void appendEdges(VoxelGraph& g, const std::vector<Bridge>& edges);
+
+/// Sparse links: each voxel is joined to those of its k nearest voxels (within maxGapVoxels) that
+/// lie in another grid-connected piece. Where a stretch is sampled more sparsely than the voxel
+/// size (a trunk base or a crown edge seen by few rays), the grid leaves single voxels and small
+/// pieces, and these links join them at the local point spacing; where it is dense a voxel's
+/// nearest voxels are in its own piece and nothing changes. Links within a piece are never
+/// added: they would be shortcuts between touching branches.
+void addSparseLinks(VoxelGraph& g, const VoxelGraphOptions& o) {
+  const std::size_t n = g.size();
+  const auto k = static_cast<std::size_t>(o.sparseLinkNeighbours);
+  if (k == 0 || n < 2 || o.maxGapVoxels <= 0) return;
+  const accel::PointIndex index(g.positions);
+  const double maxLink2 = std::pow(o.maxGapVoxels * g.voxelSize, 2);
+  const std::vector<std::int32_t> label = util::labelComponents(g.offsets, g.targets, nullptr);
+  std::vector<std::vector<Bridge>> found(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kCellsPerTask), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      for (const accel::Neighbour& nb : index.nearest(g.positions[i], k + 1)) {
+        // Same piece (the voxel itself, grid neighbours): the grid joins them already.
+        if (label[nb.index] == label[i] || nb.distance2 > maxLink2) continue;
+        const auto lo = static_cast<std::uint32_t>(std::min<std::size_t>(i, nb.index));
+        const auto hi = static_cast<std::uint32_t>(std::max<std::size_t>(i, nb.index));
+        found[i].push_back(Bridge{lo, hi, std::sqrt(nb.distance2)});
+      }
+    }
+  });
+  std::vector<Bridge> links;
+  for (const auto& f : found) links.insert(links.end(), f.begin(), f.end());
+  std::sort(links.begin(), links.end(),
+            [](const Bridge& a, const Bridge& b) { return std::tie(a.from, a.to) < std::tie(b.from, b.to); });
+  links.erase(std::unique(links.begin(), links.end(),
+                          [](const Bridge& a, const Bridge& b) { return a.from == b.from && a.to == b.to; }),
+              links.end());
+  g.sparseLinks = links.size();
+  if (!links.empty()) appendEdges(g, links);
+}
+
 /// Connected pieces, numbered by decreasing point count (ties: lowest first vertex).
 void labelPieces(VoxelGraph& g) {
   std::int32_t pieces = 0;
@@ -308,11 +348,11 @@ bool gapFollowsAxis(const VoxelGraph& g, const accel::PointIndex& index, const C
   return std::abs(axis.dot(gap)) >= std::cos(o.coneAngleDeg * M_PI / 180.0);
 }
 
-/// The graph's rows rebuilt with the bridge edges appended (both directions).
-void addBridgeEdges(VoxelGraph& g) {
+/// The graph's rows rebuilt with `edges` appended (both directions).
+void appendEdges(VoxelGraph& g, const std::vector<Bridge>& edges) {
   const std::size_t n = g.size();
   std::vector<std::uint32_t> extra(n, 0);
-  for (const Bridge& b : g.bridges) {
+  for (const Bridge& b : edges) {
     ++extra[b.from];
     ++extra[b.to];
   }
@@ -329,7 +369,7 @@ void addBridgeEdges(VoxelGraph& g) {
     }
     fill[i] = k;
   }
-  for (const Bridge& b : g.bridges) {
+  for (const Bridge& b : edges) {
     targets[fill[b.from]] = b.to;
     weights[fill[b.from]++] = static_cast<float>(b.length);
     targets[fill[b.to]] = b.from;
@@ -360,7 +400,7 @@ void bridgePieces(VoxelGraph& g, const VoxelGraphOptions& o) {
     uf.unite(a, b);
     g.bridges.push_back(Bridge{c.from, c.to, c.length});
   }
-  if (!g.bridges.empty()) addBridgeEdges(g);
+  if (!g.bridges.empty()) appendEdges(g, g.bridges);
 }
 
 }  // namespace
@@ -404,6 +444,7 @@ VoxelGraph buildVoxelGraph(const geom::PointCloud& cloud, const VoxelGraphOption
   g.pointVoxel = std::move(v.pointVoxel);
   computeFeatures(g, v.keys, options.shapeCellVoxels);
   buildGridEdges(g, v, options.reach);
+  addSparseLinks(g, options);
   labelPieces(g);
   bridgePieces(g, options);
   return g;

@@ -70,6 +70,56 @@ TEST(SkeletonSketch, PipeModelGrowsForks) {
   EXPECT_NEAR(r[2], 0.1, 1e-12);
 }
 
+// A trunk of 20 unit segments with four side branches of 5 whose fits follow one allometry
+// (r = 0.05·L^0.5, L = the length a node carries plus one segment), and one short side branch
+// whose fits took in something else (0.45, thinner than the trunk there, so "no child thicker"
+// does not catch it). The allometric bound brings that branch down to within 2× of the law and
+// leaves the others as fitted.
+TEST(SkeletonSketch, AllometryCapsAFatSideBranch) {
+  std::vector<skeleton::SkeletonNode> nodes;
+  for (int i = 0; i < 20; ++i) nodes.push_back(chainNode(i - 1, i, 0.5));
+  auto side = [&](int at, int count, double dx, int order) {
+    int parent = at;
+    for (int k = 1; k <= count; ++k) {
+      skeleton::SkeletonNode n = chainNode(parent, at, 0.5);
+      n.position = Vec3(dx * k, at, 0);
+      n.branchOrder = order;
+      nodes.push_back(n);
+      parent = static_cast<int>(nodes.size()) - 1;
+    }
+  };
+  for (int at : {4, 8, 12, 16}) side(at, 5, 1.0, 1);
+  const std::size_t fatStart = nodes.size();
+  side(6, 3, -1.0, 1);
+  nodes = linkUp(nodes);
+  // Carried length: own segment + every segment above + one segment.
+  std::vector<double> carried(nodes.size(), 0.0);
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    carried[i] += nodes[i].parent >= 0 ? 1.0 : 0.0;
+    if (nodes[i].parent >= 0) carried[nodes[i].parent] += carried[i];
+  }
+  std::vector<double> fitted(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) fitted[i] = 0.05 * std::sqrt(carried[i] + 1.0);
+  for (std::size_t i = fatStart; i < nodes.size(); ++i) fitted[i] = 0.45;
+  const std::vector<char> valid(nodes.size(), 1);
+  skeleton::RadiusRules rules;
+  rules.medianWindow = 1;
+  rules.childNotThicker = false;
+  rules.allometryMaxRatio = 2.0;
+  const auto r = skeleton::regularizeRadii(nodes, fitted, valid, rules);
+  for (std::size_t i = 0; i < fatStart; ++i) EXPECT_NEAR(r[i], fitted[i], 1e-6) << i;
+  for (std::size_t i = fatStart; i < nodes.size(); ++i) {
+    const double law = 0.05 * std::sqrt(carried[i] + 1.0);
+    EXPECT_LE(r[i], 2.0 * law + 1e-9) << i;
+    EXPECT_LT(r[i], 0.3) << i;
+  }
+  rules.allometryMaxRatio = 0;  // off: the fat fits stay
+  const auto off = skeleton::regularizeRadii(nodes, fitted, valid, rules);
+  for (std::size_t i = fatStart; i < nodes.size(); ++i) EXPECT_NEAR(off[i], 0.45, 1e-12);
+  rules.allometryMaxRatio = 0.5;
+  EXPECT_THROW(skeleton::regularizeRadii(nodes, fitted, valid, rules), OptionsError);
+}
+
 TEST(SkeletonSketch, SketchFromSkeletonIsValid) {
   const auto cloud = test::sampleCylinders(test::yTree(), 0.02, 0.003, 7);
   const auto s = skeleton::extractSkeleton(cloud);

@@ -162,22 +162,28 @@ TEST(Skeleton, LeafClutterDoesNotGrowBranches) {
   auto cloud = test::sampleCylinders(cyls, 0.02, 0.003, 7);
   const std::vector<test::Cyl> tips = {cyls[1], cyls[2]};
   cloud.append(leafClutter(tips, 40, 0.35, 9));
-  const auto s = skeleton::extractSkeleton(cloud);
+  // The foliage guards (the leaf-on settings' bridging cone and cross-section rule, here on the
+  // leaf-off voxels, with the strict 0.6 rule) keep leaves from growing branches...
+  skeleton::SkeletonOptions guarded;
+  guarded.minTubularFraction = 0.6;
+  guarded.minTubularFractionLong = 0.3;
+  guarded.graph.maxGapVoxels = 8;
+  guarded.graph.coneAngleDeg = 45;
+  guarded.graph.minBridgeLinearity = 0.4;
+  const auto s = skeleton::extractSkeleton(cloud, guarded);
   // Known limit: with this dense clutter (80 leaves within 0.35 of two tips) a few leaf spurs
   // survive; the true tree has 1 fork and 2 ends. The foliage rules remove most of them.
   EXPECT_LE(skeleton::countBranchPoints(s.nodes), 4u);
   EXPECT_LE(skeleton::countEnds(s.nodes), 5u);
-  // The foliage rules are what keeps it down.
-  skeleton::SkeletonOptions o;
-  o.minTubularFraction = 0;
-  o.graph.minBridgeLinearity = 0;
-  const auto unfiltered = skeleton::extractSkeleton(cloud, o);
+  // ...which the leaf-off defaults do not have (a leaf-off scan has no leaves): the clutter grows forks.
+  const auto unfiltered = skeleton::extractSkeleton(cloud);
   EXPECT_GE(skeleton::countBranchPoints(unfiltered.nodes), skeleton::countBranchPoints(s.nodes) + 3);
 }
 
 // A tree scanned sparsely from one side only (a single station, as real scans often are): the
-// level sets of a branch are noisy half rings, neither thin nor rings, so the cross-section rule
-// alone (0.6 for every side sub-tree) drops side branches; a long sub-tree needs only
+// level sets of a branch are noisy half rings, neither thin nor rings, so a strict cross-section
+// rule (0.6 for every side sub-tree, the old leaf-off default) drops side branches; the leaf-off
+// defaults have no foliage rule, and the leaf-on rule asks long sub-trees for only
 // minTubularFractionLong.
 TEST(Skeleton, OneSidedLimbsAreKept) {
   const auto cyls = test::threeLevelTree();
@@ -203,8 +209,12 @@ TEST(Skeleton, OneSidedLimbsAreKept) {
   };
   const auto s = skeleton::extractSkeleton(half);
   EXPECT_EQ(tipsReached(s.nodes), 4);
-  EXPECT_LE(skeleton::countEnds(s.nodes), 6u);  // the true tree has 5
-  skeleton::SkeletonOptions strict;
+  EXPECT_LE(skeleton::countEnds(s.nodes), 7u);  // the true tree has 5
+  skeleton::SkeletonOptions longRule;
+  longRule.minTubularFraction = 0.6;
+  longRule.minTubularFractionLong = 0.3;
+  EXPECT_EQ(tipsReached(skeleton::extractSkeleton(half, longRule).nodes), 4);
+  skeleton::SkeletonOptions strict = longRule;
   strict.minTubularFractionLong = strict.minTubularFraction;
   EXPECT_LE(tipsReached(skeleton::extractSkeleton(half, strict).nodes), 2);
 }
@@ -230,7 +240,10 @@ TEST(Skeleton, LeafOnSettingsKeepTheRestOfTheBase) {
   EXPECT_EQ(o.spurLengthRadii, 7.0);
   EXPECT_LT(o.graph.autoSpacingFactor, base.graph.autoSpacingFactor);
   EXPECT_LT(o.binWidthVoxels, base.binWidthVoxels);
-  EXPECT_LT(o.minTubularFraction, base.minTubularFraction);
+  // The foliage guards are on leaf-on only.
+  EXPECT_GT(o.minTubularFraction, base.minTubularFraction);
+  EXPECT_LT(o.graph.maxGapVoxels, base.graph.maxGapVoxels);
+  EXPECT_LT(o.graph.coneAngleDeg, base.graph.coneAngleDeg);
 }
 
 TEST(Skeleton, LeafEntryPositionsPutLeafNodesAtTheLeafBase) {
@@ -417,4 +430,33 @@ TEST(Skeleton, LeafPiecesAreNotFitted) {
   for (const auto& f : skeleton::autoSkeletonSketch(cloud, o).fits) EXPECT_EQ(f.reason.find("leaf"), std::string::npos);
   o.maxFitFlatFraction = 1.5;
   EXPECT_THROW(skeleton::autoSkeletonSketch(cloud, o), OptionsError);
+}
+
+// The thesis's sphere pattern aims every ray at the tree's centre: the trunk's base gets a few
+// points, farther apart than the voxel size, so the grid leaves it as single voxels. Sparse links
+// (each voxel joined to its nearest voxels in other pieces) keep it attached, and the root is found
+// at the base instead of at the dense part's lowest voxel.
+TEST(Skeleton, SparseTrunkBaseKeepsTheRootAtTheBase) {
+  const std::vector<test::Cyl> trunk = {{Vec3(0, 0, 0), Vec3(0, 2, 0), 0.06, -1}};
+  const auto dense = test::sampleCylinders(trunk, 0.008, 0.001, 3);
+  geom::PointCloud cloud;
+  std::size_t lower = 0;
+  for (const auto& p : dense.positions) {
+    if (p.y() >= 1.0) {
+      cloud.positions.push_back(p);
+    } else if (lower++ % 40 == 0) {  // ~40x sparser below y = 1
+      cloud.positions.push_back(p);
+    }
+  }
+  skeleton::SkeletonOptions o;
+  o.graph.voxelSize = 0.02;
+  const auto linked = skeleton::extractSkeleton(cloud, o);
+  ASSERT_FALSE(linked.nodes.empty());
+  EXPECT_GT(linked.graph.sparseLinks, 0u);
+  EXPECT_LT(linked.nodes[0].position.y(), 0.15);
+  o.graph.sparseLinkNeighbours = 0;
+  const auto gridOnly = skeleton::extractSkeleton(cloud, o);
+  ASSERT_FALSE(gridOnly.nodes.empty());
+  EXPECT_EQ(gridOnly.graph.sparseLinks, 0u);
+  EXPECT_GT(gridOnly.nodes[0].position.y(), 0.5);
 }

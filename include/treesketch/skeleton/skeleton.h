@@ -55,15 +55,17 @@ struct SkeletonOptions {
   /// spurLengthRadii × the fork's radius and spurLengthBins level sets is dropped (surface bumps).
   double spurLengthRadii = 3.0;
   double spurLengthBins = 3.0;
-  /// Foliage: a side sub-tree whose tubular share (by points) is below this is dropped as leaves;
-  /// 0.6 keeps the leaf-clutter test at ≤ 4 forks.
-  double minTubularFraction = 0.6;
+  /// Foliage: a side sub-tree whose tubular share (by points) is below this is dropped as leaves.
+  /// 0 (off) for leaf-off scans: there are no leaves, and the rule dropped sparsely or noisily
+  /// scanned limbs (real scans' missed wood 7.5 → 4 %, 40 → 20 %); leaf-on 0.2
+  /// (leafOnSkeletonOptions); 0.6 keeps the leaf-clutter test at ≤ 4 forks.
+  double minTubularFraction = 0.0;
   /// Sub-trees at least this many level sets long are real limbs even when scanned sparsely or
   /// from one side (then neither thin nor ring-like); leaf clusters grow spurs a few leaves long.
   double longBranchBins = 10.0;
   /// The tubular share such long sub-trees need (the smaller of the two rules applies): 0.3 kept
-  /// the one-sided limbs of the real leaf-off scans that 0.6 dropped.
-  double minTubularFractionLong = 0.3;
+  /// the one-sided limbs that 0.6 dropped; 0 (off) leaf-off, 0.3 leaf-on.
+  double minTubularFractionLong = 0.0;
   /// End nodes with less support (points) than this fraction of their parent's are dropped: the
   /// partial last level set of a tip, off the axis; 0.1 drops the slivers, and shortens branches least.
   double minEndSupportFraction = 0.1;
@@ -124,8 +126,9 @@ struct SkeletonOptions {
 };
 
 /// Settings for scans of trees in leaf, applied to `base`: finer voxels (graph.autoSpacingFactor 1.5
-/// instead of 2.5), level sets one voxel wide, a weak cross-section rule (minTubularFraction 0.2,
-/// for long sub-trees too), partial tips dropped below half their parent's support (in a crown
+/// instead of 2.5), level sets one voxel wide, the foliage guards on (bridges only along a piece's
+/// axis within 8 voxels; a weak cross-section rule, minTubularFraction 0.2, 0.3 for long
+/// sub-trees), partial tips dropped below half their parent's support (in a crown
 /// they are leaf ends) and leaf-entry positions with plane convergence. Finer pieces keep
 /// neighbouring twigs' clusters apart and follow them out to the twigs, where the strict rule drops
 /// them with the limbs that carry them. Not the default: on densely, randomly sampled surfaces 1.5

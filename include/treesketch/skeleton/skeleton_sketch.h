@@ -54,6 +54,13 @@ struct RadiusRules {
   /// by growing a fork's radius when its children need more (never shrinking it). Off by default:
   /// the fits measure radii, the rule only fills in where they are unreliable.
   bool pipeModel = false;
+  /// Allometric bound (a factor ≥ 1; 0 = off): the tree's own radius-against-carried-length law
+  /// (r = a·L^b, fitted robustly to its accepted fits; skeleton/radius_allometry.h) rejects fits
+  /// more than this factor above it, and no final radius exceeds it by more. Only an upper bound:
+  /// a fit that took in noise, a neighbour or a one-sided arc is too thick far more often than
+  /// too thin, and raising thin radii put real scans' points inside the model (adtree_tree7: 1 →
+  /// 5.5 % deeper than 2 cm). 2 measured best (1.5 lengthened the forward error).
+  double allometryMaxRatio = 2.0;
 };
 
 /// Builds the sketch: node i of `skeleton.nodes` becomes sketch node id i (point node at the
