@@ -32,6 +32,15 @@ std::vector<double> subtreeReach(const std::vector<SkeletonNode>& nodes) {
   return reach;
 }
 
+std::vector<double> subtreeLength(const std::vector<SkeletonNode>& nodes) {
+  std::vector<double> length(nodes.size(), 0.0);
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    const auto& n = nodes[i];
+    if (n.parent >= 0) length[n.parent] += length[i] + (n.position - nodes[n.parent].position).norm();
+  }
+  return length;
+}
+
 std::int32_t mainChild(const std::vector<SkeletonNode>& nodes, const std::vector<double>& reach, std::size_t i) {
   std::int32_t best = -1;
   double bestLength = -1;

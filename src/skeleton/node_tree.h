@@ -18,8 +18,12 @@ void linkChildren(std::vector<SkeletonNode>& nodes);
 
 /// Longest path (world length) from each node down its subtree; nodes must be parent-first.
 std::vector<double> subtreeReach(const std::vector<SkeletonNode>& nodes);
+/// Total length of the segments below each node (its sub-tree's branch length, world units):
+/// what the node carries.
+std::vector<double> subtreeLength(const std::vector<SkeletonNode>& nodes);
 
-/// The child continuing node i's branch: longest reach (ties: lowest index); -1 for none.
+/// The child continuing node i's branch: the largest `reach` (a per-node length below it: the
+/// longest path, or the total length carried) plus its segment (ties: lowest index); -1 for none.
 std::int32_t mainChild(const std::vector<SkeletonNode>& nodes, const std::vector<double>& reach, std::size_t i);
 
 }  // namespace treesketch::skeleton::detail

@@ -260,16 +260,20 @@ std::vector<SkeletonNode> selectedNodes(const RawTree& t, const std::vector<char
 // Directions (from the previous to the next node along the main chain) and branch orders (+1 for
 // a side child) of the simplified nodes.
 void setDirectionsAndOrders(std::vector<SkeletonNode>& out, geom::UpAxis upAxis) {
-  const std::vector<double> reach = detail::subtreeReach(out);
+  // The branch continues into the child carrying the most wood (the longest total length below
+  // it), not the longest path: a long thin limb past a fork is a side branch of the thick stem
+  // (on adtree_tree7 the longest path took the stem up a 3 cm limb at 1.1 m). Pruning keeps the
+  // longest path (RawTree::mainOf): a spur is judged by how far it reaches.
+  const std::vector<double> carried = detail::subtreeLength(out);
   const Vec3 up = geom::upVector(upAxis);
   for (std::size_t i = 0; i < out.size(); ++i) {
     auto& node = out[i];
-    const std::int32_t m = mainChild(out, reach, i);
+    const std::int32_t m = mainChild(out, carried, i);
     const Vec3 next = m >= 0 ? out[m].position : node.position;
     const Vec3 prev = node.parent >= 0 ? out[node.parent].position : node.position;
     node.direction = detail::safeNormalized(next - prev, node.direction.norm() > 0 ? node.direction : up);
     node.branchOrder = node.parent < 0 ? 0 : out[node.parent].branchOrder;
-    if (node.parent >= 0 && mainChild(out, reach, node.parent) != static_cast<std::int32_t>(i)) ++node.branchOrder;
+    if (node.parent >= 0 && mainChild(out, carried, node.parent) != static_cast<std::int32_t>(i)) ++node.branchOrder;
   }
 }
 

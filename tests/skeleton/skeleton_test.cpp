@@ -460,3 +460,42 @@ TEST(Skeleton, SparseTrunkBaseKeepsTheRootAtTheBase) {
   EXPECT_EQ(gridOnly.graph.sparseLinks, 0u);
   EXPECT_GT(gridOnly.nodes[0].position.y(), 0.5);
 }
+
+// At a fork the stem goes on into the child carrying the most wood, not the one with the longest
+// path: here a long bare limb (1.2) and a bushier continuation (three limbs of 0.8 from a short
+// piece: shorter path, more wood). The bushy child keeps branch order 0.
+TEST(Skeleton, TheStemContinuesIntoTheChildCarryingTheMostWood) {
+  std::vector<skeleton::SkeletonNode> raw;
+  auto add = [&](int parent, Vec3 p) {
+    skeleton::SkeletonNode n;
+    n.parent = parent;
+    n.position = p;
+    n.radius = 0.01;
+    n.support = 100;
+    n.level = parent < 0 ? 0 : raw[parent].level + 1;
+    raw.push_back(n);
+    return static_cast<int>(raw.size()) - 1;
+  };
+  int cur = add(-1, Vec3(0, 0, 0));
+  for (int k = 1; k <= 5; ++k) cur = add(cur, Vec3(0, 0.1 * k, 0));
+  const int fork = cur;
+  int limb = fork;
+  for (int k = 1; k <= 12; ++k) limb = add(limb, Vec3(0.1 * k, 0.5 + 0.05 * k, 0));
+  int stem = add(fork, Vec3(0, 0.6, 0));
+  stem = add(stem, Vec3(0, 0.7, 0));
+  for (double dx : {-0.1, 0.0, 0.1}) {
+    int b = stem;
+    for (int k = 1; k <= 8; ++k) b = add(b, Vec3(dx * k / 8.0 - 0.02 * k, 0.7 + 0.1 * k, 0.03 * dx * k));
+  }
+  for (std::size_t i = 0; i < raw.size(); ++i)
+    if (raw[i].parent >= 0) raw[raw[i].parent].children.push_back(static_cast<std::int32_t>(i));
+  const auto nodes = skeleton::simplifySkeleton(raw, 0.02, 0.05, skeleton::SkeletonOptions{});
+  ASSERT_GE(skeleton::countBranchPoints(nodes), 2u);
+  // The order-0 chain reaches the bushy top (y > 1.2), and the bare limb's tip (x = 1.2) is order 1.
+  double topOfStem = 0;
+  for (const auto& n : nodes)
+    if (n.branchOrder == 0) topOfStem = std::max(topOfStem, n.position.y());
+  EXPECT_GT(topOfStem, 1.2);
+  for (const auto& n : nodes)
+    if (n.position.x() > 1.1) EXPECT_EQ(n.branchOrder, 1);
+}
