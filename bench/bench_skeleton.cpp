@@ -69,12 +69,26 @@ const geom::PointCloud& cloud1M() {
   return cloud;
 }
 
+/// Session 9's leaf-off skeleton (no sparse links, bridges within 8 voxels along a piece's axis,
+/// the cross-section rule 0.6 / 0.3): the reference path for same-run ratios.
+void session9Skeleton(skeleton::SkeletonOptions& o) {
+  o.graph.sparseLinkNeighbours = 0;
+  o.graph.maxGapVoxels = 8;
+  o.graph.coneAngleDeg = 45;
+  o.graph.minBridgeLinearity = 0.4;
+  o.minTubularFraction = 0.6;
+  o.minTubularFractionLong = 0.3;
+}
+
 void BM_ExtractSkeleton1M(benchmark::State& state) {
   const auto& cloud = cloud1M();
   std::size_t nodes = 0;
   double voxel = 0;
+  // Arg 0: defaults. Arg 1: session 9's leaf-off skeleton.
+  skeleton::SkeletonOptions o;
+  if (state.range(0) == 1) session9Skeleton(o);
   for (auto _ : state) {
-    auto s = skeleton::extractSkeleton(cloud);
+    auto s = skeleton::extractSkeleton(cloud, o);
     nodes = s.nodes.size();
     voxel = s.graph.voxelSize;
     benchmark::DoNotOptimize(s);
@@ -83,20 +97,20 @@ void BM_ExtractSkeleton1M(benchmark::State& state) {
   state.counters["nodes"] = static_cast<double>(nodes);
   state.counters["voxel"] = voxel;  // cloud units (metres): the fits' band is max(0.01, 0.1 voxel)
 }
-BENCHMARK(BM_ExtractSkeleton1M)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExtractSkeleton1M)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   const auto& cloud = cloud1M();
   double skel = 0, fit = 0, sweep = 0;
   std::size_t nodes = 0, forks = 0;
   // Arg 0: defaults. Arg 1: the fits' inlier band 15 % of the hypothesis's radius (sessions 2-6).
-  // Arg 2: the pruning of sessions 1-7 (cross-section rule 0.6 for long sub-trees too, partial
-  // tips below half their parent's support dropped). For same-run ratios.
+  // Arg 2: session 9's leaf-off model (its skeleton, no allometric radius bound). For same-run
+  // ratios.
   skeleton::AutoSkeletonOptions o;
   if (state.range(0) == 1) o.fit.circle.inlierThresholdRelative = 0.15;
   if (state.range(0) == 2) {
-    o.skeleton.minTubularFractionLong = o.skeleton.minTubularFraction;
-    o.skeleton.minEndSupportFraction = 0.5;
+    session9Skeleton(o.skeleton);
+    o.radii.allometryMaxRatio = 0;
   }
   for (auto _ : state) {
     auto r = skeleton::autoSkeletonSketch(cloud, o);
