@@ -366,6 +366,10 @@ void MeshClosestPoint::Impl::search(const Vec3& q, Best& best) const {
     int order[4];
     int k = 0;
     for (int i = 0; i < 4; ++i) {
+      // An empty lane (child 0 = the root, which is nobody's child) is skipped by its index, not by
+      // its infinite box distance: when the query is so far that float distances overflow, the
+      // limit is +inf too, and the lane would lead back to the root without end.
+      if (n.count[i] == 0 && n.child[i] == 0) continue;
       if (!(d[i] <= best.limit2)) continue;
       // Insertion by decreasing distance: the nearest ends last, on top of the stack.
       int j = k++;

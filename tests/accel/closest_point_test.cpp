@@ -156,6 +156,36 @@ TEST(MeshClosestPoint, MaxDistanceIsInclusiveAndDropsFartherQueries) {
   EXPECT_FALSE(hits[2].found());
 }
 
+// Queries so far away that squared distances overflow float (issue 19: `compare` with points at
+// 1e30 never returned): the empty lanes of the 4-wide nodes lead back to the root and were skipped
+// only by their infinite distance, which an infinite limit let through. Both ways round, one
+// triangle (three empty lanes) and a mesh of several leaves; answers as the exact test gives them.
+TEST(MeshClosestPoint, QueriesFarBeyondFloatRangeReturn) {
+  const geom::TriMesh square = unitSquare();
+  for (const double far : {1e20, 1e30, 1e100}) {
+    geom::TriMesh one;
+    one.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    one.triangles = {{0, 1, 2}};
+    for (const geom::TriMesh* mesh : std::vector<const geom::TriMesh*>{&one, &square}) {
+      MeshClosestPoint index(*mesh);
+      const Vec3 q(far, far, far);
+      const ClosestHit hit = index.query(q);
+      ASSERT_TRUE(hit.found()) << far;
+      const auto& t = mesh->triangles[hit.index];
+      const Vec3 c = closestPointOnTriangle(q, mesh->vertices[t[0]], mesh->vertices[t[1]], mesh->vertices[t[2]]);
+      EXPECT_NEAR(hit.distance, (c - q).norm(), 1e-9 * far);
+      EXPECT_EQ(index.queryAll({q, -q}).size(), 2u);
+    }
+    // A mesh far away, queried from near the origin.
+    geom::TriMesh moved = square;
+    for (auto& v : moved.vertices) v += Vec3::Constant(far);
+    MeshClosestPoint index(moved);
+    const ClosestHit hit = index.query(Vec3::Zero());
+    ASSERT_TRUE(hit.found()) << far;
+    EXPECT_NEAR(hit.distance, Vec3::Constant(far).norm(), 1e-6 * far);
+  }
+}
+
 TEST(MeshClosestPoint, EmptyAndBadInput) {
   MeshClosestPoint empty{geom::TriMesh{}};
   EXPECT_FALSE(empty.query({0, 0, 0}).found());
