@@ -336,7 +336,13 @@ void MeshClosestPoint::Impl::layoutSlots(const geom::TriMesh& mesh, const std::v
 void MeshClosestPoint::Impl::search(const Vec3& q, Best& best) const {
   if (nodes4.empty()) return;
   const Vec3 rel = q - origin;
-  const float qx = static_cast<float>(rel.x()), qy = static_cast<float>(rel.y()), qz = static_cast<float>(rel.z());
+  // Clamped into float's range first (a cast out of range is undefined): a farther query sees
+  // every box at +inf, and the exact double test below decides.
+  auto toFloat = [](double x) {
+    constexpr double kMax = std::numeric_limits<float>::max();
+    return static_cast<float>(std::clamp(x, -kMax, kMax));
+  };
+  const float qx = toFloat(rel.x()), qy = toFloat(rel.y()), qz = toFloat(rel.z());
   const V4 vqx = splat(qx), vqy = splat(qy), vqz = splat(qz);
   // Float distances may be short of the true ones by rounding: a box or triangle is skipped only
   // when it is farther than the best distance plus a margin well above float error at this scale
