@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "skeleton/axis_smoothing.h"
 #include "skeleton/radius_allometry.h"
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/util/error.h"
@@ -38,31 +39,6 @@ void checkRules(const RadiusRules& r) {
   if (!(r.slackVoxels >= 0) || !(r.rmsFloorVoxels >= 0) || !std::isfinite(r.slackVoxels) ||
       !std::isfinite(r.rmsFloorVoxels))
     throw OptionsError("skeleton radii: slackVoxels and rmsFloorVoxels must be finite numbers >= 0");
-}
-
-/// Branches as node chains: each starts at the root or at a child whose branch order differs
-/// from its parent's, and follows the child of the same order.
-std::vector<std::vector<std::int32_t>> branchChains(const std::vector<SkeletonNode>& nodes) {
-  std::vector<std::vector<std::int32_t>> chains;
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const auto& n = nodes[i];
-    const bool starts = n.parent < 0 || nodes[n.parent].branchOrder != n.branchOrder;
-    if (!starts) continue;
-    std::vector<std::int32_t> chain;
-    std::int32_t cur = static_cast<std::int32_t>(i);
-    while (cur >= 0) {
-      chain.push_back(cur);
-      std::int32_t next = -1;
-      for (std::int32_t c : nodes[cur].children)
-        if (nodes[c].branchOrder == nodes[cur].branchOrder) {
-          next = c;
-          break;
-        }
-      cur = next;
-    }
-    chains.push_back(std::move(chain));
-  }
-  return chains;
 }
 
 }  // namespace
@@ -105,7 +81,7 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
         if (ok[i] && r[i] > p * rules.allometryMaxRatio) ok[i] = 0;
       }
   }
-  const auto chains = branchChains(nodes);
+  const auto chains = detail::branchChains(nodes);
   // 1. Interpolate rejected fits along each branch by arc length (the fork at a side branch's
   // start is the parent's node: it is read, not written).
   std::vector<double> arc;
@@ -185,6 +161,10 @@ void checkOptions(const AutoSkeletonOptions& options) {
     throw OptionsError("skeleton: maxFitFlatFraction must be in [0, 1]");
   if (!(options.minInlierBandVoxels >= 0) || !std::isfinite(options.minInlierBandVoxels))
     throw OptionsError("skeleton: minInlierBandVoxels must be a finite number >= 0");
+  if (options.axes.halfWindowNodes < 0 || !(options.axes.unfittedWeight > 0 && options.axes.unfittedWeight <= 1) ||
+      !(options.axes.maxShiftRadii >= 0) || !std::isfinite(options.axes.maxShiftRadii))
+    throw OptionsError(
+        "skeleton axes: halfWindowNodes must be >= 0, unfittedWeight in (0, 1] and maxShiftRadii finite and >= 0");
 }
 
 recon::ReconstructionOptions reconstructionOptions(const AutoSkeletonOptions& options, double voxel) {
@@ -284,7 +264,11 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   t0 = std::chrono::steady_clock::now();
   const std::vector<double> fitted = acceptFits(res, options.radii, voxel);
   const std::vector<double> radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, options.radii);
-  for (std::size_t i = 0; i < n; ++i) res.model[i].radius = radii[i];
+  const std::vector<geom::Vec3> axes = detail::smoothAxes(res.model, res.fitAccepted, radii, voxel, options.axes);
+  for (std::size_t i = 0; i < n; ++i) {
+    res.model[i].radius = radii[i];
+    res.model[i].position = axes[i];
+  }
 
   // 5.-6. The model into the sketch, and recon sweeps that sketch (kept circles need no fit).
   handOver(res, options.bridgeUnfittedForks);

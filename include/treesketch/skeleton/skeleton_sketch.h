@@ -63,6 +63,22 @@ struct RadiusRules {
   double allometryMaxRatio = 2.0;
 };
 
+/// How the branch axes are re-estimated after the fits (skeleton/axis_smoothing.h): a local,
+/// weighted, robust line fit of each branch's node positions against arc length. A level-set
+/// centroid lies on the scanned side of a sparsely sampled branch, so unsmoothed axes zigzag.
+struct AxisRules {
+  /// Half-width of the window, in nodes along the branch (0 = off). 2 (five nodes, about
+  /// 2–4 radii on a trunk) straightens zigzags and keeps bends longer than the window.
+  int halfWindowNodes = 2;
+  /// Weight of a node without an accepted fit (its position is a piece's centroid), relative to
+  /// a fitted circle's centre (1).
+  double unfittedWeight = 0.25;
+  /// A node moves at most this many of its (regularised) radii: a piece's centroid lies on the
+  /// branch's surface, within one radius of its axis, so a longer move would cut a real bend
+  /// (a thin twig's centroid is on its axis to within a voxel and hardly moves).
+  double maxShiftRadii = 1.0;
+};
+
 /// Builds the sketch: node i of `skeleton.nodes` becomes sketch node id i (point node at the
 /// node's position, normal = its direction), with sampling sizes from its radius. sketch.up =
 /// skeleton.up; sketch.defaults = the root's sizes. Empty skeleton → empty sketch.
@@ -95,6 +111,7 @@ struct AutoSkeletonOptions {
   SkeletonSketchOptions sketch;
   fit::NodeFitOptions fit = autoNodeFitOptions();
   RadiusRules radii;
+  AxisRules axes;
   /// Forks without an accepted fit are bridged (disabled in the sketch, so the children's tubes
   /// join the fork's parent ring): a fork's level set holds its children's bases, so its centroid
   /// often sits between the branches, off the wood. The node stays in the model and the sketch.
