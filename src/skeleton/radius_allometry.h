@@ -25,4 +25,8 @@ struct Allometry {
 Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector<double>& r,
                        const std::vector<char>& trusted);
 
+/// In place: the least-squares non-increasing sequence to `values` with `weights` > 0
+/// (isotonic regression by pooling adjacent violators): a branch's taper.
+void nonIncreasingFit(std::vector<double>& values, const std::vector<double>& weights);
+
 }  // namespace treesketch::skeleton::detail

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "skeleton/axis_smoothing.h"
 #include "skeleton/radius_allometry.h"
@@ -16,6 +17,9 @@ namespace treesketch::skeleton {
 namespace {
 
 using geom::Vec3;
+
+/// Weight of an interpolated (not fitted) radius in the taper fit, relative to a trusted fit's.
+constexpr double kInterpolatedRadiusWeight = 0.25;
 
 double elapsedMs(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
@@ -133,10 +137,22 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
       r[i] = std::max(r[i], std::sqrt(sum));
     }
   }
-  // 4. No child thicker than its parent, top-down.
+  // 4. No child thicker than its parent: along each branch the least-squares non-increasing
+  // radii (isotonic regression, trusted fits weighing most), so one thin fit lowers its
+  // neighbours a little instead of capping the whole branch above it; then a branch is capped
+  // by the node it forks from (chains are parent-first, so that node is final).
   if (rules.childNotThicker)
-    for (std::size_t i = 0; i < n; ++i)
-      if (nodes[i].parent >= 0) r[i] = std::min(r[i], r[nodes[i].parent]);
+    for (const auto& chain : chains) {
+      std::vector<double> values(chain.size()), weights(chain.size());
+      for (std::size_t k = 0; k < chain.size(); ++k) {
+        values[k] = r[chain[k]];
+        weights[k] = ok[chain[k]] ? 1.0 : kInterpolatedRadiusWeight;
+      }
+      detail::nonIncreasingFit(values, weights);
+      const std::int32_t parent = nodes[chain.front()].parent;
+      const double cap = parent >= 0 ? r[parent] : std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < chain.size(); ++k) r[chain[k]] = std::min(values[k], cap);
+    }
   // 5. Not above the allometry's bound.
   if (allometry.valid)
     for (std::size_t i = 0; i < n; ++i) {

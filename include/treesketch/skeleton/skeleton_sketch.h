@@ -48,7 +48,11 @@ struct RadiusRules {
   double rmsFloorVoxels = 0.25;
   /// Running median over this many nodes along each branch (odd; 1 = off): one bad fit no longer shows.
   int medianWindow = 5;
-  /// No node thicker than its parent (along a branch: radii never grow towards the tip).
+  /// No node thicker than its parent: along a branch the radii are the least-squares
+  /// non-increasing fit (isotonic regression; trusted fits weigh 4× interpolated radii), so they
+  /// never grow towards the tip and one thin fit (a twig's circle taken on the trunk) lowers only
+  /// its neighbourhood instead of capping everything above it as a running minimum did; a side
+  /// branch is capped by the node it forks from.
   bool childNotThicker = true;
   /// Pipe model at forks (Shinozaki et al. 1964, area-preserving: r_parent² = Σ r_child²), applied
   /// by growing a fork's radius when its children need more (never shrinking it). Off by default:
