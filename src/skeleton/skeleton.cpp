@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "skeleton/checks.h"
@@ -61,6 +62,25 @@ void checkOptions(const SkeletonOptions& o) {
 
 }  // namespace detail
 
+namespace {
+
+/// The root node moved down to the lowest point of the root region (the Dijkstra sources): a
+/// level set's centroid sits half a bin above its bottom, and the tube would leave the trunk's
+/// foot uncovered; the foot is where a user expects the trunk to end.
+void rootToBase(Skeleton& s, const geom::PointCloud& cloud) {
+  if (s.nodes.empty() || s.levels.rootVertices.empty()) return;
+  std::vector<char> inRoot(s.graph.size(), 0);
+  for (std::uint32_t v : s.levels.rootVertices) inRoot[v] = 1;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (inRoot[s.graph.pointVoxel[i]]) lowest = std::min(lowest, geom::height(cloud.positions[i], s.up));
+  SkeletonNode& root = s.nodes.front();
+  const double drop = geom::height(root.position, s.up) - lowest;
+  if (std::isfinite(drop) && drop > 0) root.position -= drop * geom::upVector(s.up);
+}
+
+}  // namespace
+
 std::size_t countBranchPoints(const std::vector<SkeletonNode>& nodes) {
   return static_cast<std::size_t>(
       std::count_if(nodes.begin(), nodes.end(), [](const SkeletonNode& n) { return n.children.size() >= 2; }));
@@ -91,6 +111,7 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
   }
   if (progress) progress(3, 4);
   s.nodes = simplifySkeleton(s.rawNodes, s.graph.voxelSize, s.levels.binWidth, options);
+  rootToBase(s, cloud);
   if (progress) progress(4, 4);
   return s;
 }

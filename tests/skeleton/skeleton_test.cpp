@@ -461,6 +461,23 @@ TEST(Skeleton, SparseTrunkBaseKeepsTheRootAtTheBase) {
   EXPECT_GT(gridOnly.nodes[0].position.y(), 0.5);
 }
 
+// The root node sits at the trunk's foot (the lowest point of the root region), not at the
+// centroid of the first level set half a bin above it.
+TEST(Skeleton, TheRootIsAtTheTrunksFoot) {
+  const std::vector<test::Cyl> trunk = {{Vec3(0, 0, 0), Vec3(0, 2, 0), 0.06, -1}};
+  const auto cloud = test::sampleCylinders(trunk, 0.008, 0.001, 5);
+  double lowest = 1e9;
+  for (const auto& p : cloud.positions) lowest = std::min(lowest, p.y());
+  skeleton::SkeletonOptions o;
+  o.graph.voxelSize = 0.02;
+  const auto s = skeleton::extractSkeleton(cloud, o);
+  ASSERT_FALSE(s.nodes.empty());
+  EXPECT_NEAR(s.nodes[0].position.y(), lowest, 1e-9);
+  EXPECT_LT(std::hypot(s.nodes[0].position.x(), s.nodes[0].position.z()), 0.06);
+  ASSERT_GE(s.nodes.size(), 2u);
+  EXPECT_GT(s.nodes[1].position.y(), s.nodes[0].position.y() + o.graph.voxelSize);
+}
+
 // At a fork the stem goes on into the child carrying the most wood, not the one with the longest
 // path: here a long bare limb (1.2) and a bushier continuation (three limbs of 0.8 from a short
 // piece: shorter path, more wood). The bushy child keeps branch order 0.
