@@ -178,9 +178,11 @@ void checkOptions(const AutoSkeletonOptions& options) {
   if (!(options.minInlierBandVoxels >= 0) || !std::isfinite(options.minInlierBandVoxels))
     throw OptionsError("skeleton: minInlierBandVoxels must be a finite number >= 0");
   if (options.axes.halfWindowNodes < 0 || !(options.axes.unfittedWeight > 0 && options.axes.unfittedWeight <= 1) ||
-      !(options.axes.maxShiftRadii >= 0) || !std::isfinite(options.axes.maxShiftRadii))
+      !(options.axes.maxShiftRadii >= 0) || !std::isfinite(options.axes.maxShiftRadii) ||
+      !(options.axes.centroidPrecisionVoxels >= 0) || !std::isfinite(options.axes.centroidPrecisionVoxels))
     throw OptionsError(
-        "skeleton axes: halfWindowNodes must be >= 0, unfittedWeight in (0, 1] and maxShiftRadii finite and >= 0");
+        "skeleton axes: halfWindowNodes must be >= 0, unfittedWeight in (0, 1], maxShiftRadii and "
+        "centroidPrecisionVoxels finite and >= 0");
 }
 
 recon::ReconstructionOptions reconstructionOptions(const AutoSkeletonOptions& options, double voxel) {
@@ -280,7 +282,7 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   t0 = std::chrono::steady_clock::now();
   const std::vector<double> fitted = acceptFits(res, options.radii, voxel);
   const std::vector<double> radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, options.radii);
-  const std::vector<geom::Vec3> axes = detail::smoothAxes(res.model, res.fitAccepted, radii, voxel, options.axes);
+  const std::vector<geom::Vec3> axes = detail::smoothAxes(res.model, res.fitAccepted, radii, options.axes.centroidPrecisionVoxels * voxel, options.axes);
   for (std::size_t i = 0; i < n; ++i) {
     res.model[i].radius = radii[i];
     res.model[i].position = axes[i];

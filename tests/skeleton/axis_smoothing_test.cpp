@@ -43,7 +43,8 @@ TEST(AxisSmoothing, TwigsThinnerThanAVoxelAndFittedNodesStay) {
 }
 
 TEST(AxisSmoothing, ABendLongerThanTheWindowIsKept) {
-  // A quarter circle of radius 10 sampled every unit: the axis follows it within 0.1.
+  // A bend of curvature radius 10 (ten branch radii) sampled every unit: the axis follows it
+  // within a fifth of the branch radius (a chord across the nine-node window would miss by 1).
   std::vector<SkeletonNode> nodes = chain(16, [](int) { return 0.0; });
   for (int k = 0; k < 16; ++k) {
     const double a = k / 10.0;
@@ -54,7 +55,7 @@ TEST(AxisSmoothing, ABendLongerThanTheWindowIsKept) {
   const auto p = detail::smoothAxes(nodes, fitted, radii, 0.1, AxisRules{});
   for (int k = 0; k < 16; ++k) {
     const double onCircle = (p[k] - Vec3(10, 0, 0)).norm();
-    EXPECT_NEAR(onCircle, 10.0, 0.1) << "node " << k;
+    EXPECT_NEAR(onCircle, 10.0, 0.2) << "node " << k;
   }
 }
 

@@ -71,16 +71,21 @@ struct RadiusRules {
 /// weighted, robust line fit of each branch's node positions against arc length. A level-set
 /// centroid lies on the scanned side of a sparsely sampled branch, so unsmoothed axes zigzag.
 struct AxisRules {
-  /// Half-width of the window, in nodes along the branch (0 = off). 2 (five nodes, about
-  /// 2–4 radii on a trunk) straightens zigzags and keeps bends longer than the window.
-  int halfWindowNodes = 2;
+  /// Half-width of the window, in nodes along the branch (0 = off). 4 (nine nodes, 5–10
+  /// radii on a trunk) averages a sparse trunk's centroids, which scatter around its whole
+  /// circumference, and keeps bends longer than the window; the error figures are the same for
+  /// 2–4 (docs/notes/skeleton_options.md), the pictures straighter with 4.
+  int halfWindowNodes = 4;
   /// Weight of a node without an accepted fit (its position is a piece's centroid), relative to
   /// a fitted circle's centre (1).
   double unfittedWeight = 0.25;
-  /// A node moves at most this many of its (regularised) radii: a piece's centroid lies on the
+  /// A node moves at most this many of its (regularised) radii ... : a piece's centroid lies on the
   /// branch's surface, within one radius of its axis, so a longer move would cut a real bend
   /// (a thin twig's centroid is on its axis to within a voxel and hardly moves).
   double maxShiftRadii = 1.0;
+  /// ... less this many voxels: a centroid is only known to about half a voxel, so a twig
+  /// thinner than that keeps its course.
+  double centroidPrecisionVoxels = 0.5;
 };
 
 /// Builds the sketch: node i of `skeleton.nodes` becomes sketch node id i (point node at the
