@@ -12,10 +12,21 @@ namespace treesketch {
 
 namespace fs = std::filesystem;
 
+namespace {
+std::atomic<bool> gCreateDirectories{false};
+}  // namespace
+
+void setCreateOutputDirectories(bool create) { gCreateDirectories.store(create); }
+
 void writeFileAtomically(const fs::path& path, const std::function<void(std::ostream&)>& write, bool binary) {
   static std::atomic<unsigned> counter{0};
   fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  if (!fs::is_directory(dir)) throw OutputError(path.string() + ": directory '" + dir.string() + "' does not exist");
+  std::error_code made;
+  if (!fs::is_directory(dir) && gCreateDirectories.load()) fs::create_directories(dir, made);
+  if (!fs::is_directory(dir))
+    throw OutputError(path.string() + ": directory '" + dir.string() + "' does not exist" +
+                      (gCreateDirectories.load() ? " and cannot be created" : "") +
+                      (made ? " (" + made.message() + ")" : ""));
   fs::path tmp = dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
                         std::to_string(counter.fetch_add(1)));
   try {
