@@ -171,7 +171,8 @@ std::size_t writeBatchSummary(const fs::path& out, const BatchPlan& plan) {
     std::string line;
     bool first = true;
     for (const char* c : kColumns) {
-      line += (first ? "" : ",") + csvField(r.value(c, nlohmann::json()));
+      if (!first) line += ',';
+      line += csvField(r.value(c, nlohmann::json()));
       first = false;
     }
     csv += line + "\n";

@@ -23,10 +23,12 @@ void writeFileAtomically(const fs::path& path, const std::function<void(std::ost
   fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code made;
   if (!fs::is_directory(dir) && gCreateDirectories.load()) fs::create_directories(dir, made);
-  if (!fs::is_directory(dir))
-    throw OutputError(path.string() + ": directory '" + dir.string() + "' does not exist" +
-                      (gCreateDirectories.load() ? " and cannot be created" : "") +
-                      (made ? " (" + made.message() + ")" : ""));
+  if (!fs::is_directory(dir)) {
+    std::string why = path.string() + ": directory '" + dir.string() + "' does not exist";
+    if (gCreateDirectories.load()) why += " and cannot be created";
+    if (made) why += " (" + made.message() + ")";
+    throw OutputError(why);
+  }
   fs::path tmp = dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
                         std::to_string(counter.fetch_add(1)));
   try {
