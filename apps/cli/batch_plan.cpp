@@ -38,15 +38,21 @@ bool isCylinderTable(const fs::path& p) {
   return false;
 }
 
-/// Unique names: the stem, or the file name with '.' → '_' where stems clash.
+/// Unique names: the stem, or the file name with '.' → '_' where stems clash, then "_2", "_3"...
+/// for the same file name in different folders (a manifest).
 void nameTrees(std::vector<BatchTree>& trees) {
-  std::map<std::string, int> count;
+  std::map<std::string, int> count, used;
   for (const auto& t : trees) ++count[t.cloud.stem().string()];
   for (auto& t : trees) {
     t.name = t.cloud.stem().string();
     if (count[t.name] > 1) {
       t.name = t.cloud.filename().string();
       std::replace(t.name.begin(), t.name.end(), '.', '_');
+    }
+    const int n = ++used[t.name];
+    if (n > 1) {
+      t.name += '_';
+      t.name += std::to_string(n);
     }
   }
 }

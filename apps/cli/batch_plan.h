@@ -9,8 +9,8 @@
 // skipped; relative paths are relative to the manifest's folder), taken in its order.
 //
 // Per tree, under OUT/<name>/ (name = the file's stem; file name with '.' → '_' when two stems
-// clash): mesh.ply, cylinders.csv (treesketch), qsm.txt (TreeQSM layout), metrics.json,
-// report.json, log.txt, and last a marker: done.json on success, failed.json on failure, each
+// clash; then _2, _3 for one file name in several folders): mesh.ply, cylinders.csv (treesketch), qsm.txt (TreeQSM
+// layout), metrics.json, report.json, log.txt, and last a marker: done.json on success, failed.json on failure, each
 // with the input's size and modification time. A tree is complete when done.json exists, names the
 // same input size and time, and every output is there (atomic writes: present = complete); a
 // failure is not retried while its input is unchanged.

@@ -90,6 +90,14 @@ TEST_F(BatchCli, ManifestAndBadInput) {
   std::string out;
   EXPECT_EQ(test::runCli("batch " + quoted(dir / "trees.txt") + " --out " + quoted(dir / "m"), &out), 0) << out;
   EXPECT_TRUE(fs::exists(dir / "m" / "tree_a" / "done.json"));
+  // The same file name in two folders: two trees, two folders.
+  fs::create_directories(dir / "other");
+  fs::copy_file(plot / "tree_a.ply", dir / "other" / "tree_a.ply");
+  test::writeText(dir / "two.txt", "plot/tree_a.ply\nother/tree_a.ply\n");
+  EXPECT_EQ(test::runCli("batch " + quoted(dir / "two.txt") + " --out " + quoted(dir / "t") + " --jobs 2", &out), 0)
+      << out;
+  EXPECT_TRUE(fs::exists(dir / "t" / "tree_a_ply" / "done.json")) << out;
+  EXPECT_TRUE(fs::exists(dir / "t" / "tree_a_ply_2" / "done.json")) << out;
   test::writeText(dir / "bad.txt", "plot/nothing.ply\n");
   EXPECT_EQ(test::runCli("batch " + quoted(dir / "bad.txt") + " --out " + quoted(dir / "m2"), &out), 3) << out;
   EXPECT_NE(out.find("bad.txt:1"), std::string::npos) << out;
