@@ -6,7 +6,7 @@ BUILD ?= build
 ASAN_BUILD ?= build-asan
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test test-release test-asan bench clean format
+.PHONY: all deps build demo test test-release test-asan test-slurm bench clean format
 
 all: build
 
@@ -34,6 +34,10 @@ test-asan: deps $(ASAN_BUILD)/CMakeCache.txt
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 		TREESKETCH_SANITIZED=1 ctest --output-on-failure -j $(JOBS)
+
+# A plot as a Slurm job array on a single-node cluster started from Debian's packages (root; not in `make test`).
+test-slurm: build
+	bash scripts/test_slurm.sh
 
 bench: build
 	@for b in $(BUILD)/bench_*; do echo "== $$b"; $$b; done

@@ -141,7 +141,10 @@ void stepScan(DemoState& s) {
   s.summary << "  bounds (cloud): " << formatBox(s.scan.cloud.bounds()) << "\n";
 }
 
-void stepWriteCloud(DemoState& s) { io::writePointCloud(s.dir / "cloud.ply", s.scan.cloud); }
+void stepWriteCloud(DemoState& s) {
+  s.scan.cloud.up = s.tree.skeleton.up;  // the PLY says its up, so later commands need no --up
+  io::writePointCloud(s.dir / "cloud.ply", s.scan.cloud);
+}
 
 void stepReconstruct(DemoState& s) {
   eval::TreeCase tc = eval::treeCaseFromGenerated("demo", s.tree);

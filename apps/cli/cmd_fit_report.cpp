@@ -11,6 +11,7 @@
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/io/cylinder_table.h"
 #include "treesketch/io/point_cloud_io.h"
+#include "treesketch/io/up_axis.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
 
@@ -19,7 +20,7 @@ namespace treesketch::cli {
 namespace {
 
 struct FitReportArgs {
-  std::string cloud, model, json, up = "z";
+  std::string cloud, model, json, up;  // up "" = io/up_axis.h
   double unitMetres = 1.0;
 };
 
@@ -30,14 +31,15 @@ void runFitReport(const FitReportArgs& a) {
   const geom::PointCloud cloud = io::readPointCloud(a.cloud);
   if (cloud.empty()) throw InputError(a.cloud + ": the cloud has no points");
 
+  const io::UpAxisChoice up = io::chooseUpAxis(a.up, cloud);
   compare::ModelFitOptions o;
   o.unitMetres = a.unitMetres;
   const compare::ModelFitReport fit = compare::measureModelFit(cloud, table.model, o);
-  const compare::ModelFigures fig = compare::modelFigures(table.model, geom::parseUpAxis(a.up), a.unitMetres);
+  const compare::ModelFigures fig = compare::modelFigures(table.model, up.up, a.unitMetres);
 
   std::printf("fit-report: %s (%zu points) against %s (%s table, %zu cylinders); 1 unit = %g m, up %s\n",
               a.cloud.c_str(), cloud.size(), a.model.c_str(), io::toString(table.format), table.model.size(),
-              a.unitMetres, a.up.c_str());
+              a.unitMetres, up.reason.c_str());
   std::printf("fit: %s\n", compare::summaryLine(fit).c_str());
   std::printf("model: %s\n", compare::summaryLine(fig).c_str());
   if (!a.json.empty()) {
@@ -45,7 +47,7 @@ void runFitReport(const FitReportArgs& a) {
     j["cloud"] = a.cloud;
     j["model"] = a.model;
     j["format"] = io::toString(table.format);
-    j["up"] = a.up;
+    j["up"] = geom::toString(up.up);
     j["fit"] = compare::toJson(fit);
     j["figures"] = compare::toJson(fig);
     const std::string text = j.dump(2) + "\n";
@@ -67,7 +69,8 @@ void registerFitReport(CLI::App& app, Action& action) {
       ->required();
   sub->add_option("--units-metres", a->unitMetres, "Metres per cloud unit (default 1: the cloud is in metres)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--up", a->up, "Up axis for the trunk diameter at 1.3 m, y or z (default z)")
+  sub->add_option("--up", a->up,
+                  "Up axis for the trunk diameter at 1.3 m, y or z (default: what the cloud file declares, else z)")
       ->check(CLI::IsMember({"y", "z", "Y", "Z"}));
   sub->add_option("--json", a->json, "Write the report as JSON");
   sub->callback([a, &action] { action = [a] { runFitReport(*a); }; });

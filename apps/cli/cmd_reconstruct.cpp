@@ -11,7 +11,9 @@
 #include <string>
 
 #include "commands.h"
+#include "tree_job.h"
 #include "treesketch/compare/model_fit.h"
+#include "treesketch/compare/tree_metrics.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
@@ -33,7 +35,7 @@ struct ReconstructArgs {
   bool autoSkeleton = false;        // --auto: sketch from the cloud's skeleton (skeleton module)
   bool leafOn = false;              // --leaf-on (with --auto): settings for trees in leaf
   bool refit = false;               // --refit: drop the sketch's kept circles, fit every node
-  std::string up = "y", cylinders;  // --up, --cylinders (with --auto)
+  std::string up, cylinders, qsm;   // --up ("" = the rule of io/up_axis.h), --cylinders, --qsm (with --auto)
   double unitMetres = 0.0;          // --units-metres (with --report; 0 = not given: metres)
 };
 
@@ -119,60 +121,34 @@ nlohmann::json reportJson(const ReconstructArgs& a, const recon::ReconstructionR
   return root;
 }
 
-/// --auto: skeleton → sketch → fits → regularised radii → mesh; the sketch is saved to --sketch
-/// (when given) for refining, the cylinder table to --cylinders.
+/// --auto: skeleton → sketch → fits → regularised radii → mesh (tree_job.h); the sketch is saved
+/// to --sketch (when given) for refining, the cylinder tables to --cylinders and --qsm.
 void runAutoReconstruct(const ReconstructArgs& a) {
-  checkNotAnInput(a.output, {a.cloud});
-  if (!a.sketch.empty()) checkNotAnInput(a.sketch, {a.cloud});
-  if (!a.report.empty()) checkNotAnInput(a.report, {a.cloud});
   if (a.refit) throw OptionsError("--refit applies to a sketch file (--sketch without --auto)");
-  try {
-    io::meshFormatFromPath(a.output);
-  } catch (const InputError& e) {
-    throw OptionsError(std::string("-o: ") + e.what());
-  }
-  skeleton::AutoSkeletonOptions opt = skeleton::autoSkeletonPreset(
-      a.leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, geom::parseUpAxis(a.up));
-  opt.seed = a.seed;
-  opt.ringVertices = a.ring;
-  if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;
-  geom::PointCloud cloud = io::readPointCloud(a.cloud);
-  if (cloud.empty()) throw InputError(a.cloud + ": the cloud has no points");
-  skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(cloud, opt);
-  if (r.mesh.empty()) throw InputError(a.cloud + ": no skeleton found; no mesh written");
-  io::writeMesh(a.output, r.mesh);
-  if (!a.sketch.empty()) io::writeSketch(std::filesystem::path(a.sketch), r.sketch);
-  if (!a.cylinders.empty()) skeleton::writeCylinderCsv(a.cylinders, r.model);
-  std::string fitSummary;
-  if (!a.report.empty()) {
-    const geom::CylinderModel model = skeleton::cylinderModelFromSkeleton(r.model);
-    nlohmann::json j;
-    j["cloud"] = a.cloud;
-    j["mesh"] = a.output;
-    j["auto"] = true;
-    j["leafOn"] = a.leafOn;
-    j["up"] = geom::toString(opt.skeleton.up);
-    j["points"] = cloud.size();
-    j["seed"] = a.seed;
-    j["skeletonNodes"] = r.model.size();
-    j["forks"] = skeleton::countBranchPoints(r.model);
-    j["vertices"] = r.mesh.vertices.size();
-    j["triangles"] = r.mesh.triangles.size();
-    j["timings"] = {{"skeletonMs", r.skeletonMs}, {"fitMs", r.fitMs}, {"sweepMs", r.sweepMs}};
-    j["model"] = measureModel(cloud, model, opt.skeleton.up, a.unitMetres, &fitSummary);
-    const std::string text = j.dump(2) + "\n";
-    writeFileAtomically(
-        a.report, [&](std::ostream& os) { os << text; }, false);
-  }
-  std::size_t accepted = 0, leaf = 0;
-  for (char c : r.fitAccepted) accepted += c != 0;
-  for (const auto& n : r.model) leaf += skeleton::isLeafPiece(n, opt);
+  TreeJob job;
+  job.cloud = a.cloud;
+  job.mesh = a.output;
+  job.sketch = a.sketch;
+  job.cylinders = a.cylinders;
+  job.qsm = a.qsm;
+  job.report = a.report;
+  job.up = a.up;
+  job.leafOn = a.leafOn;
+  job.seed = a.seed;
+  job.ring = a.ring;
+  job.inlierThreshold = a.inlierThreshold;
+  job.unitMetres = a.unitMetres == 0.0 ? 1.0 : a.unitMetres;
+  const TreeJobResult r = runTreeJob(job);
+  std::printf("up axis: %s\n", r.upReason.c_str());
   std::printf(
       "reconstruct --auto: %zu skeleton nodes (%zu forks), %zu fits accepted, %zu leaf pieces not fitted; "
       "%zu vertices, %zu triangles; skeleton %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
-      r.model.size(), skeleton::countBranchPoints(r.model), accepted, leaf, r.mesh.vertices.size(),
-      r.mesh.triangles.size(), r.skeletonMs, r.fitMs, r.sweepMs, a.output.c_str());
-  if (!a.report.empty()) std::printf("model fit: %s -> %s\n", fitSummary.c_str(), a.report.c_str());
+      r.skeletonNodes, r.forks, r.fitsAccepted, r.leafPieces, r.vertices, r.triangles, r.skeletonMs, r.fitMs, r.sweepMs,
+      a.output.c_str());
+  if (!a.report.empty()) {
+    std::printf("model fit: %s -> %s\n", r.fitSummary.c_str(), a.report.c_str());
+    std::printf("tree metrics:\n%s", compare::metricsTable(r.metrics).c_str());
+  }
 }
 
 void runReconstruct(const ReconstructArgs& a) {
@@ -180,6 +156,8 @@ void runReconstruct(const ReconstructArgs& a) {
     throw OptionsError("--units-metres applies to the report's figures: it needs --report");
   if (a.autoSkeleton) return runAutoReconstruct(a);
   if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
+  if (!a.up.empty() || !a.qsm.empty())
+    throw OptionsError("--up and --qsm need --auto (a sketch file carries its own up axis)");
   if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");
   checkNotAnInput(a.output, {a.cloud, a.sketch});
   if (!a.report.empty()) checkNotAnInput(a.report, {a.cloud, a.sketch});
@@ -209,7 +187,11 @@ void runReconstruct(const ReconstructArgs& a) {
   std::string fitSummary;
   if (!a.report.empty()) {
     nlohmann::json j = reportJson(a, r, cloud.size());
-    j["model"] = measureModel(cloud, sketchModel(r), sk.up, a.unitMetres, &fitSummary);  // the sketch's up
+    const geom::CylinderModel model = sketchModel(r);
+    j["model"] = measureModel(cloud, model, sk.up, a.unitMetres, &fitSummary);  // the sketch's up
+    compare::TreeMetricsOptions mo;
+    mo.unitMetres = a.unitMetres == 0.0 ? 1.0 : a.unitMetres;
+    j["metrics"] = compare::toJson(compare::treeMetrics(model, sk.up, mo, &cloud));
     std::string text = j.dump(2) + "\n";
     writeFileAtomically(
         a.report, [&](std::ostream& os) { os << text; }, false);
@@ -235,11 +217,14 @@ void registerReconstruct(CLI::App& app, Action& action) {
   sub->add_option("cloud", a->cloud, "Point cloud (.ply .xyz .txt .csv .pts .las)")->required();
   sub->add_option("--sketch", a->sketch, "Sketch file (.json); with --auto, where to save the automatic sketch");
   sub->add_flag("--auto", a->autoSkeleton, "Sketch automatically from the cloud's branching skeleton");
-  sub->add_option("--up", a->up, "With --auto: world up axis, y or z (default y)")
+  sub->add_option("--up", a->up,
+                  "With --auto: world up axis, y or z (default: what the file declares — LAS is z, a treesketch PLY "
+                  "says its own — else z)")
       ->check(CLI::IsMember({"y", "z", "Y", "Z"}));
   sub->add_flag("--leaf-on", a->leafOn,
                 "With --auto: the tree was scanned in leaf (finer voxels, weaker foliage rule)");
   sub->add_option("--cylinders", a->cylinders, "With --auto: also write the cylinder table (.csv)");
+  sub->add_option("--qsm", a->qsm, "With --auto: also write the cylinder table in TreeQSM's text layout (.txt)");
   sub->add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
   sub->add_option("--report", a->report,
                   "Write a JSON report: every node's fit (or the automatic model's counts), and how well the model "

@@ -90,6 +90,7 @@ void runScan(const ScanArgs& a) {
       result = scan::tlsScan(scene, o, bar.callback());
     }
   }
+  result.cloud.up = geom::parseUpAxis(a.up);  // the PLY says its up (io/up_axis.h)
   io::writePointCloud(a.output, result.cloud);
 
   const scan::ScanStats& s = result.stats;
@@ -135,7 +136,10 @@ void registerScan(CLI::App& app, Action& action) {
       sub->add_option("--noise", a->noise, "Gaussian range noise sigma, metres (default: 0 for sphere, 0.002 for tls)");
   sub->add_option("--seed", a->seed, "Random seed (jitter, noise, beam ring, registration error)")
       ->capture_default_str();
-  sub->add_option("--up", a->up, "tls: up axis, y or z")->capture_default_str();
+  sub->add_option(
+         "--up", a->up,
+         "Up axis of the meshes, y or z (tls: station heights and zenith angles); written into a PLY cloud as its up")
+      ->capture_default_str();
   sub->add_option("--stations", a->stations, "tls: number of stations on a ring around the tree")
       ->capture_default_str();
   sub->add_option("--station-radius", a->stationRadius, "tls: ring radius, mesh units (default: 1 x bbox diagonal)");

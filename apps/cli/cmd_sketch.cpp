@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
+#include "treesketch/io/up_axis.h"
 #include "treesketch/io/view_camera.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/sketch/auto_sketch.h"
@@ -50,7 +51,7 @@ const std::map<std::string, AutoSketchMethod>& autoSketchMethods() {
 }
 
 struct AutoOptions {
-  std::string cloud, view = "front", method = "uniform", up = "y", output;
+  std::string cloud, view = "front", method = "uniform", up, output;  // up "" = io/up_axis.h
   int nodes = 18;  // the thesis's automatic sketches had 18 nodes (Table 5.2)
   bool ortho = false;
   bool leafOn = false;  // --leaf-on: the skeleton method's settings for trees in leaf
@@ -58,11 +59,14 @@ struct AutoOptions {
 };
 
 void runAuto(const AutoOptions& o) {
-  geom::UpAxis up = geom::parseUpAxis(o.up);
+  if (!o.up.empty()) geom::parseUpAxis(o.up);  // a bad value fails before the cloud is read
   if (o.nodes < 1) throw OptionsError("--nodes must be >= 1, got " + std::to_string(o.nodes));
   if (o.width < 1 || o.height < 1) throw OptionsError("--width and --height must be >= 1");
   checkNotAnInput(o.output, {o.cloud});
   geom::PointCloud cloud = io::readPointCloud(o.cloud);
+  const io::UpAxisChoice choice = io::chooseUpAxis(o.up, cloud);
+  const geom::UpAxis up = choice.up;
+  std::printf("up axis: %s\n", choice.reason.c_str());
   geom::Viewport viewport{0, 0, static_cast<double>(o.width), static_cast<double>(o.height)};
   geom::Camera camera = io::cameraForView(o.view, cloud.bounds(), up, viewport, o.ortho);
   const auto& methods = autoSketchMethods();
@@ -87,7 +91,10 @@ void registerSketch(CLI::App& app, Action& action) {
   autoCmd->add_option("-n,--nodes", o->nodes, "Number of nodes (default 18, as the thesis's automatic sketches)");
   autoCmd->add_option("--view", o->view, "front, side, top, or a camera JSON file {view, projection, viewport}");
   autoCmd->add_option("--method", o->method, "Automatic method")->check(CLI::IsMember(names));
-  autoCmd->add_option("--up", o->up, "World up axis: y or z")->check(CLI::IsMember({"y", "z", "Y", "Z"}));
+  autoCmd
+      ->add_option("--up", o->up,
+                   "World up axis: y or z (default: what the file declares — LAS z, a treesketch PLY its own — else z)")
+      ->check(CLI::IsMember({"y", "z", "Y", "Z"}));
   autoCmd->add_flag("--leaf-on", o->leafOn,
                     "Method skeleton: the tree was scanned in leaf (finer voxels, weaker foliage rule)");
   autoCmd->add_flag("--ortho", o->ortho, "Orthographic preset camera (default perspective, 30° field of view)");

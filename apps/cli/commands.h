@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <stdexcept>
 
 namespace treesketch::cli {
 
@@ -13,19 +14,27 @@ using Action = std::function<void()>;
 /// Exit codes of the treesketch command.
 enum ExitCode : int {
   kExitOk = 0,
-  kExitInternal = 1,  ///< an unexpected error (a bug): please report
-  kExitUsage = 2,     ///< bad command line or option values
-  kExitInput = 3,     ///< an input file could not be read
-  kExitOutput = 4,    ///< an output file could not be written
+  kExitInternal = 1,    ///< an unexpected error (a bug): please report
+  kExitUsage = 2,       ///< bad command line or option values
+  kExitInput = 3,       ///< an input file could not be read
+  kExitOutput = 4,      ///< an output file could not be written
+  kExitSomeFailed = 5,  ///< batch: some trees failed or did not run (see the summary); the rest are done
+};
+
+/// Thrown by `batch` when it finished but not every tree is done: main prints it, exits 5.
+struct SomeFailed : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 // [declare register functions here, one line each]
+void registerBatch(CLI::App& app, Action& action);
 void registerCompare(CLI::App& app, Action& action);
 void registerDemo(CLI::App& app, Action& action);
 void registerEvaluate(CLI::App& app, Action& action);
 void registerFitReport(CLI::App& app, Action& action);
 void registerGui(CLI::App& app, Action& action);
 void registerInfo(CLI::App& app, Action& action);
+void registerMetrics(CLI::App& app, Action& action);
 void registerReconstruct(CLI::App& app, Action& action);
 void registerRender(CLI::App& app, Action& action);
 void registerScan(CLI::App& app, Action& action);

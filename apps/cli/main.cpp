@@ -6,6 +6,7 @@
 #include <new>
 
 #include "commands.h"
+#include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
 
 int main(int argc, char** argv) {
@@ -15,13 +16,16 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string(TREESKETCH_VERSION));
   app.require_subcommand(1);
   Action action;
+  setCreateOutputDirectories(true);  // output folders are created when missing (a file in the way is exit 4)
   // [register subcommands here, one line each]
+  registerBatch(app, action);
   registerCompare(app, action);
   registerDemo(app, action);
   registerEvaluate(app, action);
   registerFitReport(app, action);
   registerGui(app, action);
   registerInfo(app, action);
+  registerMetrics(app, action);
   registerReconstruct(app, action);
   registerRender(app, action);
   registerScan(app, action);
@@ -43,6 +47,9 @@ int main(int argc, char** argv) {
   } catch (const OptionsError& e) {
     std::cerr << "treesketch: error: " << e.what() << "\n";
     return kExitUsage;
+  } catch (const SomeFailed& e) {
+    std::cerr << "treesketch: " << e.what() << "\n";
+    return kExitSomeFailed;
   } catch (const std::bad_alloc&) {
     std::cerr << "treesketch: error: out of memory\n";
     return kExitInternal;

@@ -6,12 +6,14 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
 
 #include "io/io_util.h"
+#include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::io {
@@ -371,6 +373,38 @@ CylinderTable readCylinderTable(std::istream& in, const std::string& source) {
 
 CylinderTable readCylinderTable(const std::filesystem::path& path) {
   return parseCylinderTable(detail::readFile(path), path.string());
+}
+
+}  // namespace treesketch::io
+
+namespace treesketch::io {
+
+void writeTreeQsmCylinders(std::ostream& out, const geom::CylinderModel& model, geom::UpAxis up) {
+  const geom::BranchStructure b = geom::branchStructure(model, up);
+  std::string buf = std::string(kTreeQsmCylinderHeader) + "\n";
+  char line[512];
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    const geom::ModelCylinder& c = model.cylinders[i];
+    const double r0 = c.startRadius, r1 = c.endRadius;
+    const double r = std::sqrt((r0 * r0 + r0 * r1 + r1 * r1) / 3.0);
+    const double len = c.length();
+    const geom::Vec3 axis = len > 0 ? geom::Vec3((c.end - c.start) / len) : geom::upVector(up);
+    std::snprintf(line, sizeof line,
+                  "%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%lld\t%lld\t%lld\t%d\t%lld\t0\t0\t0\t%.9g\n", r, len,
+                  c.start.x(), c.start.y(), c.start.z(), axis.x(), axis.y(), axis.z(),
+                  static_cast<long long>(c.parent + 1), static_cast<long long>(b.extension[i] + 1),
+                  static_cast<long long>(b.branch[i] + 1), b.order[i], static_cast<long long>(b.position[i] + 1), r);
+    buf += line;
+  }
+  out << buf;
+  if (!out) throw OutputError("TreeQSM cylinder table: write failed");
+}
+
+void writeTreeQsmCylinders(const std::filesystem::path& path, const geom::CylinderModel& model, geom::UpAxis up) {
+  const geom::BranchStructure check = geom::branchStructure(model, up);  // bad links fail before the file
+  (void)check;
+  writeFileAtomically(
+      path, [&](std::ostream& out) { writeTreeQsmCylinders(out, model, up); }, false);
 }
 
 }  // namespace treesketch::io

@@ -147,6 +147,7 @@ geom::PointCloud parseLas(std::string_view data, const std::string& source, cons
                                 "coordinate overflows to Inf after scale and offset, expected finite"));
   }
   checkCloudSize(cloud, source, options.minPoints);
+  cloud.up = geom::UpAxis::Z;  // LAS coordinates are Z-up by the format's specification
   return cloud;
 }
 

@@ -5,12 +5,24 @@
 #include <algorithm>
 #include <charconv>
 #include <fstream>
+#include <sstream>
 
 #include "io/io_util.h"
 #include "treesketch/io/ply.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::io {
+
+std::optional<geom::UpAxis> declaredUpAxis(const PlyHeader& header) {
+  for (const std::string& c : header.comments) {
+    std::istringstream in(c);
+    std::string key, value;
+    if (!(in >> key >> value) || key != kPlyUpKey) continue;
+    if (value == "y" || value == "Y") return geom::UpAxis::Y;
+    if (value == "z" || value == "Z") return geom::UpAxis::Z;
+  }
+  return std::nullopt;
+}
 
 using detail::quoted;
 

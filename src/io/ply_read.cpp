@@ -412,6 +412,7 @@ geom::PointCloud parsePlyCloud(std::string_view data, const std::string& source,
     skipElement(c, e);
   }
   checkCloudSize(cloud, source, options.minPoints);
+  cloud.up = declaredUpAxis(h);
   return cloud;
 }
 

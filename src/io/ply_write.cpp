@@ -11,8 +11,10 @@ namespace treesketch::io {
 void writePlyPointCloud(std::ostream& out, const geom::PointCloud& cloud) {
   cloud.checkConsistent();
   bool st = !cloud.station.empty(), me = !cloud.meshId.empty(), sc = !cloud.scanner.empty();
-  std::string buf = "ply\nformat binary_little_endian 1.0\ncomment written by treesketch\nelement vertex " +
-                    std::to_string(cloud.size()) + "\nproperty double x\nproperty double y\nproperty double z\n";
+  std::string buf = "ply\nformat binary_little_endian 1.0\ncomment written by treesketch\n";
+  if (cloud.up) buf += std::string("comment ") + kPlyUpKey + " " + geom::toString(*cloud.up) + "\n";
+  buf +=
+      "element vertex " + std::to_string(cloud.size()) + "\nproperty double x\nproperty double y\nproperty double z\n";
   if (st) buf += "property int station\n";
   if (me) buf += "property int mesh\n";
   if (sc) buf += "property double scanner_x\nproperty double scanner_y\nproperty double scanner_z\n";

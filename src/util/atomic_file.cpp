@@ -12,12 +12,30 @@ namespace treesketch {
 
 namespace fs = std::filesystem;
 
+namespace {
+std::atomic<bool> gCreateDirectories{false};
+}  // namespace
+
+void setCreateOutputDirectories(bool create) { gCreateDirectories.store(create); }
+
 void writeFileAtomically(const fs::path& path, const std::function<void(std::ostream&)>& write, bool binary) {
   static std::atomic<unsigned> counter{0};
   fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  if (!fs::is_directory(dir)) throw OutputError(path.string() + ": directory '" + dir.string() + "' does not exist");
-  fs::path tmp = dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
-                        std::to_string(counter.fetch_add(1)));
+  std::error_code made;
+  if (!fs::is_directory(dir) && gCreateDirectories.load()) fs::create_directories(dir, made);
+  if (!fs::is_directory(dir)) {
+    std::string why = path.string() + ": directory '" + dir.string() + "' does not exist";
+    if (gCreateDirectories.load()) why += " and cannot be created";
+    if (made) why += " (" + made.message() + ")";
+    throw OutputError(why);
+  }
+  std::string name = ".";  // built step by step: GCC 12 warns (-Wrestrict, falsely) on one long sum
+  name += path.filename().string();
+  name += ".tmp";
+  name += std::to_string(::getpid());
+  name += '_';
+  name += std::to_string(counter.fetch_add(1));
+  const fs::path tmp = dir / name;
   try {
     {
       std::ofstream out(tmp, binary ? std::ios::binary | std::ios::out : std::ios::out);

@@ -62,7 +62,9 @@ TEST(CmdRender, BadOptionsAreExit2) {
   EXPECT_EQ(test::runCli("render" + cloud + " --view diagonal" + outPng), 2);
   EXPECT_EQ(test::runCli("render" + outPng), 2);  // nothing to draw
   EXPECT_EQ(test::runCli("render" + cloud), 2);   // no output
-  EXPECT_EQ(test::runCli("render" + cloud + " -o " + test::quoted(dir / "no" / "o.png")), 4);
+  // A missing output folder is created; a file in its way is an output error.
+  test::writeText(dir / "file", "x");
+  EXPECT_EQ(test::runCli("render" + cloud + " -o " + test::quoted(dir / "file" / "o.png")), 4);
 }
 
 }  // namespace

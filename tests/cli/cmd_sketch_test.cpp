@@ -31,7 +31,8 @@ TEST(CmdSketch, AutoUniformWritesAChain) {
   test::writeText(dir / "c.xyz", cylinderXyz());
   std::string out;
   int rc = test::runCli(
-      "sketch auto " + test::quoted(dir / "c.xyz") + " --nodes 7 --view side -o " + test::quoted(dir / "s.json"), &out);
+      "sketch auto " + test::quoted(dir / "c.xyz") + " --nodes 7 --view side --up y -o " + test::quoted(dir / "s.json"),
+      &out);
   ASSERT_EQ(rc, 0) << out;
   sketch::Sketch sk = io::readSketch(dir / "s.json");
   EXPECT_EQ(sk.size(), 7u);
@@ -79,7 +80,8 @@ TEST(CmdSketch, BadInvocations) {
   EXPECT_EQ(test::runCli("sketch auto " + cloud + " --view " + test::quoted(dir / "cam.json") + out, &msg), 3) << msg;
   EXPECT_NE(msg.find("cam.json"), std::string::npos) << msg;
   EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + cloud, &msg), 4) << msg;  // never overwrite the input
-  EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + test::quoted(dir / "no/such/dir.json"), &msg), 4) << msg;
+  test::writeText(dir / "file", "x");  // a file where the output folder should be
+  EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + test::quoted(dir / "file/such/dir.json"), &msg), 4) << msg;
   EXPECT_FALSE(std::filesystem::exists(dir / "s.json"));
 }
 

@@ -10,6 +10,7 @@
 #include "io_test_util.h"
 #include "test_support.h"
 #include "treesketch/skeleton/skeleton_export.h"
+#include "treesketch/util/error.h"
 
 namespace treesketch::io {
 namespace {
@@ -181,6 +182,73 @@ TEST(CylinderTable, PublishedSimpleForestModel) {
   EXPECT_NEAR(maxRadius, 0.048, 0.0005);
   EXPECT_EQ(t.model.cylinders[0].parent, -1);
   EXPECT_EQ(t.model.cylinders[1].parent, 0);
+}
+
+TEST(TreeQsmWriter, RoundTripKeepsGeometryLinksOrdersAndVolume) {
+  // A stem of two frustums, a branch with two pieces, a sub-branch; parents before and after.
+  geom::CylinderModel m;
+  auto add = [&](Vec3 a, Vec3 b, double r0, double r1, std::int64_t parent) {
+    geom::ModelCylinder c;
+    c.start = a;
+    c.end = b;
+    c.startRadius = r0;
+    c.endRadius = r1;
+    c.parent = parent;
+    m.cylinders.push_back(c);
+  };
+  add({0, 0, 0}, {0, 0, 1}, 0.3, 0.2, -1);
+  add({0, 0, 1}, {0, 0.5, 2}, 0.2, 0.1, 0);
+  add({0, 0, 1}, {1, 0, 1.5}, 0.08, 0.06, 0);
+  add({1, 0, 1.5}, {2, 0, 2}, 0.06, 0.04, 2);
+  add({1, 0, 1.5}, {1, 1, 1.7}, 0.02, 0.01, 2);
+  std::ostringstream out;
+  writeTreeQsmCylinders(out, m, geom::UpAxis::Z);
+  const std::string text = out.str();
+  EXPECT_EQ(text.substr(0, text.find('\n')), kTreeQsmCylinderHeader);
+  const CylinderTable t = parse(text);
+  EXPECT_EQ(t.format, CylinderTableFormat::TreeQsm);
+  ASSERT_EQ(t.model.size(), m.size());
+  const std::vector<std::int32_t> orders{0, 0, 1, 1, 2};
+  double volume = 0, back = 0;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const auto &a = m.cylinders[i], &b = t.model.cylinders[i];
+    EXPECT_LT((a.start - b.start).norm(), 1e-8) << i;
+    EXPECT_LT((a.end - b.end).norm(), 1e-8) << i;
+    EXPECT_EQ(b.parent, a.parent) << i;
+    EXPECT_EQ(b.branchOrder, orders[i]) << i;
+    EXPECT_DOUBLE_EQ(b.startRadius, b.endRadius);  // TreeQSM's cylinders are plain
+    volume += a.volume();
+    back += b.volume();
+  }
+  EXPECT_NEAR(back, volume, 1e-8 * volume);  // the volume-keeping radius
+  // Columns: extension of row 1 is row 2, of row 3 is row 4; the sub-branch is branch 3.
+  std::istringstream lines(text);
+  std::string line;
+  std::getline(lines, line);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(lines, line)) {
+    std::istringstream f(line);
+    rows.emplace_back();
+    for (double v; f >> v;) rows.back().push_back(v);
+    ASSERT_EQ(rows.back().size(), 17u) << line;
+  }
+  EXPECT_EQ(rows[0][9], 2);  // extension
+  EXPECT_EQ(rows[2][9], 4);
+  EXPECT_EQ(rows[4][10], 3);  // branch (1 stem, 2 the first branch)
+  EXPECT_EQ(rows[3][12], 2);  // position in branch
+}
+
+TEST(TreeQsmWriter, EmptyModelIsHeaderOnlyAndBadLinksThrow) {
+  std::ostringstream out;
+  writeTreeQsmCylinders(out, {}, geom::UpAxis::Z);
+  EXPECT_EQ(out.str(), std::string(kTreeQsmCylinderHeader) + "\n");
+  EXPECT_EQ(parse(out.str()).model.size(), 0u);
+  geom::CylinderModel bad;
+  bad.cylinders.emplace_back();
+  bad.cylinders[0].parent = 3;
+  test::TempDir dir;
+  EXPECT_THROW(writeTreeQsmCylinders(dir / "q.txt", bad, geom::UpAxis::Z), OptionsError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "q.txt"));
 }
 
 }  // namespace

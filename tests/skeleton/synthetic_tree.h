@@ -34,11 +34,15 @@ inline double distanceToAxes(const std::vector<Cyl>& cyls, const geom::Vec3& p) 
 }
 
 /// Samples the surfaces at `spacing` (points per area ~ 1/spacing^2) with Gaussian noise `noise`.
-inline geom::PointCloud sampleCylinders(const std::vector<Cyl>& cyls, double spacing, double noise, unsigned seed) {
+/// The cloud declares `up` (the trees below are Y-up), so a PLY written from it says so and the
+/// CLI needs no --up (io/up_axis.h).
+inline geom::PointCloud sampleCylinders(const std::vector<Cyl>& cyls, double spacing, double noise, unsigned seed,
+                                        geom::UpAxis up = geom::UpAxis::Y) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   std::normal_distribution<double> gauss(0.0, 1.0);
   geom::PointCloud cloud;
+  cloud.up = up;
   for (std::size_t k = 0; k < cyls.size(); ++k) {
     const auto& c = cyls[k];
     const geom::Vec3 axis = (c.b - c.a).normalized();

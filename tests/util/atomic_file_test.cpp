@@ -97,6 +97,19 @@ TEST(AtomicFile, MissingDirectoryIsAnOutputErrorNamingIt) {
   EXPECT_EQ(test::readText(dir / "file"), "x");
 }
 
+TEST(AtomicFile, CreatesMissingFoldersWhenAskedNotOtherwise) {
+  test::TempDir dir;
+  const auto ok = [](std::ostream& out) { out << "x"; };
+  setCreateOutputDirectories(true);
+  writeFileAtomically(dir / "new" / "deeper" / "f.txt", ok);
+  EXPECT_EQ(test::readText(dir / "new" / "deeper" / "f.txt"), "x");
+  test::writeText(dir / "file", "x");  // a regular file in the way: still an error, naming it
+  expectOutputError([&] { writeFileAtomically(dir / "file" / "f.txt", ok); }, {"f.txt", "cannot be created"});
+  setCreateOutputDirectories(false);
+  expectOutputError([&] { writeFileAtomically(dir / "other" / "f.txt", ok); }, {"other", "does not exist"});
+  EXPECT_FALSE(std::filesystem::exists(dir / "other"));
+}
+
 TEST(AtomicFile, ATargetThatIsADirectoryFailsAtTheRenameAndIsLeftAlone) {
   test::TempDir dir;
   fs::create_directories(dir / "d" / "inside");

@@ -36,6 +36,30 @@ struct CylinderModel {
   std::size_t size() const { return cylinders.size(); }
 };
 
+/// The branches of a cylinder model: which pieces continue which, and each branch's order.
+/// A branch is a chain of pieces, each the continuation ("extension") of the one before; it starts
+/// at a root piece or where a piece leaves its parent's branch. The stem is the branch from the
+/// lowest root (order 0); a branch leaving a branch of order k has order k + 1.
+struct BranchStructure {
+  std::vector<std::int32_t> order;         ///< per piece: the branch order (0 = stem)
+  std::vector<std::int64_t> branch;        ///< per piece: the index of its branch (0 = the stem)
+  std::vector<std::int64_t> position;      ///< per piece: its place in its branch, 0 = the first
+  std::vector<std::int64_t> extension;     ///< per piece: the child piece that continues its branch, -1 if none
+  std::vector<std::int32_t> branchOrder;   ///< per branch: its order
+  std::vector<std::int64_t> branchParent;  ///< per branch: the branch it leaves, -1 for none
+  std::size_t branches() const { return branchOrder.size(); }
+};
+
+/// Finds the branches. When every piece gives its branch order (>= 0), the model's orders decide:
+/// a child continues its parent's branch when it has the parent's order (the thickest such child
+/// if several). When any piece has no order (-1), they are derived: at every piece the child with
+/// the largest start radius continues the branch (ties: the one pointing most along the parent),
+/// every other child starts a branch one order up. Roots: the lowest along `up` is the stem (order
+/// 0); another root starts a branch of order 1 (order 0 when the model's orders say so). Pieces
+/// are visited from the roots, so any piece order works. Empty model → empty structure. Throws
+/// OptionsError when a parent index is out of range or the parent links form a cycle.
+BranchStructure branchStructure(const CylinderModel& model, UpAxis up);
+
 /// A node of a tree model: position, radius and parent (index in the same list, -1 for a root).
 struct ModelNode {
   Vec3 position = Vec3::Zero();

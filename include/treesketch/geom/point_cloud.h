@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "treesketch/geom/types.h"
@@ -26,6 +27,10 @@ struct PointCloud {
   /// station because the sphere pattern fires every ray from its own origin, and because that is
   /// how other tools read a sensor position from a PLY (three scalar fields, see io/ply.h).
   std::vector<Vec3> scanner;
+  /// Optional: the up axis the file declares (LAS: Z by its specification; a PLY written by
+  /// treesketch: its `comment up_axis y|z` line), or the producer's (a synthetic scan of a Y-up
+  /// tree). Empty when nothing says; io/up_axis.h then picks the field's convention (Z).
+  std::optional<UpAxis> up;
 
   std::size_t size() const { return positions.size(); }
   bool empty() const { return positions.empty(); }

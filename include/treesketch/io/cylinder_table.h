@@ -23,6 +23,7 @@
 
 #include <filesystem>
 #include <istream>
+#include <ostream>
 #include <string>
 
 #include "treesketch/geom/cylinder_model.h"
@@ -46,5 +47,24 @@ struct CylinderTable {
 CylinderTable readCylinderTable(const std::filesystem::path& path);
 CylinderTable readCylinderTable(std::istream& in, const std::string& source);
 CylinderTable parseCylinderTable(std::string_view text, const std::string& source);
+
+/// Header of TreeQSM's cylinder text export (tab separated; start_point and axis_direction are
+/// three columns each, so a row has 17 numbers).
+inline constexpr const char* kTreeQsmCylinderHeader =
+    "radius (m)\tlength (m)\tstart_point\taxis_direction\tparent\textension\tbranch\tbranch_order\t"
+    "position_in_branch\tmad\tSurfCov\tadded\tUnmodRadius (m)";
+
+/// Writes `model` in the column layout of TreeQSM's cylinder text export (the layout R and MATLAB
+/// tools that read TreeQSM models take): one row per piece, in model order, tab separated:
+/// radius, length, start x y z, unit axis x y z, parent (1-based row, 0 = none), extension (the
+/// 1-based row of the child continuing the branch, 0 = none), branch (1-based, 1 = the stem),
+/// branch_order (0 = stem), position_in_branch (1-based), mad and SurfCov (0: not measured by
+/// treesketch), added (0), UnmodRadius (= radius). Branches come from geom::branchStructure with
+/// `up`. TreeQSM's cylinders are plain: a frustum is written with the radius that keeps its
+/// volume, √((r0² + r0 r1 + r1²) / 3). Units are the model's (TreeQSM's are metres). Numbers with
+/// 9 significant digits. A piece of zero length gets axis (0, 0, 1) along z (or y for up y).
+/// Throws OptionsError for bad parent links; the path form writes atomically (OutputError).
+void writeTreeQsmCylinders(std::ostream& out, const geom::CylinderModel& model, geom::UpAxis up);
+void writeTreeQsmCylinders(const std::filesystem::path& path, const geom::CylinderModel& model, geom::UpAxis up);
 
 }  // namespace treesketch::io

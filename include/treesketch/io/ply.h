@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <istream>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -77,6 +78,11 @@ constexpr bool isIntegerType(PlyType t) { return t != PlyType::Float32 && t != P
 /// missing "ply" magic, missing/unsupported format line, unknown keyword or type, a property
 /// outside an element, a bad count, or a missing end_header.
 PlyHeader parsePlyHeader(std::string_view data, const std::string& source);
+/// The comment by which a PLY says its up axis: "comment up_axis y" or "comment up_axis z".
+/// treesketch writes it for clouds that know their up (geom::PointCloud::up).
+inline constexpr const char* kPlyUpKey = "up_axis";
+/// The up axis a header's `up_axis` comment declares (y or z, any case), or none.
+std::optional<geom::UpAxis> declaredUpAxis(const PlyHeader& header);
 /// Reads only the header of a PLY file (reads at most the first 64 KiB).
 PlyHeader readPlyHeader(const std::filesystem::path& path);
 

@@ -1,0 +1,41 @@
+// One tree through the automatic pipeline, as `reconstruct --auto` and `batch` run it: read the
+// cloud, choose the up axis (io/up_axis.h), skeleton → sketch → fits → mesh, then write the
+// requested outputs (mesh, sketch, cylinder tables in treesketch's and TreeQSM's layouts, the
+// metrics JSON and the report), each atomically.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "treesketch/compare/tree_metrics.h"
+
+namespace treesketch::cli {
+
+struct TreeJob {
+  std::string cloud;
+  std::string mesh;               ///< required (.obj or .ply)
+  std::string sketch, cylinders;  ///< optional outputs ("" = none)
+  std::string qsm;                ///< TreeQSM-layout cylinder table (optional)
+  std::string metrics, report;    ///< JSON outputs (optional)
+  std::string up;                 ///< --up ("" = the rule of io/up_axis.h)
+  bool leafOn = false;
+  std::uint64_t seed = 1;
+  int ring = 16;
+  double inlierThreshold = -1;  ///< < 0: library default
+  double unitMetres = 1.0;
+};
+
+struct TreeJobResult {
+  std::size_t points = 0;
+  std::string up, upReason;
+  std::size_t skeletonNodes = 0, forks = 0, fitsAccepted = 0, leafPieces = 0, vertices = 0, triangles = 0;
+  double readMs = 0, skeletonMs = 0, fitMs = 0, sweepMs = 0, metricsMs = 0, totalMs = 0;
+  compare::TreeMetrics metrics;
+  std::string fitSummary;  ///< compare::summaryLine of the model fit (only with a report)
+};
+
+/// Runs the job. Throws InputError (unreadable cloud, no skeleton), OptionsError, OutputError.
+TreeJobResult runTreeJob(const TreeJob& job);
+
+}  // namespace treesketch::cli

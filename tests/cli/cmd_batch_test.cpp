@@ -1,0 +1,109 @@
+// `treesketch batch` run as a process: a folder with two trees, a truncated LAS and a cylinder
+// table; failure isolation, the summary, resume, --index, a manifest.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
+#include "skeleton/synthetic_tree.h"
+#include "test_support.h"
+#include "treesketch/io/point_cloud_io.h"
+
+namespace treesketch {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quoted;
+
+class BatchCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    plot = dir / "plot";
+    fs::create_directories(plot);
+    io::writePointCloud(plot / "tree_a.ply", test::sampleCylinders(test::yTree(), 0.03, 0.003, 7));
+    io::writePointCloud(plot / "tree_b.ply", test::sampleCylinders(test::threeLevelTree(), 0.03, 0.003, 8));
+    test::writeText(plot / "broken.las", std::string("LASF") + std::string(60, '\0'));  // a truncated header
+    test::writeText(plot / "model.csv", "ID,parentID,startX,startY,startZ,endX,endY,endZ,radius,length\n");
+    test::writeText(plot / "notes.md", "not a cloud\n");
+  }
+  int batch(const std::string& args, std::string* out) {
+    return test::runCli("batch " + quoted(plot) + " --out " + quoted(dir / "out") + args, out);
+  }
+  test::TempDir dir;
+  fs::path plot;
+};
+
+TEST_F(BatchCli, FailingTreeIsRecordedTheRestGoOnAndRerunRedoesNothing) {
+  std::string out;
+  EXPECT_EQ(batch(" --jobs 2", &out), 5) << out;
+  const fs::path o = dir / "out";
+  for (const char* t : {"tree_a", "tree_b"}) {
+    for (const char* f : {"mesh.ply", "cylinders.csv", "qsm.txt", "metrics.json", "report.json", "done.json"})
+      EXPECT_TRUE(fs::exists(o / t / f)) << t << "/" << f << "\n" << out;
+  }
+  ASSERT_TRUE(fs::exists(o / "broken" / "failed.json")) << out;
+  const auto failed = nlohmann::json::parse(test::readText(o / "broken" / "failed.json"));
+  EXPECT_EQ(failed["exitCode"], 3);
+  EXPECT_NE(failed["error"].get<std::string>().find("broken.las"), std::string::npos) << failed.dump();
+  EXPECT_FALSE(fs::exists(o / "model")) << "the cylinder table is no tree";
+  const auto summary = nlohmann::json::parse(test::readText(o / "summary.json"));
+  EXPECT_EQ(summary["trees"], 3);
+  EXPECT_EQ(summary["done"], 2);
+  ASSERT_EQ(summary["skipped"].size(), 1u);
+  const std::string csv = test::readText(o / "summary.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4) << csv;
+  EXPECT_NE(csv.find("failed"), std::string::npos) << csv;
+  // The metrics are there: the Y tree's trunk (radius 0.15, up y declared by the PLY).
+  const auto m = nlohmann::json::parse(test::readText(o / "tree_a" / "metrics.json"));
+  EXPECT_NEAR(m["dbhModelM"].get<double>(), 0.3, 0.03) << m.dump();
+  EXPECT_NEAR(m["cloud"]["dbh"]["diameterM"].get<double>(), 0.3, 0.02) << m.dump();
+
+  // Resume: nothing is run again, no output is rewritten.
+  const auto stamp = fs::last_write_time(o / "tree_a" / "mesh.ply");
+  EXPECT_EQ(batch("", &out), 5) << out;
+  EXPECT_NE(out.find("0 to run"), std::string::npos) << out;
+  EXPECT_EQ(fs::last_write_time(o / "tree_a" / "mesh.ply"), stamp);
+  // A changed input is run again (here: the broken file fixed by removing it → a plot of two).
+  fs::remove(plot / "broken.las");
+  EXPECT_EQ(batch("", &out), 0) << out;
+}
+
+TEST_F(BatchCli, IndexRunsOneTreeAndSummariseGathers) {
+  std::string out;
+  // Sorted: broken.las (0), tree_a.ply (1), tree_b.ply (2).
+  EXPECT_EQ(batch(" --index 1", &out), 0) << out;
+  EXPECT_TRUE(fs::exists(dir / "out" / "tree_a" / "done.json")) << out;
+  EXPECT_FALSE(fs::exists(dir / "out" / "tree_b"));
+  EXPECT_EQ(batch(" --index 0", &out), 3) << out;  // the tree's own exit code
+  EXPECT_TRUE(fs::exists(dir / "out" / "broken" / "failed.json"));
+  EXPECT_EQ(batch(" --index 3", &out), 2) << out;
+  EXPECT_EQ(batch(" --summarise", &out), 5) << out;
+  const auto summary = nlohmann::json::parse(test::readText(dir / "out" / "summary.json"));
+  EXPECT_EQ(summary["done"], 1);
+  EXPECT_EQ(summary["results"][2]["status"], "not run");
+}
+
+TEST_F(BatchCli, ManifestAndBadInput) {
+  test::writeText(dir / "trees.txt", "# one tree\nplot/tree_a.ply\n\n");
+  std::string out;
+  EXPECT_EQ(test::runCli("batch " + quoted(dir / "trees.txt") + " --out " + quoted(dir / "m"), &out), 0) << out;
+  EXPECT_TRUE(fs::exists(dir / "m" / "tree_a" / "done.json"));
+  // The same file name in two folders: two trees, two folders.
+  fs::create_directories(dir / "other");
+  fs::copy_file(plot / "tree_a.ply", dir / "other" / "tree_a.ply");
+  test::writeText(dir / "two.txt", "plot/tree_a.ply\nother/tree_a.ply\n");
+  EXPECT_EQ(test::runCli("batch " + quoted(dir / "two.txt") + " --out " + quoted(dir / "t") + " --jobs 2", &out), 0)
+      << out;
+  EXPECT_TRUE(fs::exists(dir / "t" / "tree_a_ply" / "done.json")) << out;
+  EXPECT_TRUE(fs::exists(dir / "t" / "tree_a_ply_2" / "done.json")) << out;
+  test::writeText(dir / "bad.txt", "plot/nothing.ply\n");
+  EXPECT_EQ(test::runCli("batch " + quoted(dir / "bad.txt") + " --out " + quoted(dir / "m2"), &out), 3) << out;
+  EXPECT_NE(out.find("bad.txt:1"), std::string::npos) << out;
+  EXPECT_EQ(test::runCli("batch " + quoted(dir / "none") + " --out " + quoted(dir / "m3"), &out), 3) << out;
+  EXPECT_EQ(batch(" --jobs 0", &out), 2) << out;
+}
+
+}  // namespace
+}  // namespace treesketch
