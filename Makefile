@@ -1,12 +1,13 @@
 # treesketch — the two commands of the quick start, and a few more.
 #   make demo    install what is missing, build, run the main job on the built-in tree -> out/demo/
 #   make test    install what is missing, build, run every test (release build, then ASan+UBSan build)
+#   make package build the Debian packages treesketch_*.deb and treesketch-dev_*.deb in $(BUILD)/
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD ?= build
 ASAN_BUILD ?= build-asan
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test test-release test-asan bench clean format
+.PHONY: all deps build demo test test-release test-asan bench package clean format
 
 all: build
 
@@ -37,6 +38,9 @@ test-asan: deps $(ASAN_BUILD)/CMakeCache.txt
 
 bench: build
 	@for b in $(BUILD)/bench_*; do echo "== $$b"; $$b; done
+
+package: build
+	cd $(BUILD) && cpack -G DEB
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) out

@@ -119,12 +119,31 @@ nlohmann::json reportJson(const ReconstructArgs& a, const recon::ReconstructionR
   return root;
 }
 
+/// A model is made only from a fitted circle: a cloud whose points are all equal, on one line or
+/// too few for a circle gives none, and a tube swept without one (or of zero area) is no success.
+void checkAutoModel(const ReconstructArgs& a, const geom::PointCloud& cloud, const skeleton::AutoSkeletonResult& r) {
+  std::size_t accepted = 0;
+  for (char c : r.fitAccepted) accepted += c != 0;
+  char what[512];
+  std::snprintf(what, sizeof what, "%s (%zu points, bounding-box diagonal %.6g)", a.cloud.c_str(), cloud.size(),
+                cloud.bounds().diagonal());
+  if (r.mesh.empty() || r.model.empty())
+    throw DegenerateInputError(std::string(what) + ": no skeleton found; no mesh written");
+  if (accepted == 0)
+    throw DegenerateInputError(std::string(what) + ": no circle could be fitted at any of the " +
+                               std::to_string(r.model.size()) +
+                               " skeleton nodes (points all equal, on a line, or too few?); no mesh written");
+  if (!(r.mesh.area() > 0))
+    throw DegenerateInputError(std::string(what) + ": the model has zero area; no mesh written");
+}
+
 /// --auto: skeleton → sketch → fits → regularised radii → mesh; the sketch is saved to --sketch
 /// (when given) for refining, the cylinder table to --cylinders.
 void runAutoReconstruct(const ReconstructArgs& a) {
   checkNotAnInput(a.output, {a.cloud});
   if (!a.sketch.empty()) checkNotAnInput(a.sketch, {a.cloud});
   if (!a.report.empty()) checkNotAnInput(a.report, {a.cloud});
+  for (const std::string& out : {a.output, a.sketch, a.report, a.cylinders}) checkOutputWritable(out);
   if (a.refit) throw OptionsError("--refit applies to a sketch file (--sketch without --auto)");
   try {
     io::meshFormatFromPath(a.output);
@@ -139,7 +158,7 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   geom::PointCloud cloud = io::readPointCloud(a.cloud);
   if (cloud.empty()) throw InputError(a.cloud + ": the cloud has no points");
   skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(cloud, opt);
-  if (r.mesh.empty()) throw InputError(a.cloud + ": no skeleton found; no mesh written");
+  checkAutoModel(a, cloud, r);
   io::writeMesh(a.output, r.mesh);
   if (!a.sketch.empty()) io::writeSketch(std::filesystem::path(a.sketch), r.sketch);
   if (!a.cylinders.empty()) skeleton::writeCylinderCsv(a.cylinders, r.model);
@@ -183,6 +202,7 @@ void runReconstruct(const ReconstructArgs& a) {
   if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");
   checkNotAnInput(a.output, {a.cloud, a.sketch});
   if (!a.report.empty()) checkNotAnInput(a.report, {a.cloud, a.sketch});
+  for (const std::string& out : {a.output, a.report}) checkOutputWritable(out);
   try {
     io::meshFormatFromPath(a.output);  // reject a bad extension before the work
   } catch (const InputError& e) {
@@ -214,10 +234,13 @@ void runReconstruct(const ReconstructArgs& a) {
     writeFileAtomically(
         a.report, [&](std::ostream& os) { os << text; }, false);
   }
+  if (fitted + kept > 0 && !(r.mesh.area() > 0))
+    throw DegenerateInputError(a.sketch + ": the model made in " + a.cloud + " has zero area (" +
+                               std::to_string(fitted + kept) + " circles, all of radius 0?); no mesh written");
   if (fitted + kept == 0)
-    throw InputError(a.sketch + ": no node could be fitted in " + a.cloud + " (" + std::to_string(skipped) +
-                     " skipped, " + std::to_string(disabled) + " disabled); no mesh written" +
-                     (a.report.empty() ? "" : ", see " + a.report));
+    throw DegenerateInputError(a.sketch + ": no node could be fitted in " + a.cloud + " (" + std::to_string(skipped) +
+                               " skipped, " + std::to_string(disabled) + " disabled); no mesh written" +
+                               (a.report.empty() ? "" : ", see " + a.report));
   io::writeMesh(a.output, r.mesh);
   std::printf(
       "reconstruct: %zu nodes: %zu fitted, %zu skipped, %zu disabled, %zu kept circles; %zu vertices, %zu "

@@ -16,7 +16,8 @@ enum ExitCode : int {
   kExitInternal = 1,  ///< an unexpected error (a bug): please report
   kExitUsage = 2,     ///< bad command line or option values
   kExitInput = 3,     ///< an input file could not be read
-  kExitOutput = 4,    ///< an output file could not be written
+  kExitOutput = 4,    ///< an output file could not be written (checked before the work starts)
+  kExitNoResult = 5,  ///< the input was read but no model or result can be made from it (degenerate)
 };
 
 // [declare register functions here, one line each]
