@@ -62,7 +62,9 @@ TEST(CmdRender, BadOptionsAreExit2) {
   EXPECT_EQ(test::runCli("render" + cloud + " --view diagonal" + outPng), 2);
   EXPECT_EQ(test::runCli("render" + outPng), 2);  // nothing to draw
   EXPECT_EQ(test::runCli("render" + cloud), 2);   // no output
-  EXPECT_EQ(test::runCli("render" + cloud + " -o " + test::quoted(dir / "no" / "o.png")), 4);
+  std::filesystem::create_directories(dir / "folder.png");
+  EXPECT_EQ(test::runCli("render" + cloud + " -o " + test::quoted(dir / "folder.png")), 4);    // a folder
+  EXPECT_EQ(test::runCli("render" + cloud + " -o " + test::quoted(dir / "no" / "o.png")), 0);  // folder created
 }
 
 }  // namespace

@@ -123,7 +123,8 @@ TEST_F(ScanCli, BadInputAndOptionsGiveDistinctExitCodes) {
   EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply") + " --subdiv 1 --footprint --beam-min-share 2"), 2);
   EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply")), 0);
   EXPECT_EQ(runCli("scan " + trunk + " -o " + trunk), 4);  // never overwrite an input
-  EXPECT_EQ(runCli("scan " + trunk + " -o " + q("no/such/dir/x.ply") + " --subdiv 1"), 4);
+  EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply/y.ply") + " --subdiv 1"), 4);        // x.ply is a file
+  EXPECT_EQ(runCli("scan " + trunk + " -o " + q("no/such/dir/x.ply") + " --subdiv 1"), 0);  // folders created
   EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.abc") + " --subdiv 1"), 4);
   EXPECT_FALSE(std::filesystem::exists(dir / "x.abc"));
 }

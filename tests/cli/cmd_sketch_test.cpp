@@ -79,7 +79,8 @@ TEST(CmdSketch, BadInvocations) {
   EXPECT_EQ(test::runCli("sketch auto " + cloud + " --view " + test::quoted(dir / "cam.json") + out, &msg), 3) << msg;
   EXPECT_NE(msg.find("cam.json"), std::string::npos) << msg;
   EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + cloud, &msg), 4) << msg;  // never overwrite the input
-  EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + test::quoted(dir / "no/such/dir.json"), &msg), 4) << msg;
+  std::filesystem::create_directories(dir / "folder.json");
+  EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + test::quoted(dir / "folder.json"), &msg), 4) << msg;
   EXPECT_FALSE(std::filesystem::exists(dir / "s.json"));
 }
 
