@@ -1,7 +1,7 @@
 // Outputs through the CLI (issue 19): every command checks its outputs can be written before it
 // reads or computes anything (exit 4 even when the inputs are missing), creates missing output
 // folders, removes the temporary files a killed run left, and leaves none itself when it is
-// stopped by SIGTERM or SIGINT in the middle of a write.
+// stopped by SIGTERM, SIGINT or SIGHUP in the middle of a write.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -120,8 +120,19 @@ int killMidWrite(const fs::path& folder, std::vector<std::string> args, int sig)
   std::vector<char*> envp;
   for (auto& e : env) envp.push_back(e.data());
   envp.push_back(nullptr);
+  // The child starts with the default action for the three signals, even when this test was
+  // started with one of them ignored (a background job's SIGINT, nohup's SIGHUP).
+  posix_spawnattr_t attr;
+  ::posix_spawnattr_init(&attr);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&defaults, s);
+  ::posix_spawnattr_setsigdefault(&attr, &defaults);
+  ::posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
   pid_t pid = 0;
-  if (::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), envp.data()) != 0) return -1;
+  const int spawned = ::posix_spawn(&pid, argv[0], nullptr, &attr, argv.data(), envp.data());
+  ::posix_spawnattr_destroy(&attr);
+  if (spawned != 0) return -1;
   bool seen = false;
   for (int i = 0; i < 600 && !seen; ++i) {  // up to 60 s (sanitizer builds start slowly)
     for (const auto& e : fs::directory_iterator(folder)) seen |= e.path().filename().string().rfind(".r.", 0) == 0;
@@ -134,7 +145,7 @@ int killMidWrite(const fs::path& folder, std::vector<std::string> args, int sig)
 }
 
 TEST_F(OutputSafety, ARunStoppedMidWriteLeavesNoTemporaryFile) {
-  for (int sig : {SIGTERM, SIGINT}) {
+  for (int sig : {SIGTERM, SIGINT, SIGHUP}) {
     SCOPED_TRACE(sig);
     const int status = killMidWrite(
         dir.path(),
