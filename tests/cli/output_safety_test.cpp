@@ -64,6 +64,7 @@ TEST_F(OutputSafety, AnUnwritableOutputIsReportedBeforeAnyInputIsRead) {
       "sketch auto " + missing + "-o " + q("folder"),
       "fit-report " + missing + q("missing.csv") + " --json " + q("folder"),
       "demo --out " + q("file.txt"),
+      "evaluate --builtin 1 --out " + q("file.txt"),
   };
   for (const std::string& c : commands) {
     std::string out;
