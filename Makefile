@@ -1,12 +1,13 @@
 # treesketch — the two commands of the quick start, and a few more.
 #   make demo    install what is missing, build, run the main job on the built-in tree -> out/demo/
 #   make test    install what is missing, build, run every test (release build, then ASan+UBSan build)
+#   make package build the Debian packages treesketch_*.deb and treesketch-dev_*.deb in $(BUILD)/
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD ?= build
 ASAN_BUILD ?= build-asan
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test test-release test-asan test-slurm bench clean format
+.PHONY: all deps build demo test test-release test-asan test-slurm bench package clean format
 
 all: build
 
@@ -41,6 +42,9 @@ test-slurm: build
 
 bench: build
 	@for b in $(BUILD)/bench_*; do echo "== $$b"; $$b; done
+
+package: build
+	cd $(BUILD) && cpack -G DEB
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) out

@@ -94,7 +94,7 @@ set +e
 rc=$?
 set -e
 fail() { echo "test-slurm: FAILED: $*" >&2; exit 1; }
-[ "$rc" -eq 5 ] || fail "summarise exit code $rc, expected 5 (one tree failed)"
+[ "$rc" -eq 6 ] || fail "summarise exit code $rc, expected 6 (one tree failed)"
 for t in adtree_tree7 archi_Tree_2_point_cloud rtwig_cloud; do
   for f in mesh.ply cylinders.csv qsm.txt metrics.json report.json done.json; do
     [ -s "$out/$t/$f" ] || fail "$t/$f missing"

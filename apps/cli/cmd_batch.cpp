@@ -3,7 +3,7 @@
 // its own process (this program with --index K), N at a time: a tree that fails or crashes is
 // recorded and the rest go on, and memory is bounded by N trees. A rerun skips complete trees.
 // `--index K` runs only the K-th tree (0-based; what a Slurm job array calls) and `--summarise`
-// only gathers the summary. Exit code: 0 when every tree is done, 5 (kExitSomeFailed) otherwise.
+// only gathers the summary. Exit code: 0 when every tree is done, 6 (kExitSomeFailed) otherwise.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>

@@ -71,10 +71,23 @@ Target readTarget(const fs::path& path) {
   return t;
 }
 
+/// Samples lie on triangles and percentages are of the sampled surface's bounding-box diagonal:
+/// a mesh of zero area (every triangle with repeated or collinear corners) has neither.
+void checkHasArea(const std::string& path, const geom::TriMesh& mesh) {
+  if (!(mesh.area() > 0))
+    throw DegenerateInputError(path + ": the mesh has zero area (its " + std::to_string(mesh.triangles.size()) +
+                               " triangles all have repeated or collinear corners); nothing to compare");
+}
+
+/// "value (percent%)"; "-" for no value, "value (-)" when there is no diagonal to relate it to
+/// (a cloud whose points are all equal).
 std::string cell(double value, double percent) {
   if (std::isnan(value)) return "-";
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g (%.4f%%)", value, percent);
+  if (std::isfinite(percent))
+    std::snprintf(buf, sizeof buf, "%.6g (%.4f%%)", value, percent);
+  else
+    std::snprintf(buf, sizeof buf, "%.6g (-)", value);
   return buf;
 }
 
@@ -96,9 +109,13 @@ void runCompare(const CompareArgs& args) {
       throw OptionsError("--error-mesh " + args.errorMesh +
                          ": must be a .ply file (OBJ cannot hold colour and quality)");
   }
+  checkOutputWritable(args.json);
+  checkOutputWritable(args.errorMesh);
 
   const geom::TriMesh a = io::readMesh(args.a);
+  checkHasArea(args.a, a);
   const Target b = readTarget(args.b);
+  if (b.isMesh) checkHasArea(args.b, b.mesh);
 
   compare::CompareOptions o;
   o.sampling.vertices = !args.noVertex;
@@ -142,6 +159,8 @@ void runCompare(const CompareArgs& args) {
   if (!args.oneWay) {
     if (std::isnan(both.hausdorff))
       std::printf("Hausdorff distance: - (a direction has no sample within the search distance)\n");
+    else if (!std::isfinite(both.hausdorffPercent))
+      std::printf("Hausdorff distance: %.6g\n", both.hausdorff);
     else
       std::printf("Hausdorff distance: %.6g (%.4f%% of A's bbox diagonal)\n", both.hausdorff, both.hausdorffPercent);
   }

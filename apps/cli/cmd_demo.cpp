@@ -90,10 +90,9 @@ std::string formatBox(const geom::BBox& b) {
 
 void prepareOutputDir(DemoState& s) {
   s.dir = s.args.out;
-  std::error_code ec;
-  fs::create_directories(s.dir, ec);
-  if (ec || !fs::is_directory(s.dir))
-    throw OutputError(s.dir.string() + ": cannot create the output directory" + (ec ? ": " + ec.message() : ""));
+  if (fs::exists(s.dir) && !fs::is_directory(s.dir))
+    throw OutputError(s.dir.string() + ": exists and is not a folder; expected the output folder");
+  checkOutputWritable(s.dir / "summary.txt");  // creates the folder, checks it can be written
 }
 
 void stepGenerate(DemoState& s) {

@@ -1,10 +1,12 @@
 // treesketch evaluate: the thesis's experiment (chapter 5) in one command, and the robustness
 // matrix of scan conditions (issue 16).
+#include <filesystem>
 #include <iostream>
 
 #include "commands.h"
 #include "treesketch/eval/evaluation.h"
 #include "treesketch/eval/tree_suite.h"
+#include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::cli {
@@ -110,6 +112,7 @@ void registerEvaluate(CLI::App& app, Action& action) {
       e.leafOff = !o->noLeafOff;
       if (!e.leafOn && !e.leafOff) throw OptionsError("--no-leaf-on and --no-leaf-off leave nothing to evaluate");
       e.log = [](const std::string& line) { std::cerr << line << "\n"; };
+      checkOutputWritable(std::filesystem::path(o->out) / "results.csv");  // before hours of work
       std::vector<eval::TreeCase> all =
           o->trees.empty() ? eval::builtinTrees(o->builtin) : eval::loadTreeFolder(o->trees, o->metresPerUnit);
       std::vector<eval::TreeCase> trees;

@@ -26,6 +26,7 @@ struct FitReportArgs {
 
 void runFitReport(const FitReportArgs& a) {
   if (!a.json.empty()) checkNotAnInput(a.json, {a.cloud, a.model});
+  checkOutputWritable(a.json);
   const io::CylinderTable table = io::readCylinderTable(a.model);
   if (table.model.empty()) throw InputError(a.model + ": the table has no cylinders");
   const geom::PointCloud cloud = io::readPointCloud(a.cloud);

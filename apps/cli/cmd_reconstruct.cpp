@@ -161,6 +161,7 @@ void runReconstruct(const ReconstructArgs& a) {
   if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");
   checkNotAnInput(a.output, {a.cloud, a.sketch});
   if (!a.report.empty()) checkNotAnInput(a.report, {a.cloud, a.sketch});
+  for (const std::string& out : {a.output, a.report}) checkOutputWritable(out);
   try {
     io::meshFormatFromPath(a.output);  // reject a bad extension before the work
   } catch (const InputError& e) {
@@ -196,10 +197,13 @@ void runReconstruct(const ReconstructArgs& a) {
     writeFileAtomically(
         a.report, [&](std::ostream& os) { os << text; }, false);
   }
+  if (fitted + kept > 0 && !(r.mesh.area() > 0))
+    throw DegenerateInputError(a.sketch + ": the model made in " + a.cloud + " has zero area (" +
+                               std::to_string(fitted + kept) + " circles, all of radius 0?); no mesh written");
   if (fitted + kept == 0)
-    throw InputError(a.sketch + ": no node could be fitted in " + a.cloud + " (" + std::to_string(skipped) +
-                     " skipped, " + std::to_string(disabled) + " disabled); no mesh written" +
-                     (a.report.empty() ? "" : ", see " + a.report));
+    throw DegenerateInputError(a.sketch + ": no node could be fitted in " + a.cloud + " (" + std::to_string(skipped) +
+                               " skipped, " + std::to_string(disabled) + " disabled); no mesh written" +
+                               (a.report.empty() ? "" : ", see " + a.report));
   io::writeMesh(a.output, r.mesh);
   std::printf(
       "reconstruct: %zu nodes: %zu fitted, %zu skipped, %zu disabled, %zu kept circles; %zu vertices, %zu "

@@ -59,6 +59,7 @@ void runRender(const RenderArgs& a) {
   for (const std::string& in : {a.cloud, a.sketch, a.skeleton})
     if (!in.empty()) checkNotAnInput(a.output, {in});
   for (const std::string& m : a.meshes) checkNotAnInput(a.output, {m});
+  checkOutputWritable(a.output);
   const render::RenderView view = render::parseRenderView(a.view);
 
   std::optional<sketch::Sketch> sk;

@@ -51,8 +51,16 @@ void runScan(const ScanArgs& a) {
   if (a.pattern == "sphere" && (a.regRotationDeg != 0.0 || a.regTranslation != 0.0))
     throw OptionsError("scan: --registration-* needs --pattern tls (the sphere pattern has no stations)");
   for (const std::string& m : a.meshes) checkNotAnInput(a.output, {m});
+  checkOutputWritable(a.output);
   std::vector<geom::TriMesh> meshes;
-  for (const std::string& m : a.meshes) meshes.push_back(io::readMesh(m));
+  double area = 0.0;
+  for (const std::string& m : a.meshes) {
+    meshes.push_back(io::readMesh(m));
+    area += meshes.back().area();
+  }
+  if (!(area > 0))
+    throw DegenerateInputError(a.meshes[0] + (a.meshes.size() > 1 ? " and the other meshes" : "") +
+                               ": zero area (every triangle has repeated or collinear corners); nothing a ray can hit");
 
   scan::ScanResult result;
   {
@@ -90,10 +98,14 @@ void runScan(const ScanArgs& a) {
       result = scan::tlsScan(scene, o, bar.callback());
     }
   }
+  const scan::ScanStats& s = result.stats;
+  if (result.cloud.empty())
+    throw DegenerateInputError("scan: none of the " + std::to_string(s.raysCast) + " rays hit " + a.meshes[0] +
+                               (a.meshes.size() > 1 ? " or the other meshes" : "") +
+                               " (scanner inside the mesh, range too short?); no cloud written to " + a.output);
   result.cloud.up = geom::parseUpAxis(a.up);  // the PLY says its up (io/up_axis.h)
   io::writePointCloud(a.output, result.cloud);
 
-  const scan::ScanStats& s = result.stats;
   std::printf("scan: %s, %llu rays, %llu points (%.1f%% hit) in %.0f ms", a.pattern.c_str(),
               static_cast<unsigned long long>(s.raysCast), static_cast<unsigned long long>(s.hits),
               s.raysCast ? 100.0 * s.hits / s.raysCast : 0.0, s.milliseconds);

@@ -63,6 +63,7 @@ void runAuto(const AutoOptions& o) {
   if (o.nodes < 1) throw OptionsError("--nodes must be >= 1, got " + std::to_string(o.nodes));
   if (o.width < 1 || o.height < 1) throw OptionsError("--width and --height must be >= 1");
   checkNotAnInput(o.output, {o.cloud});
+  checkOutputWritable(o.output);
   geom::PointCloud cloud = io::readPointCloud(o.cloud);
   const io::UpAxisChoice choice = io::chooseUpAxis(o.up, cloud);
   const geom::UpAxis up = choice.up;

@@ -17,11 +17,12 @@ enum ExitCode : int {
   kExitInternal = 1,    ///< an unexpected error (a bug): please report
   kExitUsage = 2,       ///< bad command line or option values
   kExitInput = 3,       ///< an input file could not be read
-  kExitOutput = 4,      ///< an output file could not be written
-  kExitSomeFailed = 5,  ///< batch: some trees failed or did not run (see the summary); the rest are done
+  kExitOutput = 4,      ///< an output file could not be written (checked before the work starts)
+  kExitNoResult = 5,    ///< the input was read but no model or result can be made from it (degenerate)
+  kExitSomeFailed = 6,  ///< batch: some trees failed or did not run (see the summary); the rest are done
 };
 
-/// Thrown by `batch` when it finished but not every tree is done: main prints it, exits 5.
+/// Thrown by `batch` when it finished but not every tree is done: main prints it, exits 6.
 struct SomeFailed : std::runtime_error {
   using std::runtime_error::runtime_error;
 };

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <new>
 
+#include "build_info.h"
 #include "commands.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
@@ -13,7 +14,8 @@ int main(int argc, char** argv) {
   using namespace treesketch;
   using namespace treesketch::cli;
   CLI::App app{"treesketch: reconstruct tree trunks and branches from point clouds, guided by a sketch"};
-  app.set_version_flag("--version", std::string(TREESKETCH_VERSION));
+  app.set_version_flag("--version", versionString());
+  removeTempFilesOnSignals();  // Ctrl-C during a write leaves no hidden temporary file
   app.require_subcommand(1);
   Action action;
   setCreateOutputDirectories(true);  // output folders are created when missing (a file in the way is exit 4)
@@ -44,6 +46,9 @@ int main(int argc, char** argv) {
   } catch (const OutputError& e) {
     std::cerr << "treesketch: error: " << e.what() << "\n";
     return kExitOutput;
+  } catch (const DegenerateInputError& e) {
+    std::cerr << "treesketch: error: " << e.what() << "\n";
+    return kExitNoResult;
   } catch (const OptionsError& e) {
     std::cerr << "treesketch: error: " << e.what() << "\n";
     return kExitUsage;

@@ -2,6 +2,7 @@
 #include "tree_job.h"
 
 #include <chrono>
+#include <cstdio>
 
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/io/cylinder_table.h"
@@ -28,12 +29,32 @@ void writeJson(const std::string& path, const nlohmann::json& j) {
       path, [&](std::ostream& os) { os << text; }, false);
 }
 
+/// A model is made only from a fitted circle: a cloud whose points are all equal, on one line or
+/// too few for a circle gives none, and a tube swept without one (or of zero area) is no success.
+void checkAutoModel(const TreeJob& a, const geom::PointCloud& cloud, const skeleton::AutoSkeletonResult& r) {
+  std::size_t accepted = 0;
+  for (char c : r.fitAccepted) accepted += c != 0;
+  char what[512];
+  std::snprintf(what, sizeof what, "%s (%zu points, bounding-box diagonal %.6g)", a.cloud.c_str(), cloud.size(),
+                cloud.bounds().diagonal());
+  if (r.mesh.empty() || r.model.empty())
+    throw DegenerateInputError(std::string(what) + ": no skeleton found; no mesh written");
+  if (accepted == 0)
+    throw DegenerateInputError(std::string(what) + ": no circle could be fitted at any of the " +
+                               std::to_string(r.model.size()) +
+                               " skeleton nodes (points all equal, on a line, or too few?); no mesh written");
+  if (!(r.mesh.area() > 0))
+    throw DegenerateInputError(std::string(what) + ": the model has zero area; no mesh written");
+}
+
 }  // namespace
 
 TreeJobResult runTreeJob(const TreeJob& a) {
   const auto t0 = std::chrono::steady_clock::now();
   for (const std::string* out : {&a.mesh, &a.sketch, &a.cylinders, &a.qsm, &a.metrics, &a.report})
     if (!out->empty()) checkNotAnInput(*out, {a.cloud});
+  for (const std::string* out : {&a.mesh, &a.sketch, &a.cylinders, &a.qsm, &a.metrics, &a.report})
+    if (!out->empty()) checkOutputWritable(*out);
   try {
     io::meshFormatFromPath(a.mesh);
   } catch (const InputError& e) {
@@ -53,7 +74,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   opt.ringVertices = a.ring;
   if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;
   const skeleton::AutoSkeletonResult s = skeleton::autoSkeletonSketch(cloud, opt);
-  if (s.mesh.empty()) throw InputError(a.cloud + ": no skeleton found; no mesh written");
+  checkAutoModel(a, cloud, s);
   r.skeletonMs = s.skeletonMs;
   r.fitMs = s.fitMs;
   r.sweepMs = s.sweepMs;

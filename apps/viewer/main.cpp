@@ -25,6 +25,7 @@
 #include "screenshot.h"
 #include "treesketch/io/file_info.h"
 #include "treesketch/scan/sphere_scan.h"
+#include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
 #include "treesketch/viewer/action_script.h"
 #include "treesketch/viewer/demo_scene.h"
@@ -389,6 +390,7 @@ int run(const Args& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  treesketch::removeTempFilesOnSignals();  // a sketch being saved when the window is killed leaves no temp file
   Args args;
   try {
     args = parseArgs(argc, argv);

@@ -37,7 +37,7 @@ class BatchCli : public ::testing::Test {
 
 TEST_F(BatchCli, FailingTreeIsRecordedTheRestGoOnAndRerunRedoesNothing) {
   std::string out;
-  EXPECT_EQ(batch(" --jobs 2", &out), 5) << out;
+  EXPECT_EQ(batch(" --jobs 2", &out), 6) << out;
   const fs::path o = dir / "out";
   for (const char* t : {"tree_a", "tree_b"}) {
     for (const char* f : {"mesh.ply", "cylinders.csv", "qsm.txt", "metrics.json", "report.json", "done.json"})
@@ -62,7 +62,7 @@ TEST_F(BatchCli, FailingTreeIsRecordedTheRestGoOnAndRerunRedoesNothing) {
 
   // Resume: nothing is run again, no output is rewritten.
   const auto stamp = fs::last_write_time(o / "tree_a" / "mesh.ply");
-  EXPECT_EQ(batch("", &out), 5) << out;
+  EXPECT_EQ(batch("", &out), 6) << out;
   EXPECT_NE(out.find("0 to run"), std::string::npos) << out;
   EXPECT_EQ(fs::last_write_time(o / "tree_a" / "mesh.ply"), stamp);
   // A changed input is run again (here: the broken file fixed by removing it → a plot of two).
@@ -79,7 +79,7 @@ TEST_F(BatchCli, IndexRunsOneTreeAndSummariseGathers) {
   EXPECT_EQ(batch(" --index 0", &out), 3) << out;  // the tree's own exit code
   EXPECT_TRUE(fs::exists(dir / "out" / "broken" / "failed.json"));
   EXPECT_EQ(batch(" --index 3", &out), 2) << out;
-  EXPECT_EQ(batch(" --summarise", &out), 5) << out;
+  EXPECT_EQ(batch(" --summarise", &out), 6) << out;
   const auto summary = nlohmann::json::parse(test::readText(dir / "out" / "summary.json"));
   EXPECT_EQ(summary["done"], 1);
   EXPECT_EQ(summary["results"][2]["status"], "not run");

@@ -115,7 +115,7 @@ TEST_F(FitReportCli, Errors) {
   EXPECT_EQ(runCli("fit-report " + q(dir / "c.xyz") + " " + q(dir / "sf.csv") + " --units-metres 0", &out), 2) << out;
   EXPECT_EQ(runCli("fit-report " + q(dir / "c.xyz"), &out), 2) << out;
   EXPECT_EQ(runCli("fit-report " + q(dir / "c.xyz") + " " + q(dir / "sf.csv") + " --json " +
-                       q(dir / "c.xyz" / "r.json"),  // a file where a folder should be
+                       q(dir / "c.xyz" / "r.json"),  // a file is no folder (missing folders are created)
                    &out),
             4)
       << out;

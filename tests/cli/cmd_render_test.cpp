@@ -65,6 +65,9 @@ TEST(CmdRender, BadOptionsAreExit2) {
   // A missing output folder is created; a file in its way is an output error.
   test::writeText(dir / "file", "x");
   EXPECT_EQ(test::runCli("render" + cloud + " -o " + test::quoted(dir / "file" / "o.png")), 4);
+  std::filesystem::create_directories(dir / "folder.png");
+  EXPECT_EQ(test::runCli("render" + cloud + " -o " + test::quoted(dir / "folder.png")), 4);    // a folder
+  EXPECT_EQ(test::runCli("render" + cloud + " -o " + test::quoted(dir / "no" / "o.png")), 0);  // folder created
 }
 
 }  // namespace

@@ -125,6 +125,8 @@ TEST_F(ScanCli, BadInputAndOptionsGiveDistinctExitCodes) {
   EXPECT_EQ(runCli("scan " + trunk + " -o " + trunk), 4);  // never overwrite an input
   EXPECT_EQ(runCli("scan " + trunk + " -o " + q("trunk.obj/x.ply") + " --subdiv 1"),
             4);  // a file where the output folder should be (a missing one is created)
+  EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.ply/y.ply") + " --subdiv 1"), 4);        // x.ply is a file
+  EXPECT_EQ(runCli("scan " + trunk + " -o " + q("no/such/dir/x.ply") + " --subdiv 1"), 0);  // folders created
   EXPECT_EQ(runCli("scan " + trunk + " -o " + q("x.abc") + " --subdiv 1"), 4);
   EXPECT_FALSE(std::filesystem::exists(dir / "x.abc"));
 }

@@ -82,6 +82,8 @@ TEST(CmdSketch, BadInvocations) {
   EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + cloud, &msg), 4) << msg;  // never overwrite the input
   test::writeText(dir / "file", "x");  // a file where the output folder should be
   EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + test::quoted(dir / "file/such/dir.json"), &msg), 4) << msg;
+  std::filesystem::create_directories(dir / "folder.json");
+  EXPECT_EQ(test::runCli("sketch auto " + cloud + " -o " + test::quoted(dir / "folder.json"), &msg), 4) << msg;
   EXPECT_FALSE(std::filesystem::exists(dir / "s.json"));
 }
 

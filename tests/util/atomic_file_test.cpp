@@ -3,6 +3,8 @@
 #include "treesketch/util/atomic_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -178,6 +180,51 @@ TEST(CheckNotAnInput, AcceptsNewFilesOtherFilesAndMissingInputs) {
   EXPECT_NO_THROW(checkNotAnInput(dir / "old.ply", {dir / "missing.xyz"}));        // the input is absent
   EXPECT_NO_THROW(checkNotAnInput(dir / "old.ply", {}));                           // no inputs at all
   EXPECT_NO_THROW(checkNotAnInput(dir / "in.xyz", {dir / "old.ply", dir / "x"}));  // not among the inputs
+}
+
+/// A PID that no longer runs: a child that has exited and been reaped.
+pid_t deadPid() {
+  const pid_t pid = ::fork();
+  if (pid == 0) ::_exit(0);
+  ::waitpid(pid, nullptr, 0);
+  return pid;
+}
+
+TEST(RemoveStaleTempFiles, RemovesOnlyOurNamesOfDeadProcesses) {
+  test::TempDir dir;
+  const std::string dead = std::to_string(deadPid()), self = std::to_string(::getpid());
+  const Names kept{
+      ".f.txt.tmp" + self + "_3",  // this process's write in progress
+      ".f.txt.tmp" + dead + "_",   // not our naming: no counter
+      ".f.txt.tmp" + dead + "_0x", ".f.txt.tmpabc_0", ".g.txt.tmp" + dead + "_0", "f.txt.tmp" + dead + "_0", "f.txt"};
+  for (const auto& n : kept) test::writeText(dir / n, "x");
+  test::writeText(dir / (".f.txt.tmp" + dead + "_0"), "stale");
+  test::writeText(dir / (".f.txt.tmp" + dead + "_17"), "stale");
+  EXPECT_EQ(removeStaleTempFiles(dir / "f.txt"), 2u);
+  Names expected = kept;
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(entries(dir.path()), expected);
+  // The next atomic write to the output removes them too.
+  test::writeText(dir / (".f.txt.tmp" + dead + "_5"), "stale");
+  writeFileAtomically(dir / "f.txt", [](std::ostream& out) { out << "new"; });
+  EXPECT_EQ(entries(dir.path()), expected);
+}
+
+TEST(CheckOutputWritable, CreatesMissingFoldersAndRejectsFoldersAndFiles) {
+  test::TempDir dir;
+  EXPECT_NO_THROW(checkOutputWritable(""));  // an output not asked for
+  EXPECT_NO_THROW(checkOutputWritable(dir / "a" / "b" / "f.txt"));
+  EXPECT_TRUE(fs::is_directory(dir / "a" / "b"));
+  EXPECT_FALSE(fs::exists(dir / "a" / "b" / "f.txt"));  // nothing written yet
+  expectOutputError([&] { checkOutputWritable(dir / "a"); }, {"is a folder"});
+  test::writeText(dir / "file", "x");
+  expectOutputError([&] { checkOutputWritable(dir / "file" / "f.txt"); }, {"f.txt", "file"});
+  if (::geteuid() != 0) {  // root may write anywhere
+    fs::create_directory(dir / "ro");
+    fs::permissions(dir / "ro", fs::perms::owner_read | fs::perms::owner_exec);
+    expectOutputError([&] { checkOutputWritable(dir / "ro" / "f.txt"); }, {"f.txt", "not writable"});
+    fs::permissions(dir / "ro", fs::perms::owner_all);
+  }
 }
 
 }  // namespace

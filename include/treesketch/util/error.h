@@ -27,6 +27,14 @@ class OptionsError : public std::invalid_argument {
   explicit OptionsError(const std::string& message) : std::invalid_argument(message) {}
 };
 
+/// Input that was read correctly but from which no result can be made: a mesh with zero area, a
+/// scan that hits nothing, a cloud with no circle to fit (all points equal or on one line). The
+/// message names the input and what is degenerate about it.
+class DegenerateInputError : public std::runtime_error {
+ public:
+  explicit DegenerateInputError(const std::string& message) : std::runtime_error(message) {}
+};
+
 /// "file:line: what" — the message of an InputError at a text line (1-based).
 std::string atLine(const std::string& source, std::size_t line, const std::string& what);
 /// "file: byte offset N: what" — the message of an InputError at a binary offset.
