@@ -56,7 +56,7 @@ Vec3 localLine(const std::vector<Sample>& samples, const std::vector<double>& we
   const double det = sw * sss - ss * ss;
   if (!(sw > 0)) return Vec3::Constant(std::nan(""));
   if (!(det > 1e-12 * sw * sss) || !(sss > 0)) return sp / sw;  // one point or all at s0: the mean
-  return (sss * sp - ss * ssp) / det;                            // the intercept at s0
+  return (sss * sp - ss * ssp) / det;                           // the intercept at s0
 }
 
 /// The smoothed positions of one chain's samples (index 0 may be a fixed anchor).

@@ -109,4 +109,3 @@ void nonIncreasingFit(std::vector<double>& values, const std::vector<double>& we
 }
 
 }  // namespace treesketch::skeleton::detail
-

@@ -3,9 +3,9 @@
 #include "treesketch/skeleton/skeleton_sketch.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include "skeleton/axis_smoothing.h"
@@ -282,7 +282,8 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   t0 = std::chrono::steady_clock::now();
   const std::vector<double> fitted = acceptFits(res, options.radii, voxel);
   const std::vector<double> radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, options.radii);
-  const std::vector<geom::Vec3> axes = detail::smoothAxes(res.model, res.fitAccepted, radii, options.axes.centroidPrecisionVoxels * voxel, options.axes);
+  const std::vector<geom::Vec3> axes =
+      detail::smoothAxes(res.model, res.fitAccepted, radii, options.axes.centroidPrecisionVoxels * voxel, options.axes);
   for (std::size_t i = 0; i < n; ++i) {
     res.model[i].radius = radii[i];
     res.model[i].position = axes[i];
