@@ -2,8 +2,11 @@
 // (Running the treesketch executable is in cli/cli_support.h, for the tests in cli/.)
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
+
+#include "treesketch/geom/cylinder_model.h"
 
 namespace treesketch::test {
 
@@ -25,4 +28,18 @@ std::filesystem::path sharedDataDir();
 void writeText(const std::filesystem::path& path, const std::string& text);
 /// Reads a whole file.
 std::string readText(const std::filesystem::path& path);
+/// A model piece from a to b, radii r0 → r1, with its parent row (-1: none) and branch order
+/// (-1: not given).
+inline geom::ModelCylinder modelPiece(geom::Vec3 a, geom::Vec3 b, double r0, double r1, std::int64_t parent = -1,
+                                      std::int32_t order = -1) {
+  geom::ModelCylinder c;
+  c.start = a;
+  c.end = b;
+  c.startRadius = r0;
+  c.endRadius = r1;
+  c.parent = parent;
+  c.branchOrder = order;
+  return c;
+}
+
 }  // namespace treesketch::test

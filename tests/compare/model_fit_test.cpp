@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -16,19 +18,10 @@ using geom::CylinderModel;
 using geom::ModelCylinder;
 using geom::Vec3;
 
-ModelCylinder piece(Vec3 a, Vec3 b, double r0, double r1, std::int64_t parent = -1, std::int32_t order = -1) {
-  ModelCylinder c;
-  c.start = a;
-  c.end = b;
-  c.startRadius = r0;
-  c.endRadius = r1;
-  c.parent = parent;
-  c.branchOrder = order;
-  return c;
-}
+using test::modelPiece;
 
 // A cylinder along z from 0 to 2, radius 0.5.
-const ModelCylinder kCyl = piece({0, 0, 0}, {0, 0, 2}, 0.5, 0.5);
+const ModelCylinder kCyl = modelPiece({0, 0, 0}, {0, 0, 2}, 0.5, 0.5);
 
 TEST(ModelFitDistance, CylinderOnInsideOutside) {
   EXPECT_DOUBLE_EQ(signedDistance({0.5, 0, 1}, kCyl), 0.0);             // on the side
@@ -43,7 +36,7 @@ TEST(ModelFitDistance, CylinderOnInsideOutside) {
   EXPECT_DOUBLE_EQ(signedDistance({1.5, 0, 3}, kCyl), std::sqrt(2.0));  // past the rim
   // Rotated: the same cylinder along (1,1,1) from (1,2,3).
   const Vec3 u = Vec3(1, 1, 1).normalized(), n = Vec3(1, -1, 0).normalized();
-  const ModelCylinder tilted = piece({1, 2, 3}, Vec3(1, 2, 3) + 2 * u, 0.5, 0.5);
+  const ModelCylinder tilted = modelPiece({1, 2, 3}, Vec3(1, 2, 3) + 2 * u, 0.5, 0.5);
   EXPECT_NEAR(signedDistance(Vec3(1, 2, 3) + u + 0.2 * n, tilted), -0.3, 1e-12);
   EXPECT_NEAR(signedDistance(Vec3(1, 2, 3) + u + 1.5 * n, tilted), 1.0, 1e-12);
   EXPECT_NEAR(signedDistance(Vec3(1, 2, 3) + 3 * u + 1.5 * n, tilted), std::sqrt(2.0), 1e-12);
@@ -52,7 +45,7 @@ TEST(ModelFitDistance, CylinderOnInsideOutside) {
 TEST(ModelFitDistance, Frustum) {
   // Radius 1 at z = 0 to 0.5 at z = 2: in the (t, ρ) plane the side runs (0,1) → (2,0.5), direction
   // (2,-0.5), length sqrt(4.25).
-  const ModelCylinder f = piece({0, 0, 0}, {0, 0, 2}, 1.0, 0.5);
+  const ModelCylinder f = modelPiece({0, 0, 0}, {0, 0, 2}, 1.0, 0.5);
   const double e = std::sqrt(4.25);
   EXPECT_NEAR(signedDistance({2, 0, 1}, f), 2.5 / e, 1e-12);                   // beside: (t,ρ)=(1,2), |w×e|/|e|
   EXPECT_NEAR(signedDistance({0, 0, 1}, f), -1.5 / e, 1e-12);                  // on the axis: to the side, not a cap
@@ -64,13 +57,13 @@ TEST(ModelFitDistance, Frustum) {
   EXPECT_NEAR(f.volume(), std::numbers::pi * 2 * (1 + 0.5 + 0.25) / 3, 1e-12);
   EXPECT_NEAR(kCyl.volume(), std::numbers::pi * 0.25 * 2, 1e-12);
   // A zero-length piece has no surface.
-  EXPECT_TRUE(std::isinf(signedDistance({0, 0, 0}, piece({1, 1, 1}, {1, 1, 1}, 1, 1))));
+  EXPECT_TRUE(std::isinf(signedDistance({0, 0, 0}, modelPiece({1, 1, 1}, {1, 1, 1}, 1, 1))));
 }
 
 TEST(ModelFitDistance, UnionAtJoints) {
   // A straight joint: two pieces along z, the second the first's child.
   CylinderModel straight;
-  straight.cylinders = {piece({0, 0, 0}, {0, 0, 1}, 0.5, 0.5), piece({0, 0, 1}, {0, 0, 2}, 0.5, 0.5, 0)};
+  straight.cylinders = {modelPiece({0, 0, 0}, {0, 0, 1}, 0.5, 0.5), modelPiece({0, 0, 1}, {0, 0, 2}, 0.5, 0.5, 0)};
   const CylinderModelIndex si(straight);
   EXPECT_NEAR(si.signedDistance({0.5, 0, 1}), 0.0, 1e-12);
   EXPECT_NEAR(si.signedDistance({0.7, 0, 1}), 0.2, 1e-12);
@@ -89,7 +82,7 @@ TEST(ModelFitDistance, UnionAtJoints) {
   // A bend: up, then along x. Outside the corner the union's distance is the nearer piece's
   // (the first piece's rim), not the second's cap.
   CylinderModel bend;
-  bend.cylinders = {piece({0, 0, 0}, {0, 0, 1}, 0.2, 0.2), piece({0, 0, 1}, {1, 0, 1}, 0.2, 0.2, 0)};
+  bend.cylinders = {modelPiece({0, 0, 0}, {0, 0, 1}, 0.2, 0.2), modelPiece({0, 0, 1}, {1, 0, 1}, 0.2, 0.2, 0)};
   const CylinderModelIndex bi(bend);
   std::int64_t which = -2;
   EXPECT_NEAR(bi.signedDistance({-0.3, 0, 1.1}, &which), std::hypot(0.1, 0.1), 1e-12);
@@ -110,9 +103,9 @@ TEST(ModelFitIndex, MatchesBruteForce) {
   for (int i = 0; i < 400; ++i) {
     const Vec3 a(pos(rng), pos(rng), pos(rng));
     const Vec3 dir = Vec3(pos(rng), pos(rng), pos(rng)).normalized();
-    m.cylinders.push_back(piece(a, a + len(rng) * dir, rad(rng), rad(rng)));
+    m.cylinders.push_back(modelPiece(a, a + len(rng) * dir, rad(rng), rad(rng)));
   }
-  m.cylinders.push_back(piece({5, 5, 5}, {5, 5, 5}, 1, 1));  // zero length: left out
+  m.cylinders.push_back(modelPiece({5, 5, 5}, {5, 5, 5}, 1, 1));  // zero length: left out
   const CylinderModelIndex index(m);
   EXPECT_EQ(index.size(), 400u);
   std::uniform_real_distribution<double> q(-3, 3);
@@ -130,11 +123,11 @@ TEST(ModelFitIndex, MatchesBruteForce) {
 
 TEST(ModelFitIndex, RejectsBadPieces) {
   CylinderModel m;
-  m.cylinders = {piece({0, 0, 0}, {0, 0, 1}, -0.1, 0.1)};
+  m.cylinders = {modelPiece({0, 0, 0}, {0, 0, 1}, -0.1, 0.1)};
   EXPECT_THROW(CylinderModelIndex{m}, OptionsError);
-  m.cylinders = {piece({0, 0, std::nan("")}, {0, 0, 1}, 0.1, 0.1)};
+  m.cylinders = {modelPiece({0, 0, std::nan("")}, {0, 0, 1}, 0.1, 0.1)};
   EXPECT_THROW(CylinderModelIndex{m}, OptionsError);
-  m.cylinders = {piece({0, 0, 0}, {0, 0, 1}, 0.1, 0.1, 3)};
+  m.cylinders = {modelPiece({0, 0, 0}, {0, 0, 1}, 0.1, 0.1, 3)};
   EXPECT_THROW(CylinderModelIndex{m}, OptionsError);
 }
 
@@ -143,7 +136,7 @@ TEST(ModelFitReport, SharesAndMedianInMetresAndMillimetres) {
   // -0.03 -0.015 -0.005 0 0.005 0.015 0.03 0.045 0.07 1.0 (m).
   const double d[] = {-0.03, -0.015, -0.005, 0, 0.005, 0.015, 0.03, 0.045, 0.07, 1.0};
   CylinderModel m;
-  m.cylinders = {piece({0, 0, 0}, {0, 0, 10}, 0.1, 0.1)};
+  m.cylinders = {modelPiece({0, 0, 0}, {0, 0, 10}, 0.1, 0.1)};
   for (double scale : {1.0, 1000.0}) {  // metres, then millimetres
     geom::PointCloud cloud;
     for (int i = 0; i < 10; ++i) cloud.positions.emplace_back(scale * (0.1 + d[i]), 0, scale * (1 + 0.5 * i));
@@ -188,8 +181,8 @@ TEST(ModelFitFigures, VolumeLengthTrunkDiameter) {
   // A trunk of two frustums from z = 0.5 (the base) to 2.5 m, a side branch from z = 1.5 that is
   // thicker at 1.8 m than the trunk, and one lower piece that sets the base.
   CylinderModel m;
-  m.cylinders = {piece({0, 0, 0.5}, {0, 0, 1.5}, 0.20, 0.16, -1, 0), piece({0, 0, 1.5}, {0, 0, 2.5}, 0.16, 0.10, 0, 0),
-                 piece({0, 0, 1.5}, {1, 0, 2.0}, 0.30, 0.30, 0, 1)};
+  m.cylinders = {modelPiece({0, 0, 0.5}, {0, 0, 1.5}, 0.20, 0.16, -1, 0), modelPiece({0, 0, 1.5}, {0, 0, 2.5}, 0.16, 0.10, 0, 0),
+                 modelPiece({0, 0, 1.5}, {1, 0, 2.0}, 0.30, 0.30, 0, 1)};
   const ModelFigures f = modelFigures(m, geom::UpAxis::Z);
   EXPECT_EQ(f.cylinders, 3u);
   const double v = m.cylinders[0].volume() + m.cylinders[1].volume() + m.cylinders[2].volume();

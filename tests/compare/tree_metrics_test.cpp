@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -17,16 +19,7 @@ using geom::CylinderModel;
 using geom::ModelCylinder;
 using geom::Vec3;
 
-ModelCylinder piece(Vec3 a, Vec3 b, double r0, double r1, std::int64_t parent, std::int32_t order = -1) {
-  ModelCylinder c;
-  c.start = a;
-  c.end = b;
-  c.startRadius = r0;
-  c.endRadius = r1;
-  c.parent = parent;
-  c.branchOrder = order;
-  return c;
-}
+using test::modelPiece;
 
 constexpr double kR0 = 0.2, kH = 10.0;  // cone: base radius 0.2 m, height 10 m, along z from z0
 
@@ -35,7 +28,7 @@ CylinderModel cone(int n, double z0 = 5.0) {
   CylinderModel m;
   for (int i = 0; i < n; ++i) {
     const double a = kH * i / n, b = kH * (i + 1) / n;
-    m.cylinders.push_back(piece({1, 2, z0 + a}, {1, 2, z0 + b}, kR0 * (1 - a / kH), kR0 * (1 - b / kH), i - 1));
+    m.cylinders.push_back(modelPiece({1, 2, z0 + a}, {1, 2, z0 + b}, kR0 * (1 - a / kH), kR0 * (1 - b / kH), i - 1));
   }
   return m;
 }
@@ -72,13 +65,13 @@ TEST(TreeMetrics, UnitsScaleEveryFigure) {
 TEST(TreeMetrics, BranchOrdersDerivedFromTheLinks) {
   // Stem of 3 pieces; two branches off piece 0 and 1; a sub-branch off the first branch.
   CylinderModel m;
-  m.cylinders.push_back(piece({0, 0, 0}, {0, 0, 1}, 0.2, 0.18, -1));    // 0 stem
-  m.cylinders.push_back(piece({0, 0, 1}, {0, 0, 2}, 0.18, 0.15, 0));    // 1 stem
-  m.cylinders.push_back(piece({0, 0, 2}, {0, 0, 3}, 0.15, 0.1, 1));     // 2 stem
-  m.cylinders.push_back(piece({0, 0, 1}, {1, 0, 1.5}, 0.05, 0.04, 0));  // 3 branch A
-  m.cylinders.push_back(piece({1, 0, 1.5}, {2, 0, 2}, 0.04, 0.03, 3));  // 4 branch A
-  m.cylinders.push_back(piece({0, 0, 2}, {0, 1, 2.5}, 0.05, 0.04, 1));  // 5 branch B
-  m.cylinders.push_back(piece({1, 0, 1.5}, {1, 1, 2}, 0.02, 0.01, 3));  // 6 sub-branch of A
+  m.cylinders.push_back(modelPiece({0, 0, 0}, {0, 0, 1}, 0.2, 0.18, -1));    // 0 stem
+  m.cylinders.push_back(modelPiece({0, 0, 1}, {0, 0, 2}, 0.18, 0.15, 0));    // 1 stem
+  m.cylinders.push_back(modelPiece({0, 0, 2}, {0, 0, 3}, 0.15, 0.1, 1));     // 2 stem
+  m.cylinders.push_back(modelPiece({0, 0, 1}, {1, 0, 1.5}, 0.05, 0.04, 0));  // 3 branch A
+  m.cylinders.push_back(modelPiece({1, 0, 1.5}, {2, 0, 2}, 0.04, 0.03, 3));  // 4 branch A
+  m.cylinders.push_back(modelPiece({0, 0, 2}, {0, 1, 2.5}, 0.05, 0.04, 1));  // 5 branch B
+  m.cylinders.push_back(modelPiece({1, 0, 1.5}, {1, 1, 2}, 0.02, 0.01, 3));  // 6 sub-branch of A
   const geom::BranchStructure b = geom::branchStructure(m, geom::UpAxis::Z);
   EXPECT_EQ(b.order, (std::vector<std::int32_t>{0, 0, 0, 1, 1, 1, 2}));
   EXPECT_EQ(b.extension[0], 1);
@@ -97,9 +90,9 @@ TEST(TreeMetrics, BranchOrdersDerivedFromTheLinks) {
 
 TEST(TreeMetrics, GivenOrdersWin) {
   CylinderModel m;
-  m.cylinders.push_back(piece({0, 0, 0}, {0, 0, 1}, 0.2, 0.2, -1, 0));
-  m.cylinders.push_back(piece({0, 0, 1}, {0, 0, 2}, 0.05, 0.05, 0, 0));  // thin, but the stem by its order
-  m.cylinders.push_back(piece({0, 0, 1}, {1, 0, 1}, 0.1, 0.1, 0, 1));
+  m.cylinders.push_back(modelPiece({0, 0, 0}, {0, 0, 1}, 0.2, 0.2, -1, 0));
+  m.cylinders.push_back(modelPiece({0, 0, 1}, {0, 0, 2}, 0.05, 0.05, 0, 0));  // thin, but the stem by its order
+  m.cylinders.push_back(modelPiece({0, 0, 1}, {1, 0, 1}, 0.1, 0.1, 0, 1));
   const geom::BranchStructure b = geom::branchStructure(m, geom::UpAxis::Z);
   EXPECT_EQ(b.extension[0], 1);
   EXPECT_EQ(b.order, (std::vector<std::int32_t>{0, 0, 1}));
@@ -107,8 +100,8 @@ TEST(TreeMetrics, GivenOrdersWin) {
 
 TEST(TreeMetrics, CycleAndBadParentThrow) {
   CylinderModel m;
-  m.cylinders.push_back(piece({0, 0, 0}, {0, 0, 1}, 0.1, 0.1, 1));
-  m.cylinders.push_back(piece({0, 0, 1}, {0, 0, 2}, 0.1, 0.1, 0));
+  m.cylinders.push_back(modelPiece({0, 0, 0}, {0, 0, 1}, 0.1, 0.1, 1));
+  m.cylinders.push_back(modelPiece({0, 0, 1}, {0, 0, 2}, 0.1, 0.1, 0));
   EXPECT_THROW(geom::branchStructure(m, geom::UpAxis::Z), OptionsError);
   m.cylinders[0].parent = 7;
   EXPECT_THROW(treeMetrics(m, geom::UpAxis::Z), OptionsError);
