@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 
 namespace treesketch::fuzz {
 
@@ -15,9 +16,22 @@ void fail(const char* file, int line, const std::string& what) {
   std::abort();
 }
 
+namespace {
+// The temporary files of this process, removed when it exits normally.
+struct TempFiles {
+  std::set<std::filesystem::path> paths;
+  ~TempFiles() {
+    std::error_code ignored;
+    for (const auto& p : paths) std::filesystem::remove(p, ignored);
+  }
+};
+TempFiles tempFiles;
+}  // namespace
+
 std::filesystem::path writeTempFile(std::string_view extension, std::string_view bytes) {
   const std::filesystem::path path = std::filesystem::temp_directory_path() /
                                      ("treesketch_fuzz_" + std::to_string(::getpid()) + std::string(extension));
+  tempFiles.paths.insert(path);
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   FUZZ_CHECK(out.good(), "cannot write the temporary file " + path.string());

@@ -32,7 +32,7 @@ inline std::string_view asText(const std::uint8_t* data, std::size_t size) {
 
 /// Writes `bytes` to a temporary file of this process whose name ends in `extension` (".ply",
 /// "" for none) and returns its path; the next call with the same extension overwrites it. For
-/// readers that only take a path.
+/// readers that only take a path. The files are removed when the process exits normally.
 std::filesystem::path writeTempFile(std::string_view extension, std::string_view bytes);
 
 /// Aborts unless every position (and scanner position) is finite, the attribute arrays are empty
