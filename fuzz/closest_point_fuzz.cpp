@@ -5,8 +5,12 @@
 // where all coordinates are within ±1e150 (squared distances cannot overflow a double) every
 // query finds the same distance as a brute-force search over all triangles (1e-9 relative),
 // queryAll agrees with query, and compareMeshes gives ordered, finite statistics.
+#include <tbb/global_control.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "fuzz_support.h"
 #include "treesketch/accel/closest_point.h"
@@ -16,6 +20,10 @@
 using namespace treesketch;
 
 namespace {
+
+// One thread: the batches here are tiny, and thread hand-offs would dominate every run (the
+// answers do not depend on the thread count).
+const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
 
 constexpr double kSaneRange = 1e150;  // beyond this, squared distances may overflow (not checked)
 
@@ -34,6 +42,21 @@ geom::Vec3 nextVertex(fuzz::ByteSource& in, const std::vector<geom::Vec3>& previ
   return base + step;
 }
 
+std::string describe(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+std::string describe(const geom::Vec3& v) {
+  return "(" + describe(v.x()) + " " + describe(v.y()) + " " + describe(v.z()) + ")";
+}
+std::string describe(const geom::TriMesh& mesh) {
+  std::string s;
+  for (const auto& t : mesh.triangles)
+    s += "[" + describe(mesh.vertices[t[0]]) + describe(mesh.vertices[t[1]]) + describe(mesh.vertices[t[2]]) + "]";
+  return s;
+}
+
 bool sane(const std::vector<geom::Vec3>& points) {
   return std::all_of(points.begin(), points.end(),
                      [](const geom::Vec3& p) { return p.cwiseAbs().maxCoeff() <= kSaneRange; });
@@ -49,8 +72,9 @@ double bruteForce(const geom::TriMesh& mesh, const geom::Vec3& q) {
   return best;
 }
 
-void checkQueries(const geom::TriMesh& mesh, const std::vector<geom::Vec3>& queries, double maxDistance, bool checked) {
-  const accel::MeshClosestPoint index(mesh);
+void checkQueries(const geom::TriMesh& mesh, const std::vector<geom::Vec3>& queries, double maxDistance,
+                  const accel::ClosestPointOptions& accelOptions, bool checked) {
+  const accel::MeshClosestPoint index(mesh, accelOptions);
   std::vector<accel::ClosestHit> single;
   for (const geom::Vec3& q : queries) {
     const accel::ClosestHit hit = index.query(q, maxDistance);
@@ -62,7 +86,8 @@ void checkQueries(const geom::TriMesh& mesh, const std::vector<geom::Vec3>& quer
       FUZZ_CHECK(hit.found(), "closest point: nothing found within the search distance");
       FUZZ_CHECK(hit.point.allFinite(), "closest point: non-finite point");
       FUZZ_CHECK(hit.distance <= expected * (1 + 1e-9) && hit.distance >= expected * (1 - 1e-9),
-                 "closest point: distance differs from brute force");
+                 "closest point: distance " + describe(hit.distance) + " differs from brute force " +
+                     describe(expected) + " at query " + describe(q) + ", mesh " + describe(mesh));
     }
   }
   const std::vector<accel::ClosestHit> all = index.queryAll(queries, maxDistance);
@@ -72,9 +97,11 @@ void checkQueries(const geom::TriMesh& mesh, const std::vector<geom::Vec3>& quer
                "queryAll and query disagree");
 }
 
-void checkCompare(const geom::TriMesh& original, const geom::TriMesh& other, bool checked) {
+void checkCompare(const geom::TriMesh& original, const geom::TriMesh& other,
+                  const accel::ClosestPointOptions& accelOptions, bool checked) {
   compare::CompareOptions options;
   options.sampling.count = 32;
+  options.accel = accelOptions;
   compare::BothReport report;
   try {
     report = compare::compareBoth(original, other, options);
@@ -110,12 +137,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint8_t flags = in.next<std::uint8_t>();
   const double maxDistance = (flags & 1) ? std::abs(fuzz::nextDouble(in)) : std::numeric_limits<double>::infinity();
 
+  // Morton ordering of a batch (sorting by 16-bit-per-axis codes) costs more than a batch of 16
+  // here; one input in four uses it, so its handling of extreme boxes is fuzzed too.
+  accel::ClosestPointOptions accelOptions;
+  accelOptions.mortonOrder = (flags & 6) == 0;
+  accelOptions.warmStart = (flags & 8) == 0;
+  accelOptions.leafSize = 1 + (flags >> 4) % 8;
+
   const bool checked = sane(mesh.vertices) && sane(queries);
-  checkQueries(mesh, queries, maxDistance, checked);
+  checkQueries(mesh, queries, maxDistance, accelOptions, checked);
   // compare: the mesh against a second one made of the queries (three corners a triangle).
   geom::TriMesh other;
   other.vertices = queries;
   for (std::uint32_t i = 0; i + 2 < queries.size(); i += 3) other.triangles.push_back({i, i + 1, i + 2});
-  checkCompare(mesh, other, checked);
+  checkCompare(mesh, other, accelOptions, checked);
   return 0;
 }

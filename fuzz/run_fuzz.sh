@@ -15,6 +15,8 @@ src=$(cd "$(dirname "$0")" && pwd)
 if (($# == 0)); then
   set -- $(cd "$src" && ls *_fuzz.cpp | sed 's/_fuzz\.cpp$//')
 fi
+# file_sniff writes each input to a temporary file: keep those in memory when the machine can.
+if [[ -z "${TMPDIR:-}" && -d /dev/shm && -w /dev/shm ]]; then export TMPDIR=/dev/shm; fi
 summary="$build/fuzz-summary.txt"
 : >"$summary"
 failed=0

@@ -1,0 +1,101 @@
+// MeshClosestPoint on meshes whose size or shape puts its float pruning outside float's range:
+// triangles spanning 1e12 and more (squared and cubed float products overflow), sliver triangles
+// whose normal underflows, meshes at 1e-30 and 1e-41 (float subnormals). Each answer must equal a
+// brute-force search. The first case is fuzz/regressions/closest_point/huge_sliver_pruned.bin.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "treesketch/accel/closest_point.h"
+
+namespace treesketch::accel {
+namespace {
+
+using geom::Vec3;
+
+double bruteForce(const geom::TriMesh& m, const Vec3& q) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& t : m.triangles)
+    best = std::min(best, (closestPointOnTriangle(q, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]) - q).norm());
+  return best;
+}
+
+void expectBruteForce(const geom::TriMesh& mesh, const std::vector<Vec3>& queries, const char* what) {
+  for (int leafSize : {1, 4}) {
+    ClosestPointOptions options;
+    options.leafSize = leafSize;
+    const MeshClosestPoint index(mesh, options);
+    const std::vector<ClosestHit> batch = index.queryAll(queries);
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      const double expected = bruteForce(mesh, queries[i]);
+      const ClosestHit hit = index.query(queries[i]);
+      ASSERT_TRUE(hit.found() && batch[i].found()) << what;
+      EXPECT_NEAR(hit.distance, expected, 1e-9 * expected) << what << ", query " << i << ", leaf size " << leafSize;
+      EXPECT_NEAR(batch[i].distance, expected, 1e-9 * expected) << what << ", query " << i;
+    }
+  }
+}
+
+// Found by fuzz/closest_point_fuzz.cpp: slivers from near the origin to z = -3e20 and a small
+// triangle; from the origin the float estimate of the nearest sliver overflowed and it was skipped
+// (3.28 returned instead of 1.90).
+TEST(MeshClosestPointExtremes, HugeSliversAreNotSkipped) {
+  geom::TriMesh mesh;
+  mesh.vertices = {{-4.8125, -1.4375, -5.5},
+                   {0, -3.5625, -2.9695e+20},
+                   {-2.6645352591003757e-15, -3.5625000000000009, -2.9695e+20},
+                   {2.6875, 1.875, -5.386016049721315e-254},
+                   {-1.4224732503009818e-16, -3.5625, -2.9695e+20}};
+  mesh.triangles = {{0, 1, 2}, {3, 4, 2}, {0, 2, 3}, {4, 1, 3}, {1, 0, 1}, {0, 3, 1}};
+  expectBruteForce(mesh, {Vec3::Zero(), Vec3(1, 1, 1), Vec3(0, -3, -1e20), Vec3(3, 2, 0)}, "huge slivers");
+}
+
+// Random triangles of every size from 1e-3 to 1e21 around the origin (float products of the
+// larger ones overflow), with queries at all those scales.
+TEST(MeshClosestPointExtremes, TrianglesSpanningAnyScaleMatchBruteForce) {
+  std::mt19937_64 rng(19);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> exponent(-3, 21);
+  auto randomVec = [&] { return Vec3(u(rng), u(rng), u(rng)) * std::pow(10.0, exponent(rng)); };
+  for (int trial = 0; trial < 20; ++trial) {
+    geom::TriMesh mesh;
+    for (std::uint32_t i = 0; i < 24; ++i) {
+      mesh.vertices.push_back(randomVec());
+      mesh.triangles.push_back({i, (i * 7 + 3) % 24, (i * 13 + 5) % 24});
+    }
+    std::vector<Vec3> queries;
+    for (int i = 0; i < 24; ++i) queries.push_back(randomVec());
+    expectBruteForce(mesh, queries, "any scale");
+  }
+}
+
+// A needle (1 long, 1e-20 wide: its normal's squared length underflows float) behind a triangle
+// that is found first: the needle is nearer and must still be found.
+TEST(MeshClosestPointExtremes, NeedleWithUnderflowingNormalIsFound) {
+  for (double width : {1e-18, 1e-20, 1e-24, 1e-30}) {
+    geom::TriMesh mesh;
+    mesh.vertices = {{0, 0, 3}, {1, 0, 3}, {0, 1, 3}, {0, 0, 0}, {1, 0, 0}, {0.5, width, 0}};
+    mesh.triangles = {{0, 1, 2}, {3, 4, 5}};
+    expectBruteForce(mesh, {Vec3(0.5, 0.3 * width, 1), Vec3(0.5, 0, -1), Vec3(0.2, 0.1 * width, 0.5)}, "needle");
+  }
+}
+
+// Whole meshes at tiny scales (float normals, then subnormals, then below float's range).
+TEST(MeshClosestPointExtremes, TinyMeshesMatchBruteForce) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (double scale : {1e-20, 1e-30, 1e-38, 1e-41, 1e-44, 1e-300}) {
+    geom::TriMesh mesh;
+    for (std::uint32_t i = 0; i < 30; ++i) {
+      mesh.vertices.push_back(Vec3(u(rng), u(rng), u(rng)) * scale);
+      if (i >= 2) mesh.triangles.push_back({i - 2, i - 1, i});
+    }
+    std::vector<Vec3> queries;
+    for (int i = 0; i < 30; ++i) queries.push_back(Vec3(u(rng), u(rng), u(rng)) * (2 * scale));
+    expectBruteForce(mesh, queries, "tiny");
+  }
+}
+
+}  // namespace
+}  // namespace treesketch::accel
