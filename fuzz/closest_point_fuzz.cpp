@@ -83,7 +83,9 @@ void checkQueries(const geom::TriMesh& mesh, const std::vector<geom::Vec3>& quer
     if (!checked) continue;
     const double expected = bruteForce(mesh, q);
     if (expected <= maxDistance) {
-      FUZZ_CHECK(hit.found(), "closest point: nothing found within the search distance");
+      FUZZ_CHECK(hit.found(), "closest point: nothing found within the search distance " + describe(maxDistance) +
+                                  " (brute force: " + describe(expected) + ") at query " + describe(q) + ", mesh " +
+                                  describe(mesh));
       FUZZ_CHECK(hit.point.allFinite(), "closest point: non-finite point");
       FUZZ_CHECK(hit.distance <= expected * (1 + 1e-9) && hit.distance >= expected * (1 - 1e-9),
                  "closest point: distance " + describe(hit.distance) + " differs from brute force " +

@@ -5,7 +5,8 @@
 #   SECONDS: time budget per harness (libFuzzer -max_total_time; 0 = none)
 #   RUNS:    run budget per harness (libFuzzer -runs; -1 = none); the first budget reached stops it
 #   HARNESS: names as in fuzz/<name>_fuzz.cpp (default: all)
-# Each harness's working corpus is BUILD_DIR/fuzz-corpus/<name> (seeded from fuzz/corpus/<name> and
+# The summary lines are also appended to BUILD_DIR/fuzz-summary.txt under a line naming the
+# invocation. Each harness's working corpus is BUILD_DIR/fuzz-corpus/<name> (seeded from fuzz/corpus/<name> and
 # fuzz/regressions/<name>, growing across runs); a failing input is written to
 # BUILD_DIR/fuzz-artifacts/<name>/ and the script exits non-zero after the remaining harnesses.
 set -uo pipefail
@@ -18,7 +19,7 @@ fi
 # file_sniff writes each input to a temporary file: keep those in memory when the machine can.
 if [[ -z "${TMPDIR:-}" && -d /dev/shm && -w /dev/shm ]]; then export TMPDIR=/dev/shm; fi
 summary="$build/fuzz-summary.txt"
-: >"$summary"
+echo "# $(date -u '+%Y-%m-%d %H:%M UTC') run_fuzz.sh $build $seconds $runs $*" >>"$summary"
 failed=0
 for name in "$@"; do
   exe="$build/fuzz/fuzz_$name"
