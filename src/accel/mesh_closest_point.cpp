@@ -343,7 +343,12 @@ void MeshClosestPoint::Impl::layoutSlots(const geom::TriMesh& mesh, const std::v
     const double extent = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), c.cwiseAbs().maxCoeff()});
     const bool finiteInverses = std::isfinite(p.inv0[lane]) && std::isfinite(p.inv1[lane]) &&
                                 std::isfinite(p.inv2[lane]) && std::isfinite(p.invN2[lane]);
-    if (!(extent <= kPacketRange) || !finiteInverses) exactLanes[s / 4] |= static_cast<std::uint8_t>(1u << lane);
+    // A triangle flat at float precision (|n| below 1e-6 of its longest edge squared, so rounding
+    // its corners to float turns its plane): the float estimate may put it far from a query on it.
+    const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    const bool flatInFloat = !(n.squaredNorm() > 1e-12 * longest2 * longest2);
+    if (!(extent <= kPacketRange) || !finiteInverses || flatInFloat)
+      exactLanes[s / 4] |= static_cast<std::uint8_t>(1u << lane);
   }
 }
 

@@ -72,6 +72,19 @@ TEST(MeshClosestPointExtremes, ExactTestHoldsAtAnyFiniteScale) {
   }
 }
 
+// Found by fuzz/closest_point_fuzz.cpp (fuzz/regressions/closest_point/query_on_needle_vertex.bin,
+// with clang -O1; this build's rounding may pass without the fix): a query on a vertex of a
+// triangle whose other two corners are 3e-12 apart (flat at float precision) got the distance to
+// a neighbour, 4e-12, instead of 0.
+TEST(MeshClosestPointExtremes, QueryOnANeedleVertexFindsIt) {
+  geom::TriMesh mesh;
+  const Vec3 a(1e-300, 2.9442000000000002e-296, 7.1875), b(7.1875, -3.625, -0.0625),
+      c(7.1875, -3.6249999999969305, -0.062500000002671641);
+  mesh.vertices = {a, b, c};
+  mesh.triangles = {{0, 1, 0}, {1, 0, 1}, {1, 0, 0}, {0, 2, 1}};
+  expectBruteForce(mesh, {c, b, (a + c) / 2}, "needle vertex");
+}
+
 // A needle (1 long, 1e-20 wide: its normal's squared length underflows float) behind a triangle
 // that is found first: the needle is nearer and must still be found.
 TEST(MeshClosestPointExtremes, NeedleWithUnderflowingNormalIsFound) {
