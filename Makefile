@@ -2,12 +2,17 @@
 #   make demo    install what is missing, build, run the main job on the built-in tree -> out/demo/
 #   make test    install what is missing, build, run every test (release build, then ASan+UBSan build)
 #   make package build the Debian packages treesketch_*.deb and treesketch-dev_*.deb in $(BUILD)/
+#   make fuzz    libFuzzer + ASan/UBSan harnesses of fuzz/ (clang), FUZZ_SECONDS / FUZZ_RUNS each
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD ?= build
 ASAN_BUILD ?= build-asan
 CMAKE_FLAGS ?=
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_RUNS ?= -1
+FUZZ_HARNESSES ?=
 
-.PHONY: all deps build demo test test-release test-asan test-slurm bench package clean format
+.PHONY: all deps build demo test test-release test-asan test-slurm bench package fuzz clean format
 
 all: build
 
@@ -46,8 +51,18 @@ bench: build
 package: build
 	cd $(BUILD) && cpack -G DEB
 
+# Fuzzing (not part of `make test`, which runs every harness's smoke test instead): one harness at
+# a time, each for FUZZ_SECONDS seconds or FUZZ_RUNS runs (-1: no run limit), whichever comes
+# first; FUZZ_HARNESSES picks some (default all). See fuzz/README.md.
+fuzz:
+	@bash scripts/install_deps.sh --fuzz
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTREESKETCH_FUZZ=ON \
+		-DTREESKETCH_SANITIZE=ON -DTREESKETCH_TESTS=OFF -DTREESKETCH_BENCH=OFF -DTREESKETCH_GUI=OFF $(CMAKE_FLAGS)
+	cmake --build $(FUZZ_BUILD) --target fuzz_all -j $(JOBS)
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 bash fuzz/run_fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_RUNS) $(FUZZ_HARNESSES)
+
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) out
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) out
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Installs the Debian packages treesketch needs, only those that are missing. Idempotent.
-# Usage: scripts/install_deps.sh [--gui]   (--gui adds the windowing/OpenGL packages and xvfb)
+# Usage: scripts/install_deps.sh [--gui] [--fuzz]   (--gui adds the windowing/OpenGL packages and
+# xvfb; --fuzz adds clang and its libFuzzer runtime, for `make fuzz` only)
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libeigen3-dev libembree-dev libtbb-dev libnanoflann-dev
       libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev)
 gui=(libglfw3-dev libglew-dev libimgui-dev libstb-dev xvfb xauth libgl1-mesa-dri)
 if [[ "${1:-}" == "--gui" || "${TREESKETCH_GUI:-1}" == "1" ]]; then pkgs+=("${gui[@]}"); fi
+fuzz=(clang libclang-rt-14-dev)
+if [[ " $* " == *" --fuzz "* ]]; then pkgs+=("${fuzz[@]}"); fi
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

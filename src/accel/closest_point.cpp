@@ -46,9 +46,12 @@ Vec3 closestOnDegenerate(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
   return cand[best];
 }
 
-}  // namespace
+// Ericson's region tests multiply four coordinate differences: for differences beyond this (or
+// below its inverse) the products overflow (underflow) a double. Such a triangle is solved scaled
+// by a power of two around `a` (found by fuzzing: a triangle at 1e106 had no closest point).
+constexpr double kUnscaledRange = 1e60;
 
-Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, TriangleRegion* region) {
+Vec3 closestUnscaled(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, TriangleRegion* region) {
   auto set = [region](TriangleRegion r) {
     if (region) *region = r;
   };
@@ -97,6 +100,18 @@ Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
   set(TriangleRegion::Face);
   const double v = vb / sum, w = vc / sum;
   return a + v * ab + w * ac;
+}
+
+}  // namespace
+
+Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, TriangleRegion* region) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double m = std::max({ab.cwiseAbs().maxCoeff(), ac.cwiseAbs().maxCoeff(), ap.cwiseAbs().maxCoeff()});
+  if ((m > kUnscaledRange || m < 1 / kUnscaledRange) && m > 0 && std::isfinite(m)) {
+    const double s = std::ldexp(1.0, -std::ilogb(m));  // exact: a power of two
+    return a + closestUnscaled(ap * s, Vec3::Zero(), ab * s, ac * s, region) / s;
+  }
+  return closestUnscaled(p, a, b, c, region);
 }
 
 // ---- Morton order -----------------------------------------------------------------------------

@@ -83,6 +83,12 @@ inline V4 packetDistance2(const Packet& p, V4 qx, V4 qy, V4 qz) {
   return inside ? dPlane : dEdge;
 }
 
+// Largest coordinate (metres from the mesh's centre) of a triangle whose float estimate is used to
+// skip it: packetDistance2 multiplies up to four coordinates (the edge tests' n . (e x p)), and
+// (3.4e38)^(1/4) is 1.4e9. A triangle reaching farther (a sliver to 3e20 did, found by fuzzing) is
+// always tested exactly; tree meshes are metres across, far inside this.
+constexpr double kPacketRange = 1e9;
+
 float roundDown(double x) {
   float f = static_cast<float>(x);
   return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
@@ -121,6 +127,9 @@ struct MeshClosestPoint::Impl {
   /// repeats the leaf's last triangle).
   std::vector<Tri> tris;
   std::vector<Packet> packets;       ///< slot / 4
+  /// Per packet, bit `lane` set: that triangle's float estimate is out of float's range (see
+  /// kPacketRange), so it is never skipped by it and always gets the exact double test.
+  std::vector<std::uint8_t> exactLanes;
   std::vector<std::uint32_t> triId;  ///< slot -> input triangle index
 
   void build(const geom::TriMesh& mesh);
@@ -298,6 +307,7 @@ void MeshClosestPoint::Impl::layoutSlots(const geom::TriMesh& mesh, const std::v
   tris.resize(slots);
   triId.resize(slots);
   packets.resize(slots / 4);
+  exactLanes.assign(slots / 4, 0);
   std::size_t next = 0;
   for (Node& n : nodes) {
     if (n.count == 0) continue;
@@ -330,6 +340,15 @@ void MeshClosestPoint::Impl::layoutSlots(const geom::TriMesh& mesh, const std::v
     p.nx[lane] = static_cast<float>(n.x()), p.ny[lane] = static_cast<float>(n.y()),
     p.nz[lane] = static_cast<float>(n.z());
     p.invN2[lane] = inv(n.squaredNorm());
+    const double extent = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), c.cwiseAbs().maxCoeff()});
+    const bool finiteInverses = std::isfinite(p.inv0[lane]) && std::isfinite(p.inv1[lane]) &&
+                                std::isfinite(p.inv2[lane]) && std::isfinite(p.invN2[lane]);
+    // A triangle flat at float precision (|n| below 1e-6 of its longest edge squared, so rounding
+    // its corners to float turns its plane): the float estimate may put it far from a query on it.
+    const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    const bool flatInFloat = !(n.squaredNorm() > 1e-12 * longest2 * longest2);
+    if (!(extent <= kPacketRange) || !finiteInverses || flatInFloat)
+      exactLanes[s / 4] |= static_cast<std::uint8_t>(1u << lane);
   }
 }
 
@@ -400,9 +419,10 @@ void MeshClosestPoint::Impl::testLeaf(std::uint32_t slot, std::uint32_t count, c
                                       double margin, Best& best) const {
   for (std::uint32_t s = slot, e = slot + count; s < e; s += 4) {
     const V4 d2f = packetDistance2(packets[s / 4], qx, qy, qz);
+    const std::uint32_t exact = exactLanes[s / 4];
     const std::uint32_t lanes = std::min<std::uint32_t>(4, e - s);
     for (std::uint32_t lane = 0; lane < lanes; ++lane) {
-      if (d2f[lane] > best.limit2) continue;
+      if (d2f[lane] > best.limit2 && !(exact >> lane & 1u)) continue;
       const Tri& t = tris[s + lane];
       const Vec3 c = closestPointOnTriangle(q, t.a, t.b, t.c);
       const double d2 = (c - q).squaredNorm();

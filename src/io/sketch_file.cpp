@@ -104,13 +104,16 @@ geom::Camera cameraFromJson(const json& j, const Ctx& ctx) {
   return cam;
 }
 
-ojson paramsToJson(const sketch::SamplingParams& p) {
+/// `base` is what a reader fills an absent field with (the file's defaults for a node, the
+/// SamplingParams defaults for the defaults): maxGrowthSteps is written whenever it differs from
+/// it, so a node's -1 (unlimited) under defaults with a cap reads back as -1.
+ojson paramsToJson(const sketch::SamplingParams& p, const sketch::SamplingParams& base) {
   ojson j;
   j["sliceHalfThickness"] = p.sliceHalfThickness;
   j["lineEpsilon"] = p.lineEpsilon;
   j["lineEpsilonStep"] = p.lineEpsilonStep;
   j["enabled"] = p.enabled;
-  if (p.maxGrowthSteps >= 0) j["maxGrowthSteps"] = p.maxGrowthSteps;  // absent = unlimited (thesis)
+  if (p.maxGrowthSteps != base.maxGrowthSteps) j["maxGrowthSteps"] = p.maxGrowthSteps;
   return j;
 }
 
@@ -131,7 +134,9 @@ sketch::SamplingParams paramsFromJson(const json& j, const sketch::SamplingParam
   }
   it = j.find("maxGrowthSteps");
   if (it != j.end()) {
-    if (!it->is_number_integer() || it->get<std::int64_t>() < -1 || it->get<std::int64_t>() > 1000000000)
+    // Any int >= -1, as Sketch::validate accepts (what a sketch holds, its file can say).
+    if (!it->is_number_integer() || it->get<std::int64_t>() < -1 ||
+        it->get<std::int64_t>() > std::numeric_limits<int>::max())
       ctx.fail("\"maxGrowthSteps\": expected an integer >= -1 (-1: unlimited), got " + it->dump());
     p.maxGrowthSteps = static_cast<int>(it->get<std::int64_t>());
   }
@@ -248,7 +253,7 @@ ojson sketchToJson(const sketch::Sketch& sk) {
   j["format"] = kFormatName;
   j["version"] = kFormatVersion;
   j["up"] = geom::toString(sk.up);
-  j["defaults"] = paramsToJson(sk.defaults);
+  j["defaults"] = paramsToJson(sk.defaults, sketch::SamplingParams{});  // absent = -1 = unlimited (thesis)
   j["cameras"] = ojson::array();
   for (const auto& c : sk.cameras()) j["cameras"].push_back(cameraToJson(c));
   j["nodes"] = ojson::array();
@@ -264,7 +269,7 @@ ojson sketchToJson(const sketch::Sketch& sk) {
       o["point"] = {n.point.x(), n.point.y(), n.point.z()};
       o["normal"] = {n.normal.x(), n.normal.y(), n.normal.z()};
     }
-    o["params"] = paramsToJson(n.params);
+    o["params"] = paramsToJson(n.params, sk.defaults);
     if (n.kept) {
       ojson c;
       c["centre"] = {n.kept->centre.x(), n.kept->centre.y(), n.kept->centre.z()};
@@ -294,11 +299,6 @@ std::string layout(const ojson& j) {
   return out + "}\n";
 }
 
-void checkParamsFinite(const sketch::SamplingParams& p) {
-  if (!std::isfinite(p.sliceHalfThickness) || !std::isfinite(p.lineEpsilon) || !std::isfinite(p.lineEpsilonStep))
-    throw OptionsError("sketch defaults: sampling sizes must be finite");
-}
-
 }  // namespace
 
 sketch::Sketch readSketch(std::istream& in, const std::string& source) {
@@ -313,14 +313,12 @@ sketch::Sketch readSketch(const std::filesystem::path& path) {
 
 void writeSketch(std::ostream& out, const sketch::Sketch& sk) {
   sk.validate();
-  checkParamsFinite(sk.defaults);
   out << layout(sketchToJson(sk));
   if (!out) throw OutputError("sketch: write failed");
 }
 
 void writeSketch(const std::filesystem::path& path, const sketch::Sketch& sk) {
   sk.validate();
-  checkParamsFinite(sk.defaults);
   std::string text = layout(sketchToJson(sk));
   writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }

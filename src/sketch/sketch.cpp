@@ -373,6 +373,7 @@ NodeGeometry Sketch::geometry(NodeId id) const {
 }
 
 void Sketch::validate() const {
+  checkParams(defaults, "sketch defaults");
   for (std::size_t i = 0; i < cameras_.size(); ++i) cameras_[i].validate("camera " + std::to_string(i));
   if (nodes_.empty()) return;
   NodeId theRoot = kNoNode;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -127,6 +128,47 @@ TEST(SketchFile, WriteRefusesInvalidSketch) {
   test::TempDir dir;
   EXPECT_THROW(writeSketch(dir / "bad.json", sk), OptionsError);
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.json"));
+}
+
+// Found by fuzz/sketch_roundtrip_fuzz.cpp (fuzz/regressions/sketch_roundtrip/): the writer
+// accepted defaults the reader refuses (a step of 0), so a saved sketch could not be opened again.
+TEST(SketchFile, WriteRefusesDefaultsTheReaderWouldRefuse) {
+  Sketch sk;
+  sk.addPointNode(kNoNode, Vec3(0, 0, 0), Vec3(0, 1, 0));
+  for (double bad : {0.0, -1.0}) {
+    sk.defaults.lineEpsilonStep = bad;
+    std::stringstream ss;
+    EXPECT_THROW(writeSketch(ss, sk), OptionsError);
+  }
+}
+
+// Found by fuzz/sketch_roundtrip_fuzz.cpp: a node's maxGrowthSteps above 1e9 passed validate and was
+// written, but the reader refused it. Every int >= -1 now reads back.
+TEST(SketchFile, LargestGrowthCapRoundTrips) {
+  Sketch sk;
+  sketch::SamplingParams p;
+  p.maxGrowthSteps = std::numeric_limits<int>::max();
+  sk.addPointNode(kNoNode, Vec3(0, 0, 0), Vec3(0, 1, 0), p);
+  std::stringstream ss;
+  writeSketch(ss, sk);
+  EXPECT_EQ(readSketch(ss, "mem").node(sk.root()).params.maxGrowthSteps, std::numeric_limits<int>::max());
+}
+
+// Found by fuzz/sketch_roundtrip_fuzz.cpp: a node with no growth cap (-1) under defaults with a cap
+// was written without "maxGrowthSteps" and so read back with the defaults' cap.
+TEST(SketchFile, UncappedNodeUnderCappedDefaultsRoundTrips) {
+  Sketch sk;
+  sk.defaults.maxGrowthSteps = 3;
+  sketch::SamplingParams uncapped;
+  uncapped.maxGrowthSteps = -1;
+  const NodeId root = sk.addPointNode(kNoNode, Vec3(0, 0, 0), Vec3(0, 1, 0), uncapped);
+  const NodeId child = sk.addPointNode(root, Vec3(0, 1, 0), Vec3(0, 1, 0), sk.defaults);
+  std::stringstream ss;
+  writeSketch(ss, sk);
+  const Sketch back = readSketch(ss, "mem");
+  EXPECT_EQ(back.node(root).params.maxGrowthSteps, -1);
+  EXPECT_EQ(back.node(child).params.maxGrowthSteps, 3);
+  EXPECT_EQ(back.defaults.maxGrowthSteps, 3);
 }
 
 const char* kCamera =

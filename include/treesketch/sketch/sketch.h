@@ -168,9 +168,9 @@ class Sketch {
   NodeGeometry geometry(NodeId id) const;
 
   /// Checks the whole structure: one root, parents exist, no cycles, children lists agree,
-  /// cameras valid and referenced ones exist, finite values, positive sampling sizes, kept circles
-  /// on point nodes only with finite centres and radii > 0. Throws
-  /// OptionsError naming the node.
+  /// cameras valid and referenced ones exist, finite values, positive sampling sizes (of the
+  /// nodes and of `defaults`, which a sketch file carries too), kept circles on point nodes only
+  /// with finite centres and radii > 0. Throws OptionsError naming the node (or the defaults).
   void validate() const;
 
   /// Low-level insertion used by readers (keeps the given id and parent; call validate() after).
