@@ -63,7 +63,7 @@ Vec3 localLine(const std::vector<Sample>& samples, const std::vector<double>& we
 std::vector<Vec3> smoothChain(const std::vector<Sample>& samples, bool anchored, const AxisRules& rules) {
   const int m = static_cast<int>(samples.size());
   std::vector<Vec3> out(m);
-  std::vector<double> weights;
+  std::vector<double> weights, res, sorted;
   std::vector<Sample> window;
   for (int k = 0; k < m; ++k) {
     out[k] = samples[k].p;
@@ -82,10 +82,10 @@ std::vector<Vec3> smoothChain(const std::vector<Sample>& samples, bool anchored,
     Vec3 fit = localLine(window, weights, samples[k].s);
     // One robust step (Tukey biweight on the residuals, scale = 4.685 × median residual): a node
     // far off the local line does not drag it.
-    std::vector<double> res(window.size());
+    res.resize(window.size());
     for (std::size_t j = 0; j < window.size(); ++j)
       res[j] = (window[j].p - localLine(window, weights, window[j].s)).norm();
-    std::vector<double> sorted = res;
+    sorted = res;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
     const double scale = 4.685 * std::max(sorted[sorted.size() / 2], 1e-12);
     for (std::size_t j = 0; j < window.size(); ++j) {
