@@ -24,6 +24,9 @@ constexpr double kForkLineDepths = 3;
 constexpr int kMinForkLineNodes = 3;
 // Chords and tolerances shorter than this are treated as zero (coincident nodes).
 constexpr double kTinyLength = 1e-12;
+// A side branch within this angle's cosine of its parent's axis (about 15 degrees) is not
+// re-anchored: followed backwards it runs along the parent, so it has no junction point.
+constexpr double kReanchorMaxCosine = 0.966;
 
 // What the pruning steps know of the raw nodes.
 struct RawTree {
@@ -150,6 +153,106 @@ std::vector<Vec3> straightenForks(const RawTree& t, const std::vector<char>& kep
   return position;
 }
 
+// A side branch's line, followed backwards from its first nodes, meets its parent's axis at the
+// junction; the level sets separate the branch from the parent only higher up, where the two no
+// longer touch, and link it there with a near-horizontal segment (a "shelf" under every acute
+// fork, clearest on sparse scans where the bins are wide). Each side child of a fork is re-attached
+// to the parent-chain node nearest that backward line, when one lies within the two radii of it.
+// Returns each raw node's parent after re-attachment (and updates keptChildren and, where a fork
+// is left with one child, the positions between it and the new junction).
+std::vector<std::int32_t> reanchorSideBranches(const RawTree& t, const std::vector<char>& kept,
+                                               std::vector<std::vector<std::int32_t>>& keptChildren,
+                                               std::vector<Vec3>& position, double binWidth, const SkeletonOptions& o) {
+  const auto& raw = t.raw;
+  std::vector<std::int32_t> parentOf(raw.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) parentOf[i] = raw[i].parent;
+  std::vector<std::int32_t> ancestors, chain;
+  for (std::size_t f = 0; f < raw.size(); ++f) {
+    if (!kept[f] || keptChildren[f].size() < 2) continue;
+    const double near = o.forkZoneRadii * t.radius[f] + binWidth;
+    ancestors.clear();
+    for (std::int32_t a = static_cast<std::int32_t>(f);
+         a >= 0 && raw[f].distance - raw[a].distance < kForkLineDepths * near; a = parentOf[a])
+      ancestors.push_back(a);
+    if (ancestors.size() < 2) continue;  // the root's own children have no parent axis
+    const Vec3 parentAxis = detail::safeNormalized(position[f] - position[ancestors.back()], Vec3::Zero());
+    if (parentAxis.squaredNorm() == 0) continue;
+    const std::vector<std::int32_t> children = keptChildren[f];
+    std::int32_t highest = -1;  // the highest new junction
+    // The child going on most nearly along the parent's axis continues it (not the longest
+    // path: a twig near a branch's end can reach further than the branch's own remainder).
+    std::int32_t straightOn = -1;
+    double bestCos = -2;
+    for (std::int32_t c : children) {
+      const double cosine = detail::safeNormalized(position[c] - position[f], parentAxis).dot(parentAxis);
+      if (cosine > bestCos) {
+        bestCos = cosine;
+        straightOn = c;
+      }
+    }
+    for (std::int32_t c : children) {
+      if (c == straightOn) continue;
+      // The side branch's first nodes, up to its next fork or end, within the fork-line depth.
+      const double reachC = kForkLineDepths * (o.forkZoneRadii * t.radius[c] + binWidth);
+      chain.clear();
+      for (std::int32_t cur = c; cur >= 0 && raw[cur].distance - raw[c].distance <= reachC;) {
+        chain.push_back(cur);
+        if (keptChildren[cur].size() != 1) break;
+        cur = keptChildren[cur].front();
+      }
+      if (chain.size() < static_cast<std::size_t>(kMinForkLineNodes)) continue;
+      Vec3 mean = Vec3::Zero();
+      for (std::int32_t id : chain) mean += position[id];
+      mean /= static_cast<double>(chain.size());
+      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+      for (std::int32_t id : chain) cov += (position[id] - mean) * (position[id] - mean).transpose();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+      eig.computeDirect(cov);
+      Vec3 u = eig.eigenvectors().col(2).normalized();
+      if (u.dot(position[chain.back()] - position[chain.front()]) < 0) u = -u;
+      // Nearly parallel to the parent, the backward line follows the parent: no junction to find.
+      if (std::abs(u.dot(parentAxis)) > kReanchorMaxCosine) continue;
+      const double start = (position[c] - mean).dot(u);
+      std::int32_t best = -1;
+      double bestGap = std::numeric_limits<double>::infinity();
+      for (std::int32_t a : ancestors) {
+        const double s = (position[a] - mean).dot(u);
+        if (s > start) continue;  // only behind the branch's first node
+        const double gap = (position[a] - (mean + s * u)).norm();
+        if (gap < bestGap) {
+          bestGap = gap;
+          best = a;
+        }
+      }
+      if (best < 0 || best == static_cast<std::int32_t>(f) || bestGap > t.radius[best] + t.radius[c]) continue;
+      auto& list = keptChildren[f];
+      list.erase(std::find(list.begin(), list.end(), c));
+      keptChildren[best].push_back(c);
+      parentOf[c] = best;
+      // Nodes of the branch left inside the parent's tube at the junction are dropped: the
+      // branch starts at the junction itself.
+      for (std::int32_t first = c;
+           keptChildren[first].size() == 1 && (position[first] - position[best]).norm() < t.radius[best];) {
+        const std::int32_t next = keptChildren[first].front();
+        std::replace(keptChildren[best].begin(), keptChildren[best].end(), first, next);
+        parentOf[next] = best;
+        first = next;
+      }
+      if (highest < 0 || raw[best].distance > raw[highest].distance) highest = best;
+    }
+    // No longer a fork: the nodes above the new junction were put on the parent's line only
+    // because f was one; the branch goes on from the junction straight to f's remaining child.
+    if (highest >= 0 && keptChildren[f].size() == 1) {
+      const std::int32_t next = keptChildren[f].front();
+      const Vec3 from = position[highest], to = position[next];
+      const double span = raw[next].distance - raw[highest].distance;
+      for (std::int32_t j = static_cast<std::int32_t>(f); j != highest && span > 0; j = parentOf[j])
+        position[j] = from + (raw[j].distance - raw[highest].distance) / span * (to - from);
+    }
+  }
+  return parentOf;
+}
+
 // Douglas–Peucker on pts[first..last]: marks the kept interior indices. A node is kept when it lies
 // farther than its tolerance from the chord; a straight chord longer than the smaller maxSegment
 // of its ends is split at the node nearest its middle.
@@ -236,7 +339,7 @@ std::vector<char> simplifyChains(const RawTree& t, const std::vector<char>& kept
 // The selected nodes, re-indexed (raw order is parent-first, so the result is too), each linked to
 // its nearest selected ancestor, with its straightened position and smoothed radius.
 std::vector<SkeletonNode> selectedNodes(const RawTree& t, const std::vector<char>& select,
-                                        const std::vector<Vec3>& position) {
+                                        const std::vector<Vec3>& position, const std::vector<std::int32_t>& parentOf) {
   const auto& raw = t.raw;
   std::vector<SkeletonNode> out;
   std::vector<std::int32_t> newIndex(raw.size(), -1);
@@ -248,8 +351,8 @@ std::vector<SkeletonNode> selectedNodes(const RawTree& t, const std::vector<char
     node.position = position[i];
     node.radius = t.radius[i];
     node.children.clear();
-    std::int32_t p = raw[i].parent;
-    while (p >= 0 && !select[p]) p = raw[p].parent;
+    std::int32_t p = parentOf[i];
+    while (p >= 0 && !select[p]) p = parentOf[p];
     node.parent = p >= 0 ? newIndex[p] : -1;
     out.push_back(node);
   }
@@ -288,9 +391,11 @@ std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw,
   std::vector<std::vector<std::int32_t>> keptChildren(raw.size());
   for (std::size_t i = 1; i < raw.size(); ++i)
     if (kept[i]) keptChildren[raw[i].parent].push_back(static_cast<std::int32_t>(i));
-  const std::vector<Vec3> position = straightenForks(tree, kept, keptChildren, binWidth, options);
+  std::vector<Vec3> position = straightenForks(tree, kept, keptChildren, binWidth, options);
+  const std::vector<std::int32_t> parentOf =
+      reanchorSideBranches(tree, kept, keptChildren, position, binWidth, options);
   const std::vector<char> select = simplifyChains(tree, kept, keptChildren, position, voxelSize, binWidth, options);
-  std::vector<SkeletonNode> out = selectedNodes(tree, select, position);
+  std::vector<SkeletonNode> out = selectedNodes(tree, select, position, parentOf);
   setDirectionsAndOrders(out, options.up);
   return out;
 }

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 
 #include "skeleton/axis_smoothing.h"
@@ -96,21 +95,34 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
     std::vector<std::size_t> good;
     for (std::size_t k = 0; k < chain.size(); ++k)
       if (ok[chain[k]]) good.push_back(k);
-    if (good.empty()) continue;  // keep the skeleton's estimates
+    if (good.empty()) {
+      // No fit on the whole branch: the tree's allometry where there is one (the level-set
+      // pieces' own radii are the spread of whatever the bins held: twigs and noise), else
+      // those estimates.
+      if (allometry.valid)
+        for (std::size_t id : chain) r[id] = allometry.predict(id);
+      continue;
+    }
     for (std::size_t k = 0; k < chain.size(); ++k) {
       if (ok[chain[k]]) continue;
+      // With the tree's allometry, the fits give the scale and the allometry the shape: the
+      // ratio fit / prediction is interpolated, so a branch still tapers past its last fit
+      // instead of keeping that fit's radius out to its tip. Without one, the radii themselves.
+      auto value = [&](std::size_t j) {
+        return allometry.valid ? r[chain[j]] / allometry.predict(chain[j]) : r[chain[j]];
+      };
       auto after = std::lower_bound(good.begin(), good.end(), k);
-      double value;
+      double v;
       if (after == good.begin()) {
-        value = r[chain[*after]];
+        v = value(*after);
       } else if (after == good.end()) {
-        value = r[chain[good.back()]];
+        v = value(good.back());
       } else {
         const std::size_t b = *after, a = *(after - 1);
         const double t = arc[b] > arc[a] ? (arc[k] - arc[a]) / (arc[b] - arc[a]) : 0.5;
-        value = (1 - t) * r[chain[a]] + t * r[chain[b]];
+        v = (1 - t) * value(a) + t * value(b);
       }
-      r[chain[k]] = value;
+      r[chain[k]] = allometry.valid ? v * allometry.predict(chain[k]) : v;
     }
   }
   // 2. Running median along each branch.

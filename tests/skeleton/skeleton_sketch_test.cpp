@@ -347,3 +347,47 @@ TEST(SkeletonSketch, UnfittedForksAreBridgedInTheMesh) {
   EXPECT_EQ(kept.mesh.vertices.size() - bridged.mesh.vertices.size(), std::size_t(16 * unfittedForks));
   EXPECT_EQ(bridged.sketch.size(), kept.sketch.size());  // the sketch keeps every node
 }
+
+TEST(SkeletonSketch, ABranchTapersPastItsLastFit) {
+  // A trunk and four side branches with fits on the tree's law r = 0.05·sqrt(carried + 1), and
+  // one more side branch fitted only at its base. Past that fit the branch follows the law's
+  // shape scaled to the fit (tapering towards its tip), not the fit's radius out to the tip; a
+  // branch with no fit at all takes the law itself, not the level sets' own estimates.
+  std::vector<skeleton::SkeletonNode> nodes;
+  for (int i = 0; i < 20; ++i) nodes.push_back(chainNode(i - 1, i, 0.5));
+  auto side = [&](int at, int count, double dx) {
+    int parent = at;
+    const std::size_t first = nodes.size();
+    for (int k = 1; k <= count; ++k) {
+      skeleton::SkeletonNode n = chainNode(parent, at, 0.5);
+      n.position = Vec3(dx * k, at, 0);
+      n.branchOrder = 1;
+      nodes.push_back(n);
+      parent = static_cast<int>(nodes.size()) - 1;
+    }
+    return first;
+  };
+  for (int at : {4, 8, 12, 16}) side(at, 5, 1.0);
+  const std::size_t once = side(6, 8, -1.0), never = side(10, 6, -1.0);
+  nodes = linkUp(nodes);
+  std::vector<double> carried(nodes.size(), 0.0);
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    carried[i] += nodes[i].parent >= 0 ? 1.0 : 0.0;
+    if (nodes[i].parent >= 0) carried[nodes[i].parent] += carried[i];
+  }
+  std::vector<double> fitted(nodes.size());
+  std::vector<char> valid(nodes.size(), 1);
+  for (std::size_t i = 0; i < nodes.size(); ++i) fitted[i] = 0.05 * std::sqrt(carried[i] + 1.0);
+  for (std::size_t i = once + 1; i < once + 8; ++i) valid[i] = 0;
+  for (std::size_t i = never; i < never + 6; ++i) valid[i] = 0;
+  skeleton::RadiusRules rules;
+  rules.medianWindow = 1;
+  const auto r = skeleton::regularizeRadii(nodes, fitted, valid, rules);
+  EXPECT_NEAR(r[once], fitted[once], 1e-9);
+  for (std::size_t i = once + 1; i < once + 8; ++i) EXPECT_LT(r[i], r[i - 1]) << i;
+  EXPECT_LT(r[once + 7], 0.6 * r[once]);
+  for (std::size_t i = never; i < never + 6; ++i) {
+    EXPECT_LT(r[i], 0.5) << i;  // the level sets' estimate was 0.5
+    EXPECT_NEAR(r[i], fitted[i], 0.25 * fitted[i]) << i;
+  }
+}

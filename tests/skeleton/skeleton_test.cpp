@@ -516,3 +516,28 @@ TEST(Skeleton, TheStemContinuesIntoTheChildCarryingTheMostWood) {
   for (const auto& n : nodes)
     if (n.position.x() > 1.1) EXPECT_EQ(n.branchOrder, 1);
 }
+
+TEST(Skeleton, ASideBranchJoinsItsParentWhereItsAxisMeetsIt) {
+  // A trunk with a side branch leaving it at 35 degrees from the vertical at y = 2. The level sets
+  // separate the branch from the trunk only well above the junction, where the two no longer
+  // touch; linked there, the branch's first segment runs sideways (a "shelf"). Re-anchored, it
+  // starts near the true junction and follows the branch's direction.
+  const Vec3 junction(0, 2, 0);
+  const Vec3 dir = Vec3(std::sin(35 * M_PI / 180), std::cos(35 * M_PI / 180), 0);
+  const std::vector<test::Cyl> cyls = {{Vec3(0, 0, 0), Vec3(0, 5, 0), 0.15, -1},
+                                       {junction, junction + 2.5 * dir, 0.1, 0}};
+  const auto cloud = test::sampleCylinders(cyls, 0.02, 0.002, 11);
+  const auto s = skeleton::extractSkeleton(cloud);
+  ASSERT_EQ(skeleton::countEnds(s.nodes), 2u);
+  // The side branch: the chain from the tip whose end lies off the trunk, down to its fork.
+  std::int32_t tip = -1;
+  for (std::size_t i = 0; i < s.nodes.size(); ++i)
+    if (s.nodes[i].children.empty() && s.nodes[i].position.x() > 0.5) tip = static_cast<std::int32_t>(i);
+  ASSERT_GE(tip, 0);
+  std::int32_t first = tip;
+  while (s.nodes[s.nodes[first].parent].children.size() < 2) first = s.nodes[first].parent;
+  const Vec3 fork = s.nodes[s.nodes[first].parent].position;
+  EXPECT_LT(std::abs(fork.y() - junction.y()), 0.45) << "fork at y = " << fork.y();
+  const Vec3 firstSegment = (s.nodes[first].position - fork).normalized();
+  EXPECT_GT(firstSegment.dot(dir), std::cos(20 * M_PI / 180)) << "first segment " << firstSegment.transpose();
+}
