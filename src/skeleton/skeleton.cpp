@@ -79,6 +79,31 @@ void rootToBase(Skeleton& s, const geom::PointCloud& cloud) {
   if (std::isfinite(drop) && drop > 0) root.position -= drop * geom::upVector(s.up);
 }
 
+/// Each end node moved along its direction to the farthest voxel of its level-set piece and of
+/// the pieces dropped below it (partial tips, short spurs): a centroid sits half a level set
+/// before the branch's last points, and the tube stopped short of the wood at every tip.
+void tipsToEnds(Skeleton& s) {
+  const std::size_t rawCount = s.rawNodes.size();
+  if (s.nodes.empty() || rawCount == 0) return;
+  std::vector<std::int32_t> endOf(rawCount, -1);
+  for (std::size_t k = 0; k < s.nodes.size(); ++k) {
+    const auto& n = s.nodes[k];
+    if (n.parent >= 0 && n.children.empty() && n.raw >= 0) endOf[n.raw] = static_cast<std::int32_t>(k);
+  }
+  for (std::size_t i = 0; i < rawCount; ++i) {  // raw nodes are parent-first
+    const std::int32_t p = s.rawNodes[i].parent;
+    if (endOf[i] < 0 && p >= 0) endOf[i] = endOf[p];
+  }
+  std::vector<double> reach(s.nodes.size(), 0.0);
+  for (std::size_t v = 0; v < s.graph.size(); ++v) {
+    const std::int32_t r = s.levels.vertexNode[v];
+    if (r < 0 || endOf[r] < 0) continue;
+    const SkeletonNode& end = s.nodes[endOf[r]];
+    reach[endOf[r]] = std::max(reach[endOf[r]], (s.graph.positions[v] - end.position).dot(end.direction));
+  }
+  for (std::size_t k = 0; k < s.nodes.size(); ++k) s.nodes[k].position += reach[k] * s.nodes[k].direction;
+}
+
 }  // namespace
 
 std::size_t countBranchPoints(const std::vector<SkeletonNode>& nodes) {
@@ -112,6 +137,7 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
   if (progress) progress(3, 4);
   s.nodes = simplifySkeleton(s.rawNodes, s.graph.voxelSize, s.levels.binWidth, options);
   rootToBase(s, cloud);
+  tipsToEnds(s);
   if (progress) progress(4, 4);
   return s;
 }

@@ -541,3 +541,21 @@ TEST(Skeleton, ASideBranchJoinsItsParentWhereItsAxisMeetsIt) {
   const Vec3 firstSegment = (s.nodes[first].position - fork).normalized();
   EXPECT_GT(firstSegment.dot(dir), std::cos(20 * M_PI / 180)) << "first segment " << firstSegment.transpose();
 }
+
+TEST(Skeleton, EachTipReachesItsBranchsLastPoints) {
+  // A level set's centroid sits half a level set before the branch's last points; the end nodes
+  // go on to the farthest wood of their pieces, so the tubes do not stop short at every tip.
+  const auto cyls = test::yTree();
+  const auto cloud = test::sampleCylinders(cyls, 0.02, 0.003, 7);
+  const auto s = skeleton::extractSkeleton(cloud);
+  ASSERT_EQ(skeleton::countEnds(s.nodes), 2u);
+  for (const auto& n : s.nodes) {
+    if (!n.children.empty()) continue;
+    const test::Cyl& c = n.position.x() < 0 ? cyls[1] : cyls[2];
+    const Vec3 axis = (c.b - c.a).normalized();
+    // Along the branch: at most a quarter of a level set short of its end (and not past it by more).
+    const double along = (n.position - c.b).dot(axis);
+    EXPECT_GT(along, -0.25 * s.levels.binWidth) << n.position.transpose();
+    EXPECT_LT(along, 0.5 * s.levels.binWidth) << n.position.transpose();
+  }
+}
