@@ -176,29 +176,51 @@ CorrectingRun runCorrectingUser(const TreeCase& tree, const geom::PointCloud& cl
         if (auto it = anchors.find(parent); it != anchors.end()) spacing = (a.centre - it->second.centre).norm();
         wrong[id] = excess * excess * a.radius * std::max(spacing, step);
       }
-      for (const auto& [id, score] : wrong) {
-        (void)score;
+      // Per subtree: the wrong nodes' summed score and share (bottom-up). A person deletes the
+      // largest subtree that is mostly wrong (the topmost one whose share reaches
+      // subtreeWrongShare), or a lone wrong node inside a good subtree.
+      const std::vector<NodeId> order = sk.topologicalOrder();
+      std::map<NodeId, double> sumW;
+      std::map<NodeId, std::size_t> count, countW;
+      for (auto it = order.rbegin(); it != order.rend(); ++it) {
+        const NodeId id = *it;
+        auto w = wrong.find(id);
+        sumW[id] += w != wrong.end() ? w->second : 0.0;
+        count[id] += 1;
+        countW[id] += w != wrong.end();
         const NodeId parent = sk.node(id).parent;
-        if (wrong.count(parent) || failedNodes.count(id)) continue;  // the topmost wrong node of its run
-        const std::vector<NodeId> below = sketch::subtreeOf(sk, id);
-        double sum = 0;
-        std::size_t nWrong = 0;
-        for (NodeId b : below)
-          if (auto it = wrong.find(b); it != wrong.end()) {
-            sum += it->second;
-            ++nWrong;
-          }
-        Candidate c;
-        c.node = id;
-        if (double(nWrong) >= o.subtreeWrongShare * double(below.size()) && parent != sketch::kNoNode) {
-          c.kind = Candidate::Kind::DeleteSubtree;
-          c.score = sum;
-          c.subtreeSize = below.size();
-        } else {
-          c.kind = Candidate::Kind::DeleteNode;
-          c.score = wrong.at(id);
-          c.subtreeSize = 1;
+        if (parent != sketch::kNoNode) {
+          sumW[parent] += sumW[id];
+          count[parent] += count[id];
+          countW[parent] += countW[id];
         }
+      }
+      auto qualifies = [&](NodeId id) {
+        return id != sk.root() && countW[id] > 0 && double(countW[id]) >= o.subtreeWrongShare * double(count[id]);
+      };
+      std::set<NodeId> covered;
+      for (NodeId id : order) {
+        const NodeId parent = sk.node(id).parent;
+        if (parent != sketch::kNoNode && covered.count(parent)) {
+          covered.insert(id);
+          continue;
+        }
+        if (!qualifies(id) || failedNodes.count(id)) continue;
+        covered.insert(id);
+        Candidate c;
+        c.kind = Candidate::Kind::DeleteSubtree;
+        c.node = id;
+        c.score = sumW[id];
+        c.subtreeSize = count[id];
+        cands.push_back(c);
+      }
+      for (const auto& [id, score] : wrong) {
+        if (covered.count(id) || failedNodes.count(id)) continue;
+        Candidate c;
+        c.kind = Candidate::Kind::DeleteNode;
+        c.node = id;
+        c.score = score;
+        c.subtreeSize = 1;
         cands.push_back(c);
       }
     }

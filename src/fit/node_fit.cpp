@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "treesketch/util/error.h"
@@ -16,9 +16,12 @@ using geom::Vec3;
 
 const char* toString(NodeStatus status) {
   switch (status) {
-    case NodeStatus::Fitted: return "fitted";
-    case NodeStatus::Skipped: return "skipped";
-    case NodeStatus::Disabled: return "disabled";
+    case NodeStatus::Fitted:
+      return "fitted";
+    case NodeStatus::Skipped:
+      return "skipped";
+    case NodeStatus::Disabled:
+      return "disabled";
   }
   return "?";
 }
@@ -149,6 +152,16 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
   const DepthChoiceOptions& dc = options.depth;
   const double gap = dc.gap > 0 ? dc.gap : 4.0 * p.sliceHalfThickness;
   const double expectedDepth = prior ? (prior->centre - origin).dot(u) : std::numeric_limits<double>::quiet_NaN();
+  // How far in depth the branch may have gone from its parent: 1.5 times the sideways distance
+  // from the parent's centre to L (a branch turned up to ~56° towards or away from the viewer;
+  // a steeper one is drawn from another view), plus the parent's radii and the surface gap.
+  double maxJump = std::numeric_limits<double>::infinity();
+  if (prior && g.hasLine) {
+    const Vec3 d = prior->centre - g.linePoint;
+    const Vec3 dirN = g.lineDir.normalized();
+    const double lateral = (d - d.dot(dirN) * dirN).norm();
+    maxJump = 1.5 * lateral + dc.jumpRadii * prior->radius + gap;
+  }
   auto fitByDepth = [&](const std::vector<Vec2>& pts, const CircleFitOptions& copt) {
     std::vector<std::uint32_t> order(pts.size());
     for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -161,10 +174,29 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
         b0 = i;
       }
     std::vector<CircleFitResult> hyps;
-    CircleFitOptions c2 = copt;
-    if (prior && dc.maxRadiusOfParent > 0 && prior->radius > 0)
-      c2.maxRadius = std::min(c2.maxRadius, dc.maxRadiusOfParent * prior->radius + p.sliceHalfThickness);
+    // The parent's radius bounds the circles taken, after RANSAC: as a RANSAC bound it made the
+    // fit settle for a smaller circle on an arc of the wider branch.
+    const CircleFitOptions& c2 = copt;
+    const double radiusCap = prior && dc.maxRadiusOfParent > 0 && prior->radius > 0
+                                 ? dc.maxRadiusOfParent * prior->radius + p.sliceHalfThickness
+                                 : std::numeric_limits<double>::infinity();
     hyps.push_back(fitCircleRansac(pts, c2));  // all surfaces together (a wide trunk's two arcs)
+    if (std::isfinite(expectedDepth)) {
+      // The window where the parent says the branch is: clutter elsewhere along the ray (leaves
+      // in front, a limb behind) stays out of this hypothesis's RANSAC.
+      std::vector<Vec2> win;
+      std::vector<std::uint32_t> idx;
+      for (std::uint32_t i = 0; i < pts.size(); ++i)
+        if (std::abs(pts[i].x() - expectedDepth) <= maxJump) {
+          win.push_back(pts[i]);
+          idx.push_back(i);
+        }
+      if (win.size() >= std::size_t(std::max(copt.minInliers, 3)) && win.size() < pts.size()) {
+        CircleFitResult h = fitCircleRansac(win, c2);
+        for (auto& in : h.inliers) in = idx[in];
+        hyps.push_back(std::move(h));
+      }
+    }
     if (groups.size() > 1) {
       std::vector<Vec2> sub;
       for (const auto& [a, e] : groups) {
@@ -181,6 +213,17 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
     double front = std::numeric_limits<double>::infinity();
     int distinct = 0;
     std::vector<double> seen;
+    // With a parent, circles beyond maxJump from its depth are refused.
+    int refused = 0, tooWide = 0;
+    for (auto& h : hyps) {
+      if (h.ok && h.radius > radiusCap) {
+        h.ok = false;
+        ++tooWide;
+      } else if (h.ok && std::abs(h.centre.x() - expectedDepth) > maxJump) {
+        h.ok = false;
+        ++refused;
+      }
+    }
     for (const auto& h : hyps) {
       if (!h.ok) continue;
       front = std::min(front, h.centre.x());
@@ -197,11 +240,20 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
         continue;
       }
       const double dk = std::abs(hyps[k].centre.x() - want), db = std::abs(hyps[best].centre.x() - want);
-      if (dk + 1e-12 < db - gap * 0.5 || (std::abs(dk - db) <= gap * 0.5 && hyps[k].inliers.size() > hyps[best].inliers.size()))
+      if (dk + 1e-12 < db - gap * 0.5 ||
+          (std::abs(dk - db) <= gap * 0.5 && hyps[k].inliers.size() > hyps[best].inliers.size()))
         best = int(k);
     }
     res.depthHypotheses = distinct;
-    if (best < 0) return hyps.front();
+    if (best < 0) {
+      if (refused > 0 || tooWide > 0) {
+        CircleFitResult none;
+        none.reason = std::to_string(refused) + " circle(s) far along the view ray from the parent's depth and " +
+                      std::to_string(tooWide) + " wider than the parent allows (not taken)";
+        return none;
+      }
+      return hyps.front();
+    }
     CircleFitResult out = std::move(hyps[best]);
     res.depth = out.centre.x();
     const double off = std::abs(out.centre.x() - want);

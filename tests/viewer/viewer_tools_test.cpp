@@ -8,6 +8,7 @@
 #include "../fit/synthetic_cylinder.h"
 #include "test_support.h"
 #include "treesketch/io/sketch_file.h"
+#include "treesketch/util/error.h"
 #include "treesketch/viewer/action_script.h"
 #include "treesketch/viewer/viewer_state.h"
 
