@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "treesketch/eval/correcting_user.h"
 #include "treesketch/eval/evaluation.h"
 #include "treesketch/eval/tree_suite.h"
 #include "treesketch/util/atomic_file.h"
@@ -31,6 +32,8 @@ void registerEvaluate(CLI::App& app, Action& action) {
     std::string split = "all";
     double metresPerUnit = eval::kEzTreeMetresPerUnit;
     bool list = false;
+    bool correcting = false;
+    eval::CorrectingUserOptions c;
     eval::EvalOptions e;
   };
   auto o = std::make_shared<Opts>();
@@ -81,6 +84,18 @@ void registerEvaluate(CLI::App& app, Action& action) {
   cmd->add_option("--samples", o->e.samples, "Comparison samples per direction (0: MeshLab's default)")
       ->capture_default_str();
   cmd->add_option("--seed", o->e.seed, "Seed of scans, sketches and sampling")->capture_default_str();
+  cmd->add_flag("--thesis-fit", [o](std::int64_t) { o->e.chooseDepth = false; },
+                "The simulated user's nodes take the thesis's fit (the best-supported circle along the whole view "
+                "ray) instead of choosing their depth from the parent's circle");
+  cmd->add_flag("--correcting-user", o->correcting,
+                "Run only the simulated correcting user (issue 20): from the automatic skeleton, one edit at a time "
+                "on the worst visible error; writes correcting_user.{csv,md} and correcting_user_*.svg");
+  cmd->add_option("--edits", o->c.maxEdits, "--correcting-user: edits per case")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 500));
+  cmd->add_option("--target", o->c.targetPct, "--correcting-user: RMS target both ways, % of the diagonal")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->callback([cmd, o, &action] {
     bool cmdRaysGiven = cmd->count("--rays") > 0;
     std::string legacyGiven;  // an option of the former single condition, checked when the action runs
@@ -120,6 +135,16 @@ void registerEvaluate(CLI::App& app, Action& action) {
         if (eval::splitSelects(o->split, eval::treeHalf(t.name))) trees.push_back(std::move(t));
       if (trees.empty()) throw OptionsError("--split " + o->split + " selects none of the trees");
       const std::vector<eval::ScanCondition> conditions = eval::evaluationConditions(e);
+      if (o->correcting) {
+        eval::CorrectingUserOptions c = o->c;
+        c.pixelNoise = e.pixelNoise;
+        c.seed = e.seed;
+        std::vector<eval::CorrectingRun> runs = eval::runCorrectingEvaluation(trees, e, c);
+        eval::writeCorrectingReport(o->out, runs, c);
+        std::cout << eval::correctingMarkdown(runs, c);
+        std::cout << "wrote " << o->out << "/correcting_user.csv, correcting_user.md and correcting_user_*.svg\n";
+        return;
+      }
       std::vector<eval::EvalRow> rows = eval::runEvaluation(trees, e);
       eval::writeReport(o->out, rows, conditions);
       std::cout << eval::markdownSummary(rows, conditions);

@@ -180,6 +180,7 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
     }
   }
   if (ImGui::CollapsingHeader("Node", ImGuiTreeNodeFlags_DefaultOpen)) selectedNodeSection(state);
+  if (ImGui::CollapsingHeader("Correction tools", ImGuiTreeNodeFlags_DefaultOpen)) toolsSection(state);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) displaySection(state);
   if (ImGui::CollapsingHeader("Help", panel.showHelp ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
     ImGui::PushTextWrapPos(0.0f);

@@ -37,6 +37,8 @@ struct PanelState {
 
 /// Builds the side panel and the status bar for this frame (between ImGui::NewFrame and Render).
 void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height);
+/// The correction tools section (tools_panel.cpp).
+void toolsSection(viewer::ViewerState& state);
 /// Draws node markers and parent links over the 3D view (ImGui background draw list).
 void drawMarkers(const viewer::ViewerState& state);
 

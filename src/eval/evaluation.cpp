@@ -90,10 +90,13 @@ std::vector<sketch::BranchPolyline> branchesForBudget(const std::vector<sketch::
   return out;
 }
 
+/// chooseDepth: a person's screen nodes choose their depth along the view ray (issue 20); the
+/// thesis's uniform baseline keeps the thesis's fit.
 MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud& cloud, std::uint64_t seed,
-                               Clock::time_point t0) {
+                               Clock::time_point t0, bool chooseDepth = false) {
   recon::ReconstructionOptions ro;
   ro.seed = seed;
+  ro.fit.chooseDepth = chooseDepth;
   recon::ReconstructionResult r = recon::reconstruct(cloud, sk, ro);
   MethodOutput out;
   out.mesh = std::move(r.mesh);
@@ -139,7 +142,7 @@ MethodOutput methodUser(const MethodInput& in) {
   std::vector<sketch::BranchPolyline> axes;
   auto po = userOptions(in, axes);
   sketch::Sketch sk = sketch::sketchFromPolylines(axes, viewCamera(in), po);
-  return reconstructSketch(sk, in.cloud, in.options.seed, t0);
+  return reconstructSketch(sk, in.cloud, in.options.seed, t0, in.options.chooseDepth);
 }
 
 MethodOutput methodIdeal(const MethodInput& in) {

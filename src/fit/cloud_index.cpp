@@ -148,6 +148,23 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
   }
 }
 
+std::size_t CloudIndex::setExcluded(const std::function<bool(const Vec3&)>& excluded) {
+  for (const auto& [slot, p] : excludedSaved_) {
+    sorted_[slot] = p;
+    for (int a = 0; a < 3; ++a) fpos_[a][slot] = float(p[a] - centre_[a]);
+  }
+  excludedSaved_.clear();
+  if (!excluded) return 0;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t s = 0; s < sorted_.size(); ++s) {
+    if (!excluded(sorted_[s])) continue;
+    excludedSaved_.emplace_back(std::uint32_t(s), sorted_[s]);
+    sorted_[s] = Vec3::Constant(kNaN);
+    for (int a = 0; a < 3; ++a) fpos_[a][s] = std::numeric_limits<float>::quiet_NaN();
+  }
+  return excludedSaved_.size();
+}
+
 bool CloudIndex::regionCoversCloud(const SliceRegion& region) const {
   if (region.kind == SliceRegion::Kind::Slab || bounds_.empty()) return true;
   for (int corner = 0; corner < 8; ++corner) {

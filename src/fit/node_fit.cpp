@@ -1,8 +1,10 @@
 // One node's fit: slice, test points, RANSAC, lineEpsilon growth (thesis §4.4, appendix B).
 #include "treesketch/fit/node_fit.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "treesketch/util/error.h"
@@ -14,9 +16,12 @@ using geom::Vec3;
 
 const char* toString(NodeStatus status) {
   switch (status) {
-    case NodeStatus::Fitted: return "fitted";
-    case NodeStatus::Skipped: return "skipped";
-    case NodeStatus::Disabled: return "disabled";
+    case NodeStatus::Fitted:
+      return "fitted";
+    case NodeStatus::Skipped:
+      return "skipped";
+    case NodeStatus::Disabled:
+      return "disabled";
   }
   return "?";
 }
@@ -87,7 +92,7 @@ NodeResult keptCircleResult(const sketch::NodeGeometry& g, const sketch::Samplin
 }
 
 NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const sketch::SamplingParams& p,
-                   const NodeFitOptions& options) {
+                   const NodeFitOptions& options, const FitPrior* prior) {
   auto t0 = std::chrono::steady_clock::now();
   NodeResult res;
   checkInputs(g, p);
@@ -142,6 +147,130 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
   };
   if (options.keepSlice || options.bruteForce) computeSlice();
 
+  // Depth choice (screen nodes, options.chooseDepth): u runs along L (the plane contains L), so a
+  // test point's u coordinate is its depth along the view ray from L's near point.
+  const DepthChoiceOptions& dc = options.depth;
+  const double gap = dc.gap > 0 ? dc.gap : 4.0 * p.sliceHalfThickness;
+  const double expectedDepth = prior ? (prior->centre - origin).dot(u) : std::numeric_limits<double>::quiet_NaN();
+  // How far in depth the branch may have gone from its parent: 1.5 times the sideways distance
+  // from the parent's centre to L (a branch turned up to ~56° towards or away from the viewer;
+  // a steeper one is drawn from another view), plus the parent's radii and the surface gap.
+  double maxJump = std::numeric_limits<double>::infinity();
+  if (prior && g.hasLine) {
+    const Vec3 d = prior->centre - g.linePoint;
+    const Vec3 dirN = g.lineDir.normalized();
+    const double lateral = (d - d.dot(dirN) * dirN).norm();
+    maxJump = 1.5 * lateral + dc.jumpRadii * prior->radius + gap;
+  }
+  auto fitByDepth = [&](const std::vector<Vec2>& pts, const CircleFitOptions& copt) {
+    std::vector<std::uint32_t> order(pts.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return pts[a].x() < pts[b].x(); });
+    std::vector<std::pair<std::size_t, std::size_t>> groups;  // ranges of `order`
+    std::size_t b0 = 0;
+    for (std::size_t i = 1; i <= order.size(); ++i)
+      if (i == order.size() || pts[order[i]].x() - pts[order[i - 1]].x() > gap) {
+        groups.emplace_back(b0, i);
+        b0 = i;
+      }
+    std::vector<CircleFitResult> hyps;
+    // The parent's radius bounds the circles taken, after RANSAC: as a RANSAC bound it made the
+    // fit settle for a smaller circle on an arc of the wider branch.
+    const CircleFitOptions& c2 = copt;
+    const double radiusCap = prior && dc.maxRadiusOfParent > 0 && prior->radius > 0
+                                 ? dc.maxRadiusOfParent * prior->radius + p.sliceHalfThickness
+                                 : std::numeric_limits<double>::infinity();
+    hyps.push_back(fitCircleRansac(pts, c2));  // all surfaces together (a wide trunk's two arcs)
+    if (std::isfinite(expectedDepth)) {
+      // The window where the parent says the branch is: clutter elsewhere along the ray (leaves
+      // in front, a limb behind) stays out of this hypothesis's RANSAC.
+      std::vector<Vec2> win;
+      std::vector<std::uint32_t> idx;
+      for (std::uint32_t i = 0; i < pts.size(); ++i)
+        if (std::abs(pts[i].x() - expectedDepth) <= maxJump) {
+          win.push_back(pts[i]);
+          idx.push_back(i);
+        }
+      if (win.size() >= std::size_t(std::max(copt.minInliers, 3)) && win.size() < pts.size()) {
+        CircleFitResult h = fitCircleRansac(win, c2);
+        for (auto& in : h.inliers) in = idx[in];
+        hyps.push_back(std::move(h));
+      }
+    }
+    if (groups.size() > 1) {
+      std::vector<Vec2> sub;
+      for (const auto& [a, e] : groups) {
+        if (e - a < std::size_t(std::max(copt.minInliers, 3))) continue;
+        sub.clear();
+        for (std::size_t k = a; k < e; ++k) sub.push_back(pts[order[k]]);
+        CircleFitResult h = fitCircleRansac(sub, c2);
+        for (auto& in : h.inliers) in = order[a + in];
+        std::sort(h.inliers.begin(), h.inliers.end());
+        hyps.push_back(std::move(h));
+      }
+    }
+    int best = -1;
+    double front = std::numeric_limits<double>::infinity();
+    int distinct = 0;
+    std::vector<double> seen;
+    // With a parent, circles beyond maxJump from its depth are refused.
+    int refused = 0, tooWide = 0;
+    for (auto& h : hyps) {
+      if (h.ok && h.radius > radiusCap) {
+        h.ok = false;
+        ++tooWide;
+      } else if (h.ok && std::abs(h.centre.x() - expectedDepth) > maxJump) {
+        h.ok = false;
+        ++refused;
+      }
+    }
+    for (const auto& h : hyps) {
+      if (!h.ok) continue;
+      front = std::min(front, h.centre.x());
+      if (std::none_of(seen.begin(), seen.end(), [&](double x) { return std::abs(x - h.centre.x()) <= gap; })) {
+        seen.push_back(h.centre.x());
+        ++distinct;
+      }
+    }
+    const double want = std::isfinite(expectedDepth) ? expectedDepth : front;
+    for (std::size_t k = 0; k < hyps.size(); ++k) {
+      if (!hyps[k].ok) continue;
+      if (best < 0) {
+        best = int(k);
+        continue;
+      }
+      const double dk = std::abs(hyps[k].centre.x() - want), db = std::abs(hyps[best].centre.x() - want);
+      if (dk + 1e-12 < db - gap * 0.5 ||
+          (std::abs(dk - db) <= gap * 0.5 && hyps[k].inliers.size() > hyps[best].inliers.size()))
+        best = int(k);
+    }
+    res.depthHypotheses = distinct;
+    if (best < 0) {
+      if (refused > 0 || tooWide > 0) {
+        CircleFitResult none;
+        none.reason = std::to_string(refused) + " circle(s) far along the view ray from the parent's depth and " +
+                      std::to_string(tooWide) + " wider than the parent allows (not taken)";
+        return none;
+      }
+      return hyps.front();
+    }
+    CircleFitResult out = std::move(hyps[best]);
+    res.depth = out.centre.x();
+    const double off = std::abs(out.centre.x() - want);
+    res.depthJump = off > dc.jumpRadii * out.radius + gap;
+    if (res.depthJump) {
+      std::ostringstream w;
+      w << "the circle lies " << off << " along the view ray from "
+        << (std::isfinite(expectedDepth) ? "the parent's depth" : "the front-most surface") << " (" << distinct
+        << " surfaces had a circle): check it from another view";
+      res.warning = w.str();
+    } else if (distinct > 1) {
+      res.warning = std::to_string(distinct) + " surfaces along the view ray had a circle; took the one " +
+                    (std::isfinite(expectedDepth) ? "continuing the parent" : "in front");
+    }
+    return out;
+  };
+
   double eps = p.lineEpsilon;
   std::vector<std::uint32_t> test;
   // Per-thread buffer: a fit is short, and reallocating this (tens of kB) for every node was a
@@ -163,7 +292,7 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
       test = index.query(region, nullptr, &frame, &pts2);
     }
     circle.centreRegion.maxDistance = eps;
-    CircleFitResult fit = fitCircleRansac(pts2, circle);
+    CircleFitResult fit = options.chooseDepth && g.hasLine ? fitByDepth(pts2, circle) : fitCircleRansac(pts2, circle);
     res.iterations += fit.iterations;
     res.lineEpsilon = eps;
     if (fit.ok) {

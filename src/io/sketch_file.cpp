@@ -227,6 +227,33 @@ sketch::Sketch sketchFromJson(const json& root, const std::string& source) {
   if (!cams.is_array()) top.fail("\"cameras\": expected an array, got " + typeName(cams));
   for (std::size_t i = 0; i < cams.size(); ++i)
     sk.insertRawCamera(cameraFromJson(cams[i], Ctx{source, "camera " + std::to_string(i)}));
+  if (auto it = root.find("notWood"); it != root.end()) {
+    // Added within version 1 (issue 20): older files have none; older readers ignore it.
+    if (!it->is_array()) top.fail("\"notWood\": expected an array, got " + typeName(*it));
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      Ctx lctx{source, "not-wood lasso " + std::to_string(i)};
+      const json& l = (*it)[i];
+      if (!l.is_object()) lctx.fail("expected an object, got " + typeName(l));
+      long long cam = integer(field(l, "camera", lctx), "\"camera\"", lctx);
+      if (cam < 0 || cam >= static_cast<long long>(sk.cameras().size()))
+        lctx.fail("camera " + std::to_string(cam) + " does not exist (the file has " +
+                  std::to_string(sk.cameras().size()) + " cameras)");
+      const json& poly = field(l, "polygon", lctx);
+      if (!poly.is_array() || poly.size() < 3) lctx.fail("\"polygon\": expected an array of at least 3 [x, y]");
+      std::vector<geom::Vec2> vs;
+      for (std::size_t k = 0; k < poly.size(); ++k) {
+        const json& v = poly[k];
+        const std::string what = "\"polygon\" vertex " + std::to_string(k);
+        if (!v.is_array() || v.size() != 2) lctx.fail(what + ": expected [x, y]");
+        vs.emplace_back(number(v[0], what + " x", lctx), number(v[1], what + " y", lctx));
+      }
+      try {
+        sk.addNotWoodLasso(static_cast<int>(cam), vs);
+      } catch (const OptionsError& e) {
+        lctx.fail(e.what());
+      }
+    }
+  }
   const json& nodes = field(root, "nodes", top);
   if (!nodes.is_array()) top.fail("\"nodes\": expected an array, got " + typeName(nodes));
   for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -256,6 +283,16 @@ ojson sketchToJson(const sketch::Sketch& sk) {
   j["defaults"] = paramsToJson(sk.defaults, sketch::SamplingParams{});  // absent = -1 = unlimited (thesis)
   j["cameras"] = ojson::array();
   for (const auto& c : sk.cameras()) j["cameras"].push_back(cameraToJson(c));
+  if (!sk.notWood().empty()) {
+    j["notWood"] = ojson::array();
+    for (const auto& l : sk.notWood()) {
+      ojson o;
+      o["camera"] = l.camera;
+      o["polygon"] = ojson::array();
+      for (const auto& v : l.polygon) o["polygon"].push_back({v.x(), v.y()});
+      j["notWood"].push_back(std::move(o));
+    }
+  }
   j["nodes"] = ojson::array();
   for (sketch::NodeId id : sk.topologicalOrder()) {
     const sketch::Node& n = sk.node(id);

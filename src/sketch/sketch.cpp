@@ -372,9 +372,66 @@ NodeGeometry Sketch::geometry(NodeId id) const {
   return g;
 }
 
+bool polygonContains(const std::vector<Vec2>& poly, const Vec2& p) {
+  if (poly.size() < 3) return false;
+  bool inside = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Vec2& a = poly[i];
+    const Vec2& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+  }
+  return inside;
+}
+
+namespace {
+
+void checkLasso(const NotWoodLasso& l, std::size_t cameras, const std::string& what) {
+  if (l.camera < 0 || l.camera >= static_cast<int>(cameras))
+    throw OptionsError(what + ": camera " + std::to_string(l.camera) + " does not exist (the sketch has " +
+                       std::to_string(cameras) + ")");
+  if (l.polygon.size() < 3)
+    throw OptionsError(what + ": a lasso needs at least 3 vertices, got " + std::to_string(l.polygon.size()));
+  for (const Vec2& v : l.polygon)
+    if (!v.allFinite()) throw OptionsError(what + ": a vertex is not finite");
+}
+
+}  // namespace
+
+std::size_t Sketch::addNotWoodLasso(int camera, const std::vector<Vec2>& polygon) {
+  NotWoodLasso l{camera, polygon};
+  checkLasso(l, cameras_.size(), "not-wood lasso");
+  notWood_.push_back(std::move(l));
+  return notWood_.size() - 1;
+}
+
+void Sketch::removeNotWoodLasso(std::size_t index) {
+  if (index >= notWood_.size())
+    throw OptionsError("not-wood lasso " + std::to_string(index) + " does not exist (the sketch has " +
+                       std::to_string(notWood_.size()) + ")");
+  notWood_.erase(notWood_.begin() + static_cast<std::ptrdiff_t>(index));
+}
+
+std::size_t Sketch::clearNotWood() {
+  std::size_t n = notWood_.size();
+  notWood_.clear();
+  return n;
+}
+
+bool Sketch::isNotWood(const Vec3& p) const {
+  for (const NotWoodLasso& l : notWood_) {
+    const Vec3 s = cameras_[l.camera].project(p);
+    if (!s.allFinite() || s.z() < 0.0 || s.z() > 1.0) continue;  // behind the camera or beyond its range
+    if (polygonContains(l.polygon, s.head<2>())) return true;
+  }
+  return false;
+}
+
 void Sketch::validate() const {
   checkParams(defaults, "sketch defaults");
   for (std::size_t i = 0; i < cameras_.size(); ++i) cameras_[i].validate("camera " + std::to_string(i));
+  for (std::size_t i = 0; i < notWood_.size(); ++i)
+    checkLasso(notWood_[i], cameras_.size(), "not-wood lasso " + std::to_string(i));
   if (nodes_.empty()) return;
   NodeId theRoot = kNoNode;
   for (const auto& [id, n] : nodes_) {

@@ -33,6 +33,18 @@ const Button kButtons[] = {
     {"deleteSubtree", [](ViewerState& s) { s.deleteSelected(true); }},
     {"refit", [](ViewerState& s) { s.refitSelected(); }},
     {"refitAll", [](ViewerState& s) { s.refitAll(); }},
+    {"clearNotWood", [](ViewerState& s) { s.clearNotWood(); }},
+};
+
+/// {"tool": NAME}.
+struct ToolName {
+  const char* name;
+  ViewerState::Tool tool;
+};
+const ToolName kTools[] = {
+    {"sketch", ViewerState::Tool::Sketch}, {"stroke", ViewerState::Tool::Stroke},
+    {"lasso", ViewerState::Tool::Lasso},   {"region", ViewerState::Tool::Region},
+    {"reattach", ViewerState::Tool::Reattach},
 };
 
 /// {"slider": NAME, "value": number}.
@@ -92,6 +104,7 @@ const Expectation kExpectations[] = {
     {"errors", [](const ViewerState& s) { return double(s.errorCount()); }, false},
     {"meshTriangles", [](const ViewerState& s) { return double(s.mesh().triangles.size()); }, true},
     {"kept", [](const ViewerState& s) { return double(s.sketch().keptCircleCount()); }, false},
+    {"notWood", [](const ViewerState& s) { return double(s.sketch().notWood().size()); }, false},
 };
 
 /// The entry of `table` called `name`, or nullptr.
@@ -251,6 +264,30 @@ class Parser {
       const json& p = j[verb];
       std::string path = p.is_null() ? std::string() : string(p, index, verb);
       return fromString(path.empty() ? verb : verb + " " + path, index);
+    } else if (j.contains("stroke") || j.contains("lasso") || j.contains("region")) {
+      a.kind = Kind::Path;
+      a.name = j.contains("stroke") ? "stroke" : j.contains("lasso") ? "lasso" : "region";
+      const json& pts = j[a.name];
+      const std::size_t need = a.name == "stroke" ? 2 : 3;
+      if (!pts.is_array() || pts.size() < need)
+        fail(index, a.name + ": expected a list of at least " + std::to_string(need) + " [x, y] points");
+      for (std::size_t k = 0; k < pts.size(); ++k) a.points.push_back(point(pts[k], index, a.name + " point"));
+    } else if (j.contains("deleteSubtree") || j.contains("automaticBelow")) {
+      a.kind = Kind::NodeOp;
+      a.name = j.contains("deleteSubtree") ? "deleteSubtree" : "automaticBelow";
+      a.value = number(j[a.name], index, a.name);
+    } else if (j.contains("reattach")) {
+      a.kind = Kind::NodeOp;
+      a.name = "reattach";
+      const json& r = j["reattach"];
+      if (!r.is_array() || r.size() != 2) fail(index, "reattach: expected [nodeId, newParentId]");
+      a.value = number(r[0], index, "reattach node");
+      a.value2 = number(r[1], index, "reattach parent");
+    } else if (j.contains("tool")) {
+      a.kind = Kind::Tool;
+      a.name = string(j["tool"], index, "tool");
+      if (!entryNamed(kTools, a.name))
+        fail(index, "tool must be sketch, stroke, lasso, region or reattach, got '" + a.name + "'");
     } else if (j.contains("wait")) {
       a.kind = Kind::Wait;
       a.steps = static_cast<int>(number(j["wait"], index, "wait"));
@@ -375,6 +412,13 @@ std::string describe(const ScriptAction& a) {
       return "screenshot " + a.path.string();
     case Kind::Wait:
       return "wait " + std::to_string(a.steps);
+    case Kind::Path:
+      return a.name + " (" + std::to_string(a.points.size()) + " points from " + pt(a.points.front()) + ")";
+    case Kind::NodeOp:
+      return a.name + " " + std::to_string(static_cast<int>(a.value)) +
+             (a.name == "reattach" ? " to " + std::to_string(static_cast<int>(a.value2)) : std::string());
+    case Kind::Tool:
+      return "tool " + a.name;
     case Kind::Expect: {
       std::string s = "expect";
       for (const auto& [k, v] : a.expect) s += " " + k + "=" + std::to_string(static_cast<long long>(v));
@@ -445,6 +489,27 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
           break;
         case Kind::Wait:
           for (int i = 0; i < a.steps && hooks.frame; ++i) hooks.frame();
+          break;
+        case Kind::Path:
+          if (a.name == "stroke")
+            state.strokeLimb(a.points);
+          else if (a.name == "lasso")
+            state.lassoNotWood(a.points);
+          else
+            state.automaticInRegion(a.points);
+          break;
+        case Kind::NodeOp: {
+          const auto id = static_cast<sketch::NodeId>(a.value);
+          if (a.name == "deleteSubtree")
+            state.deleteSubtree(id);
+          else if (a.name == "automaticBelow")
+            state.automaticBelow(id);
+          else
+            state.reattachNode(id, static_cast<sketch::NodeId>(a.value2));
+          break;
+        }
+        case Kind::Tool:
+          if (const ToolName* t = entryNamed(kTools, a.name)) state.setTool(t->tool);
           break;
         case Kind::Expect:
           for (const auto& [k, v] : a.expect) {

@@ -13,7 +13,14 @@ namespace {
 
 class DefaultReconstruction : public ViewerReconstruction {
  public:
-  explicit DefaultReconstruction(const geom::PointCloud& cloud) : recon_(cloud) {}
+  explicit DefaultReconstruction(const geom::PointCloud& cloud) : recon_(cloud, options()) {}
+
+  /// A person's screen nodes choose their depth along the view ray (fit::NodeFitOptions::chooseDepth).
+  static recon::ReconstructionOptions options() {
+    recon::ReconstructionOptions o;
+    o.fit.chooseDepth = true;
+    return o;
+  }
 
   void update(const sketch::Sketch& sketch) override {
     sketch_ = sketch;
@@ -32,6 +39,9 @@ class DefaultReconstruction : public ViewerReconstruction {
     v.testPoints = r->testIndices.size();
     v.inliers = r->inlierIndices.size();
     v.kept = r->kept;
+    v.depth = r->depth;
+    v.depthJump = r->depthJump;
+    v.warning = r->warning;
     return v;
   }
 

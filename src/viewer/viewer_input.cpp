@@ -46,6 +46,7 @@ void ViewerState::mouseDown(const Vec2& pos, MouseButton button, int mods) {
   pressPos_ = lastPos_ = pos;
   gestureButton_ = button;
   gestureMods_ = mods;
+  if (toolMouseDown(pos, button, mods)) return;
   if (button == MouseButton::Left && !(mods & kModAlt)) {
     gestureNode_ = nodeAt(pos);
     gesture_ = gestureNode_ != kNoNode ? Gesture::PendingNode : Gesture::PendingAdd;
@@ -75,6 +76,10 @@ void ViewerState::mouseMove(const Vec2& pos) {
       orbit_.pan(pos - lastPos_);
       ++sceneVersion_;
       break;
+    case Gesture::ToolPath:
+      toolPath_.push_back(pos);
+      ++sceneVersion_;
+      break;
     default:
       break;
   }
@@ -87,7 +92,9 @@ void ViewerState::mouseUp(const Vec2& pos, MouseButton button, int mods) {
   if (pos != lastPos_) mouseMove(pos);
   Gesture g = gesture_;
   gesture_ = Gesture::None;
-  if (g == Gesture::PendingNode) {
+  if (g == Gesture::ToolPath) {
+    toolMouseUp(pos);
+  } else if (g == Gesture::PendingNode) {
     if (gestureMods_ & kModCtrl) {
       // Ctrl+click: inspect a node without changing where new nodes attach.
       selected_ = gestureNode_;
@@ -140,6 +147,7 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
       break;
   }
   bool ctrl = mods & kModCtrl, shift = mods & kModShift;
+  if (toolKey(key, mods)) return true;
   if (key == "delete" || key == "backspace") {
     deleteSelected(shift);
   } else if (key == "z" && ctrl) {

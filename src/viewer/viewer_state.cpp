@@ -176,14 +176,19 @@ bool ViewerState::addNodeAt(const Vec2& screen) {
     error("add node: open a point cloud first");
     return false;
   }
-  return edit("add node", "add node", "", [&] {
+  NodeId id = kNoNode;
+  bool ok = edit("add node", "add node", "", [&] {
     if (!orbit_.viewport().contains(screen)) throw OptionsError("the point is outside the view");
     NodeId parent = kNoNode;
     if (!sketch_.empty()) parent = (active_ != kNoNode && sketch_.contains(active_)) ? active_ : sketch_.root();
     int cam = sketch_.addCamera(orbit_.camera());
-    NodeId id = sketch_.addScreenNode(parent, cam, screen);
+    id = sketch_.addScreenNode(parent, cam, screen);
     selected_ = active_ = id;
   });
+  // Never a silent jump in depth (issue 20): say where the circle went when it is not where the
+  // parent (or the front-most surface) said it would be.
+  if (ok && recon_->nodeFit(id).depthJump) info("warning: node " + std::to_string(id) + ": " + recon_->nodeFit(id).warning);
+  return ok;
 }
 
 bool ViewerState::selectNode(NodeId id) {

@@ -261,6 +261,43 @@ TEST(SketchFile, KeptCirclesReadAndBadOnesAreRejected) {
             {"node 5", "circle", "point node"});
 }
 
+TEST(SketchFile, NotWoodLassosRoundTripAndOldFilesStillRead) {
+  Sketch sk = awkwardSketch();
+  sk.addNotWoodLasso(0, {Vec2(1.0 / 3.0, 2), Vec2(400, 7.25), Vec2(300, 500.125)});
+  sk.addNotWoodLasso(1, {Vec2(0, 0), Vec2(10, 0), Vec2(10, 10), Vec2(0, 10)});
+  std::stringstream ss;
+  writeSketch(ss, sk);
+  EXPECT_NE(ss.str().find("\"notWood\""), std::string::npos);
+  Sketch back = readSketch(ss, "mem");
+  expectBitIdentical(sk, back);
+  ASSERT_EQ(back.notWood().size(), 2u);
+  EXPECT_EQ(back.notWood(), sk.notWood());
+  // A sketch without lassos writes no "notWood" key (files as before), and a file without one
+  // (every file written before issue 20) reads with none.
+  std::stringstream plain;
+  writeSketch(plain, awkwardSketch());
+  EXPECT_EQ(plain.str().find("notWood"), std::string::npos);
+  std::istringstream old(fileWith(R"([{"id":0,"parent":-1,"camera":0,"screen":[400,300]}])"));
+  EXPECT_TRUE(readSketch(old, "old.json").notWood().empty());
+}
+
+TEST(SketchFile, RejectsBadNotWoodLassos) {
+  const std::string nodes = R"([{"id":0,"parent":-1,"camera":0,"screen":[400,300]}])";
+  auto withLasso = [&](const std::string& lasso) {
+    std::string f = fileWith(nodes);
+    return f.substr(0, f.size() - 1) + R"(,"notWood":)" + lasso + "}";
+  };
+  EXPECT_NO_THROW({
+    std::istringstream in(withLasso(R"([{"camera":0,"polygon":[[0,0],[5,0],[5,5]]}])"));
+    readSketch(in, "ok.json");
+  });
+  expectBad(withLasso(R"({"camera":0})"), {"notWood", "expected an array"});
+  expectBad(withLasso(R"([{"camera":3,"polygon":[[0,0],[5,0],[5,5]]}])"), {"not-wood lasso 0", "camera 3"});
+  expectBad(withLasso(R"([{"camera":0,"polygon":[[0,0],[5,0]]}])"), {"not-wood lasso 0", "at least 3"});
+  expectBad(withLasso(R"([{"camera":0,"polygon":[[0,0],[5,0],[5,null]]}])"), {"not-wood lasso 0", "vertex 2"});
+  expectBad(withLasso(R"([{"polygon":[[0,0],[5,0],[5,5]]}])"), {"not-wood lasso 0", "missing \"camera\""});
+}
+
 TEST(SketchFile, RejectsBadCameras) {
   std::string node = R"([{"id":8,"parent":-1,"camera":1,"screen":[1,2]}])";
   expectBad(fileWith(node), {"node 8", "camera 1 does not exist"});

@@ -76,6 +76,9 @@ struct EvalOptions {
   std::string view = "front";
   /// Hand jitter of the simulated user, pixels (1280 × 800 viewport).
   double pixelNoise = 1.5;
+  /// The simulated user's screen nodes choose their depth along the view ray from the parent's
+  /// circle (fit::NodeFitOptions::chooseDepth, as in the viewer; issue 20). false: the thesis's fit.
+  bool chooseDepth = true;
   /// Comparison samples per direction; 0 = MeshLab's default (as many as the sampled mesh has
   /// vertices), raised to at least `minSamples`.
   std::uint64_t samples = 0;

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
+#include <utility>
 #include <limits>
 #include <vector>
 
@@ -115,6 +117,14 @@ class CloudIndex {
   /// or ball contains the whole bounding box), i.e. the region equals its slab within the cloud.
   bool regionCoversCloud(const SliceRegion& region) const;
 
+  /// Leaves out of every later query the stored points for which `excluded(position)` is true
+  /// (issue 20: points a not-wood lasso marks), and brings back every point an earlier call left
+  /// out. Returns how many points are now left out. The points keep their cells and slots (their
+  /// positions are set to NaN, which no region test accepts, on both query paths), so results
+  /// stay in the same storage order. Not safe while other threads query this index.
+  std::size_t setExcluded(const std::function<bool(const geom::Vec3&)>& excluded);
+  std::size_t excludedCount() const { return excludedSaved_.size(); }
+
   /// Original indices of the stored (finite) points in storage order, the order every query
   /// answers in. For callers that must reproduce that order with another index.
   const std::vector<std::uint32_t>& storageOrder() const { return ids_; }
@@ -146,6 +156,8 @@ class CloudIndex {
   /// exactly on sorted_. Padded with 8 zeros: the pre-test reads blocks of 4 (8 with AVX2).
   geom::Vec3 centre_ = geom::Vec3::Zero();
   std::vector<float> fpos_[3];
+  /// setExcluded: the slots left out and their positions, to restore them.
+  std::vector<std::pair<std::uint32_t, geom::Vec3>> excludedSaved_;
 };
 
 }  // namespace treesketch::fit

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,30 @@ enum class NodeStatus { Fitted, Skipped, Disabled };
 /// "fitted", "skipped", "disabled".
 const char* toString(NodeStatus status);
 
+/// What the sketch knows about a node's parent (issue 20: fits that survive clutter): its circle.
+/// A screen node's line L crosses every surface along its view ray; with a prior the fit chooses
+/// among the depth hypotheses the one continuing the parent, and refuses circles much wider than
+/// the parent's.
+struct FitPrior {
+  geom::Vec3 centre = geom::Vec3::Zero();  ///< the parent's circle centre, world
+  double radius = 0.0;                     ///< the parent's radius, world units (> 0)
+};
+
+struct DepthChoiceOptions {
+  /// Test points further apart than this along L (world units) belong to different surfaces;
+  /// 0 = 4 slice half-thicknesses (design choice: wider than the scan noise and a slice's
+  /// thickness, narrower than the gap between two limbs lined up in depth).
+  double gap = 0.0;
+  /// With a prior: circles wider than this many parent radii (plus one slice half-thickness) are
+  /// refused (design choice: 2 — a child is rarely wider than its parent; 0.26 m on a 0.06 m
+  /// trunk was the failure that asked for it). 0 = no limit.
+  double maxRadiusOfParent = 2.0;
+  /// A chosen circle counts as a depth jump when its depth along L differs by more than this
+  /// many of its own radii plus `gap` from where it was expected (the parent's depth; without a
+  /// parent, the front-most surface with a circle). Design choice: 3.
+  double jumpRadii = 3.0;
+};
+
 struct NodeFitOptions {
   /// The RANSAC circle fit. Its centreRegion is set by fitNode (see "sanity rule" below); the
   /// seed is used as given.
@@ -30,6 +55,12 @@ struct NodeFitOptions {
   bool keepSlice = false;
   /// Thesis reference path: every slice by a scan of all points (for benchmarks and tests).
   bool bruteForce = false;
+  /// Screen nodes: choose among the depth hypotheses along L (issue 20) instead of accepting the
+  /// best-supported circle of all the test points. Off by default: the thesis's procedure, which
+  /// the automatic skeleton's internal fits (point nodes, unaffected anyway) and the benchmarks
+  /// keep; the viewer and the evaluation's sketches turn it on (recon::ReconstructionOptions).
+  bool chooseDepth = false;
+  DepthChoiceOptions depth;
 };
 
 /// Everything the fit of one node produced (plain data for the viewer and tests). Indices are
@@ -55,6 +86,14 @@ struct NodeResult {
   /// The circle is the node's kept circle (sketch::Node::kept), not a fit: status Fitted, no
   /// slice was cut and no RANSAC ran (keptCircleResult).
   bool kept = false;
+  /// Screen nodes fitted with chooseDepth: the circle centre's distance along L from its near
+  /// point (the chosen depth, for the view to show; NaN otherwise), how many surfaces along L
+  /// gave a circle, and whether the chosen one is not where the fit expected it (see
+  /// DepthChoiceOptions::jumpRadii): then `warning` says so.
+  double depth = std::numeric_limits<double>::quiet_NaN();
+  int depthHypotheses = 0;
+  bool depthJump = false;
+  std::string warning;
 };
 
 /// The slab of a node: points within params.sliceHalfThickness of its plane.
@@ -78,10 +117,17 @@ std::vector<std::uint32_t> nodeSlice(const CloudIndex& index, const sketch::Node
 /// region is not the branch the user pointed at (or is, but seen through a sliver: growing then
 /// takes in more of it). The radius is NOT limited by lineEpsilon: a line through a trunk's centre with a
 /// small tolerance sees the near and far arcs of a wider circle, which is a valid fit.
+/// Depth choice (options.chooseDepth, screen nodes; issue 20): at each lineEpsilon the test points
+/// are split into surfaces along L (gaps wider than DepthChoiceOptions::gap), a circle is fitted
+/// to each surface as well as to all of them, and among the circles found the fit takes the one
+/// nearest the parent's depth (`prior`: the projection of its centre on L) — without a prior the
+/// front-most, the surface the person sees. With a prior, circles wider than maxRadiusOfParent
+/// parent radii are refused. The result gives the chosen depth and flags a jump.
 /// params.enabled = false gives status Disabled without touching the cloud.
 /// Throws OptionsError for non-positive or non-finite sampling sizes, a zero normal/direction.
 NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& geometry,
-                   const sketch::SamplingParams& params, const NodeFitOptions& options = {});
+                   const sketch::SamplingParams& params, const NodeFitOptions& options = {},
+                   const FitPrior* prior = nullptr);
 
 /// A node's result from its kept circle instead of a fit: status Fitted, kept = true, the centre
 /// projected onto the node's plane, the plane's normal, the circle's radius, rms 0. A disabled

@@ -12,6 +12,9 @@
 // "circle" (point nodes only, optional) is the node's kept circle (sketch::KeptCircle: used
 // instead of a fit); it was added within version 1 (older files have none, older readers ignore
 // it and fit the node).
+// "notWood" (optional, added within version 1 like "circle"): the not-wood lassos
+// (sketch::NotWoodLasso), [{"camera":i,"polygon":[[x,y],[x,y],[x,y],...]}], written only when the
+// sketch has any, so files without lassos are byte-identical to before; older readers ignore it.
 // A camera file holds one camera object: {"view":[16],"projection":[16],"viewport":[4]}.
 // Dependency direction: io reads and writes the sketch model, so io includes sketch/sketch.h and
 // nothing in sketch/ includes io (whatever reads a file, such as io/view_camera.h, lives here).

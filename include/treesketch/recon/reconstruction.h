@@ -46,9 +46,13 @@ class Reconstruction {
 
   /// Brings the fits and the mesh up to date with `sketch`: a node is re-fitted when its geometry
   /// (line, plane — which moves when its parent moves), its sampling params or its kept circle
-  /// changed or it is new; removed nodes are dropped; re-parenting alone only re-sweeps. A node
+  /// changed or it is new (with options.fit.chooseDepth also a screen node whose parent is
+  /// re-fitted: its fit starts from the parent's circle); removed nodes are dropped; re-parenting alone only re-sweeps. A node
   /// with a kept circle is not fitted: it takes that circle (fit::resolveNode). Returns the ids
   /// re-fitted (or re-resolved).
+  /// The sketch's not-wood lassos (Sketch::notWood) leave their points out of every fit: when
+  /// they change, the index's exclusions are recomputed and every node that is not a kept circle
+  /// is re-fitted.
   /// `progress` (optional) is told (nodes fitted, nodes to fit) as the fits finish.
   /// Throws OptionsError for an invalid sketch (see Sketch::validate).
   std::vector<NodeId> update(const sketch::Sketch& sketch, const ProgressFn& progress = {});
@@ -83,6 +87,8 @@ class Reconstruction {
   sweep::TubeSweeper sweeper_;
   std::size_t fitCount_ = 0;
   Timings timings_;
+  /// The lassos (each with its camera) the index's exclusions were computed from.
+  std::vector<std::pair<sketch::NotWoodLasso, geom::Camera>> notWood_;
 };
 
 struct ReconstructionResult {

@@ -63,6 +63,22 @@ struct KeptCircle {
   bool operator==(const KeptCircle&) const = default;
 };
 
+/// A not-wood lasso (issue 20): a closed screen polygon drawn under one of the sketch's cameras.
+/// Every cloud point whose projection under that camera falls inside the polygon (at any depth
+/// in front of the camera, as CloudCompare's segmentation tool cuts through the whole view) is
+/// not wood: the fits and the automatic skeleton leave it out. Stored as the polygon, not as point
+/// indices, so the sketch file stays independent of the cloud's point order and an edit stays
+/// small; membership is computed where the cloud is (recon, the correction tools).
+struct NotWoodLasso {
+  int camera = -1;                    ///< index into Sketch::cameras
+  std::vector<geom::Vec2> polygon;    ///< pixels, top-left origin; >= 3 vertices, closed implicitly
+
+  bool operator==(const NotWoodLasso&) const = default;
+};
+
+/// Even-odd point-in-polygon test (pixels); a polygon with < 3 vertices contains nothing.
+bool polygonContains(const std::vector<geom::Vec2>& polygon, const geom::Vec2& p);
+
 struct Node {
   NodeId id = kNoNode;
   NodeId parent = kNoNode;
@@ -135,6 +151,16 @@ class Sketch {
   /// Re-parents `id` under `newParent` (throws if that would make a cycle).
   void setParent(NodeId id, NodeId newParent);
 
+  /// Not-wood lassos (see NotWoodLasso). addNotWoodLasso throws OptionsError for an unknown
+  /// camera, fewer than 3 vertices or a non-finite vertex; returns the lasso's index.
+  std::size_t addNotWoodLasso(int camera, const std::vector<geom::Vec2>& polygon);
+  /// Removes lasso `index` (OptionsError when out of range) / every lasso (returns how many).
+  void removeNotWoodLasso(std::size_t index);
+  std::size_t clearNotWood();
+  const std::vector<NotWoodLasso>& notWood() const { return notWood_; }
+  /// True when `p` (world) projects inside any lasso's polygon, in front of the lasso's camera.
+  bool isNotWood(const geom::Vec3& p) const;
+
   bool contains(NodeId id) const { return nodes_.count(id) != 0; }
   const Node& node(NodeId id) const;  ///< throws OptionsError for an unknown id
   NodeId root() const;                ///< kNoNode when empty
@@ -170,7 +196,8 @@ class Sketch {
   /// Checks the whole structure: one root, parents exist, no cycles, children lists agree,
   /// cameras valid and referenced ones exist, finite values, positive sampling sizes (of the
   /// nodes and of `defaults`, which a sketch file carries too), kept circles on point nodes only
-  /// with finite centres and radii > 0. Throws OptionsError naming the node (or the defaults).
+  /// with finite centres and radii > 0, not-wood lassos on existing cameras with >= 3 finite
+  /// vertices. Throws OptionsError naming the node (or the defaults, or the lasso).
   void validate() const;
 
   /// Low-level insertion used by readers (keeps the given id and parent; call validate() after).
@@ -189,6 +216,7 @@ class Sketch {
 
   std::map<NodeId, Node> nodes_;
   std::vector<geom::Camera> cameras_;
+  std::vector<NotWoodLasso> notWood_;
   NodeId nextId_ = 0;
   /// insertRaw: nodes inserted before their parent (an upper bound; 0 skips the adoption scan).
   std::size_t waitingChildren_ = 0;

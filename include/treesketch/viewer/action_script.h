@@ -18,10 +18,20 @@
 //              "refit"|"refitAll"}
 //   {"save": PATH}, {"load": PATH}, {"export": PATH}, {"screenshot": PATH}   ("save"/"load"
 //                                          without a path use the session's sketch path)
+//   Correction tools (issue 20; each one undoable edit under the current view):
+//   {"stroke": [[x, y], ...]}              draw a limb as one stroke (>= 2 points, base first)
+//   {"lasso": [[x, y], ...]}               mark the points inside the polygon as not-wood
+//   {"region": [[x, y], ...]}              automatic skeleton inside the polygon, merged
+//   {"deleteSubtree": nodeId}              delete a node and everything below it
+//   {"reattach": [nodeId, newParentId]}    re-attach a node (and its subtree) to another parent
+//   {"automaticBelow": nodeId}             automatic skeleton below a node, merged
+//   {"tool": "sketch"|"stroke"|"lasso"|"region"|"reattach"}   what a left drag does (as keys
+//                                          G, L, R, P), so "drag" actions can use the tools
 //   {"wait": frames}
 //   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
-//               "errors": n, "meshTriangles": n, "kept": n}}   ("meshTriangles" checks "at least
-//                                          n"; "kept": nodes with a kept circle)
+//               "errors": n, "meshTriangles": n, "kept": n, "notWood": n}}   ("meshTriangles"
+//                                          checks "at least n"; "kept": nodes with a kept circle;
+//                                          "notWood": not-wood lassos)
 // Paths are relative to the current directory.
 #pragma once
 
@@ -54,7 +64,10 @@ struct ScriptAction {
     Export,
     Screenshot,
     Wait,
-    Expect
+    Expect,
+    Path,    ///< stroke / lasso / region: `name` and `points`
+    NodeOp,  ///< deleteSubtree / reattach / automaticBelow: `name`, node `value`, parent `value2`
+    Tool     ///< `name`
   };
   Kind kind = Kind::Wait;
   std::size_t index = 0;  ///< position in the script (0-based), for messages
@@ -67,6 +80,8 @@ struct ScriptAction {
   std::string text;    ///< option value (text form)
   std::filesystem::path path;
   std::vector<std::pair<std::string, double>> expect;
+  std::vector<geom::Vec2> points;  ///< Path
+  double value2 = 0.0;             ///< NodeOp reattach: the new parent
 };
 
 struct ActionScript {

@@ -13,9 +13,11 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -87,6 +89,12 @@ struct NodeFitView {
   std::size_t slicePoints = 0, testPoints = 0, inliers = 0;
   /// Fitted from the node's kept circle (an automatic sketch's model), not from the cloud.
   bool kept = false;
+  /// Screen nodes: the circle's depth along the node's view ray (world units from its near
+  /// point; NaN when unknown), and what the depth choice says (fit::NodeResult::warning) — a jump
+  /// away from where the circle was expected sets depthJump.
+  double depth = std::nan("");
+  bool depthJump = false;
+  std::string warning;
 };
 
 /// A node as drawn over the view: screen position (window pixels) under the current camera.
@@ -238,6 +246,30 @@ class ViewerState {
   /// Undoable; an error message when there is nothing to refit.
   bool refitSelected();
   bool refitAll();
+  // ---- correction tools (issue 20; src/viewer/viewer_tools.cpp over edit/correction_tools.h) ----
+  /// What a left-button drag in the view does: Sketch (add / pick / drag nodes, the default),
+  /// Stroke (draw a limb as one stroke), Lasso (mark points as not-wood), Region (automatic
+  /// skeleton inside the drawn region, merged), Reattach (a click on a node makes it the selected
+  /// node's new parent). Keys: G stroke, L lasso, R region, P re-attach (each toggles its tool),
+  /// H automatic below the selected node, Escape back to Sketch.
+  enum class Tool { Sketch, Stroke, Lasso, Region, Reattach };
+  void setTool(Tool tool);
+  Tool tool() const { return tool_; }
+  /// The stroke or polygon being drawn (window pixels), for the overlay.
+  const std::vector<geom::Vec2>& toolPath() const { return toolPath_; }
+  /// Each one undoable, rebuilds, autosaves; false + error status on failure. Screen points are
+  /// window pixels under the current view.
+  bool strokeLimb(const std::vector<geom::Vec2>& stroke);
+  bool lassoNotWood(const std::vector<geom::Vec2>& polygon);
+  bool clearNotWood();
+  bool deleteSubtree(sketch::NodeId id);
+  bool reattachNode(sketch::NodeId id, sketch::NodeId newParent);
+  bool automaticBelow(sketch::NodeId id);
+  bool automaticInRegion(const std::vector<geom::Vec2>& polygon);
+  /// Where the selected node's circle lies along its view ray (the chosen depth, for the view to
+  /// show; NaN when it has no circle) — the distance from the current camera's eye.
+  double selectedDepth() const;
+
   /// Ends the current merge of consecutive edits (call when a slider is released).
   void finishEdit() { lastEditKey_.clear(); }
   bool saveSketch(const std::filesystem::path& path);
@@ -284,7 +316,12 @@ class ViewerState {
   const ViewerOptions& options() const { return options_; }
 
  private:
-  enum class Gesture { None, PendingAdd, PendingNode, DragNode, Orbit, Pan };
+  enum class Gesture { None, PendingAdd, PendingNode, DragNode, Orbit, Pan, ToolPath };
+  /// The tools' share of the mouse (viewer_tools.cpp); true when the tool took the event.
+  bool toolMouseDown(const geom::Vec2& pos, MouseButton button, int mods);
+  bool toolMouseUp(const geom::Vec2& pos);
+  bool toolKey(const std::string& key, int mods);
+  std::map<sketch::NodeId, std::pair<geom::Vec3, double>> anchorsForTools() const;
   bool runAction(const std::string& name, const std::function<void()>& action);
   /// The edit protocol: runs `body` on the sketch; on success records the previous sketch for undo
   /// (merged with the previous edit when `mergeKey` is non-empty and repeats) and calls endEdit; on
@@ -343,6 +380,8 @@ class ViewerState {
   double lastRebuildMs_ = 0.0;
   std::vector<StatusMessage> messages_;
   std::size_t errorCount_ = 0;
+  Tool tool_ = Tool::Sketch;
+  std::vector<geom::Vec2> toolPath_;
 };
 
 }  // namespace treesketch::viewer

@@ -1,0 +1,51 @@
+// The "Correction tools" section of the side panel (issue 20): the tool buttons (same as the
+// keys G, L, R, P, H), the not-wood lassos, and the selected node's depth along the view ray.
+// Kept in its own file so the panel layout (panels.cpp) only calls it.
+#include <imgui.h>
+
+#include <cmath>
+
+#include "panels.h"
+
+namespace treesketch::gui {
+
+void toolsSection(viewer::ViewerState& state) {
+  using Tool = viewer::ViewerState::Tool;
+  auto toolButton = [&](const char* label, Tool tool, const char* tip) {
+    const bool on = state.tool() == tool;
+    if (on) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.2f, 0.5f, 0.3f, 1));
+    if (ImGui::Button(label)) state.setTool(on ? Tool::Sketch : tool);
+    if (on) ImGui::PopStyleColor();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tip);
+  };
+  toolButton("Stroke (G)", Tool::Stroke, "Drag along a missing limb, starting on the node it grows from");
+  ImGui::SameLine();
+  toolButton("Lasso (L)", Tool::Lasso, "Drag around points that are not wood: fits and the skeleton leave them out");
+  toolButton("Region (R)", Tool::Region, "Drag around a region: the automatic skeleton runs there and is merged");
+  ImGui::SameLine();
+  toolButton("Re-attach (P)", Tool::Reattach, "Click a node, then its new parent");
+  ImGui::BeginDisabled(state.selected() == sketch::kNoNode);
+  if (ImGui::Button("Automatic below selected (H)")) state.automaticBelow(state.selected());
+  ImGui::EndDisabled();
+  ImGui::Text("%zu not-wood lasso(s)", state.sketch().notWood().size());
+  ImGui::SameLine();
+  ImGui::BeginDisabled(state.sketch().notWood().empty());
+  if (ImGui::Button("Clear")) state.clearNotWood();
+  ImGui::EndDisabled();
+  const double depth = state.selectedDepth();
+  if (std::isfinite(depth)) ImGui::Text("selected circle: %.3f from the eye", depth);
+  if (state.selected() != sketch::kNoNode) {
+    const viewer::NodeFitView fit = state.nodeFit(state.selected());
+    if (std::isfinite(fit.depth)) ImGui::Text("depth along its view ray: %.3f", fit.depth);
+    if (!fit.warning.empty()) {
+      ImGui::PushTextWrapPos(0.0f);
+      if (fit.depthJump)
+        ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.2f, 1), "depth: %s", fit.warning.c_str());
+      else
+        ImGui::TextDisabled("depth: %s", fit.warning.c_str());
+      ImGui::PopTextWrapPos();
+    }
+  }
+}
+
+}  // namespace treesketch::gui

@@ -1,0 +1,84 @@
+// A simulated correcting user (issue 20): starting from the automatic sketch, at each step the
+// person looks at the worst visible error and makes the one edit a person would, with the
+// correction tools the viewer offers (edit/correction_tools.h):
+//  - a reference limb the model misses (its axis samples lie farther than the tolerance outside
+//    the model's surface): a stroke along the missed part, from where the model still covers it
+//    to its tip, drawn in the view (front, side, back, other side) where that part is longest on
+//    screen and least hidden, with Gaussian hand jitter;
+//  - a tube far from any reference wood (a node whose circle lies farther than the tolerance
+//    outside the reference surface): the topmost such node's subtree is deleted when most of it
+//    is wrong; otherwise the node alone (its children re-attached to its parent, the viewer's
+//    Delete).
+// The error of each candidate is its share of the squared distances the RMS figures sum (missed
+// limb: Σ over uncovered axis samples of excess² · radius · step, the limb's surface; wrong
+// tube: Σ excess² · radius · spacing); the largest is fixed first. Both RMS distances (backward:
+// model → reference, forward: reference → model, % of the reference diagonal, as runEvaluation)
+// are measured after every edit. The interactive-segmentation field reports "number of clicks to
+// reach a target" the same way (NoC@90); here NoE@target, both directions.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "treesketch/eval/evaluation.h"
+#include "treesketch/eval/mesh_distance.h"
+#include "treesketch/geom/point_cloud.h"
+#include "treesketch/sketch/sketch.h"
+
+namespace treesketch::eval {
+
+struct CorrectingUserOptions {
+  /// Edits the person makes at most (the curve's length).
+  int maxEdits = 20;
+  /// The target both RMS distances must reach, % of the reference diagonal ("edits to reach").
+  double targetPct = 0.5;
+  /// Stop once the target is met both ways (false: run all maxEdits for the full curve).
+  bool stopAtTarget = false;
+  /// An axis sample or a tube counts as an error beyond this distance outside the other surface,
+  /// % of the reference diagonal (design choice: 0.5 %, the target: smaller misses cost less
+  /// RMS than an edit is worth).
+  double tolerancePct = 0.5;
+  /// Hand jitter of the strokes, pixels (the careful user's, EvalOptions::pixelNoise).
+  double pixelNoise = 1.5;
+  /// A subtree is deleted whole when at least this share of its nodes is wrong (design choice).
+  double subtreeWrongShare = 0.6;
+  std::uint64_t seed = 1;
+  DistanceOptions distance;
+};
+
+struct CorrectingStep {
+  int edit = 0;        ///< 0 = the automatic model before any edit
+  std::string action;  ///< "start", "stroke limb 12 (side view, 9 nodes)", "delete subtree 40 (7 nodes)"...
+  int nodes = 0;
+  double backwardRms = 0, forwardRms = 0;  ///< % of the reference diagonal
+  double ms = 0;                           ///< the edit and its rebuild, wall time
+};
+
+struct CorrectingRun {
+  std::string tree, condition, pattern, leaf;
+  std::vector<CorrectingStep> steps;
+  /// Edits until both RMS are <= targetPct (0: the automatic model already is; -1: not reached).
+  int editsToTarget = -1;
+};
+
+/// Runs the simulated person on one scan, from `automatic` (the automatic skeleton's sketch).
+CorrectingRun runCorrectingUser(const TreeCase& tree, const geom::PointCloud& cloud, const sketch::Sketch& automatic,
+                                const CorrectingUserOptions& options);
+
+/// Scans every tree under every condition of `evalOptions` (leaf states as it says), runs the
+/// automatic skeleton and the correcting user on each; `evalOptions.log` reports progress.
+std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& trees, const EvalOptions& evalOptions,
+                                                   const CorrectingUserOptions& options);
+
+/// Writes correcting_user.csv (one row per step), correcting_user.md (edits to target per case
+/// and the means per leaf state and pattern) and correcting_user_{leaf-on,leaf-off}.svg (RMS
+/// after each edit, both directions, mean over the cases of each pattern) into `folder`.
+void writeCorrectingReport(const std::filesystem::path& folder, const std::vector<CorrectingRun>& runs,
+                           const CorrectingUserOptions& options);
+
+/// correcting_user.md's text.
+std::string correctingMarkdown(const std::vector<CorrectingRun>& runs, const CorrectingUserOptions& options);
+
+}  // namespace treesketch::eval

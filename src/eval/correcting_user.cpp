@@ -1,0 +1,492 @@
+// The simulated correcting user (see correcting_user.h).
+#include "treesketch/eval/correcting_user.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include "treesketch/accel/closest_point.h"
+#include "treesketch/edit/correction_tools.h"
+#include "treesketch/eval/svg_plot.h"
+#include "treesketch/recon/reconstruction.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
+#include "treesketch/util/atomic_file.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::eval {
+
+namespace fs = std::filesystem;
+using geom::Vec2;
+using geom::Vec3;
+using sketch::NodeId;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+const geom::Viewport kViewport{0, 0, 1280, 800};
+
+/// The front view turned about the up axis through the cloud's centre by `deg` (the person walks
+/// around the tree: 0 front, 90 side, 180 back, 270 other side).
+geom::Camera viewAround(const geom::BBox& bounds, geom::UpAxis up, double deg) {
+  geom::Camera cam = geom::presetCamera(geom::PresetView::Front, bounds, up, kViewport, false);
+  const Vec3 c = bounds.centre();
+  const Eigen::AngleAxisd rot(deg * M_PI / 180.0, geom::upVector(up));
+  geom::Mat4 m = geom::Mat4::Identity();
+  m.block<3, 3>(0, 0) = rot.toRotationMatrix();
+  m.block<3, 1>(0, 3) = c - rot.toRotationMatrix() * c;
+  cam.view = cam.view * m;
+  return cam;
+}
+
+const char* viewName(int v) {
+  static const char* names[] = {"front", "side", "back", "other side"};
+  return names[v];
+}
+
+/// A reference limb resampled: axis points, radii, arc step.
+struct LimbSamples {
+  std::vector<Vec3> points;
+  std::vector<double> radii;
+  double step = 0;
+};
+
+LimbSamples sampleLimb(const sketch::BranchPolyline& axis, const std::vector<double>& radii, double step) {
+  LimbSamples s;
+  s.step = step;
+  const auto& p = axis.points;
+  if (p.size() < 2) return s;
+  auto radiusAt = [&](std::size_t i) { return i < radii.size() ? radii[i] : (radii.empty() ? 0.0 : radii.back()); };
+  s.points.push_back(p[0]);
+  s.radii.push_back(radiusAt(0));
+  double carry = 0;
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    const double len = (p[i] - p[i - 1]).norm();
+    double t = step - carry;
+    while (t <= len) {
+      const double f = len > 0 ? t / len : 0;
+      s.points.push_back(p[i - 1] + f * (p[i] - p[i - 1]));
+      s.radii.push_back((1 - f) * radiusAt(i - 1) + f * radiusAt(i));
+      t += step;
+    }
+    carry = len - (t - step);
+  }
+  return s;
+}
+
+struct Candidate {
+  enum class Kind { Stroke, DeleteSubtree, DeleteNode } kind = Kind::Stroke;
+  double score = 0;
+  std::size_t limb = 0;
+  std::size_t from = 0, to = 0;  ///< stroke: sample range on the limb
+  NodeId node = sketch::kNoNode;
+  std::size_t subtreeSize = 0;
+};
+
+}  // namespace
+
+CorrectingRun runCorrectingUser(const TreeCase& tree, const geom::PointCloud& cloud, const sketch::Sketch& automatic,
+                                const CorrectingUserOptions& o) {
+  CorrectingRun run;
+  run.tree = tree.name;
+  const double diag = tree.branches.bounds().diagonal();
+  const double tol = o.tolerancePct / 100.0 * diag;
+  auto pct = [&](double v) { return diag > 0 ? 100.0 * v / diag : NAN; };
+  recon::ReconstructionOptions ro;
+  ro.seed = o.seed;
+  ro.fit.chooseDepth = true;  // as the viewer
+  recon::Reconstruction rec(cloud, ro);
+  sketch::Sketch sk = automatic;
+  rec.update(sk);
+
+  auto record = [&](int edit, const std::string& action, double ms) {
+    CorrectingStep s;
+    s.edit = edit;
+    s.action = action;
+    s.nodes = static_cast<int>(sk.size());
+    DirectionStats b = oneWayDistance(rec.mesh(), tree.branches, o.distance);
+    DirectionStats f = oneWayDistance(tree.branches, rec.mesh(), o.distance);
+    s.backwardRms = pct(b.rms);
+    s.forwardRms = pct(f.rms);
+    s.ms = ms;
+    run.steps.push_back(s);
+    if (run.editsToTarget < 0 && s.backwardRms <= o.targetPct && s.forwardRms <= o.targetPct) run.editsToTarget = edit;
+  };
+  record(0, "start (automatic model)", 0.0);
+
+  const accel::MeshClosestPoint reference(tree.branches);
+  const geom::BBox bounds = cloud.bounds();
+  std::vector<geom::Camera> views;
+  for (double deg : {0.0, 90.0, 180.0, 270.0}) views.push_back(viewAround(bounds, tree.up, deg));
+  std::vector<std::unique_ptr<edit::ViewPicker>> pickers(views.size());
+  auto picker = [&](std::size_t v) -> const edit::ViewPicker& {
+    if (!pickers[v]) pickers[v] = std::make_unique<edit::ViewPicker>(cloud, views[v]);
+    return *pickers[v];
+  };
+  const double step = 0.004 * diag;
+  std::vector<LimbSamples> limbs;
+  for (std::size_t i = 0; i < tree.axes.size(); ++i)
+    limbs.push_back(
+        sampleLimb(tree.axes[i], i < tree.axisRadii.size() ? tree.axisRadii[i] : std::vector<double>{}, step));
+  std::mt19937_64 rng(o.seed * 7919 + 17);
+  std::normal_distribution<double> jitter(0.0, o.pixelNoise);
+  std::set<std::size_t> failedLimbs;
+  std::set<NodeId> failedNodes;
+
+  for (int edit = 1; edit <= o.maxEdits; ++edit) {
+    if (o.stopAtTarget && run.editsToTarget >= 0) break;
+    auto t0 = Clock::now();
+    std::vector<Candidate> cands;
+    // Missed limbs: axis samples farther than the tolerance outside the model's surface.
+    {
+      const accel::MeshClosestPoint model(rec.mesh());
+      for (std::size_t l = 0; l < limbs.size(); ++l) {
+        if (failedLimbs.count(l) || limbs[l].points.size() < 2) continue;
+        const auto hits = model.queryAll(limbs[l].points);
+        Candidate c;
+        c.kind = Candidate::Kind::Stroke;
+        c.limb = l;
+        bool any = false;
+        for (std::size_t k = 0; k < hits.size(); ++k) {
+          const double d = std::min(hits[k].distance, diag);
+          const double excess = d - limbs[l].radii[k];
+          if (excess <= tol) continue;
+          if (!any) c.from = k;
+          any = true;
+          c.to = k;
+          c.score += excess * excess * std::max(limbs[l].radii[k], 1e-3 * diag) * step;
+        }
+        if (any && c.to > c.from) cands.push_back(c);
+      }
+    }
+    // Wrong tubes: nodes whose circle lies farther than the tolerance outside the reference.
+    {
+      const auto anchors = edit::nodeAnchors(sk, &rec);
+      std::map<NodeId, double> wrong;  // node -> its score
+      for (const auto& [id, a] : anchors) {
+        if (!(a.radius > 0)) continue;
+        const double excess = reference.query(a.centre).distance - a.radius;
+        if (excess <= tol) continue;
+        const NodeId parent = sk.node(id).parent;
+        double spacing = 2.0 * a.radius;
+        if (auto it = anchors.find(parent); it != anchors.end()) spacing = (a.centre - it->second.centre).norm();
+        wrong[id] = excess * excess * a.radius * std::max(spacing, step);
+      }
+      // Per subtree: the wrong nodes' summed score and share (bottom-up). A person deletes the
+      // largest subtree that is mostly wrong (the topmost one whose share reaches
+      // subtreeWrongShare), or a lone wrong node inside a good subtree.
+      const std::vector<NodeId> order = sk.topologicalOrder();
+      std::map<NodeId, double> sumW;
+      std::map<NodeId, std::size_t> count, countW;
+      for (auto it = order.rbegin(); it != order.rend(); ++it) {
+        const NodeId id = *it;
+        auto w = wrong.find(id);
+        sumW[id] += w != wrong.end() ? w->second : 0.0;
+        count[id] += 1;
+        countW[id] += w != wrong.end();
+        const NodeId parent = sk.node(id).parent;
+        if (parent != sketch::kNoNode) {
+          sumW[parent] += sumW[id];
+          count[parent] += count[id];
+          countW[parent] += countW[id];
+        }
+      }
+      auto qualifies = [&](NodeId id) {
+        return id != sk.root() && countW[id] > 0 && double(countW[id]) >= o.subtreeWrongShare * double(count[id]);
+      };
+      std::set<NodeId> covered;
+      for (NodeId id : order) {
+        const NodeId parent = sk.node(id).parent;
+        if (parent != sketch::kNoNode && covered.count(parent)) {
+          covered.insert(id);
+          continue;
+        }
+        if (!qualifies(id) || failedNodes.count(id)) continue;
+        covered.insert(id);
+        Candidate c;
+        c.kind = Candidate::Kind::DeleteSubtree;
+        c.node = id;
+        c.score = sumW[id];
+        c.subtreeSize = count[id];
+        cands.push_back(c);
+      }
+      for (const auto& [id, score] : wrong) {
+        if (covered.count(id) || failedNodes.count(id)) continue;
+        Candidate c;
+        c.kind = Candidate::Kind::DeleteNode;
+        c.node = id;
+        c.score = score;
+        c.subtreeSize = 1;
+        cands.push_back(c);
+      }
+    }
+    if (cands.empty()) break;  // nothing visibly wrong is left
+    std::sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+
+    std::string action;
+    const sketch::Sketch saved = sk;  // for the undo of an edit that made things worse
+    NodeId deleted = sketch::kNoNode;
+    for (const Candidate& c : cands) {
+      if (c.kind != Candidate::Kind::Stroke) {
+        deleted = c.node;
+        if (c.kind == Candidate::Kind::DeleteSubtree) {
+          sketch::deleteSubtree(sk, c.node);
+          action = "delete subtree " + std::to_string(c.node) + " (" + std::to_string(c.subtreeSize) + " nodes)";
+        } else {
+          try {
+            sk.removeNode(c.node, false);
+          } catch (const OptionsError&) {
+            failedNodes.insert(c.node);
+            continue;
+          }
+          action = "delete node " + std::to_string(c.node);
+        }
+        break;
+      }
+      // The stroke: from the last covered sample before the miss (where the person starts, on
+      // the model) to the miss's end, in the view where it is longest on screen and least hidden.
+      const LimbSamples& limb = limbs[c.limb];
+      const std::size_t a = c.from > 0 ? c.from - 1 : 0, b = c.to;
+      int bestView = -1;
+      double bestScore = 0;
+      for (std::size_t v = 0; v < views.size(); ++v) {
+        const edit::ViewPicker& pk = picker(v);
+        double len = 0, visible = 0;
+        Vec2 prev = Vec2::Zero();
+        int n = 0;
+        for (std::size_t k = a; k <= b; ++k) {
+          const Vec3 s = views[v].project(limb.points[k]);
+          if (!s.allFinite()) continue;
+          if (n > 0) len += (s.head<2>() - prev).norm();
+          prev = s.head<2>();
+          ++n;
+          const double depth = pk.depthOf(limb.points[k]);
+          int inFront = 0;
+          for (const auto& cand : pk.near(s.head<2>(), 3.0))
+            if (cand.depth < depth - limb.radii[k] - tol) ++inFront;
+          visible += inFront < 3;
+        }
+        const double score = n > 0 ? len * visible / n : 0;
+        if (score > bestScore) {
+          bestScore = score;
+          bestView = int(v);
+        }
+      }
+      if (bestView < 0 || bestScore < 4.0) {  // under 4 visible pixels: nobody sees it
+        failedLimbs.insert(c.limb);
+        continue;
+      }
+      std::vector<Vec2> stroke;
+      Vec2 last(NAN, NAN);
+      for (std::size_t k = a; k <= b; ++k) {
+        const Vec2 s = views[bestView].project(limb.points[k]).head<2>();
+        if (k != a && k != b && (s - last).norm() < 5.0) continue;  // a hand's polyline: ~5 px apart
+        stroke.push_back(s + Vec2(jitter(rng), jitter(rng)));
+        last = s;
+      }
+      try {
+        const edit::StrokeResult r = edit::drawLimb(sk, picker(bestView), cloud, stroke, edit::nodeAnchors(sk, &rec));
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "stroke limb %zu (%s view, %zu nodes under node %d%s)", c.limb,
+                      viewName(bestView), r.added.size(), r.attachedTo, r.depthJumps ? ", depth jumps" : "");
+        action = buf;
+        failedLimbs.insert(c.limb);  // one stroke per limb: a person does not redraw the same limb
+      } catch (const OptionsError&) {
+        failedLimbs.insert(c.limb);
+        continue;
+      }
+      break;
+    }
+    if (action.empty()) break;
+    rec.update(sk);
+    record(edit, action, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    // The person looks at the result: an edit that made the model worse (the two RMS distances'
+    // sum grew) is undone. It still counts as an edit (the effort was spent); the curve shows
+    // the undone state.
+    const CorrectingStep& now = run.steps.back();
+    const CorrectingStep& before = run.steps[run.steps.size() - 2];
+    if (now.backwardRms + now.forwardRms > before.backwardRms + before.forwardRms) {
+      sk = saved;
+      rec.update(sk);
+      if (deleted != sketch::kNoNode) failedNodes.insert(deleted);
+      CorrectingStep undone = before;
+      undone.edit = now.edit;
+      undone.action = now.action + " — worse, undone";
+      undone.ms = now.ms;
+      run.steps.back() = undone;
+      if (run.editsToTarget == edit) run.editsToTarget = -1;
+    }
+  }
+  return run;
+}
+
+std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& trees, const EvalOptions& eo,
+                                                   const CorrectingUserOptions& o) {
+  std::vector<CorrectingRun> runs;
+  const std::vector<ScanCondition> conditions = evaluationConditions(eo);
+  for (const auto& tree : trees) {
+    for (const auto& c : conditions) {
+      for (int leafState = 0; leafState < 2; ++leafState) {
+        const bool leafOn = leafState == 0;
+        if ((leafOn && !(eo.leafOn && c.leafOn)) || (!leafOn && !(eo.leafOff && c.leafOff))) continue;
+        auto t0 = Clock::now();
+        TreeScan scan = scanTree(tree, c, leafOn, eo.seed);
+        skeleton::AutoSkeletonOptions so =
+            skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, tree.up);
+        so.seed = eo.seed;
+        skeleton::AutoSkeletonResult automatic = skeleton::autoSkeletonSketch(scan.cloud, so);
+        CorrectingUserOptions co = o;
+        co.distance.minSamples = eo.minSamples;
+        co.distance.samples = eo.samples;
+        co.distance.seed = eo.seed;
+        CorrectingRun r = runCorrectingUser(tree, scan.cloud, automatic.sketch, co);
+        r.condition = c.name;
+        r.pattern = c.pattern;
+        r.leaf = leafOn ? "leaf-on" : "leaf-off";
+        if (eo.log) {
+          const CorrectingStep& first = r.steps.front();
+          const CorrectingStep& last = r.steps.back();
+          char buf[320];
+          std::snprintf(buf, sizeof buf,
+                        "%s %s %s correcting user: RMS back/fwd %.3f/%.3f %% -> %.3f/%.3f %% after %d edits; "
+                        "edits to %.2f %%: %d  (%.0f s)",
+                        tree.name.c_str(), c.name.c_str(), r.leaf.c_str(), first.backwardRms, first.forwardRms,
+                        last.backwardRms, last.forwardRms, last.edit, o.targetPct, r.editsToTarget,
+                        std::chrono::duration<double>(Clock::now() - t0).count());
+          eo.log(buf);
+        }
+        runs.push_back(std::move(r));
+      }
+    }
+  }
+  return runs;
+}
+
+namespace {
+
+/// Edits until both RMS are <= `target` (-1: never within the run).
+int editsTo(const CorrectingRun& r, double target) {
+  for (const auto& s : r.steps)
+    if (s.backwardRms <= target && s.forwardRms <= target) return s.edit;
+  return -1;
+}
+
+/// The RMS after `edit` edits (a run that stopped earlier keeps its last values).
+const CorrectingStep& after(const CorrectingRun& r, int edit) {
+  const CorrectingStep* s = &r.steps.front();
+  for (const auto& x : r.steps)
+    if (x.edit <= edit) s = &x;
+  return *s;
+}
+
+std::string f3(double v) {
+  if (!std::isfinite(v)) return "—";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", v);
+  return buf;
+}
+
+std::string edits(int n, int max) { return n < 0 ? "> " + std::to_string(max) : std::to_string(n); }
+
+}  // namespace
+
+std::string correctingMarkdown(const std::vector<CorrectingRun>& runs, const CorrectingUserOptions& o) {
+  std::ostringstream s;
+  s << "# Simulated correcting user\n\n"
+    << "From the automatic skeleton's sketch, the simulated person makes one edit at a time on the worst visible "
+       "error (a stroke along a missed reference limb in the view where it shows best, with "
+    << o.pixelNoise << " px hand jitter; deleting a wrong subtree or node), with the viewer's correction tools. "
+    << "RMS distances are % of the reference diagonal (backward: model to reference; forward: reference to model). "
+    << "Error tolerance " << o.tolerancePct << " %; at most " << o.maxEdits << " edits.\n\n";
+  s << "| tree | condition | leaf | start back / fwd % | after 5 | after " << o.maxEdits
+    << " | edits to 0.6 % | edits to 0.5 % | edits to 0.25 % |\n|---|---|---|---|---|---|---:|---:|---:|\n";
+  for (const auto& r : runs) {
+    const auto& a = r.steps.front();
+    const auto& b = after(r, 5);
+    const auto& c = after(r, o.maxEdits);
+    s << "| " << r.tree << " | " << r.condition << " | " << r.leaf << " | " << f3(a.backwardRms) << " / "
+      << f3(a.forwardRms) << " | " << f3(b.backwardRms) << " / " << f3(b.forwardRms) << " | " << f3(c.backwardRms)
+      << " / " << f3(c.forwardRms) << " | " << edits(editsTo(r, 0.6), o.maxEdits) << " | "
+      << edits(editsTo(r, 0.5), o.maxEdits) << " | " << edits(editsTo(r, 0.25), o.maxEdits) << " |\n";
+  }
+  s << "\nMeans over the trees (RMS after the edits; cases reaching the target):\n\n"
+    << "| leaf | pattern | cases | start back / fwd % | after 5 | after " << o.maxEdits
+    << " | reach 0.6 % | reach 0.5 % | reach 0.25 % |\n|---|---|---:|---|---|---|---:|---:|---:|\n";
+  for (const char* leaf : {"leaf-on", "leaf-off"})
+    for (const char* pattern : {"sphere", "tls"}) {
+      std::vector<const CorrectingRun*> sel;
+      for (const auto& r : runs)
+        if (r.leaf == leaf && r.pattern == pattern) sel.push_back(&r);
+      if (sel.empty()) continue;
+      auto mean = [&](int edit, bool backward) {
+        double sum = 0;
+        for (const auto* r : sel) sum += backward ? after(*r, edit).backwardRms : after(*r, edit).forwardRms;
+        return sum / sel.size();
+      };
+      auto reach = [&](double t) {
+        int n = 0;
+        for (const auto* r : sel) n += editsTo(*r, t) >= 0;
+        return std::to_string(n) + "/" + std::to_string(sel.size());
+      };
+      s << "| " << leaf << " | " << pattern << " | " << sel.size() << " | " << f3(mean(0, true)) << " / "
+        << f3(mean(0, false)) << " | " << f3(mean(5, true)) << " / " << f3(mean(5, false)) << " | "
+        << f3(mean(o.maxEdits, true)) << " / " << f3(mean(o.maxEdits, false)) << " | " << reach(0.6) << " | "
+        << reach(0.5) << " | " << reach(0.25) << " |\n";
+    }
+  return s.str();
+}
+
+void writeCorrectingReport(const fs::path& folder, const std::vector<CorrectingRun>& runs,
+                           const CorrectingUserOptions& o) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (!fs::is_directory(folder)) throw OutputError(folder.string() + ": cannot create the directory");
+  writeFileAtomically(
+      folder / "correcting_user.csv",
+      [&](std::ostream& out) {
+        out << "tree,condition,pattern,leaf,edit,action,nodes,backward_rms_pct,forward_rms_pct,edit_ms\n";
+        out.precision(9);
+        for (const auto& r : runs)
+          for (const auto& s : r.steps)
+            out << r.tree << "," << r.condition << "," << r.pattern << "," << r.leaf << "," << s.edit << ",\""
+                << s.action << "\"," << s.nodes << "," << s.backwardRms << "," << s.forwardRms << "," << s.ms << "\n";
+      },
+      false);
+  writeFileAtomically(
+      folder / "correcting_user.md", [&](std::ostream& out) { out << correctingMarkdown(runs, o); }, false);
+  for (const char* leaf : {"leaf-on", "leaf-off"}) {
+    LineChart c;
+    c.title = std::string("Simulated correcting user, ") + leaf + ": RMS after each edit (mean over trees)";
+    c.xLabel = "edits";
+    c.yLabel = "RMS, % of bbox diagonal";
+    int colour = 0;
+    for (const char* pattern : {"sphere", "tls"}) {
+      std::vector<const CorrectingRun*> sel;
+      for (const auto& r : runs)
+        if (r.leaf == leaf && r.pattern == pattern) sel.push_back(&r);
+      if (sel.empty()) continue;
+      for (bool backward : {true, false}) {
+        std::vector<double> xs, ys;
+        for (int e = 0; e <= o.maxEdits; ++e) {
+          double sum = 0;
+          for (const auto* r : sel) sum += backward ? after(*r, e).backwardRms : after(*r, e).forwardRms;
+          xs.push_back(e);
+          ys.push_back(sum / sel.size());
+        }
+        c.series.push_back(std::string(pattern) + (backward ? " backward" : " forward"));
+        c.xs.push_back(xs);
+        c.ys.push_back(ys);
+        c.styles.push_back(SeriesStyle{colour, true, !backward, false});
+      }
+      ++colour;
+    }
+    if (c.series.empty()) continue;
+    writeSvg(folder / (std::string("correcting_user_") + leaf + ".svg"), renderSvg(c));
+  }
+}
+
+}  // namespace treesketch::eval

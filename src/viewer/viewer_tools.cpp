@@ -1,0 +1,237 @@
+// ViewerState, the correction tools (issue 20): stroke, lasso, region, re-attach, delete subtree,
+// automatic below a node — each an undoable edit over edit/correction_tools.h, and their share of
+// the mouse and keys. Kept apart from viewer_input.cpp, which only forwards to toolMouseDown /
+// toolMouseUp / toolKey.
+#include <cmath>
+#include <limits>
+
+#include "treesketch/edit/correction_tools.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
+#include "treesketch/util/error.h"
+#include "treesketch/viewer/viewer_state.h"
+
+namespace treesketch::viewer {
+
+using geom::Vec2;
+using geom::Vec3;
+
+namespace {
+
+const char* toolName(ViewerState::Tool t) {
+  switch (t) {
+    case ViewerState::Tool::Sketch:
+      return "sketch";
+    case ViewerState::Tool::Stroke:
+      return "stroke (drag along a missing limb, from the node it grows from)";
+    case ViewerState::Tool::Lasso:
+      return "lasso (drag around points that are not wood)";
+    case ViewerState::Tool::Region:
+      return "automatic in region (drag around the region)";
+    case ViewerState::Tool::Reattach:
+      return "re-attach (click the node to move, then its new parent)";
+  }
+  return "?";
+}
+
+std::map<NodeId, edit::NodeAnchor> toEdit(const std::map<NodeId, std::pair<Vec3, double>>& a) {
+  std::map<NodeId, edit::NodeAnchor> out;
+  for (const auto& [id, v] : a) out[id] = edit::NodeAnchor{v.first, v.second};
+  return out;
+}
+
+}  // namespace
+
+void ViewerState::setTool(Tool tool) {
+  tool_ = tool;
+  toolPath_.clear();
+  ++sceneVersion_;
+  info(std::string("tool: ") + toolName(tool));
+}
+
+std::map<NodeId, std::pair<Vec3, double>> ViewerState::anchorsForTools() const {
+  std::map<NodeId, std::pair<Vec3, double>> out;
+  for (const auto& [id, node] : sketch_.nodes()) {
+    NodeFitView f = recon_->nodeFit(id);
+    if (f.status == NodeStatus::Fitted)
+      out[id] = {f.circle.centre, f.circle.radius};
+    else if (node.kept)
+      out[id] = {node.kept->centre, node.kept->radius};
+    else if (!node.isScreenNode())
+      out[id] = {node.point, 0.0};
+  }
+  return out;
+}
+
+bool ViewerState::strokeLimb(const std::vector<Vec2>& stroke) {
+  if (cloud_.empty()) {
+    error("stroke: open a point cloud first");
+    return false;
+  }
+  edit::StrokeResult r;
+  const auto anchors = toEdit(anchorsForTools());
+  bool ok = edit("draw limb", "draw limb", "", [&] {
+    const geom::Camera cam = orbit_.camera();
+    const sketch::Sketch& sk = sketch_;
+    edit::ViewPicker picker(cloud_, cam, 4.0, [&sk](const Vec3& p) { return sk.isNotWood(p); });
+    r = edit::drawLimb(sketch_, picker, cloud_, stroke, anchors);
+    selected_ = active_ = r.added.back();
+  });
+  if (ok) {
+    info("drew a limb: " + std::to_string(r.added.size()) + " nodes under node " + std::to_string(r.attachedTo));
+    if (!r.warning.empty()) info("stroke: " + r.warning);
+  }
+  return ok;
+}
+
+bool ViewerState::lassoNotWood(const std::vector<Vec2>& polygon) {
+  if (cloud_.empty()) {
+    error("lasso: open a point cloud first");
+    return false;
+  }
+  std::size_t marked = 0;
+  bool ok = edit("not-wood lasso", "not-wood lasso", "",
+                 [&] { marked = edit::lassoNotWood(sketch_, cloud_, orbit_.camera(), polygon); });
+  if (ok) {
+    colorsStale_ = true;
+    info("lasso: " + std::to_string(marked) + " points marked not-wood (left out of fits and the automatic skeleton)");
+  }
+  return ok;
+}
+
+bool ViewerState::clearNotWood() {
+  if (sketch_.notWood().empty()) {
+    info("clear not-wood: no lasso to clear");
+    return false;
+  }
+  bool ok = edit("clear not-wood", "clear not-wood lassos", "", [&] { sketch_.clearNotWood(); });
+  if (ok) colorsStale_ = true;
+  return ok;
+}
+
+bool ViewerState::deleteSubtree(NodeId id) {
+  return edit("delete subtree", "delete subtree " + std::to_string(id), "", [&] {
+    const NodeId parent = sketch_.node(id).parent;
+    sketch::deleteSubtree(sketch_, id);
+    selected_ = kNoNode;
+    active_ = parent != kNoNode && sketch_.contains(parent) ? parent : kNoNode;
+  });
+}
+
+bool ViewerState::reattachNode(NodeId id, NodeId newParent) {
+  bool ok = edit("re-attach", "re-attach node " + std::to_string(id) + " to " + std::to_string(newParent), "",
+                 [&] { sketch::reattach(sketch_, id, newParent); });
+  if (ok) info("node " + std::to_string(id) + " now grows from node " + std::to_string(newParent));
+  return ok;
+}
+
+bool ViewerState::automaticBelow(NodeId id) {
+  if (cloud_.empty()) {
+    error("automatic below: open a point cloud first");
+    return false;
+  }
+  edit::AutoHereResult r;
+  const auto anchors = toEdit(anchorsForTools());
+  bool ok = edit("automatic below", "automatic below node " + std::to_string(id), "", [&] {
+    edit::AutoHereOptions o;
+    o.skeleton = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOff, up_);
+    r = edit::automaticBelow(sketch_, cloud_, id, anchors, o);
+  });
+  if (ok)
+    info("automatic below node " + std::to_string(id) + ": " + std::to_string(r.added.size()) + " nodes added (" +
+         std::to_string(r.duplicates) + " repeats of existing nodes dropped, " + std::to_string(r.regionPoints) +
+         " points)");
+  return ok;
+}
+
+bool ViewerState::automaticInRegion(const std::vector<Vec2>& polygon) {
+  if (cloud_.empty()) {
+    error("automatic in region: open a point cloud first");
+    return false;
+  }
+  edit::AutoHereResult r;
+  const auto anchors = toEdit(anchorsForTools());
+  bool ok = edit("automatic in region", "automatic in region", "", [&] {
+    edit::AutoHereOptions o;
+    o.skeleton = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOff, up_);
+    r = edit::automaticInRegion(sketch_, cloud_, orbit_.camera(), polygon, anchors, o);
+    if (active_ == kNoNode && !sketch_.empty()) active_ = sketch_.root();
+  });
+  if (ok)
+    info("automatic in region: " + std::to_string(r.added.size()) + " nodes added (" + std::to_string(r.duplicates) +
+         " repeats dropped, " + std::to_string(r.regionPoints) + " points)");
+  return ok;
+}
+
+double ViewerState::selectedDepth() const {
+  if (selected_ == kNoNode || !sketch_.contains(selected_)) return std::numeric_limits<double>::quiet_NaN();
+  NodeFitView f = recon_->nodeFit(selected_);
+  if (f.status != NodeStatus::Fitted) return std::numeric_limits<double>::quiet_NaN();
+  return (f.circle.centre - orbit_.camera().eye()).norm();
+}
+
+// ---- input -----------------------------------------------------------------------------------------
+
+bool ViewerState::toolMouseDown(const Vec2& pos, MouseButton button, int mods) {
+  if (tool_ == Tool::Sketch || button != MouseButton::Left || (mods & kModAlt)) return false;
+  gesture_ = Gesture::ToolPath;
+  gestureNode_ = tool_ == Tool::Reattach ? nodeAt(pos) : kNoNode;
+  toolPath_ = {pos};
+  return true;
+}
+
+bool ViewerState::toolMouseUp(const Vec2& pos) {
+  std::vector<Vec2> path = std::move(toolPath_);
+  toolPath_.clear();
+  if (path.empty() || path.back() != pos) path.push_back(pos);
+  ++sceneVersion_;
+  switch (tool_) {
+    case Tool::Sketch:
+      return false;
+    case Tool::Stroke:
+      return strokeLimb(path);
+    case Tool::Lasso:
+      return lassoNotWood(path);
+    case Tool::Region:
+      return automaticInRegion(path);
+    case Tool::Reattach:
+      if (gestureNode_ == kNoNode) {
+        error("re-attach: click on a node");
+        return false;
+      }
+      if (selected_ == kNoNode || selected_ == gestureNode_) {
+        selectNode(gestureNode_);
+        info("re-attach: now click the new parent of node " + std::to_string(gestureNode_));
+        return true;
+      }
+      return reattachNode(selected_, gestureNode_);
+  }
+  return false;
+}
+
+bool ViewerState::toolKey(const std::string& key, int mods) {
+  if (mods & (kModCtrl | kModAlt)) return false;
+  auto toggle = [&](Tool t) { setTool(tool_ == t ? Tool::Sketch : t); };
+  if (key == "g") {
+    toggle(Tool::Stroke);
+  } else if (key == "l") {
+    toggle(Tool::Lasso);
+  } else if (key == "r") {
+    toggle(Tool::Region);
+  } else if (key == "p") {
+    toggle(Tool::Reattach);
+  } else if (key == "h") {
+    if (selected_ == kNoNode) {
+      error("automatic below: select a node first");
+    } else {
+      automaticBelow(selected_);
+    }
+  } else if (key == "escape" && tool_ != Tool::Sketch) {
+    setTool(Tool::Sketch);
+    return false;  // Escape also clears the selection, as before
+  } else {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace treesketch::viewer
