@@ -20,6 +20,7 @@
 #include <string>
 #include <thread>
 
+#include "dialogs.h"
 #include "panels.h"
 #include "renderer.h"
 #include "screenshot.h"
@@ -194,6 +195,7 @@ class App {
     else {
       gui::drawPanels(state_, panel_, ww, wh);
       gui::drawMarkers(state_);
+      gui::drawRecoveryDialog(state_);
     }
     ImGui::Render();
     glViewport(0, 0, fbw, fbh);
@@ -378,6 +380,8 @@ int run(const Args& args) {
         app.frame();
       }
     }
+    // A clean end: the autosave goes when it holds nothing unsaved; else it is offered next time.
+    app.state().closeSession();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

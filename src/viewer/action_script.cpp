@@ -1,9 +1,11 @@
 #include "treesketch/viewer/action_script.h"
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "treesketch/util/error.h"
 
@@ -92,6 +94,7 @@ const Expectation kExpectations[] = {
     {"errors", [](const ViewerState& s) { return double(s.errorCount()); }, false},
     {"meshTriangles", [](const ViewerState& s) { return double(s.mesh().triangles.size()); }, true},
     {"kept", [](const ViewerState& s) { return double(s.sketch().keptCircleCount()); }, false},
+    {"recoveryOffered", [](const ViewerState& s) { return double(s.recoveryPending()); }, false},
 };
 
 /// The entry of `table` called `name`, or nullptr.
@@ -251,6 +254,15 @@ class Parser {
       const json& p = j[verb];
       std::string path = p.is_null() ? std::string() : string(p, index, verb);
       return fromString(path.empty() ? verb : verb + " " + path, index);
+    } else if (j.contains("recovery")) {
+      a.kind = Kind::Recovery;
+      a.name = string(j["recovery"], index, "recovery");
+      if (a.name != "restore" && a.name != "discard" && a.name != "keep")
+        fail(index, "recovery must be restore, discard or keep, got '" + a.name + "'");
+    } else if (j.contains("sleep")) {
+      a.kind = Kind::Sleep;
+      a.value = number(j["sleep"], index, "sleep");
+      if (a.value < 0) fail(index, "sleep: expected seconds >= 0");
     } else if (j.contains("wait")) {
       a.kind = Kind::Wait;
       a.steps = static_cast<int>(number(j["wait"], index, "wait"));
@@ -375,6 +387,10 @@ std::string describe(const ScriptAction& a) {
       return "screenshot " + a.path.string();
     case Kind::Wait:
       return "wait " + std::to_string(a.steps);
+    case Kind::Sleep:
+      return "sleep " + std::to_string(a.value) + " s";
+    case Kind::Recovery:
+      return "recovery " + a.name;
     case Kind::Expect: {
       std::string s = "expect";
       for (const auto& [k, v] : a.expect) s += " " + k + "=" + std::to_string(static_cast<long long>(v));
@@ -445,6 +461,19 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
           break;
         case Kind::Wait:
           for (int i = 0; i < a.steps && hooks.frame; ++i) hooks.frame();
+          break;
+        case Kind::Sleep: {
+          auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(a.value);
+          while (std::chrono::steady_clock::now() < until) {
+            if (hooks.frame) hooks.frame();
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+          }
+          break;
+        }
+        case Kind::Recovery:
+          state.resolveRecovery(a.name == "restore"   ? ViewerState::RecoveryChoice::Restore
+                                : a.name == "discard" ? ViewerState::RecoveryChoice::Discard
+                                                      : ViewerState::RecoveryChoice::Keep);
           break;
         case Kind::Expect:
           for (const auto& [k, v] : a.expect) {

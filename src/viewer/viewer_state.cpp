@@ -79,9 +79,8 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     undo_.clear();
     lastEditKey_.clear();
     selected_ = active_ = kNoNode;
-    if (!sourcePath.empty()) {
-      autosavePath_ = sourcePath.parent_path() / (sourcePath.stem().string() + ".autosave.sketch.json");
-    }
+    dirty_ = false;
+
     orbit_.setSceneBounds(bounds_);
     orbit_.preset(geom::PresetView::Front, up_);
     colorsStale_ = true;
@@ -89,6 +88,10 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     rebuild();
     info("opened " + (sourcePath.empty() ? std::string("cloud") : sourcePath.string()) + ": " +
          std::to_string(cloud_.size()) + " points");
+    // The whole file name, not the stem: tree.las and tree.xyz in one folder are two clouds. Set
+    // last, so that the offer of an earlier autosave is the message shown.
+    if (!sourcePath.empty())
+      setAutosavePath(sourcePath.parent_path() / (sourcePath.filename().string() + ".autosave.sketch.json"));
   });
 }
 
@@ -121,6 +124,7 @@ bool ViewerState::openFile(const std::filesystem::path& path, geom::UpAxis up, c
 // ---- editing -------------------------------------------------------------------------------------
 
 void ViewerState::endEdit() {
+  dirty_ = true;
   fixSelection();
   rebuild();
   // A drag is one edit: it is saved once, when the button is released.
@@ -145,7 +149,8 @@ void ViewerState::rebuild() {
 }
 
 void ViewerState::autosave() {
-  if (autosavePath_.empty()) return;
+  // An earlier session's autosave waits for the person's choice: never overwrite it before.
+  if (autosavePath_.empty() || recoveryPending_) return;
   runAction("autosave to " + autosavePath_.string(), [&] {
     if (sketch_.empty()) {
       // An empty sketch cannot be a valid sketch file; keep the last saved work instead.
@@ -396,6 +401,7 @@ bool ViewerState::saveSketch(const std::filesystem::path& path) {
   return runAction("save sketch", [&] {
     if (sketch_.empty()) throw OptionsError("the sketch is empty: nothing to save");
     io::writeSketch(path, sketch_);
+    dirty_ = false;
     info("saved sketch to " + path.string() + " (" + std::to_string(sketch_.size()) + " nodes)");
   });
 }
@@ -408,6 +414,7 @@ bool ViewerState::loadSketch(const std::filesystem::path& path) {
     selected_ = kNoNode;
     active_ = kNoNode;
   });
+  if (ok) dirty_ = false;
   if (ok) info("loaded sketch " + path.string() + " (" + std::to_string(sketch_.size()) + " nodes)");
   return ok;
 }

@@ -18,9 +18,12 @@
 //              "refit"|"refitAll"}
 //   {"save": PATH}, {"load": PATH}, {"export": PATH}, {"screenshot": PATH}   ("save"/"load"
 //                                          without a path use the session's sketch path)
+//   {"recovery": "restore"|"discard"|"keep"}   answers the offer of an earlier session's autosave
 //   {"wait": frames}
+//   {"sleep": seconds}                     real time, drawing a frame every 0.1 s (a person idling)
 //   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
-//               "errors": n, "meshTriangles": n, "kept": n}}   ("meshTriangles" checks "at least
+//               "errors": n, "meshTriangles": n, "kept": n, "recoveryOffered": 0|1}}   ("meshTriangles" checks "at
+//               least
 //                                          n"; "kept": nodes with a kept circle)
 // Paths are relative to the current directory.
 #pragma once
@@ -54,6 +57,8 @@ struct ScriptAction {
     Export,
     Screenshot,
     Wait,
+    Sleep,
+    Recovery,
     Expect
   };
   Kind kind = Kind::Wait;

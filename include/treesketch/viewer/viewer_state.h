@@ -5,10 +5,10 @@
 // points, the tube mesh). The desktop window (apps/viewer) only draws this and forwards input;
 // tests and the script runner drive it directly. No action ever throws: a failure becomes an error
 // status message and the sketch is kept.
-// ViewerState is implemented in three files by concern: src/viewer/viewer_state.cpp (the state
+// ViewerState is implemented in several files by concern: src/viewer/viewer_state.cpp (the state
 // and its edit commands: cloud, sketch edits, undo, save/load), viewer_input.cpp (mouse, wheel,
-// keys and the view they steer) and viewer_draw.cpp (what is drawn: colours, markers, lines,
-// status).
+// keys and the view they steer), viewer_draw.cpp (what is drawn: colours, markers, lines,
+// status), recovery.cpp (the earlier session's autosave offered back).
 #pragma once
 
 #include <array>
@@ -153,9 +153,11 @@ class ViewerState {
 
   // ---- data -------------------------------------------------------------------------------------
   /// Takes a cloud (world units, `up` axis): resets the sketch, history and selection, frames the
-  /// view (front preset). `sourcePath` names it in messages and places the autosave file beside it
-  /// ("<stem>.autosave.sketch.json"); empty: no autosave unless setAutosavePath is called.
-  /// Returns false (error status) for an empty cloud.
+  /// view (front preset). `sourcePath` names it in messages and places the autosave file beside it,
+  /// named after the whole file name ("tree.las" -> "tree.las.autosave.sketch.json", so tree.las
+  /// and tree.xyz in one folder keep apart); empty: no autosave unless setAutosavePath is called.
+  /// An autosave found there is offered back (recoveryPending()). Returns false (error status) for
+  /// an empty cloud.
   bool setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::filesystem::path& sourcePath = {});
   /// Reads a cloud file (io::readPointCloud) and calls setCloud. Mesh files (.obj, PLY with faces)
   /// are scanned first with the sphere scanner's defaults; `progress` reports the scan.
@@ -167,12 +169,33 @@ class ViewerState {
   std::uint64_t cloudVersion() const { return cloudVersion_; }
   geom::UpAxis up() const { return up_; }
   const sketch::Sketch& sketch() const { return sketch_; }
-  /// Where the sketch is autosaved after every edit (empty: never).
-  void setAutosavePath(const std::filesystem::path& path) { autosavePath_ = path; }
+  /// Where the sketch is autosaved after every edit (empty: never). An existing file there is work
+  /// from an earlier session (a crash, or a window closed with unsaved edits): it is offered back
+  /// (recoveryPending()) and never overwritten before resolveRecovery() is called.
+  void setAutosavePath(const std::filesystem::path& path);
   const std::filesystem::path& autosavePath() const { return autosavePath_; }
   /// Where Ctrl+S saves the sketch (empty: Ctrl+S reports that a path is needed).
   void setSketchPath(const std::filesystem::path& path) { sketchPath_ = path; }
   const std::filesystem::path& sketchPath() const { return sketchPath_; }
+
+  // ---- crash recovery ---------------------------------------------------------------------------
+  /// What to do with an autosave found at start: load it (an undoable edit), delete it, or keep
+  /// it for later (renamed "<autosave>.kept-<date>-<time>.sketch.json", loadable by hand).
+  enum class RecoveryChoice { Restore, Discard, Keep };
+  /// An earlier session's autosave is waiting for the person's choice. Until then autosave writes
+  /// nothing (edits still work; they are autosaved once the choice is made).
+  bool recoveryPending() const { return recoveryPending_; }
+  /// Nodes in the waiting autosave (0 when it cannot be read; recoveryError() says why).
+  std::size_t recoveryNodes() const { return recoveryNodes_; }
+  const std::string& recoveryError() const { return recoveryError_; }
+  /// Applies the choice; false (error status) when nothing is pending or the file cannot be
+  /// read/moved (the file is then left where it is and the offer stays).
+  bool resolveRecovery(RecoveryChoice choice);
+  /// Edits since the sketch was last saved, loaded or the cloud opened.
+  bool hasUnsavedChanges() const { return dirty_; }
+  /// A clean end of the session: the autosave is deleted when there is nothing it would bring
+  /// back (no unsaved edits and no pending offer); else it stays, to be offered next time.
+  void closeSession();
 
   // ---- view -------------------------------------------------------------------------------------
   /// The 3D view's rectangle in window pixels (top-left origin).
@@ -296,6 +319,8 @@ class ViewerState {
   void endEdit();
   void rebuild();
   void autosave();
+  /// Looks for an earlier session's autosave at autosavePath_ (sets recoveryPending_).
+  void detectRecovery();
   void resetReconstruction();
   void fixSelection();
   bool sameAsCurrent(const geom::Camera& cam) const;
@@ -332,6 +357,10 @@ class ViewerState {
   sketch::NodeId gestureNode_ = sketch::kNoNode;
   std::uint64_t dragSerial_ = 0;
   bool autosavePending_ = false;
+  bool recoveryPending_ = false;
+  std::size_t recoveryNodes_ = 0;
+  std::string recoveryError_;
+  bool dirty_ = false;
 
   std::vector<Rgb> colors_;
   ColorMode colorsMode_ = ColorMode::Height;

@@ -1,0 +1,14 @@
+// The window's modal questions and overlays that sit over the 3D view: the offer of an earlier
+// session's autosave (restore / discard / keep for later). Each reads and answers one ViewerState
+// question; nothing here keeps sketch state.
+#pragma once
+
+#include "treesketch/viewer/viewer_state.h"
+
+namespace treesketch::gui {
+
+/// While state.recoveryPending(): a modal "Restore earlier work?" with Restore / Discard / Keep for
+/// later. Call between ImGui::NewFrame and Render, after the panels.
+void drawRecoveryDialog(viewer::ViewerState& state);
+
+}  // namespace treesketch::gui
