@@ -103,7 +103,7 @@ void displaySection(viewer::ViewerState& state) {
   d.meshStyle = static_cast<viewer::MeshStyle>(ms);
   ImGui::Checkbox("cloud", &d.showCloud);
   ImGui::SameLine();
-  ImGui::Checkbox("nodes", &d.showNodes);
+  ImGui::Checkbox("nodes##showNodes", &d.showNodes);
   ImGui::SameLine();
   ImGui::Checkbox("circles", &d.showCircles);
   ImGui::Checkbox("sampling region of the selected node", &d.showSamplingRegion);
@@ -155,7 +155,8 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
     if (ImGui::Button("Screenshot")) panel.screenshotRequested = true;
   }
   if (ImGui::CollapsingHeader("Sketch", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::SliderInt("nodes", &panel.autoNodes, 2, 40);
+    // "##": the label shows "nodes", the ID is unique (View has a "nodes" checkbox too).
+    ImGui::SliderInt("nodes##autoNodes", &panel.autoNodes, 2, 40);
     ImGui::SameLine();
     if (ImGui::Button("Auto")) state.autoSketchUniform(panel.autoNodes);
     if (ImGui::Button("Auto skeleton")) state.autoSketchSkeleton(panel.autoLeafOn);
