@@ -33,4 +33,21 @@ void drawRecoveryDialog(viewer::ViewerState& state) {
   ImGui::EndPopup();
 }
 
+void drawConfirmDialog(viewer::ViewerState& state) {
+  const char* title = "Replace the sketch?##confirm";
+  if (state.confirmationPending() && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  ImGui::SetNextWindowSize(ImVec2(420, 0));
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove)) return;
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextUnformatted(state.confirmationQuestion().c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::Separator();
+  if (ImGui::Button("Replace")) state.answerConfirmation(true);
+  ImGui::SameLine();
+  if (ImGui::Button("Keep my sketch") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+    state.answerConfirmation(false);
+  if (!state.confirmationPending()) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+}
+
 }  // namespace treesketch::gui

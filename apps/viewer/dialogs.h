@@ -1,5 +1,6 @@
 // The window's modal questions and overlays that sit over the 3D view: the offer of an earlier
-// session's autosave (restore / discard / keep for later). Each reads and answers one ViewerState
+// session's autosave (restore / discard / keep for later), the question before an automatic sketch
+// replaces hand edits. Each reads and answers one ViewerState
 // question; nothing here keeps sketch state.
 #pragma once
 
@@ -10,5 +11,7 @@ namespace treesketch::gui {
 /// While state.recoveryPending(): a modal "Restore earlier work?" with Restore / Discard / Keep for
 /// later. Call between ImGui::NewFrame and Render, after the panels.
 void drawRecoveryDialog(viewer::ViewerState& state);
+/// While state.confirmationPending(): a modal with the question, Replace and Keep my sketch.
+void drawConfirmDialog(viewer::ViewerState& state);
 
 }  // namespace treesketch::gui

@@ -196,6 +196,7 @@ class App {
       gui::drawPanels(state_, panel_, ww, wh);
       gui::drawMarkers(state_);
       gui::drawRecoveryDialog(state_);
+      gui::drawConfirmDialog(state_);
     }
     ImGui::Render();
     glViewport(0, 0, fbw, fbh);

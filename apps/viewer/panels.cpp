@@ -158,8 +158,8 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
     // "##": the label shows "nodes", the ID is unique (View has a "nodes" checkbox too).
     ImGui::SliderInt("nodes##autoNodes", &panel.autoNodes, 2, 40);
     ImGui::SameLine();
-    if (ImGui::Button("Auto")) state.autoSketchUniform(panel.autoNodes);
-    if (ImGui::Button("Auto skeleton")) state.autoSketchSkeleton(panel.autoLeafOn);
+    if (ImGui::Button("Auto")) state.requestAutoSketchUniform(panel.autoNodes);
+    if (ImGui::Button("Auto skeleton")) state.requestAutoSketchSkeleton(panel.autoLeafOn);
     ImGui::SameLine();
     ImGui::Checkbox("in leaf", &panel.autoLeafOn);
     ImGui::SameLine();

@@ -29,8 +29,8 @@ const Button kButtons[] = {
     {"redo", [](ViewerState& s) { s.redo(); }},
     {"fit", [](ViewerState& s) { s.fitView(); }},
     {"clear", [](ViewerState& s) { s.clearSketch(); }},
-    {"autoSketch", [](ViewerState& s) { s.autoSketchUniform(); }},
-    {"autoSkeleton", [](ViewerState& s) { s.autoSketchSkeleton(); }},
+    {"autoSketch", [](ViewerState& s) { s.requestAutoSketchUniform(); }},
+    {"autoSkeleton", [](ViewerState& s) { s.requestAutoSketchSkeleton(); }},
     {"delete", [](ViewerState& s) { s.deleteSelected(false); }},
     {"deleteSubtree", [](ViewerState& s) { s.deleteSelected(true); }},
     {"refit", [](ViewerState& s) { s.refitSelected(); }},
@@ -95,6 +95,8 @@ const Expectation kExpectations[] = {
     {"meshTriangles", [](const ViewerState& s) { return double(s.mesh().triangles.size()); }, true},
     {"kept", [](const ViewerState& s) { return double(s.sketch().keptCircleCount()); }, false},
     {"recoveryOffered", [](const ViewerState& s) { return double(s.recoveryPending()); }, false},
+    {"confirmPending", [](const ViewerState& s) { return double(s.confirmationPending()); }, false},
+    {"handEdits", [](const ViewerState& s) { return double(s.hasHandEdits()); }, false},
 };
 
 /// The entry of `table` called `name`, or nullptr.
@@ -254,6 +256,10 @@ class Parser {
       const json& p = j[verb];
       std::string path = p.is_null() ? std::string() : string(p, index, verb);
       return fromString(path.empty() ? verb : verb + " " + path, index);
+    } else if (j.contains("confirm")) {
+      a.kind = Kind::Confirm;
+      if (!j["confirm"].is_boolean()) fail(index, "confirm: expected true or false");
+      a.value = j["confirm"].get<bool>() ? 1.0 : 0.0;
     } else if (j.contains("recovery")) {
       a.kind = Kind::Recovery;
       a.name = string(j["recovery"], index, "recovery");
@@ -391,6 +397,8 @@ std::string describe(const ScriptAction& a) {
       return "sleep " + std::to_string(a.value) + " s";
     case Kind::Recovery:
       return "recovery " + a.name;
+    case Kind::Confirm:
+      return a.value != 0 ? "confirm yes" : "confirm no";
     case Kind::Expect: {
       std::string s = "expect";
       for (const auto& [k, v] : a.expect) s += " " + k + "=" + std::to_string(static_cast<long long>(v));
@@ -474,6 +482,10 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
           state.resolveRecovery(a.name == "restore"   ? ViewerState::RecoveryChoice::Restore
                                 : a.name == "discard" ? ViewerState::RecoveryChoice::Discard
                                                       : ViewerState::RecoveryChoice::Keep);
+          break;
+        case Kind::Confirm:
+          if (!state.confirmationPending()) throw OptionsError("no question is waiting");
+          state.answerConfirmation(a.value != 0);
           break;
         case Kind::Expect:
           for (const auto& [k, v] : a.expect) {

@@ -167,7 +167,7 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
   } else if (key == "3") {
     presetView(geom::PresetView::Top);
   } else if (key == "a") {
-    autoSketchUniform();
+    requestAutoSketchUniform();
   } else if (key == "w") {
     display_.meshStyle = static_cast<MeshStyle>((static_cast<int>(display_.meshStyle) + 1) % 3);
   } else if (key == "c") {

@@ -125,6 +125,7 @@ bool ViewerState::openFile(const std::filesystem::path& path, geom::UpAxis up, c
 
 void ViewerState::endEdit() {
   dirty_ = true;
+  untouchedAuto_ = false;  // the automatic sketches set it again after their edit
   fixSelection();
   rebuild();
   // A drag is one edit: it is saved once, when the button is released.
@@ -349,12 +350,49 @@ bool ViewerState::autoSketchUniform(int nodes) {
     error("automatic sketch: open a point cloud first");
     return false;
   }
-  return edit("automatic sketch", "uniform automatic sketch", "", [&] {
+  bool ok = edit("automatic sketch", "uniform automatic sketch", "", [&] {
     sketch_ = sketch::uniformAutoSketch(cloud_, orbit_.camera(), nodes, up_);
     selected_ = kNoNode;
     std::vector<NodeId> order = sketch_.topologicalOrder();
     active_ = order.empty() ? kNoNode : order.back();
   });
+  if (ok) untouchedAuto_ = true;
+  return ok;
+}
+
+bool ViewerState::askBeforeReplacing(const std::string& question, std::function<bool()> action) {
+  if (!hasHandEdits()) return action();
+  pendingQuestion_ = question;
+  pendingAction_ = std::move(action);
+  info(question);
+  return false;
+}
+
+bool ViewerState::answerConfirmation(bool yes) {
+  if (!pendingAction_) {
+    error("confirm: no question is waiting");
+    return false;
+  }
+  std::function<bool()> action = std::move(pendingAction_);
+  pendingAction_ = nullptr;
+  pendingQuestion_.clear();
+  if (!yes) {
+    info("kept the sketch (" + std::to_string(sketch_.size()) + " nodes)");
+    return false;
+  }
+  return action();
+}
+
+bool ViewerState::requestAutoSketchUniform(int nodes) {
+  return askBeforeReplacing("Replace the sketch (" + std::to_string(sketch_.size()) +
+                                " nodes, with hand edits) by a uniform automatic sketch? (undoable)",
+                            [this, nodes] { return autoSketchUniform(nodes); });
+}
+
+bool ViewerState::requestAutoSketchSkeleton(bool leafOn) {
+  return askBeforeReplacing("Replace the sketch (" + std::to_string(sketch_.size()) +
+                                " nodes, with hand edits) by the automatic skeleton? (undoable)",
+                            [this, leafOn] { return autoSketchSkeleton(leafOn); });
 }
 
 bool ViewerState::autoSketchSkeleton(bool leafOn) {
@@ -362,7 +400,7 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
     error("automatic skeleton sketch: open a point cloud first");
     return false;
   }
-  return edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
+  bool ok = edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
     const skeleton::AutoSkeletonOptions options =
         skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, up_);
     skeleton::AutoSkeletonResult result = skeleton::autoSkeletonSketch(cloud_, options);
@@ -374,6 +412,8 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
          " nodes keep the automatic model's circles "
          "(edit a node, or Refit, to fit it from the cloud)");
   });
+  if (ok) untouchedAuto_ = true;
+  return ok;
 }
 
 bool ViewerState::refitSelected() {

@@ -19,10 +19,12 @@
 //   {"save": PATH}, {"load": PATH}, {"export": PATH}, {"screenshot": PATH}   ("save"/"load"
 //                                          without a path use the session's sketch path)
 //   {"recovery": "restore"|"discard"|"keep"}   answers the offer of an earlier session's autosave
+//   {"confirm": true|false}               answers the question waiting (replace hand edits?)
 //   {"wait": frames}
 //   {"sleep": seconds}                     real time, drawing a frame every 0.1 s (a person idling)
 //   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
-//               "errors": n, "meshTriangles": n, "kept": n, "recoveryOffered": 0|1}}   ("meshTriangles" checks "at
+//               "errors": n, "meshTriangles": n, "kept": n, "recoveryOffered": 0|1,
+//               "confirmPending": 0|1, "handEdits": 0|1}}   ("meshTriangles" checks "at
 //               least
 //                                          n"; "kept": nodes with a kept circle)
 // Paths are relative to the current directory.
@@ -59,6 +61,7 @@ struct ScriptAction {
     Wait,
     Sleep,
     Recovery,
+    Confirm,
     Expect
   };
   Kind kind = Kind::Wait;

@@ -231,8 +231,8 @@ class ViewerState {
   /// the subtree too), "ctrl+z"-style names are accepted (mods parsed from the prefix), "z" with
   /// Ctrl (undo), "y" with Ctrl or "z" with Ctrl+Shift (redo), "s" with Ctrl (save to sketchPath()), "escape"
   /// (deselect), "f" (fit), "o" (ortho/perspective), "1"/"2"/"3" (front/side/top view),
-  /// "a" (uniform automatic sketch), "w" (cycle mesh style), "c" (cycle colour mode). Returns false
-  /// for a key with no binding.
+  /// "a" (uniform automatic sketch; asks first when it would replace hand edits), "w" (cycle mesh style), "c" (cycle
+  /// colour mode). Returns false for a key with no binding.
   bool keyPress(const std::string& key, int mods = kModNone);
 
   // ---- sketch actions (each one undoable, rebuilds, autosaves; false + error status on failure) --
@@ -257,6 +257,20 @@ class ViewerState {
   /// keeping its model circle, so the view shows the automatic model and an edit re-fits only the
   /// nodes it touches). leafOn: the tree was scanned in leaf (skeleton::leafOnSkeletonOptions).
   bool autoSketchSkeleton(bool leafOn = false);
+  /// What the window's buttons and the A key call: the two automatic sketches above, but when the
+  /// sketch holds a person's edits (hasHandEdits()) they first ask (confirmationPending()) and run
+  /// only on answerConfirmation(true). Either way the replacement is one undoable edit.
+  bool requestAutoSketchUniform(int nodes = 12);
+  bool requestAutoSketchSkeleton(bool leafOn = false);
+  /// The sketch is not empty and is not an untouched automatic sketch (a node was added, moved or
+  /// changed by hand, a sketch was loaded or restored, or an edit was undone since).
+  bool hasHandEdits() const { return !sketch_.empty() && !untouchedAuto_; }
+  /// A question waits for a yes/no answer (the window shows it as a modal).
+  bool confirmationPending() const { return static_cast<bool>(pendingAction_); }
+  const std::string& confirmationQuestion() const { return pendingQuestion_; }
+  /// Yes runs the waiting action, no drops it (an info message says so). False when nothing waits
+  /// or the action failed.
+  bool answerConfirmation(bool yes);
   /// Drops the selected node's kept circle (it is then fitted from the cloud) / every node's.
   /// Undoable; an error message when there is nothing to refit.
   bool refitSelected();
@@ -357,6 +371,11 @@ class ViewerState {
   sketch::NodeId gestureNode_ = sketch::kNoNode;
   std::uint64_t dragSerial_ = 0;
   bool autosavePending_ = false;
+  bool untouchedAuto_ = false;
+  std::function<bool()> pendingAction_;
+  std::string pendingQuestion_;
+  /// Runs `action` now, or asks `question` first when the sketch has hand edits.
+  bool askBeforeReplacing(const std::string& question, std::function<bool()> action);
   bool recoveryPending_ = false;
   std::size_t recoveryNodes_ = 0;
   std::string recoveryError_;
