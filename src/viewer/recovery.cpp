@@ -71,6 +71,7 @@ bool ViewerState::resolveRecovery(RecoveryChoice choice) {
         selected_ = kNoNode;
         active_ = kNoNode;
       });
+      if (ok) activeChosen_ = false;
       if (ok) info("restored " + std::to_string(sketch_.size()) + " nodes from " + file.string());
       break;
     }

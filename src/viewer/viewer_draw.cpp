@@ -199,6 +199,20 @@ NodeId ViewerState::nodeAt(const Vec2& screen) const {
   return best;
 }
 
+NodeId ViewerState::nearestMarker(const Vec2& screen) const {
+  NodeId best = kNoNode;
+  double bestD = std::numeric_limits<double>::infinity();
+  for (const NodeMarker& m : nodeMarkers()) {
+    if (!m.visible || !m.screen.allFinite()) continue;
+    double d = (m.screen - screen).norm();
+    if (d < bestD) {
+      bestD = d;
+      best = m.id;
+    }
+  }
+  return best;
+}
+
 SamplingRegion ViewerState::samplingRegion() const {
   SamplingRegion r;
   if (selected_ == kNoNode || !sketch_.contains(selected_)) return r;

@@ -63,6 +63,7 @@ void ViewerState::mouseMove(const Vec2& pos) {
       gesture_ = Gesture::DragNode;
       ++dragSerial_;
       selected_ = active_ = gestureNode_;
+      activeChosen_ = true;
       [[fallthrough]];
     case Gesture::DragNode:
       moveNodeImpl(gestureNode_, pos, "drag:" + std::to_string(dragSerial_));

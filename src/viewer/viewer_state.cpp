@@ -79,6 +79,7 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     undo_.clear();
     lastEditKey_.clear();
     selected_ = active_ = kNoNode;
+    activeChosen_ = false;
     dirty_ = false;
 
     orbit_.setSceneBounds(bounds_);
@@ -138,6 +139,7 @@ void ViewerState::endEdit() {
 void ViewerState::fixSelection() {
   if (selected_ != kNoNode && !sketch_.contains(selected_)) selected_ = kNoNode;
   if (active_ != kNoNode && !sketch_.contains(active_)) active_ = kNoNode;
+  if (active_ == kNoNode) activeChosen_ = false;
   if (active_ == kNoNode && !sketch_.empty()) active_ = sketch_.root();
 }
 
@@ -182,14 +184,35 @@ bool ViewerState::addNodeAt(const Vec2& screen) {
     error("add node: open a point cloud first");
     return false;
   }
-  return edit("add node", "add node", "", [&] {
+  std::string how;
+  NodeId added = kNoNode, parent = kNoNode;
+  const std::size_t errorsBefore = errorCount_;
+  bool ok = edit("add node", "add node", "", [&] {
     if (!orbit_.viewport().contains(screen)) throw OptionsError("the point is outside the view");
-    NodeId parent = kNoNode;
-    if (!sketch_.empty()) parent = (active_ != kNoNode && sketch_.contains(active_)) ? active_ : sketch_.root();
+    if (!sketch_.empty()) {
+      // A node the person made active is the parent (the thesis's chain of clicks). Without one
+      // (after a load or an automatic sketch the active node is only the root by default), a click
+      // that missed a marker in a dense skeleton means "here, next to that node": attach it to the
+      // nearest marker, never silently to the root.
+      if (activeChosen_ && active_ != kNoNode && sketch_.contains(active_)) {
+        parent = active_;
+      } else {
+        parent = nearestMarker(screen);
+        how = parent != kNoNode ? " (the nearest node; select a node to attach elsewhere)"
+                                : " (the root: no node is visible in this view)";
+        if (parent == kNoNode) parent = sketch_.root();
+      }
+    }
     int cam = sketch_.addCamera(orbit_.camera());
-    NodeId id = sketch_.addScreenNode(parent, cam, screen);
-    selected_ = active_ = id;
+    added = sketch_.addScreenNode(parent, cam, screen);
+    selected_ = active_ = added;
   });
+  if (ok) activeChosen_ = true;
+  if (ok && errorCount_ == errorsBefore) {  // a rebuild error stays the message shown
+    info(parent == kNoNode ? "added node " + std::to_string(added) + " (the root)"
+                           : "added node " + std::to_string(added) + " under node " + std::to_string(parent) + how);
+  }
+  return ok;
 }
 
 bool ViewerState::selectNode(NodeId id) {
@@ -203,6 +226,7 @@ bool ViewerState::selectNode(NodeId id) {
     return false;
   }
   selected_ = active_ = id;
+  activeChosen_ = true;
   lastEditKey_.clear();
   ++sceneVersion_;
   return true;
@@ -214,6 +238,7 @@ bool ViewerState::setActiveNode(NodeId id) {
     return false;
   }
   active_ = id;
+  activeChosen_ = true;
   ++sceneVersion_;
   return true;
 }
@@ -342,6 +367,7 @@ bool ViewerState::clearSketch() {
     fresh.defaults = sketch_.defaults;
     sketch_ = std::move(fresh);
     selected_ = active_ = kNoNode;
+    activeChosen_ = false;
   });
 }
 
@@ -356,7 +382,7 @@ bool ViewerState::autoSketchUniform(int nodes) {
     std::vector<NodeId> order = sketch_.topologicalOrder();
     active_ = order.empty() ? kNoNode : order.back();
   });
-  if (ok) untouchedAuto_ = true;
+  if (ok) untouchedAuto_ = true, activeChosen_ = false;
   return ok;
 }
 
@@ -412,7 +438,7 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
          " nodes keep the automatic model's circles "
          "(edit a node, or Refit, to fit it from the cloud)");
   });
-  if (ok) untouchedAuto_ = true;
+  if (ok) untouchedAuto_ = true, activeChosen_ = false;
   return ok;
 }
 
@@ -454,7 +480,7 @@ bool ViewerState::loadSketch(const std::filesystem::path& path) {
     selected_ = kNoNode;
     active_ = kNoNode;
   });
-  if (ok) dirty_ = false;
+  if (ok) dirty_ = false, activeChosen_ = false;
   if (ok) info("loaded sketch " + path.string() + " (" + std::to_string(sketch_.size()) + " nodes)");
   return ok;
 }

@@ -211,9 +211,11 @@ class ViewerState {
   void setColorMode(ColorMode mode);
 
   // ---- input (window pixels; what a mouse and keyboard do) -------------------------------------
-  /// Left button: press on a node picks it (release without moving selects it and makes it
-  /// active — with Ctrl it only selects it; moving drags it); press elsewhere and release adds a
-  /// node there as a child of the active node (the first node is the root). Right button drag (or
+  /// Left button: press on a node (the nearest marker within the pick radius) picks it (release
+  /// without moving selects it and makes it active — with Ctrl it only selects it; moving drags
+  /// it); press elsewhere and release adds a node there as a child of the active node when the
+  /// person chose one, else of the node whose marker is nearest to the click (the first node is the
+  /// root); the status line names the parent. Right button drag (or
   /// Alt + left): trackball orbit. Middle button drag (or Shift + right): pan. Presses outside the
   /// viewport are ignored.
   void mouseDown(const geom::Vec2& pos, MouseButton button, int mods = kModNone);
@@ -372,6 +374,11 @@ class ViewerState {
   std::uint64_t dragSerial_ = 0;
   bool autosavePending_ = false;
   bool untouchedAuto_ = false;
+  /// The person chose the active node (selected it, added it, dragged it); false when it is a
+  /// fallback (the root after a load, an automatic sketch, a deletion of the active node).
+  bool activeChosen_ = false;
+  /// The visible node whose marker is nearest to `screen`, at any distance (kNoNode if none).
+  sketch::NodeId nearestMarker(const geom::Vec2& screen) const;
   std::function<bool()> pendingAction_;
   std::string pendingQuestion_;
   /// Runs `action` now, or asks `question` first when the sketch has hand edits.
