@@ -76,6 +76,8 @@ const Option kOptions[] = {
     {"showNodes", [](ViewerState& s, const std::string& v) { s.display().showNodes = parseBool(v); }},
     {"showCircles", [](ViewerState& s, const std::string& v) { s.display().showCircles = parseBool(v); }},
     {"showRegion", [](ViewerState& s, const std::string& v) { s.display().showSamplingRegion = parseBool(v); }},
+    {"labels", [](ViewerState& s, const std::string& v) { s.display().labels = parseLabelMode(v); }},
+    {"upAxis", [](ViewerState& s, const std::string& v) { s.setUpDirection(parseUpDirection(v)); }},
 };
 
 /// {"expect": {NAME: n, ...}}: what each name reads from the state; `atLeast` keys pass with any
@@ -97,6 +99,10 @@ const Expectation kExpectations[] = {
     {"recoveryOffered", [](const ViewerState& s) { return double(s.recoveryPending()); }, false},
     {"confirmPending", [](const ViewerState& s) { return double(s.confirmationPending()); }, false},
     {"handEdits", [](const ViewerState& s) { return double(s.hasHandEdits()); }, false},
+    {"labelsShown", [](const ViewerState& s) { return double(s.labelsShown()); }, false},
+    {"statusShown", [](const ViewerState& s) { return double(s.statusLine().has_value()); }, false},
+    {"lyingDown", [](const ViewerState& s) { return double(s.upWarningShown()); }, false},
+    {"legend", [](const ViewerState& s) { return double(s.colorLegend().shown); }, false},
 };
 
 /// The entry of `table` called `name`, or nullptr.

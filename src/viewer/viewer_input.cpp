@@ -27,7 +27,7 @@ void ViewerState::setViewport(const geom::Viewport& viewport) { orbit_.setViewpo
 
 void ViewerState::fitView() { orbit_.fit(); }
 
-void ViewerState::presetView(geom::PresetView view) { orbit_.preset(view, up_); }
+void ViewerState::presetView(geom::PresetView view) { orbit_.preset(view, upDirectionVector(viewUp_)); }
 
 void ViewerState::setOrthographic(bool ortho) { orbit_.setOrthographic(ortho); }
 
@@ -157,6 +157,7 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
       saveSketch(sketchPath_);
   } else if (key == "escape") {
     selectNode(kNoNode);
+    dismissStatus();
   } else if (key == "f") {
     fitView();
   } else if (key == "o") {
@@ -173,6 +174,9 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
     display_.meshStyle = static_cast<MeshStyle>((static_cast<int>(display_.meshStyle) + 1) % 3);
   } else if (key == "c") {
     display_.colorMode = static_cast<ColorMode>((static_cast<int>(display_.colorMode) + 1) % 3);
+  } else if (key == "l") {
+    display_.labels = static_cast<LabelMode>((static_cast<int>(display_.labels) + 1) % 3);
+    info(std::string("node labels: ") + toString(display_.labels));
   } else {
     return false;
   }

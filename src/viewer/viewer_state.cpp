@@ -71,6 +71,7 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     cloud_ = std::move(cloud);
     ++cloudVersion_;
     up_ = up;
+    viewUp_ = toUpDirection(up);
     sourcePath_ = sourcePath;
     sketch_ = sketch::Sketch{};
     sketch_.up = up;
@@ -83,12 +84,14 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     dirty_ = false;
 
     orbit_.setSceneBounds(bounds_);
-    orbit_.preset(geom::PresetView::Front, up_);
+    orbit_.preset(geom::PresetView::Front, upDirectionVector(viewUp_));
     colorsStale_ = true;
     resetReconstruction();
     rebuild();
     info("opened " + (sourcePath.empty() ? std::string("cloud") : sourcePath.string()) + ": " +
-         std::to_string(cloud_.size()) + " points");
+         std::to_string(cloud_.size()) + " points, up " + toString(viewUp_));
+    upWarningDismissed_ = false;
+    if (std::string w = lyingDownWarning(); !w.empty()) info("warning: " + w);
     // The whole file name, not the stem: tree.las and tree.xyz in one folder are two clouds. Set
     // last, so that the offer of an earlier autosave is the message shown.
     if (!sourcePath.empty())
@@ -376,6 +379,10 @@ bool ViewerState::autoSketchUniform(int nodes) {
     error("automatic sketch: open a point cloud first");
     return false;
   }
+  if (!libraryUpAxis(viewUp_)) {
+    error(std::string("automatic sketch: needs up +y or +z (the view's up is ") + toString(viewUp_) + ")");
+    return false;
+  }
   bool ok = edit("automatic sketch", "uniform automatic sketch", "", [&] {
     sketch_ = sketch::uniformAutoSketch(cloud_, orbit_.camera(), nodes, up_);
     selected_ = kNoNode;
@@ -424,6 +431,10 @@ bool ViewerState::requestAutoSketchSkeleton(bool leafOn) {
 bool ViewerState::autoSketchSkeleton(bool leafOn) {
   if (cloud_.empty()) {
     error("automatic skeleton sketch: open a point cloud first");
+    return false;
+  }
+  if (!libraryUpAxis(viewUp_)) {
+    error(std::string("automatic skeleton sketch: needs up +y or +z (the view's up is ") + toString(viewUp_) + ")");
     return false;
   }
   bool ok = edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {

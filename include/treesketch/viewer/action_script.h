@@ -11,7 +11,8 @@
 //   {"key": "ctrl+z"}                      see ViewerState::keyPress
 //   {"slider": "sliceHalfThickness"|"lineEpsilon"|"pointSize", "value": number}
 //   {"option": "colorMode"|"meshStyle"|"projection"|"showCloud"|"showNodes"|"showCircles"|
-//              "showRegion", "value": "height"|"wireframe"|"ortho"|true|...}
+//              "showRegion"|"labels"|"upAxis", "value": "height"|"wireframe"|"ortho"|true|"auto"|
+//              "-z"|...}
 //   {"view": "front"|"side"|"top"|"fit"}
 //   {"select": nodeId}                     -1 clears the selection
 //   {"button": "autoSketch"|"autoSkeleton"|"undo"|"redo"|"clear"|"fit"|"delete"|"deleteSubtree"|
@@ -24,7 +25,8 @@
 //   {"sleep": seconds}                     real time, drawing a frame every 0.1 s (a person idling)
 //   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
 //               "errors": n, "meshTriangles": n, "kept": n, "recoveryOffered": 0|1,
-//               "confirmPending": 0|1, "handEdits": 0|1}}   ("meshTriangles" checks "at
+//               "confirmPending": 0|1, "handEdits": 0|1,
+//               "labelsShown": 0|1, "statusShown": 0|1, "lyingDown": 0|1, "legend": 0|1}}   ("meshTriangles" checks "at
 //               least
 //                                          n"; "kept": nodes with a kept circle)
 // Paths are relative to the current directory.

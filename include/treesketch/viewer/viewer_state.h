@@ -29,6 +29,7 @@
 #include "treesketch/viewer/orbit_camera.h"
 #include "treesketch/viewer/point_colors.h"
 #include "treesketch/viewer/undo_stack.h"
+#include "treesketch/viewer/view_up.h"
 
 namespace treesketch::viewer {
 
@@ -62,6 +63,32 @@ struct ViewerOptions {
   double distanceColorScale = 0.02;
   /// Colour of every point in ColorMode::Plain.
   Rgb plainColor = {170, 170, 170};
+  /// How long an info message stays in the status bar, seconds (errors stay until dismissed or
+  /// replaced). Design choice: long enough to read two lines, short enough not to mislead later.
+  double statusInfoSeconds = 6.0;
+  /// LabelMode::Auto shows node numbers only up to this many nodes (an automatic skeleton has
+  /// 300-800 and its numbers cover the tree).
+  std::size_t autoLabelMaxNodes = 100;
+};
+
+/// Node numbers beside the markers: Auto (up to ViewerOptions::autoLabelMaxNodes nodes), On, Off.
+enum class LabelMode { Auto, On, Off };
+/// Parses "auto" / "on" / "off"; throws OptionsError otherwise.
+LabelMode parseLabelMode(const std::string& s);
+const char* toString(LabelMode mode);
+
+/// The colour scale of the current point colouring, for a legend: the ramp's colour at each
+/// stop and what it means. Units are the cloud's (metres for field scans).
+struct LegendStop {
+  double value = 0.0;  ///< height or distance, world units
+  Rgb color;
+  std::string label;  ///< "0.12 m (1.5 %)"
+};
+struct ColorLegend {
+  bool shown = false;             ///< false for plain colouring
+  std::string title;              ///< "distance to the nearest circle"
+  std::vector<LegendStop> stops;  ///< low to high
+  std::string note;               ///< "and beyond", "no fitted circle yet"
 };
 
 struct DisplayOptions {
@@ -72,6 +99,7 @@ struct DisplayOptions {
   bool showNodes = true;
   bool showCircles = true;
   bool showSamplingRegion = true;  ///< the selected node's slab, cylinder and slice points
+  LabelMode labels = LabelMode::Auto;
 };
 
 /// A node's reconstruction outcome, as the viewer shows it.
@@ -120,6 +148,7 @@ struct SamplingRegion {
 struct StatusMessage {
   bool error = false;
   std::string text;
+  std::chrono::steady_clock::time_point time{};  ///< when it was posted
 };
 
 /// The reconstruction the viewer runs after every edit. Implemented over recon::Reconstruction in
@@ -209,6 +238,23 @@ class ViewerState {
   DisplayOptions& display() { return display_; }
   const DisplayOptions& display() const { return display_; }
   void setColorMode(ColorMode mode);
+  /// Node numbers are drawn (display().labels and the node count).
+  bool labelsShown() const;
+  /// The legend of the current colouring (shown = false for plain).
+  ColorLegend colorLegend() const;
+  /// The view's up direction (initially the cloud's up axis). Setting it re-orients the view
+  /// (front preset) and the height colouring; the cloud and the sketch are untouched, and for +Y
+  /// or +Z the library's up axis (automatic sketches, the sketch file's "up") follows. Other
+  /// directions are for viewing and sketching by hand: the automatic sketches then refuse with a
+  /// message, as they assume +Y or +Z.
+  void setUpDirection(UpDirection up);
+  UpDirection upDirection() const { return viewUp_; }
+  /// The warning shown when the cloud looks lying down under the current up ("" when upright).
+  /// The window shows it as a banner over the view, with the up-axis choice, until the up changes
+  /// or the person dismisses it (upWarningShown()).
+  std::string lyingDownWarning() const;
+  bool upWarningShown() const { return !upWarningDismissed_ && !lyingDownWarning().empty(); }
+  void dismissUpWarning() { upWarningDismissed_ = true; }
 
   // ---- input (window pixels; what a mouse and keyboard do) -------------------------------------
   /// Left button: press on a node (the nearest marker within the pick radius) picks it (release
@@ -320,6 +366,14 @@ class ViewerState {
   std::size_t errorCount() const { return errorCount_; }
   void info(const std::string& text);
   void error(const std::string& text);
+  /// What the status bar shows at `now`: the last message if it is an error not dismissed, or an
+  /// info younger than ViewerOptions::statusInfoSeconds; nullopt otherwise (the bar shows counts).
+  std::optional<StatusMessage> statusLine(std::chrono::steady_clock::time_point now) const;
+  std::optional<StatusMessage> statusLine() const { return statusLine(std::chrono::steady_clock::now()); }
+  /// Hides the status bar's message (Esc, or its close button); the messages log keeps it.
+  void dismissStatus() { statusDismissed_ = true; }
+  /// When the status line will change by itself next (an info expiring); nullopt when it will not.
+  std::optional<std::chrono::steady_clock::time_point> statusExpiry() const;
   const ViewerOptions& options() const { return options_; }
 
  private:
@@ -397,6 +451,9 @@ class ViewerState {
   geom::TriMesh emptyMesh_;
   double lastRebuildMs_ = 0.0;
   std::vector<StatusMessage> messages_;
+  bool statusDismissed_ = false;
+  UpDirection viewUp_ = UpDirection::PosY;
+  bool upWarningDismissed_ = false;
   std::size_t errorCount_ = 0;
 };
 
