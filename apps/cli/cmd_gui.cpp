@@ -65,7 +65,9 @@ void registerGui(CLI::App& app, Action& action) {
       ->check(CLI::ExistingFile);
   sub->add_option("--sketch", args->sketch, "Sketch file to open (if it exists) and to save to");
   sub->add_option("--script", args->script, "Run a scripted session (JSON actions) and exit")->check(CLI::ExistingFile);
-  sub->add_option("--up", args->up, "Up axis of the input: y or z (default y)");
+  sub->add_option("--up", args->up,
+                  "Up of the input: y or z, or +x -x +y -y +z -z for the view (default: the file's declaration, else "
+                  "z; the demo tree is y)");
   sub->add_option("--autosave", args->autosave, "Autosave file (default: beside the cloud)");
   sub->add_option("--demo", args->demo, "Demo tree preset when no input is given");
   sub->add_option("--demo-rays", args->demoRays, "Rays of the demo tree's scan");

@@ -17,9 +17,11 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
+#include "dialogs.h"
 #include "panels.h"
 #include "renderer.h"
 #include "screenshot.h"
@@ -41,14 +43,15 @@ constexpr int kExitOk = 0, kExitFailed = 1, kExitUsage = 2, kExitInput = 3;
 struct Args {
   std::string input;  ///< empty: the demo tree
   std::string sketchPath, scriptPath, autosavePath;
-  geom::UpAxis up = geom::UpAxis::Y;
+  /// --up as given ("" when not given: the library's rule, io::chooseUpAxis, decides).
+  std::string up;
   viewer::DemoSceneOptions demo;
   int width = 1280, height = 800;
 };
 
 void usage(std::ostream& out) {
   out << "usage: treesketch-gui [CLOUD | MESH] [--sketch SKETCH.json] [--script ACTIONS.json]\n"
-         "                      [--up y|z] [--autosave PATH] [--demo PRESET] [--demo-rays N]\n"
+         "                      [--up y|z|+x|-x|+y|-y|+z|-z] [--autosave PATH] [--demo PRESET] [--demo-rays N]\n"
          "                      [--width W] [--height H]\n"
          "Opens the interactive sketching tool on a point cloud (.ply .xyz .txt .csv .pts .las) or on a\n"
          "mesh (.obj, PLY with faces; scanned first with the sphere scanner's defaults). Without an input\n"
@@ -80,9 +83,10 @@ Args parseArgs(int argc, char** argv) {
       a.scriptPath = value("--script");
     else if (s == "--autosave")
       a.autosavePath = value("--autosave");
-    else if (s == "--up")
-      a.up = geom::parseUpAxis(value("--up"));
-    else if (s == "--demo")
+    else if (s == "--up") {
+      a.up = value("--up");
+      viewer::parseUpDirection(a.up);  // checked now: a bad value is a usage error
+    } else if (s == "--demo")
       a.demo.preset = value("--demo");
     else if (s == "--demo-rays")
       a.demo.rays = static_cast<std::uint64_t>(integer("--demo-rays"));
@@ -194,6 +198,10 @@ class App {
     else {
       gui::drawPanels(state_, panel_, ww, wh);
       gui::drawMarkers(state_);
+      gui::drawRecoveryDialog(state_);
+      gui::drawConfirmDialog(state_);
+      gui::drawColorLegend(state_);
+      gui::drawUpWarning(state_);
     }
     ImGui::Render();
     glViewport(0, 0, fbw, fbh);
@@ -231,7 +239,13 @@ class App {
       *failed = true;
       return true;
     }
-    state_.setCloud(std::move(loader_.cloud), args_.up, args_.input.empty() ? fs::path() : fs::path(args_.input));
+    // Up: the library's rule (viewer::chooseViewUp: --up, else the file's declaration, else Z;
+    // the demo tree is Y-up); a direction the library has no axis for only turns the view.
+    viewer::ViewUpChoice up = viewer::chooseViewUp(args_.up, loader_.cloud, args_.input.empty());
+    const std::string upReason = up.reason;
+    state_.setCloud(std::move(loader_.cloud), up.axis, args_.input.empty() ? fs::path() : fs::path(args_.input));
+    if (up.view != viewer::toUpDirection(up.axis)) state_.setUpDirection(up.view);
+    std::cerr << "treesketch-gui: up " << viewer::toString(state_.upDirection()) << " (" << upReason << ")\n";
     if (args_.input.empty()) state_.setAutosavePath("treesketch_demo.autosave.sketch.json");
     if (!args_.autosavePath.empty()) state_.setAutosavePath(args_.autosavePath);
     state_.setSketchPath(panel_.sketchPath);
@@ -378,6 +392,8 @@ int run(const Args& args) {
         app.frame();
       }
     }
+    // A clean end: the autosave goes when it holds nothing unsaved; else it is offered next time.
+    app.state().closeSession();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
+
+#include "treesketch/viewer/key_bindings.h"
 
 namespace treesketch::gui {
 
@@ -103,10 +106,16 @@ void displaySection(viewer::ViewerState& state) {
   d.meshStyle = static_cast<viewer::MeshStyle>(ms);
   ImGui::Checkbox("cloud", &d.showCloud);
   ImGui::SameLine();
-  ImGui::Checkbox("nodes", &d.showNodes);
+  ImGui::Checkbox("nodes##showNodes", &d.showNodes);
   ImGui::SameLine();
   ImGui::Checkbox("circles", &d.showCircles);
   ImGui::Checkbox("sampling region of the selected node", &d.showSamplingRegion);
+  const char* labelModes[] = {"auto (up to 100 nodes)", "on", "off"};
+  int lm = static_cast<int>(d.labels);
+  if (ImGui::Combo("node labels##labels", &lm, labelModes, 3)) d.labels = static_cast<viewer::LabelMode>(lm);
+  const char* ups[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+  int up = static_cast<int>(state.upDirection());
+  if (ImGui::Combo("up axis##upAxis", &up, ups, 6)) state.setUpDirection(static_cast<viewer::UpDirection>(up));
   bool ortho = state.orbit().orthographic();
   if (ImGui::Checkbox("orthographic", &ortho)) state.setOrthographic(ortho);
   if (ImGui::Button("Front")) state.presetView(geom::PresetView::Front);
@@ -155,10 +164,11 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
     if (ImGui::Button("Screenshot")) panel.screenshotRequested = true;
   }
   if (ImGui::CollapsingHeader("Sketch", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::SliderInt("nodes", &panel.autoNodes, 2, 40);
+    // "##": the label shows "nodes", the ID is unique (View has a "nodes" checkbox too).
+    ImGui::SliderInt("nodes##autoNodes", &panel.autoNodes, 2, 40);
     ImGui::SameLine();
-    if (ImGui::Button("Auto")) state.autoSketchUniform(panel.autoNodes);
-    if (ImGui::Button("Auto skeleton")) state.autoSketchSkeleton(panel.autoLeafOn);
+    if (ImGui::Button("Auto")) state.requestAutoSketchUniform(panel.autoNodes);
+    if (ImGui::Button("Auto skeleton")) state.requestAutoSketchSkeleton(panel.autoLeafOn);
     ImGui::SameLine();
     ImGui::Checkbox("in leaf", &panel.autoLeafOn);
     ImGui::SameLine();
@@ -184,11 +194,8 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) displaySection(state);
   if (ImGui::CollapsingHeader("Help", panel.showHelp ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
     ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextDisabled(
-        "Left click: add a node (child of the active one) / select a node and make it active "
-        "(Ctrl: only select). Left drag on a node: move it. "
-        "Right drag: orbit. Middle or Shift+right drag: pan. Wheel: zoom. Delete: remove node "
-        "(Shift: with subtree). Ctrl+Z / Ctrl+Y: undo / redo. 1 2 3: front, side, top. F: fit. O: ortho.");
+    for (const viewer::KeyBinding& k : viewer::keyBindings())  // the README's table, from one source
+      ImGui::TextDisabled("%s: %s", k.keys.c_str(), k.action.c_str());
     ImGui::PopTextWrapPos();
   }
   ImGui::Separator();
@@ -202,16 +209,22 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   ImGui::Begin("status", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoSavedSettings);
-  viewer::StatusMessage last = state.lastMessage();
+  std::optional<viewer::StatusMessage> last = state.statusLine();
   ImGui::Text("%zu points | %zu nodes: %zu fitted (%zu kept circles), %zu skipped | last rebuild %.2f ms | %s |",
               state.cloud().size(), state.sketch().size(), state.fittedCount(), state.sketch().keptCircleCount(),
               state.skippedCount(), state.lastRebuildMs(),
               state.orbit().orthographic() ? "orthographic" : "perspective");
-  ImGui::SameLine();
-  if (last.error)
-    ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", last.text.c_str());
-  else
-    ImGui::TextUnformatted(last.text.c_str());
+  // Infos expire (ViewerOptions::statusInfoSeconds); an error stays until dismissed or replaced.
+  if (last) {
+    ImGui::SameLine();
+    if (last->error) {
+      if (ImGui::SmallButton("x##dismissStatus")) state.dismissStatus();
+      ImGui::SameLine();
+      ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", last->text.c_str());
+    } else {
+      ImGui::TextUnformatted(last->text.c_str());
+    }
+  }
   ImGui::End();
 }
 
@@ -222,6 +235,7 @@ void drawMarkers(const viewer::ViewerState& state) {
   dl->PushClipRect(ImVec2(static_cast<float>(vp.x), static_cast<float>(vp.y)),
                    ImVec2(static_cast<float>(vp.x + vp.width), static_cast<float>(vp.y + vp.height)));
   std::vector<viewer::NodeMarker> markers = state.nodeMarkers();
+  const bool labels = state.labelsShown();
   auto find = [&](sketch::NodeId id) -> const viewer::NodeMarker* {
     for (const auto& m : markers)
       if (m.id == id) return &m;
@@ -247,6 +261,7 @@ void drawMarkers(const viewer::ViewerState& state) {
     dl->AddCircle(c, 7.0f, IM_COL32(20, 20, 20, 255), 20, 1.5f);
     if (m.active) dl->AddCircle(c, 10.5f, IM_COL32(255, 230, 0, 255), 24, 2.0f);
     if (m.selected) dl->AddCircle(c, 14.0f, IM_COL32(255, 255, 255, 255), 24, 2.0f);
+    if (!labels) continue;
     char label[16];
     std::snprintf(label, sizeof label, "%d", m.id);
     dl->AddText(ImVec2(c.x + 9, c.y - 18), IM_COL32(255, 255, 255, 230), label);

@@ -1,5 +1,5 @@
 // The "Correction tools" section of the side panel (issue 20): the tool buttons (same as the
-// keys G, L, R, P, H), the not-wood lassos, and the selected node's depth along the view ray.
+// keys G, X, R, P, H), the not-wood lassos, and the selected node's depth along the view ray.
 // Kept in its own file so the panel layout (panels.cpp) only calls it.
 #include <imgui.h>
 
@@ -20,7 +20,7 @@ void toolsSection(viewer::ViewerState& state) {
   };
   toolButton("Stroke (G)", Tool::Stroke, "Drag along a missing limb, starting on the node it grows from");
   ImGui::SameLine();
-  toolButton("Lasso (L)", Tool::Lasso, "Drag around points that are not wood: fits and the skeleton leave them out");
+  toolButton("Lasso (X)", Tool::Lasso, "Drag around points that are not wood: fits and the skeleton leave them out");
   toolButton("Region (R)", Tool::Region, "Drag around a region: the automatic skeleton runs there and is merged");
   ImGui::SameLine();
   toolButton("Re-attach (P)", Tool::Reattach, "Click a node, then its new parent");

@@ -1,9 +1,11 @@
 #include "treesketch/viewer/action_script.h"
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "treesketch/util/error.h"
 
@@ -27,8 +29,8 @@ const Button kButtons[] = {
     {"redo", [](ViewerState& s) { s.redo(); }},
     {"fit", [](ViewerState& s) { s.fitView(); }},
     {"clear", [](ViewerState& s) { s.clearSketch(); }},
-    {"autoSketch", [](ViewerState& s) { s.autoSketchUniform(); }},
-    {"autoSkeleton", [](ViewerState& s) { s.autoSketchSkeleton(); }},
+    {"autoSketch", [](ViewerState& s) { s.requestAutoSketchUniform(); }},
+    {"autoSkeleton", [](ViewerState& s) { s.requestAutoSketchSkeleton(); }},
     {"delete", [](ViewerState& s) { s.deleteSelected(false); }},
     {"deleteSubtree", [](ViewerState& s) { s.deleteSelected(true); }},
     {"refit", [](ViewerState& s) { s.refitSelected(); }},
@@ -86,6 +88,8 @@ const Option kOptions[] = {
     {"showNodes", [](ViewerState& s, const std::string& v) { s.display().showNodes = parseBool(v); }},
     {"showCircles", [](ViewerState& s, const std::string& v) { s.display().showCircles = parseBool(v); }},
     {"showRegion", [](ViewerState& s, const std::string& v) { s.display().showSamplingRegion = parseBool(v); }},
+    {"labels", [](ViewerState& s, const std::string& v) { s.display().labels = parseLabelMode(v); }},
+    {"upAxis", [](ViewerState& s, const std::string& v) { s.setUpDirection(parseUpDirection(v)); }},
 };
 
 /// {"expect": {NAME: n, ...}}: what each name reads from the state; `atLeast` keys pass with any
@@ -105,6 +109,13 @@ const Expectation kExpectations[] = {
     {"meshTriangles", [](const ViewerState& s) { return double(s.mesh().triangles.size()); }, true},
     {"kept", [](const ViewerState& s) { return double(s.sketch().keptCircleCount()); }, false},
     {"notWood", [](const ViewerState& s) { return double(s.sketch().notWood().size()); }, false},
+    {"recoveryOffered", [](const ViewerState& s) { return double(s.recoveryPending()); }, false},
+    {"confirmPending", [](const ViewerState& s) { return double(s.confirmationPending()); }, false},
+    {"handEdits", [](const ViewerState& s) { return double(s.hasHandEdits()); }, false},
+    {"labelsShown", [](const ViewerState& s) { return double(s.labelsShown()); }, false},
+    {"statusShown", [](const ViewerState& s) { return double(s.statusLine().has_value()); }, false},
+    {"lyingDown", [](const ViewerState& s) { return double(s.upWarningShown()); }, false},
+    {"legend", [](const ViewerState& s) { return double(s.colorLegend().shown); }, false},
 };
 
 /// The entry of `table` called `name`, or nullptr.
@@ -288,6 +299,19 @@ class Parser {
       a.name = string(j["tool"], index, "tool");
       if (!entryNamed(kTools, a.name))
         fail(index, "tool must be sketch, stroke, lasso, region or reattach, got '" + a.name + "'");
+    } else if (j.contains("confirm")) {
+      a.kind = Kind::Confirm;
+      if (!j["confirm"].is_boolean()) fail(index, "confirm: expected true or false");
+      a.value = j["confirm"].get<bool>() ? 1.0 : 0.0;
+    } else if (j.contains("recovery")) {
+      a.kind = Kind::Recovery;
+      a.name = string(j["recovery"], index, "recovery");
+      if (a.name != "restore" && a.name != "discard" && a.name != "keep")
+        fail(index, "recovery must be restore, discard or keep, got '" + a.name + "'");
+    } else if (j.contains("sleep")) {
+      a.kind = Kind::Sleep;
+      a.value = number(j["sleep"], index, "sleep");
+      if (a.value < 0) fail(index, "sleep: expected seconds >= 0");
     } else if (j.contains("wait")) {
       a.kind = Kind::Wait;
       a.steps = static_cast<int>(number(j["wait"], index, "wait"));
@@ -419,6 +443,12 @@ std::string describe(const ScriptAction& a) {
              (a.name == "reattach" ? " to " + std::to_string(static_cast<int>(a.value2)) : std::string());
     case Kind::Tool:
       return "tool " + a.name;
+    case Kind::Sleep:
+      return "sleep " + std::to_string(a.value) + " s";
+    case Kind::Recovery:
+      return "recovery " + a.name;
+    case Kind::Confirm:
+      return a.value != 0 ? "confirm yes" : "confirm no";
     case Kind::Expect: {
       std::string s = "expect";
       for (const auto& [k, v] : a.expect) s += " " + k + "=" + std::to_string(static_cast<long long>(v));
@@ -510,6 +540,23 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
         }
         case Kind::Tool:
           if (const ToolName* t = entryNamed(kTools, a.name)) state.setTool(t->tool);
+          break;
+        case Kind::Sleep: {
+          auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(a.value);
+          while (std::chrono::steady_clock::now() < until) {
+            if (hooks.frame) hooks.frame();
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+          }
+          break;
+        }
+        case Kind::Recovery:
+          state.resolveRecovery(a.name == "restore"   ? ViewerState::RecoveryChoice::Restore
+                                : a.name == "discard" ? ViewerState::RecoveryChoice::Discard
+                                                      : ViewerState::RecoveryChoice::Keep);
+          break;
+        case Kind::Confirm:
+          if (!state.confirmationPending()) throw OptionsError("no question is waiting");
+          state.answerConfirmation(a.value != 0);
           break;
         case Kind::Expect:
           for (const auto& [k, v] : a.expect) {

@@ -51,18 +51,21 @@ void OrbitCamera::fit() {
   setDistance(h / tanHalf + (ortho_ ? 0.0 : halfD));
 }
 
-void OrbitCamera::preset(geom::PresetView view, geom::UpAxis up) {
-  Vec3 upV = geom::upVector(up);
+void OrbitCamera::preset(geom::PresetView view, geom::UpAxis up) { preset(view, geom::upVector(up)); }
+
+void OrbitCamera::preset(geom::PresetView view, const Vec3& up) {
+  Vec3 upV = up.normalized();
+  Vec3 front = std::abs(upV.z()) > 0.5 ? Vec3(0, 1, 0) : Vec3(0, 0, -1);
   Vec3 dir, camUp;
   if (view == geom::PresetView::Front) {
-    dir = up == geom::UpAxis::Y ? Vec3(0, 0, -1) : Vec3(0, 1, 0);
+    dir = front;
     camUp = upV;
   } else if (view == geom::PresetView::Side) {
-    dir = Vec3(-1, 0, 0);
+    dir = upV.cross(front).normalized();
     camUp = upV;
   } else {
     dir = -upV;
-    camUp = up == geom::UpAxis::Y ? Vec3(0, 0, -1) : Vec3(0, 1, 0);
+    camUp = front;
   }
   geom::Mat3 m;
   m.col(0) = dir.cross(camUp).normalized();

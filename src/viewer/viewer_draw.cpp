@@ -117,11 +117,61 @@ const char* toString(NodeStatus status) {
 
 void ViewerState::setColorMode(ColorMode mode) { display_.colorMode = mode; }
 
-void ViewerState::info(const std::string& text) { messages_.push_back(StatusMessage{false, text}); }
+LabelMode parseLabelMode(const std::string& s) {
+  std::string k = lowercase(s);
+  if (k == "auto") return LabelMode::Auto;
+  if (k == "on" || k == "true") return LabelMode::On;
+  if (k == "off" || k == "false") return LabelMode::Off;
+  throw OptionsError("labels must be 'auto', 'on' or 'off', got '" + s + "'");
+}
+
+const char* toString(LabelMode mode) {
+  switch (mode) {
+    case LabelMode::Auto:
+      return "auto";
+    case LabelMode::On:
+      return "on";
+    case LabelMode::Off:
+      return "off";
+  }
+  return "?";
+}
+
+bool ViewerState::labelsShown() const {
+  switch (display_.labels) {
+    case LabelMode::On:
+      return true;
+    case LabelMode::Off:
+      return false;
+    case LabelMode::Auto:
+      break;
+  }
+  return sketch_.size() <= options_.autoLabelMaxNodes;
+}
+
+void ViewerState::info(const std::string& text) {
+  messages_.push_back(StatusMessage{false, text, std::chrono::steady_clock::now()});
+  statusDismissed_ = false;
+}
 
 void ViewerState::error(const std::string& text) {
-  messages_.push_back(StatusMessage{true, text});
+  messages_.push_back(StatusMessage{true, text, std::chrono::steady_clock::now()});
+  statusDismissed_ = false;
   ++errorCount_;
+}
+
+std::optional<StatusMessage> ViewerState::statusLine(std::chrono::steady_clock::time_point now) const {
+  if (messages_.empty() || statusDismissed_) return std::nullopt;
+  const StatusMessage& last = messages_.back();
+  if (last.error) return last;  // until dismissed or replaced by a newer message
+  if (now - last.time < std::chrono::duration<double>(options_.statusInfoSeconds)) return last;
+  return std::nullopt;
+}
+
+std::optional<std::chrono::steady_clock::time_point> ViewerState::statusExpiry() const {
+  if (messages_.empty() || statusDismissed_ || messages_.back().error) return std::nullopt;
+  return messages_.back().time + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                     std::chrono::duration<double>(options_.statusInfoSeconds));
 }
 
 // ---- what to draw --------------------------------------------------------------------------------
@@ -131,7 +181,7 @@ const std::vector<Rgb>& ViewerState::pointColors() {
     colorsMode_ = display_.colorMode;
     switch (colorsMode_) {
       case ColorMode::Height:
-        colors_ = render::heightColors(cloud_.positions, up_);
+        colors_ = heightColorsAlong(cloud_, viewUp_);
         break;
       case ColorMode::Plain:
         colors_ = plainColors(cloud_, options_.plainColor);
@@ -192,6 +242,20 @@ NodeId ViewerState::nodeAt(const Vec2& screen) const {
     if (!m.visible) continue;
     double d = (m.screen - screen).norm();
     if (d <= bestD) {
+      bestD = d;
+      best = m.id;
+    }
+  }
+  return best;
+}
+
+NodeId ViewerState::nearestMarker(const Vec2& screen) const {
+  NodeId best = kNoNode;
+  double bestD = std::numeric_limits<double>::infinity();
+  for (const NodeMarker& m : nodeMarkers()) {
+    if (!m.visible || !m.screen.allFinite()) continue;
+    double d = (m.screen - screen).norm();
+    if (d < bestD) {
       bestD = d;
       best = m.id;
     }

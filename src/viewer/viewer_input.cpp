@@ -27,7 +27,7 @@ void ViewerState::setViewport(const geom::Viewport& viewport) { orbit_.setViewpo
 
 void ViewerState::fitView() { orbit_.fit(); }
 
-void ViewerState::presetView(geom::PresetView view) { orbit_.preset(view, up_); }
+void ViewerState::presetView(geom::PresetView view) { orbit_.preset(view, upDirectionVector(viewUp_)); }
 
 void ViewerState::setOrthographic(bool ortho) { orbit_.setOrthographic(ortho); }
 
@@ -64,6 +64,7 @@ void ViewerState::mouseMove(const Vec2& pos) {
       gesture_ = Gesture::DragNode;
       ++dragSerial_;
       selected_ = active_ = gestureNode_;
+      activeChosen_ = true;
       [[fallthrough]];
     case Gesture::DragNode:
       moveNodeImpl(gestureNode_, pos, "drag:" + std::to_string(dragSerial_));
@@ -164,6 +165,7 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
       saveSketch(sketchPath_);
   } else if (key == "escape") {
     selectNode(kNoNode);
+    dismissStatus();
   } else if (key == "f") {
     fitView();
   } else if (key == "o") {
@@ -175,11 +177,14 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
   } else if (key == "3") {
     presetView(geom::PresetView::Top);
   } else if (key == "a") {
-    autoSketchUniform();
+    requestAutoSketchUniform();
   } else if (key == "w") {
     display_.meshStyle = static_cast<MeshStyle>((static_cast<int>(display_.meshStyle) + 1) % 3);
   } else if (key == "c") {
     display_.colorMode = static_cast<ColorMode>((static_cast<int>(display_.colorMode) + 1) % 3);
+  } else if (key == "l") {
+    display_.labels = static_cast<LabelMode>((static_cast<int>(display_.labels) + 1) % 3);
+    info(std::string("node labels: ") + toString(display_.labels));
   } else {
     return false;
   }

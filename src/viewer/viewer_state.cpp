@@ -71,6 +71,7 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     cloud_ = std::move(cloud);
     ++cloudVersion_;
     up_ = up;
+    viewUp_ = toUpDirection(up);
     sourcePath_ = sourcePath;
     sketch_ = sketch::Sketch{};
     sketch_.up = up;
@@ -79,16 +80,22 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     undo_.clear();
     lastEditKey_.clear();
     selected_ = active_ = kNoNode;
-    if (!sourcePath.empty()) {
-      autosavePath_ = sourcePath.parent_path() / (sourcePath.stem().string() + ".autosave.sketch.json");
-    }
+    activeChosen_ = false;
+    dirty_ = false;
+
     orbit_.setSceneBounds(bounds_);
-    orbit_.preset(geom::PresetView::Front, up_);
+    orbit_.preset(geom::PresetView::Front, upDirectionVector(viewUp_));
     colorsStale_ = true;
     resetReconstruction();
     rebuild();
     info("opened " + (sourcePath.empty() ? std::string("cloud") : sourcePath.string()) + ": " +
-         std::to_string(cloud_.size()) + " points");
+         std::to_string(cloud_.size()) + " points, up " + toString(viewUp_));
+    upWarningDismissed_ = false;
+    if (std::string w = lyingDownWarning(); !w.empty()) info("warning: " + w);
+    // The whole file name, not the stem: tree.las and tree.xyz in one folder are two clouds. Set
+    // last, so that the offer of an earlier autosave is the message shown.
+    if (!sourcePath.empty())
+      setAutosavePath(sourcePath.parent_path() / (sourcePath.filename().string() + ".autosave.sketch.json"));
   });
 }
 
@@ -121,6 +128,8 @@ bool ViewerState::openFile(const std::filesystem::path& path, geom::UpAxis up, c
 // ---- editing -------------------------------------------------------------------------------------
 
 void ViewerState::endEdit() {
+  dirty_ = true;
+  untouchedAuto_ = false;  // the automatic sketches set it again after their edit
   fixSelection();
   rebuild();
   // A drag is one edit: it is saved once, when the button is released.
@@ -133,6 +142,7 @@ void ViewerState::endEdit() {
 void ViewerState::fixSelection() {
   if (selected_ != kNoNode && !sketch_.contains(selected_)) selected_ = kNoNode;
   if (active_ != kNoNode && !sketch_.contains(active_)) active_ = kNoNode;
+  if (active_ == kNoNode) activeChosen_ = false;
   if (active_ == kNoNode && !sketch_.empty()) active_ = sketch_.root();
 }
 
@@ -145,7 +155,8 @@ void ViewerState::rebuild() {
 }
 
 void ViewerState::autosave() {
-  if (autosavePath_.empty()) return;
+  // An earlier session's autosave waits for the person's choice: never overwrite it before.
+  if (autosavePath_.empty() || recoveryPending_) return;
   runAction("autosave to " + autosavePath_.string(), [&] {
     if (sketch_.empty()) {
       // An empty sketch cannot be a valid sketch file; keep the last saved work instead.
@@ -176,18 +187,38 @@ bool ViewerState::addNodeAt(const Vec2& screen) {
     error("add node: open a point cloud first");
     return false;
   }
-  NodeId id = kNoNode;
+  std::string how;
+  NodeId added = kNoNode, parent = kNoNode;
+  const std::size_t errorsBefore = errorCount_;
   bool ok = edit("add node", "add node", "", [&] {
     if (!orbit_.viewport().contains(screen)) throw OptionsError("the point is outside the view");
-    NodeId parent = kNoNode;
-    if (!sketch_.empty()) parent = (active_ != kNoNode && sketch_.contains(active_)) ? active_ : sketch_.root();
+    if (!sketch_.empty()) {
+      // A node the person made active is the parent (the thesis's chain of clicks). Without one
+      // (after a load or an automatic sketch the active node is only the root by default), a click
+      // that missed a marker in a dense skeleton means "here, next to that node": attach it to the
+      // nearest marker, never silently to the root.
+      if (activeChosen_ && active_ != kNoNode && sketch_.contains(active_)) {
+        parent = active_;
+      } else {
+        parent = nearestMarker(screen);
+        how = parent != kNoNode ? " (the nearest node; select a node to attach elsewhere)"
+                                : " (the root: no node is visible in this view)";
+        if (parent == kNoNode) parent = sketch_.root();
+      }
+    }
     int cam = sketch_.addCamera(orbit_.camera());
-    id = sketch_.addScreenNode(parent, cam, screen);
-    selected_ = active_ = id;
+    added = sketch_.addScreenNode(parent, cam, screen);
+    selected_ = active_ = added;
   });
+  if (ok) activeChosen_ = true;
+  if (ok && errorCount_ == errorsBefore) {  // a rebuild error stays the message shown
+    info(parent == kNoNode ? "added node " + std::to_string(added) + " (the root)"
+                           : "added node " + std::to_string(added) + " under node " + std::to_string(parent) + how);
+  }
   // Never a silent jump in depth (issue 20): say where the circle went when it is not where the
   // parent (or the front-most surface) said it would be.
-  if (ok && recon_->nodeFit(id).depthJump) info("warning: node " + std::to_string(id) + ": " + recon_->nodeFit(id).warning);
+  if (ok && recon_->nodeFit(added).depthJump)
+    info("warning: node " + std::to_string(added) + ": " + recon_->nodeFit(added).warning);
   return ok;
 }
 
@@ -202,6 +233,7 @@ bool ViewerState::selectNode(NodeId id) {
     return false;
   }
   selected_ = active_ = id;
+  activeChosen_ = true;
   lastEditKey_.clear();
   ++sceneVersion_;
   return true;
@@ -213,6 +245,7 @@ bool ViewerState::setActiveNode(NodeId id) {
     return false;
   }
   active_ = id;
+  activeChosen_ = true;
   ++sceneVersion_;
   return true;
 }
@@ -341,6 +374,7 @@ bool ViewerState::clearSketch() {
     fresh.defaults = sketch_.defaults;
     sketch_ = std::move(fresh);
     selected_ = active_ = kNoNode;
+    activeChosen_ = false;
   });
 }
 
@@ -349,12 +383,53 @@ bool ViewerState::autoSketchUniform(int nodes) {
     error("automatic sketch: open a point cloud first");
     return false;
   }
-  return edit("automatic sketch", "uniform automatic sketch", "", [&] {
+  if (!libraryUpAxis(viewUp_)) {
+    error(std::string("automatic sketch: needs up +y or +z (the view's up is ") + toString(viewUp_) + ")");
+    return false;
+  }
+  bool ok = edit("automatic sketch", "uniform automatic sketch", "", [&] {
     sketch_ = sketch::uniformAutoSketch(cloud_, orbit_.camera(), nodes, up_);
     selected_ = kNoNode;
     std::vector<NodeId> order = sketch_.topologicalOrder();
     active_ = order.empty() ? kNoNode : order.back();
   });
+  if (ok) untouchedAuto_ = true, activeChosen_ = false;
+  return ok;
+}
+
+bool ViewerState::askBeforeReplacing(const std::string& question, std::function<bool()> action) {
+  if (!hasHandEdits()) return action();
+  pendingQuestion_ = question;
+  pendingAction_ = std::move(action);
+  info(question);
+  return false;
+}
+
+bool ViewerState::answerConfirmation(bool yes) {
+  if (!pendingAction_) {
+    error("confirm: no question is waiting");
+    return false;
+  }
+  std::function<bool()> action = std::move(pendingAction_);
+  pendingAction_ = nullptr;
+  pendingQuestion_.clear();
+  if (!yes) {
+    info("kept the sketch (" + std::to_string(sketch_.size()) + " nodes)");
+    return false;
+  }
+  return action();
+}
+
+bool ViewerState::requestAutoSketchUniform(int nodes) {
+  return askBeforeReplacing("Replace the sketch (" + std::to_string(sketch_.size()) +
+                                " nodes, with hand edits) by a uniform automatic sketch? (undoable)",
+                            [this, nodes] { return autoSketchUniform(nodes); });
+}
+
+bool ViewerState::requestAutoSketchSkeleton(bool leafOn) {
+  return askBeforeReplacing("Replace the sketch (" + std::to_string(sketch_.size()) +
+                                " nodes, with hand edits) by the automatic skeleton? (undoable)",
+                            [this, leafOn] { return autoSketchSkeleton(leafOn); });
 }
 
 bool ViewerState::autoSketchSkeleton(bool leafOn) {
@@ -362,7 +437,11 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
     error("automatic skeleton sketch: open a point cloud first");
     return false;
   }
-  return edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
+  if (!libraryUpAxis(viewUp_)) {
+    error(std::string("automatic skeleton sketch: needs up +y or +z (the view's up is ") + toString(viewUp_) + ")");
+    return false;
+  }
+  bool ok = edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
     const skeleton::AutoSkeletonOptions options =
         skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, up_);
     skeleton::AutoSkeletonResult result = skeleton::autoSkeletonSketch(cloud_, options);
@@ -374,6 +453,8 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
          " nodes keep the automatic model's circles "
          "(edit a node, or Refit, to fit it from the cloud)");
   });
+  if (ok) untouchedAuto_ = true, activeChosen_ = false;
+  return ok;
 }
 
 bool ViewerState::refitSelected() {
@@ -401,6 +482,7 @@ bool ViewerState::saveSketch(const std::filesystem::path& path) {
   return runAction("save sketch", [&] {
     if (sketch_.empty()) throw OptionsError("the sketch is empty: nothing to save");
     io::writeSketch(path, sketch_);
+    dirty_ = false;
     info("saved sketch to " + path.string() + " (" + std::to_string(sketch_.size()) + " nodes)");
   });
 }
@@ -413,6 +495,7 @@ bool ViewerState::loadSketch(const std::filesystem::path& path) {
     selected_ = kNoNode;
     active_ = kNoNode;
   });
+  if (ok) dirty_ = false, activeChosen_ = false;
   if (ok) info("loaded sketch " + path.string() + " (" + std::to_string(sketch_.size()) + " nodes)");
   return ok;
 }

@@ -213,7 +213,7 @@ bool ViewerState::toolKey(const std::string& key, int mods) {
   auto toggle = [&](Tool t) { setTool(tool_ == t ? Tool::Sketch : t); };
   if (key == "g") {
     toggle(Tool::Stroke);
-  } else if (key == "l") {
+  } else if (key == "x") {  // X: cross points out as not-wood (L is the node labels)
     toggle(Tool::Lasso);
   } else if (key == "r") {
     toggle(Tool::Region);

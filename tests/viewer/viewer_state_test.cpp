@@ -276,7 +276,7 @@ TEST(ViewerState, AutosavesBesideTheCloudOnEveryEdit) {
   ViewerState s;
   s.setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(2000), geom::UpAxis::Y, dir / "tree.xyz"));
-  EXPECT_EQ(s.autosavePath(), dir / "tree.autosave.sketch.json");
+  EXPECT_EQ(s.autosavePath(), dir / "tree.xyz.autosave.sketch.json");
   s.clickAt(s.camera().project(Vec3(0, 1, 0)).head<2>());
   s.clickAt(s.camera().project(Vec3(0, 2, 0)).head<2>());
   sketch::Sketch saved = io::readSketch(s.autosavePath());

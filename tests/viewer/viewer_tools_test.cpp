@@ -135,7 +135,7 @@ TEST(ViewerTools, MouseDragsUseTheChosenTool) {
   // Escape goes back to sketching; a drag with the lasso tool adds a lasso.
   f.state.keyPress("escape");
   EXPECT_EQ(f.state.tool(), ViewerState::Tool::Sketch);
-  f.state.keyPress("l");
+  f.state.keyPress("x");
   f.state.mouseDown(Vec2(10, 10), MouseButton::Left);
   f.state.mouseMove(Vec2(200, 10));
   f.state.mouseMove(Vec2(200, 200));

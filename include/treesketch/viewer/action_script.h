@@ -11,7 +11,8 @@
 //   {"key": "ctrl+z"}                      see ViewerState::keyPress
 //   {"slider": "sliceHalfThickness"|"lineEpsilon"|"pointSize", "value": number}
 //   {"option": "colorMode"|"meshStyle"|"projection"|"showCloud"|"showNodes"|"showCircles"|
-//              "showRegion", "value": "height"|"wireframe"|"ortho"|true|...}
+//              "showRegion"|"labels"|"upAxis", "value": "height"|"wireframe"|"ortho"|true|"auto"|
+//              "-z"|...}
 //   {"view": "front"|"side"|"top"|"fit"}
 //   {"select": nodeId}                     -1 clears the selection
 //   {"button": "autoSketch"|"autoSkeleton"|"undo"|"redo"|"clear"|"fit"|"delete"|"deleteSubtree"|
@@ -26,12 +27,17 @@
 //   {"reattach": [nodeId, newParentId]}    re-attach a node (and its subtree) to another parent
 //   {"automaticBelow": nodeId}             automatic skeleton below a node, merged
 //   {"tool": "sketch"|"stroke"|"lasso"|"region"|"reattach"}   what a left drag does (as keys
-//                                          G, L, R, P), so "drag" actions can use the tools
+//                                          G, X, R, P), so "drag" actions can use the tools
+//   {"recovery": "restore"|"discard"|"keep"}   answers the offer of an earlier session's autosave
+//   {"confirm": true|false}               answers the question waiting (replace hand edits?)
 //   {"wait": frames}
+//   {"sleep": seconds}                     real time, drawing a frame every 0.1 s (a person idling)
 //   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
-//               "errors": n, "meshTriangles": n, "kept": n, "notWood": n}}   ("meshTriangles"
-//                                          checks "at least n"; "kept": nodes with a kept circle;
-//                                          "notWood": not-wood lassos)
+//               "errors": n, "meshTriangles": n, "kept": n, "notWood": n, "recoveryOffered": 0|1,
+//               "confirmPending": 0|1, "handEdits": 0|1, "labelsShown": 0|1, "statusShown": 0|1,
+//               "lyingDown": 0|1, "legend": 0|1}}
+//                                          ("meshTriangles" checks "at least n"; "kept": nodes
+//                                          with a kept circle; "notWood": not-wood lassos)
 // Paths are relative to the current directory.
 #pragma once
 
@@ -64,6 +70,9 @@ struct ScriptAction {
     Export,
     Screenshot,
     Wait,
+    Sleep,
+    Recovery,
+    Confirm,
     Expect,
     Path,    ///< stroke / lasso / region: `name` and `points`
     NodeOp,  ///< deleteSubtree / reattach / automaticBelow: `name`, node `value`, parent `value2`

@@ -46,6 +46,10 @@ class OrbitCamera {
   /// Looks from a preset direction (as geom::presetCamera: front, side, top, for the up axis) and
   /// frames the scene bounds.
   void preset(geom::PresetView view, geom::UpAxis up);
+  /// The same for any unit `up` vector (world frame; ±X, ±Y, ±Z in the viewer): front looks along
+  /// -Z for an up along Y or X, along +Y for an up along Z; side is up x front; top looks down
+  /// `up`. For +Y and +Z this is exactly the preset above.
+  void preset(geom::PresetView view, const geom::Vec3& up);
 
   /// Trackball rotation for a mouse drag from `from` to `to` (window pixels): the scene turns as if
   /// the mouse dragged a sphere around the target. A zero drag does nothing.

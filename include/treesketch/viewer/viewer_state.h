@@ -5,10 +5,10 @@
 // points, the tube mesh). The desktop window (apps/viewer) only draws this and forwards input;
 // tests and the script runner drive it directly. No action ever throws: a failure becomes an error
 // status message and the sketch is kept.
-// ViewerState is implemented in three files by concern: src/viewer/viewer_state.cpp (the state
+// ViewerState is implemented in several files by concern: src/viewer/viewer_state.cpp (the state
 // and its edit commands: cloud, sketch edits, undo, save/load), viewer_input.cpp (mouse, wheel,
-// keys and the view they steer) and viewer_draw.cpp (what is drawn: colours, markers, lines,
-// status).
+// keys and the view they steer), viewer_draw.cpp (what is drawn: colours, markers, lines,
+// status), recovery.cpp (the earlier session's autosave offered back).
 #pragma once
 
 #include <array>
@@ -31,6 +31,7 @@
 #include "treesketch/viewer/orbit_camera.h"
 #include "treesketch/viewer/point_colors.h"
 #include "treesketch/viewer/undo_stack.h"
+#include "treesketch/viewer/view_up.h"
 
 namespace treesketch::viewer {
 
@@ -64,6 +65,32 @@ struct ViewerOptions {
   double distanceColorScale = 0.02;
   /// Colour of every point in ColorMode::Plain.
   Rgb plainColor = {170, 170, 170};
+  /// How long an info message stays in the status bar, seconds (errors stay until dismissed or
+  /// replaced). Design choice: long enough to read two lines, short enough not to mislead later.
+  double statusInfoSeconds = 6.0;
+  /// LabelMode::Auto shows node numbers only up to this many nodes (an automatic skeleton has
+  /// 300-800 and its numbers cover the tree).
+  std::size_t autoLabelMaxNodes = 100;
+};
+
+/// Node numbers beside the markers: Auto (up to ViewerOptions::autoLabelMaxNodes nodes), On, Off.
+enum class LabelMode { Auto, On, Off };
+/// Parses "auto" / "on" / "off"; throws OptionsError otherwise.
+LabelMode parseLabelMode(const std::string& s);
+const char* toString(LabelMode mode);
+
+/// The colour scale of the current point colouring, for a legend: the ramp's colour at each
+/// stop and what it means. Units are the cloud's (metres for field scans).
+struct LegendStop {
+  double value = 0.0;  ///< height or distance, world units
+  Rgb color;
+  std::string label;  ///< "0.12 m (1.5 %)"
+};
+struct ColorLegend {
+  bool shown = false;             ///< false for plain colouring
+  std::string title;              ///< "distance to the nearest circle"
+  std::vector<LegendStop> stops;  ///< low to high
+  std::string note;               ///< "and beyond", "no fitted circle yet"
 };
 
 struct DisplayOptions {
@@ -74,6 +101,7 @@ struct DisplayOptions {
   bool showNodes = true;
   bool showCircles = true;
   bool showSamplingRegion = true;  ///< the selected node's slab, cylinder and slice points
+  LabelMode labels = LabelMode::Auto;
 };
 
 /// A node's reconstruction outcome, as the viewer shows it.
@@ -128,6 +156,7 @@ struct SamplingRegion {
 struct StatusMessage {
   bool error = false;
   std::string text;
+  std::chrono::steady_clock::time_point time{};  ///< when it was posted
 };
 
 /// The reconstruction the viewer runs after every edit. Implemented over recon::Reconstruction in
@@ -161,9 +190,11 @@ class ViewerState {
 
   // ---- data -------------------------------------------------------------------------------------
   /// Takes a cloud (world units, `up` axis): resets the sketch, history and selection, frames the
-  /// view (front preset). `sourcePath` names it in messages and places the autosave file beside it
-  /// ("<stem>.autosave.sketch.json"); empty: no autosave unless setAutosavePath is called.
-  /// Returns false (error status) for an empty cloud.
+  /// view (front preset). `sourcePath` names it in messages and places the autosave file beside it,
+  /// named after the whole file name ("tree.las" -> "tree.las.autosave.sketch.json", so tree.las
+  /// and tree.xyz in one folder keep apart); empty: no autosave unless setAutosavePath is called.
+  /// An autosave found there is offered back (recoveryPending()). Returns false (error status) for
+  /// an empty cloud.
   bool setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::filesystem::path& sourcePath = {});
   /// Reads a cloud file (io::readPointCloud) and calls setCloud. Mesh files (.obj, PLY with faces)
   /// are scanned first with the sphere scanner's defaults; `progress` reports the scan.
@@ -175,12 +206,33 @@ class ViewerState {
   std::uint64_t cloudVersion() const { return cloudVersion_; }
   geom::UpAxis up() const { return up_; }
   const sketch::Sketch& sketch() const { return sketch_; }
-  /// Where the sketch is autosaved after every edit (empty: never).
-  void setAutosavePath(const std::filesystem::path& path) { autosavePath_ = path; }
+  /// Where the sketch is autosaved after every edit (empty: never). An existing file there is work
+  /// from an earlier session (a crash, or a window closed with unsaved edits): it is offered back
+  /// (recoveryPending()) and never overwritten before resolveRecovery() is called.
+  void setAutosavePath(const std::filesystem::path& path);
   const std::filesystem::path& autosavePath() const { return autosavePath_; }
   /// Where Ctrl+S saves the sketch (empty: Ctrl+S reports that a path is needed).
   void setSketchPath(const std::filesystem::path& path) { sketchPath_ = path; }
   const std::filesystem::path& sketchPath() const { return sketchPath_; }
+
+  // ---- crash recovery ---------------------------------------------------------------------------
+  /// What to do with an autosave found at start: load it (an undoable edit), delete it, or keep
+  /// it for later (renamed "<autosave>.kept-<date>-<time>.sketch.json", loadable by hand).
+  enum class RecoveryChoice { Restore, Discard, Keep };
+  /// An earlier session's autosave is waiting for the person's choice. Until then autosave writes
+  /// nothing (edits still work; they are autosaved once the choice is made).
+  bool recoveryPending() const { return recoveryPending_; }
+  /// Nodes in the waiting autosave (0 when it cannot be read; recoveryError() says why).
+  std::size_t recoveryNodes() const { return recoveryNodes_; }
+  const std::string& recoveryError() const { return recoveryError_; }
+  /// Applies the choice; false (error status) when nothing is pending or the file cannot be
+  /// read/moved (the file is then left where it is and the offer stays).
+  bool resolveRecovery(RecoveryChoice choice);
+  /// Edits since the sketch was last saved, loaded or the cloud opened.
+  bool hasUnsavedChanges() const { return dirty_; }
+  /// A clean end of the session: the autosave is deleted when there is nothing it would bring
+  /// back (no unsaved edits and no pending offer); else it stays, to be offered next time.
+  void closeSession();
 
   // ---- view -------------------------------------------------------------------------------------
   /// The 3D view's rectangle in window pixels (top-left origin).
@@ -194,11 +246,30 @@ class ViewerState {
   DisplayOptions& display() { return display_; }
   const DisplayOptions& display() const { return display_; }
   void setColorMode(ColorMode mode);
+  /// Node numbers are drawn (display().labels and the node count).
+  bool labelsShown() const;
+  /// The legend of the current colouring (shown = false for plain).
+  ColorLegend colorLegend() const;
+  /// The view's up direction (initially the cloud's up axis). Setting it re-orients the view
+  /// (front preset) and the height colouring; the cloud and the sketch are untouched, and for +Y
+  /// or +Z the library's up axis (automatic sketches, the sketch file's "up") follows. Other
+  /// directions are for viewing and sketching by hand: the automatic sketches then refuse with a
+  /// message, as they assume +Y or +Z.
+  void setUpDirection(UpDirection up);
+  UpDirection upDirection() const { return viewUp_; }
+  /// The warning shown when the cloud looks lying down under the current up ("" when upright).
+  /// The window shows it as a banner over the view, with the up-axis choice, until the up changes
+  /// or the person dismisses it (upWarningShown()).
+  std::string lyingDownWarning() const;
+  bool upWarningShown() const { return !upWarningDismissed_ && !lyingDownWarning().empty(); }
+  void dismissUpWarning() { upWarningDismissed_ = true; }
 
   // ---- input (window pixels; what a mouse and keyboard do) -------------------------------------
-  /// Left button: press on a node picks it (release without moving selects it and makes it
-  /// active — with Ctrl it only selects it; moving drags it); press elsewhere and release adds a
-  /// node there as a child of the active node (the first node is the root). Right button drag (or
+  /// Left button: press on a node (the nearest marker within the pick radius) picks it (release
+  /// without moving selects it and makes it active — with Ctrl it only selects it; moving drags
+  /// it); press elsewhere and release adds a node there as a child of the active node when the
+  /// person chose one, else of the node whose marker is nearest to the click (the first node is the
+  /// root); the status line names the parent. Right button drag (or
   /// Alt + left): trackball orbit. Middle button drag (or Shift + right): pan. Presses outside the
   /// viewport are ignored.
   void mouseDown(const geom::Vec2& pos, MouseButton button, int mods = kModNone);
@@ -216,8 +287,8 @@ class ViewerState {
   /// the subtree too), "ctrl+z"-style names are accepted (mods parsed from the prefix), "z" with
   /// Ctrl (undo), "y" with Ctrl or "z" with Ctrl+Shift (redo), "s" with Ctrl (save to sketchPath()), "escape"
   /// (deselect), "f" (fit), "o" (ortho/perspective), "1"/"2"/"3" (front/side/top view),
-  /// "a" (uniform automatic sketch), "w" (cycle mesh style), "c" (cycle colour mode). Returns false
-  /// for a key with no binding.
+  /// "a" (uniform automatic sketch; asks first when it would replace hand edits), "w" (cycle mesh style), "c" (cycle
+  /// colour mode). Returns false for a key with no binding.
   bool keyPress(const std::string& key, int mods = kModNone);
 
   // ---- sketch actions (each one undoable, rebuilds, autosaves; false + error status on failure) --
@@ -242,6 +313,20 @@ class ViewerState {
   /// keeping its model circle, so the view shows the automatic model and an edit re-fits only the
   /// nodes it touches). leafOn: the tree was scanned in leaf (skeleton::leafOnSkeletonOptions).
   bool autoSketchSkeleton(bool leafOn = false);
+  /// What the window's buttons and the A key call: the two automatic sketches above, but when the
+  /// sketch holds a person's edits (hasHandEdits()) they first ask (confirmationPending()) and run
+  /// only on answerConfirmation(true). Either way the replacement is one undoable edit.
+  bool requestAutoSketchUniform(int nodes = 12);
+  bool requestAutoSketchSkeleton(bool leafOn = false);
+  /// The sketch is not empty and is not an untouched automatic sketch (a node was added, moved or
+  /// changed by hand, a sketch was loaded or restored, or an edit was undone since).
+  bool hasHandEdits() const { return !sketch_.empty() && !untouchedAuto_; }
+  /// A question waits for a yes/no answer (the window shows it as a modal).
+  bool confirmationPending() const { return static_cast<bool>(pendingAction_); }
+  const std::string& confirmationQuestion() const { return pendingQuestion_; }
+  /// Yes runs the waiting action, no drops it (an info message says so). False when nothing waits
+  /// or the action failed.
+  bool answerConfirmation(bool yes);
   /// Drops the selected node's kept circle (it is then fitted from the cloud) / every node's.
   /// Undoable; an error message when there is nothing to refit.
   bool refitSelected();
@@ -313,6 +398,14 @@ class ViewerState {
   std::size_t errorCount() const { return errorCount_; }
   void info(const std::string& text);
   void error(const std::string& text);
+  /// What the status bar shows at `now`: the last message if it is an error not dismissed, or an
+  /// info younger than ViewerOptions::statusInfoSeconds; nullopt otherwise (the bar shows counts).
+  std::optional<StatusMessage> statusLine(std::chrono::steady_clock::time_point now) const;
+  std::optional<StatusMessage> statusLine() const { return statusLine(std::chrono::steady_clock::now()); }
+  /// Hides the status bar's message (Esc, or its close button); the messages log keeps it.
+  void dismissStatus() { statusDismissed_ = true; }
+  /// When the status line will change by itself next (an info expiring); nullopt when it will not.
+  std::optional<std::chrono::steady_clock::time_point> statusExpiry() const;
   const ViewerOptions& options() const { return options_; }
 
  private:
@@ -333,6 +426,8 @@ class ViewerState {
   void endEdit();
   void rebuild();
   void autosave();
+  /// Looks for an earlier session's autosave at autosavePath_ (sets recoveryPending_).
+  void detectRecovery();
   void resetReconstruction();
   void fixSelection();
   bool sameAsCurrent(const geom::Camera& cam) const;
@@ -369,6 +464,20 @@ class ViewerState {
   sketch::NodeId gestureNode_ = sketch::kNoNode;
   std::uint64_t dragSerial_ = 0;
   bool autosavePending_ = false;
+  bool untouchedAuto_ = false;
+  /// The person chose the active node (selected it, added it, dragged it); false when it is a
+  /// fallback (the root after a load, an automatic sketch, a deletion of the active node).
+  bool activeChosen_ = false;
+  /// The visible node whose marker is nearest to `screen`, at any distance (kNoNode if none).
+  sketch::NodeId nearestMarker(const geom::Vec2& screen) const;
+  std::function<bool()> pendingAction_;
+  std::string pendingQuestion_;
+  /// Runs `action` now, or asks `question` first when the sketch has hand edits.
+  bool askBeforeReplacing(const std::string& question, std::function<bool()> action);
+  bool recoveryPending_ = false;
+  std::size_t recoveryNodes_ = 0;
+  std::string recoveryError_;
+  bool dirty_ = false;
 
   std::vector<Rgb> colors_;
   ColorMode colorsMode_ = ColorMode::Height;
@@ -379,6 +488,9 @@ class ViewerState {
   geom::TriMesh emptyMesh_;
   double lastRebuildMs_ = 0.0;
   std::vector<StatusMessage> messages_;
+  bool statusDismissed_ = false;
+  UpDirection viewUp_ = UpDirection::PosY;
+  bool upWarningDismissed_ = false;
   std::size_t errorCount_ = 0;
   Tool tool_ = Tool::Sketch;
   std::vector<geom::Vec2> toolPath_;

@@ -1,0 +1,115 @@
+#include "dialogs.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <string>
+
+namespace treesketch::gui {
+
+void drawRecoveryDialog(viewer::ViewerState& state) {
+  const char* title = "Restore earlier work?##recovery";
+  if (state.recoveryPending() && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  ImGui::SetNextWindowSize(ImVec2(460, 0));
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove)) return;
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::Text(
+      "An earlier session of this cloud ended without saving its sketch (a crash, or the window was "
+      "closed). Its autosave is:");
+  ImGui::TextDisabled("%s", state.autosavePath().string().c_str());
+  if (state.recoveryError().empty())
+    ImGui::Text("%zu nodes. It will not be overwritten until you choose.", state.recoveryNodes());
+  else
+    ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "It cannot be read: %s", state.recoveryError().c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::Separator();
+  using Choice = viewer::ViewerState::RecoveryChoice;
+  ImGui::BeginDisabled(!state.recoveryError().empty());
+  if (ImGui::Button("Restore")) state.resolveRecovery(Choice::Restore);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Discard")) state.resolveRecovery(Choice::Discard);
+  ImGui::SameLine();
+  if (ImGui::Button("Keep for later")) state.resolveRecovery(Choice::Keep);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Renames the file (kept-<date>); load it later with Load sketch");
+  if (!state.recoveryPending()) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+}
+
+void drawColorLegend(const viewer::ViewerState& state) {
+  viewer::ColorLegend legend = state.colorLegend();
+  if (!legend.shown || legend.stops.size() < 2) return;
+  const geom::Viewport vp = state.orbit().viewport();
+  ImGui::SetNextWindowPos(ImVec2(float(vp.x + vp.width - 10), float(vp.y + vp.height - 10)), 0, ImVec2(1, 1));
+  ImGui::SetNextWindowBgAlpha(0.75f);
+  ImGui::Begin("##colorLegend", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs);
+  ImGui::TextUnformatted(legend.title.c_str());
+  const float width = 300.0f, height = 14.0f;
+  ImVec2 p = ImGui::GetCursorScreenPos();
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const std::size_t n = legend.stops.size();
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const auto& a = legend.stops[i].color;
+    const auto& b = legend.stops[i + 1].color;
+    float x0 = p.x + width * float(i) / float(n - 1), x1 = p.x + width * float(i + 1) / float(n - 1);
+    ImU32 ca = IM_COL32(a.r, a.g, a.b, 255), cb = IM_COL32(b.r, b.g, b.b, 255);
+    dl->AddRectFilledMultiColor(ImVec2(x0, p.y), ImVec2(x1, p.y + height), ca, cb, cb, ca);
+  }
+  ImGui::Dummy(ImVec2(width, height));
+  // First, middle and last stops under the bar (all five do not fit at a readable size).
+  ImGui::TextUnformatted(legend.stops.front().label.c_str());
+  const std::string& mid = legend.stops[n / 2].label;
+  ImGui::SameLine(width * 0.5f - ImGui::CalcTextSize(mid.c_str()).x * 0.5f);
+  ImGui::TextUnformatted(mid.c_str());
+  const std::string last = legend.stops.back().label;
+  ImGui::SameLine(width - ImGui::CalcTextSize(last.c_str()).x + ImGui::GetStyle().WindowPadding.x);
+  ImGui::TextUnformatted(last.c_str());
+  if (!legend.note.empty()) ImGui::TextDisabled("%s", legend.note.c_str());
+  ImGui::End();
+}
+
+void drawUpWarning(viewer::ViewerState& state) {
+  if (!state.upWarningShown()) return;
+  const geom::Viewport vp = state.orbit().viewport();
+  ImGui::SetNextWindowPos(ImVec2(float(vp.x + 10), float(vp.y + 10)));
+  ImGui::SetNextWindowSize(ImVec2(float(std::min(vp.width - 20, 620.0)), 0));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("##upWarning", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                   ImGuiWindowFlags_NoMove);
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1), "%s", state.lyingDownWarning().c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::TextUnformatted("Up axis:");
+  const viewer::UpDirection all[] = {viewer::UpDirection::PosX, viewer::UpDirection::NegX, viewer::UpDirection::PosY,
+                                     viewer::UpDirection::NegY, viewer::UpDirection::PosZ, viewer::UpDirection::NegZ};
+  for (viewer::UpDirection d : all) {
+    ImGui::SameLine();
+    std::string label = std::string(viewer::toString(d)) + "##upWarning";
+    if (ImGui::Button(label.c_str())) state.setUpDirection(d);
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Dismiss##upWarning")) state.dismissUpWarning();
+  ImGui::End();
+}
+
+void drawConfirmDialog(viewer::ViewerState& state) {
+  const char* title = "Replace the sketch?##confirm";
+  if (state.confirmationPending() && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  ImGui::SetNextWindowSize(ImVec2(420, 0));
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove)) return;
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextUnformatted(state.confirmationQuestion().c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::Separator();
+  if (ImGui::Button("Replace")) state.answerConfirmation(true);
+  ImGui::SameLine();
+  if (ImGui::Button("Keep my sketch") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+    state.answerConfirmation(false);
+  if (!state.confirmationPending()) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+}
+
+}  // namespace treesketch::gui

@@ -1,0 +1,103 @@
+// Every widget of the side panel answers to its own ImGui ID. Two widgets with one label (the View
+// "nodes" checkbox and the Sketch "nodes" slider) share an ID, and then the mouse on one moves the
+// other. Headless: Dear ImGui runs without a window or GL; the mouse is moved over a grid covering
+// the panel and the hovered ID is recorded at each point; one widget covers one connected region,
+// so an ID seen in two separate regions belongs to two widgets. Run by CTest (gui.panels_unique_ids)
+// with a node selected and without, so that every section is drawn.
+#include <imgui.h>
+#include <imgui_internal.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "../panels.h"
+#include "treesketch/viewer/viewer_state.h"
+
+using namespace treesketch;
+
+namespace {
+
+geom::PointCloud trunk() {
+  geom::PointCloud cloud;
+  for (int i = 0; i < 4000; ++i) {
+    double a = 0.37 * i, y = 4.0 * i / 4000.0;
+    cloud.positions.emplace_back(0.2 * std::cos(a), y, 0.2 * std::sin(a));
+  }
+  return cloud;
+}
+
+constexpr int kStep = 3;  // pixels; less than ImGui's item spacing (4 px vertically, 8 across)
+
+/// Scans the panel; returns the number of IDs seen in more than one region (and prints them).
+int clashes(viewer::ViewerState& state, gui::PanelState& panel, int width, int height) {
+  std::map<ImGuiID, std::set<std::pair<int, int>>> cells;
+  ImGuiIO& io = ImGui::GetIO();
+  auto frame = [&](float x, float y) {
+    io.MousePos = ImVec2(x, y);
+    ImGui::NewFrame();
+    gui::drawPanels(state, panel, width, height);
+    ImGuiID id = ImGui::GetCurrentContext()->HoveredId;
+    ImGui::Render();
+    return id;
+  };
+  frame(-100, -100);
+  for (int gy = 0; gy * kStep < height; ++gy)
+    for (int gx = 0; gx * kStep < gui::Layout::kPanelWidth; ++gx) {
+      frame(float(gx * kStep), float(gy * kStep));  // hover is resolved against the previous frame
+      ImGuiID id = frame(float(gx * kStep), float(gy * kStep));
+      if (id != 0) cells[id].insert({gx, gy});
+    }
+  int bad = 0;
+  for (auto& [id, set] : cells) {
+    // Flood-fill one region; any cell left over is a second widget with the same ID.
+    std::set<std::pair<int, int>> todo = set, seen;
+    std::vector<std::pair<int, int>> stack{*todo.begin()};
+    while (!stack.empty()) {
+      auto c = stack.back();
+      stack.pop_back();
+      if (!todo.erase(c)) continue;
+      seen.insert(c);
+      for (auto d : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}})
+        stack.push_back({c.first + d.first, c.second + d.second});
+    }
+    if (!todo.empty()) {
+      ++bad;
+      std::printf("ID %08x is used by two widgets: at (%d, %d) and at (%d, %d)\n", id, seen.begin()->first * kStep,
+                  seen.begin()->second * kStep, todo.begin()->first * kStep, todo.begin()->second * kStep);
+    }
+  }
+  std::printf("%zu widget IDs, %d shared\n", cells.size(), bad);
+  return bad;
+}
+
+}  // namespace
+
+int main() {
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DeltaTime = 1.0f / 60.0f;
+  const int width = 1280, height = 1800;  // tall: every section fits without scrolling
+  io.DisplaySize = ImVec2(float(width), float(height));
+  unsigned char* pixels = nullptr;
+  int tw = 0, th = 0;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &tw, &th);
+  io.Fonts->SetTexID(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(1)));
+
+  viewer::ViewerState state;
+  state.setViewport(gui::Layout::sceneViewport(width, height));
+  if (!state.setCloud(trunk(), geom::UpAxis::Y)) return 2;
+  for (int i = 1; i <= 3; ++i) state.clickAt(state.camera().project(geom::Vec3(0, i, 0)).head<2>());
+  gui::PanelState panel;
+  panel.sketchPath = "unused.sketch.json";
+  int bad = clashes(state, panel, width, height);  // node 2 selected: the Node section's widgets
+  state.selectNode(sketch::kNoNode);
+  bad += clashes(state, panel, width, height);  // no node: the sizes for new nodes
+  ImGui::DestroyContext();
+  if (bad) std::printf("FAILED: give each widget a unique label or a ##suffix\n");
+  return bad ? 1 : 0;
+}

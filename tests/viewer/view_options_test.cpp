@@ -1,0 +1,148 @@
+// Status messages that expire, optional node labels, the colour legend and the up direction
+// (issue 20's GUI bugs, at the library level; the window runs apps/viewer/tests/view_options.json).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "treesketch/gen/random.h"
+#include "treesketch/render/color_map.h"
+#include "treesketch/util/error.h"
+#include "treesketch/viewer/point_colors.h"
+#include "treesketch/viewer/viewer_state.h"
+
+namespace treesketch::viewer {
+namespace {
+
+using geom::Vec2;
+using geom::Vec3;
+using namespace std::chrono_literals;
+
+/// A trunk of radius 0.2 and height 4 along `axis` (0 x, 1 y, 2 z).
+geom::PointCloud trunk(int axis = 1, int n = 4000) {
+  gen::Rng rng(11);
+  geom::PointCloud cloud;
+  for (int i = 0; i < n; ++i) {
+    double a = rng.uniform(0, 2 * M_PI);
+    Vec3 p(0.2 * std::cos(a), 0.2 * std::sin(a), 0);
+    Vec3 q;
+    q[axis] = rng.uniform(0, 4);
+    q[(axis + 1) % 3] = p.x();
+    q[(axis + 2) % 3] = p.y();
+    cloud.positions.push_back(q);
+  }
+  return cloud;
+}
+
+TEST(StatusLine, InfosExpireErrorsStayUntilDismissedOrReplaced) {
+  ViewerState s;
+  s.info("hello");
+  auto now = std::chrono::steady_clock::now();
+  ASSERT_TRUE(s.statusLine(now));
+  EXPECT_EQ(s.statusLine(now)->text, "hello");
+  ASSERT_TRUE(s.statusExpiry());
+  EXPECT_FALSE(s.statusLine(now + 10s));  // 6 s by default
+  s.error("broken");
+  EXPECT_TRUE(s.statusLine(now + 1h));
+  EXPECT_FALSE(s.statusExpiry());
+  s.dismissStatus();
+  EXPECT_FALSE(s.statusLine(now + 1s));
+  s.error("again");
+  s.info("replaced");
+  EXPECT_EQ(s.statusLine()->text, "replaced");
+  EXPECT_FALSE(s.statusLine(now + 1h));
+  // Esc dismisses too; the log keeps every message.
+  s.error("third");
+  EXPECT_TRUE(s.keyPress("escape"));
+  EXPECT_FALSE(s.statusLine());
+  EXPECT_EQ(s.messages().size(), 5u);
+}
+
+TEST(Labels, AutoHidesThemOnLargeSketchesAndTheKeyCycles) {
+  ViewerState s;
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
+  ASSERT_TRUE(s.autoSketchUniform(12));
+  EXPECT_EQ(s.display().labels, LabelMode::Auto);
+  EXPECT_TRUE(s.labelsShown());
+  ASSERT_TRUE(s.autoSketchUniform(int(s.options().autoLabelMaxNodes) + 1));
+  EXPECT_FALSE(s.labelsShown());
+  EXPECT_TRUE(s.keyPress("l"));  // auto -> on
+  EXPECT_TRUE(s.labelsShown());
+  EXPECT_TRUE(s.keyPress("l"));  // on -> off
+  EXPECT_FALSE(s.labelsShown());
+  EXPECT_EQ(parseLabelMode("auto"), LabelMode::Auto);
+  EXPECT_THROW(parseLabelMode("maybe"), OptionsError);
+}
+
+TEST(Legend, DistanceScaleInMetresAndPercentMatchesThePointColours) {
+  ViewerState s;
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
+  s.setColorMode(ColorMode::CircleDistance);
+  ColorLegend l = s.colorLegend();
+  ASSERT_TRUE(l.shown);
+  ASSERT_GE(l.stops.size(), 2u);
+  const double scale = s.options().distanceColorScale * s.bounds().diagonal();
+  EXPECT_DOUBLE_EQ(l.stops.front().value, 0.0);
+  EXPECT_NEAR(l.stops.back().value, scale, 1e-12);
+  EXPECT_NE(l.stops.back().label.find("2 %"), std::string::npos) << l.stops.back().label;
+  // The legend's colours are those circleDistanceColors gives a point at that distance.
+  Circle3 c{Vec3(0, 0, 0), Vec3(0, 1, 0), 1.0};
+  geom::PointCloud probe;
+  for (const LegendStop& stop : l.stops) probe.positions.push_back(Vec3(1.0 + stop.value, 0, 0));
+  std::vector<Rgb> colors = circleDistanceColors(probe, {c}, scale);
+  for (std::size_t i = 0; i < l.stops.size(); ++i) {
+    EXPECT_EQ(colors[i].r, l.stops[i].color.r) << i;
+    EXPECT_EQ(colors[i].g, l.stops[i].color.g) << i;
+  }
+  s.setColorMode(ColorMode::Height);
+  l = s.colorLegend();
+  ASSERT_TRUE(l.shown);
+  EXPECT_NEAR(l.stops.back().value - l.stops.front().value, s.bounds().extent().y(), 1e-9);
+  s.setColorMode(ColorMode::Plain);
+  EXPECT_FALSE(s.colorLegend().shown);
+}
+
+TEST(UpDirection, TheLibraryRuleDecidesAndALyingCloudIsWarnedAbout) {
+  geom::PointCloud zUp = trunk(2);
+  ViewUpChoice c = chooseViewUp("", zUp, false);  // a text cloud declares nothing: Z
+  EXPECT_EQ(c.axis, geom::UpAxis::Z);
+  EXPECT_EQ(c.view, UpDirection::PosZ);
+  EXPECT_EQ(chooseViewUp("", zUp, true).axis, geom::UpAxis::Y);  // the demo tree
+  geom::PointCloud declared = zUp;
+  declared.up = geom::UpAxis::Y;
+  EXPECT_EQ(chooseViewUp("", declared, false).axis, geom::UpAxis::Y);
+  ViewUpChoice neg = chooseViewUp("-z", zUp, false);
+  EXPECT_EQ(neg.view, UpDirection::NegZ);
+  EXPECT_THROW(chooseViewUp("w", zUp, false), OptionsError);
+
+  // The same Z-up trunk opened as Y-up (the old default) lies down: warned; under +Z it stands.
+  ViewerState s;
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(s.setCloud(zUp, geom::UpAxis::Y));
+  EXPECT_TRUE(s.upWarningShown());
+  EXPECT_NE(s.lyingDownWarning().find("lying down"), std::string::npos);
+  s.clickAt(Vec2(400, 300));
+  s.clickAt(Vec2(420, 280));
+  ASSERT_EQ(s.sketch().size(), 2u);
+  s.setUpDirection(UpDirection::PosZ);
+  EXPECT_FALSE(s.upWarningShown());
+  EXPECT_EQ(s.up(), geom::UpAxis::Z);
+  EXPECT_EQ(s.sketch().size(), 2u);  // the sketch is kept
+  // The front view now has +Z as screen up.
+  geom::Camera cam = s.camera();
+  Vec3 low = cam.project(Vec3(0, 0, 0)), high = cam.project(Vec3(0, 0, 4));
+  EXPECT_LT(high.y(), low.y());  // window y grows downwards
+  // -Z: upside down; the automatic sketches refuse with a message (they assume +Y or +Z).
+  s.setUpDirection(UpDirection::NegZ);
+  EXPECT_FALSE(s.autoSketchUniform());
+  EXPECT_TRUE(s.lastMessage().error);
+  EXPECT_EQ(s.sketch().size(), 2u);
+  s.setUpDirection(UpDirection::PosX);
+  EXPECT_TRUE(s.upWarningShown());
+  s.dismissUpWarning();
+  EXPECT_FALSE(s.upWarningShown());
+}
+
+}  // namespace
+}  // namespace treesketch::viewer
