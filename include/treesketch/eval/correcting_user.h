@@ -42,7 +42,8 @@ struct CorrectingUserOptions {
   double tolerancePct = 0.5;
   /// Hand jitter of the strokes, pixels (the careful user's, EvalOptions::pixelNoise).
   double pixelNoise = 1.5;
-  /// A subtree is deleted whole when at least this share of its nodes is wrong (design choice).
+  /// A subtree is deleted whole when at least this share of its tube surface (radius x spacing
+  /// summed over its nodes) is wrong (design choice).
   double subtreeWrongShare = 0.6;
   std::uint64_t seed = 1;
   DistanceOptions distance;
