@@ -380,6 +380,7 @@ class ViewerState {
   double lastRebuildMs_ = 0.0;
   std::vector<StatusMessage> messages_;
   std::size_t errorCount_ = 0;
+  std::vector<sketch::NotWoodLasso> colorsNotWood_;  ///< the lassos pointColors() last drew
   Tool tool_ = Tool::Sketch;
   std::vector<geom::Vec2> toolPath_;
 };
