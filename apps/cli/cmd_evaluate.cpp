@@ -84,9 +84,9 @@ void registerEvaluate(CLI::App& app, Action& action) {
   cmd->add_option("--samples", o->e.samples, "Comparison samples per direction (0: MeshLab's default)")
       ->capture_default_str();
   cmd->add_option("--seed", o->e.seed, "Seed of scans, sketches and sampling")->capture_default_str();
-  cmd->add_flag("--thesis-fit", [o](std::int64_t) { o->e.chooseDepth = false; },
-                "The simulated user's nodes take the thesis's fit (the best-supported circle along the whole view "
-                "ray) instead of choosing their depth from the parent's circle");
+  cmd->add_flag("--choose-depth", o->e.chooseDepth,
+                "The simulated user's screen nodes choose their depth along the view ray from the parent's circle "
+                "(as the viewer does) instead of the thesis's fit (the best-supported circle along the whole ray)");
   cmd->add_flag("--correcting-user", o->correcting,
                 "Run only the simulated correcting user (issue 20): from the automatic skeleton, one edit at a time "
                 "on the worst visible error; writes correcting_user.{csv,md} and correcting_user_*.svg");

@@ -167,45 +167,46 @@ CorrectingRun runCorrectingUser(const TreeCase& tree, const geom::PointCloud& cl
     {
       const auto anchors = edit::nodeAnchors(sk, &rec);
       std::map<NodeId, double> wrong;  // node -> its score
+      std::map<NodeId, double> area;   // node -> its tube's surface, radius x spacing (a proxy)
       for (const auto& [id, a] : anchors) {
         if (!(a.radius > 0)) continue;
-        const double excess = reference.query(a.centre).distance - a.radius;
-        if (excess <= tol) continue;
         const NodeId parent = sk.node(id).parent;
         double spacing = 2.0 * a.radius;
         if (auto it = anchors.find(parent); it != anchors.end()) spacing = (a.centre - it->second.centre).norm();
-        wrong[id] = excess * excess * a.radius * std::max(spacing, step);
+        area[id] = a.radius * std::max(spacing, step);
+        const double excess = reference.query(a.centre).distance - a.radius;
+        if (excess <= tol) continue;
+        wrong[id] = excess * excess * area[id];
       }
-      // Per subtree: the wrong nodes' summed score and share (bottom-up). A person deletes the
-      // largest subtree that is mostly wrong (the topmost one whose share reaches
-      // subtreeWrongShare), or a lone wrong node inside a good subtree.
+      // Per subtree (bottom-up): the wrong nodes' summed score, and the share of the subtree's
+      // tube surface that is wrong. A person deletes a subtree whose surface is mostly wrong
+      // (subtreeWrongShare) — the one that removes the most error — or a lone wrong node.
       const std::vector<NodeId> order = sk.topologicalOrder();
-      std::map<NodeId, double> sumW;
-      std::map<NodeId, std::size_t> count, countW;
+      std::map<NodeId, double> sumW, areaAll, areaW;
+      std::map<NodeId, std::size_t> count;
       for (auto it = order.rbegin(); it != order.rend(); ++it) {
         const NodeId id = *it;
         auto w = wrong.find(id);
+        auto ar = area.find(id);
+        const double aId = ar != area.end() ? ar->second : 0.0;
         sumW[id] += w != wrong.end() ? w->second : 0.0;
+        areaAll[id] += aId;
+        areaW[id] += w != wrong.end() ? aId : 0.0;
         count[id] += 1;
-        countW[id] += w != wrong.end();
         const NodeId parent = sk.node(id).parent;
         if (parent != sketch::kNoNode) {
           sumW[parent] += sumW[id];
+          areaAll[parent] += areaAll[id];
+          areaW[parent] += areaW[id];
           count[parent] += count[id];
-          countW[parent] += countW[id];
         }
       }
-      auto qualifies = [&](NodeId id) {
-        return id != sk.root() && countW[id] > 0 && double(countW[id]) >= o.subtreeWrongShare * double(count[id]);
-      };
-      std::set<NodeId> covered;
+      std::set<NodeId> covered;  // nodes inside a candidate subtree (parents come first in `order`)
       for (NodeId id : order) {
         const NodeId parent = sk.node(id).parent;
-        if (parent != sketch::kNoNode && covered.count(parent)) {
-          covered.insert(id);
-          continue;
-        }
-        if (!qualifies(id) || failedNodes.count(id)) continue;
+        if (parent != sketch::kNoNode && covered.count(parent)) covered.insert(id);
+        if (id == sk.root() || failedNodes.count(id) || !(sumW[id] > 0)) continue;
+        if (!(areaW[id] >= o.subtreeWrongShare * areaAll[id]) || count[id] < 2) continue;
         covered.insert(id);
         Candidate c;
         c.kind = Candidate::Kind::DeleteSubtree;

@@ -152,15 +152,15 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
   const DepthChoiceOptions& dc = options.depth;
   const double gap = dc.gap > 0 ? dc.gap : 4.0 * p.sliceHalfThickness;
   const double expectedDepth = prior ? (prior->centre - origin).dot(u) : std::numeric_limits<double>::quiet_NaN();
-  // How far in depth the branch may have gone from its parent: 1.5 times the sideways distance
-  // from the parent's centre to L (a branch turned up to ~56° towards or away from the viewer;
-  // a steeper one is drawn from another view), plus the parent's radii and the surface gap.
+  // How far in depth the branch may have gone from its parent: maxTurn times the sideways
+  // distance from the parent's centre to L (a branch turned towards or away from the viewer; a
+  // steeper one is drawn from another view), plus the parent's radii and the surface gap.
   double maxJump = std::numeric_limits<double>::infinity();
   if (prior && g.hasLine) {
     const Vec3 d = prior->centre - g.linePoint;
     const Vec3 dirN = g.lineDir.normalized();
     const double lateral = (d - d.dot(dirN) * dirN).norm();
-    maxJump = 1.5 * lateral + dc.jumpRadii * prior->radius + gap;
+    maxJump = dc.maxTurn * lateral + dc.jumpRadii * prior->radius + gap;
   }
   auto fitByDepth = [&](const std::vector<Vec2>& pts, const CircleFitOptions& copt) {
     std::vector<std::uint32_t> order(pts.size());
@@ -239,7 +239,17 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
         best = int(k);
         continue;
       }
-      const double dk = std::abs(hyps[k].centre.x() - want), db = std::abs(hyps[best].centre.x() - want);
+      // Cost: the distance from the expected depth (in surface gaps, ties within half a gap),
+      // and with a parent also how far the radius is from the parent's (a limb tapers; a circle
+      // through a clump of leaves near the right depth has any radius): one factor of 2 in
+      // radius weighs as much as one parent diameter in depth.
+      auto cost = [&](const CircleFitResult& h) {
+        double c = std::abs(h.centre.x() - want);
+        if (prior && prior->radius > 0 && h.radius > 0)
+          c += 2.0 * prior->radius * std::abs(std::log2(h.radius / prior->radius));
+        return c;
+      };
+      const double dk = cost(hyps[k]), db = cost(hyps[best]);
       if (dk + 1e-12 < db - gap * 0.5 ||
           (std::abs(dk - db) <= gap * 0.5 && hyps[k].inliers.size() > hyps[best].inliers.size()))
         best = int(k);

@@ -126,16 +126,21 @@ std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const P
   auto tFit = std::chrono::steady_clock::now();
   std::atomic<std::uint64_t> done{0};
   const std::uint64_t total = changed.size();
+  // The prior is the nearest fitted ancestor's circle (a skipped parent passes its own parent's
+  // on: without one, a node would take the front-most circle anywhere along its ray).
   auto priorOf = [&](NodeId parent, fit::FitPrior* out) {
-    if (!priors || parent == sketch::kNoNode) return false;
-    const fit::NodeResult* r = nullptr;
-    if (auto it = slot.find(parent); it != slot.end())
-      r = &fresh[it->second].result;
-    else if (auto e = entries_.find(parent); e != entries_.end())
-      r = &e->second.result;
-    if (!r || r->status != fit::NodeStatus::Fitted || !(r->radius > 0)) return false;
-    *out = fit::FitPrior{r->centre, r->radius};
-    return true;
+    for (NodeId a = parent; priors && a != sketch::kNoNode; a = sketch.node(a).parent) {
+      const fit::NodeResult* r = nullptr;
+      if (auto it = slot.find(a); it != slot.end())
+        r = &fresh[it->second].result;
+      else if (auto e = entries_.find(a); e != entries_.end())
+        r = &e->second.result;
+      if (r && r->status == fit::NodeStatus::Fitted && r->radius > 0) {
+        *out = fit::FitPrior{r->centre, r->radius};
+        return true;
+      }
+    }
+    return false;
   };
   auto fitOne = [&](std::size_t i) {
     Entry& e = fresh[i];

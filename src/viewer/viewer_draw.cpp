@@ -177,8 +177,10 @@ std::optional<std::chrono::steady_clock::time_point> ViewerState::statusExpiry()
 // ---- what to draw --------------------------------------------------------------------------------
 
 const std::vector<Rgb>& ViewerState::pointColors() {
-  if (colorsStale_ || colorsMode_ != display_.colorMode || colors_.size() != cloud_.size()) {
+  if (colorsStale_ || colorsMode_ != display_.colorMode || colors_.size() != cloud_.size() ||
+      colorsNotWood_ != sketch_.notWood()) {
     colorsMode_ = display_.colorMode;
+    colorsNotWood_ = sketch_.notWood();
     switch (colorsMode_) {
       case ColorMode::Height:
         colors_ = heightColorsAlong(cloud_, viewUp_);
@@ -197,6 +199,10 @@ const std::vector<Rgb>& ViewerState::pointColors() {
         break;
       }
     }
+    // Not-wood points (the sketch's lassos, issue 20) are drawn dark, whatever the colour mode.
+    if (!sketch_.notWood().empty())
+      for (std::size_t i = 0; i < cloud_.size(); ++i)
+        if (sketch_.isNotWood(cloud_.positions[i])) colors_[i] = Rgb{60, 50, 70};
     colorsStale_ = false;
     ++colorsVersion_;
   }

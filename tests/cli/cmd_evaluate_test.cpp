@@ -181,3 +181,27 @@ TEST(EvaluateMatrix, SplitRunsOneHalf) {
 
 }  // namespace
 }  // namespace treesketch::eval
+
+namespace treesketch {
+namespace {
+
+// The simulated correcting user (issue 20): its report files, one CSV row per step.
+TEST(EvaluateCorrectingUser, WritesTheCurveAndRejectsBadOptions) {
+  test::TempDir dir;
+  std::string out;
+  ASSERT_EQ(test::runCli("evaluate --builtin 1 --no-leaf-on --points 20000 --correcting-user --edits 2 --out " +
+                             (dir / "cu").string(),
+                         &out),
+            0)
+      << out;
+  for (const char* f : {"correcting_user.csv", "correcting_user.md", "correcting_user_leaf-off.svg"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "cu" / f)) << f;
+  const std::string csv = test::readText(dir / "cu" / "correcting_user.csv");
+  EXPECT_EQ(csv.rfind("tree,condition,pattern,leaf,edit,action,", 0), 0u);
+  EXPECT_NE(csv.find(",0,\"start (automatic model)\","), std::string::npos);
+  EXPECT_NE(out.find("edits to 0.5 %"), std::string::npos) << out;
+  EXPECT_EQ(test::runCli("evaluate --correcting-user --edits 0 --out " + (dir / "x").string(), &out), 2) << out;
+}
+
+}  // namespace
+}  // namespace treesketch

@@ -143,6 +143,23 @@ TEST(ViewerTools, MouseDragsUseTheChosenTool) {
   EXPECT_EQ(f.state.sketch().notWood().size(), 1u);
 }
 
+TEST(ViewerTools, NotWoodPointsAreDrawnDarkUntilTheLassoIsUndone) {
+  Fixture f;
+  auto darkCount = [&] {
+    std::size_t n = 0;
+    for (const Rgb& c : f.state.pointColors()) n += c == Rgb{60, 50, 70};
+    return n;
+  };
+  EXPECT_EQ(darkCount(), 0u);
+  const Vec2 t = f.at(Vec3(0, 3.5, 0));
+  ASSERT_TRUE(f.state.lassoNotWood({t + Vec2(-60, -60), t + Vec2(60, -60), t + Vec2(60, 60), t + Vec2(-60, 60)}));
+  const std::size_t dark = darkCount();
+  EXPECT_GT(dark, 100u);
+  EXPECT_LT(dark, f.state.cloud().size() / 2);
+  ASSERT_TRUE(f.state.undo());
+  EXPECT_EQ(darkCount(), 0u);
+}
+
 TEST(ViewerTools, ScriptRejectsBadToolArguments) {
   auto bad = [](const std::string& json) {
     std::istringstream in(json);

@@ -42,8 +42,11 @@ struct CorrectingUserOptions {
   double tolerancePct = 0.5;
   /// Hand jitter of the strokes, pixels (the careful user's, EvalOptions::pixelNoise).
   double pixelNoise = 1.5;
-  /// A subtree is deleted whole when at least this share of its nodes is wrong (design choice).
-  double subtreeWrongShare = 0.6;
+  /// A subtree is deleted whole when at least this share of its tube surface (radius x spacing
+  /// summed over its nodes) is wrong. Design choice: 0.9, a subtree a person sees is wrong as a
+  /// whole; at 0.6 the subtrees taken held real limbs, and every such deletion was undone (the
+  /// dev trees, leaf-on: no change in 20 edits).
+  double subtreeWrongShare = 0.9;
   std::uint64_t seed = 1;
   DistanceOptions distance;
 };

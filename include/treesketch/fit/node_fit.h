@@ -41,6 +41,12 @@ struct DepthChoiceOptions {
   /// many of its own radii plus `gap` from where it was expected (the parent's depth; without a
   /// parent, the front-most surface with a circle). Design choice: 3.
   double jumpRadii = 3.0;
+  /// With a prior, circles farther along L from the parent's depth than maxTurn times the
+  /// parent's sideways distance from L (plus jumpRadii parent radii and the gap) are refused: the
+  /// branch would have to turn more than atan(maxTurn) towards or away from the viewer, and a
+  /// person draws such a branch from another view. Design choice: 1.0 (45°); measured on the
+  /// dev trees leaf-on (README, "A person's help, measured").
+  double maxTurn = 1.0;
 };
 
 struct NodeFitOptions {
@@ -68,9 +74,9 @@ struct NodeFitOptions {
 /// the brute-force path gives the same lists in the same order.
 struct NodeResult {
   NodeStatus status = NodeStatus::Skipped;
-  std::string reason;  ///< why the node was skipped or disabled; empty when fitted
-  geom::Vec3 centre = geom::Vec3::Zero();  ///< circle centre, world, on the node's plane
-  geom::Vec3 normal = geom::Vec3::UnitY(); ///< the node's plane normal (unit, as given by the sketch)
+  std::string reason;                       ///< why the node was skipped or disabled; empty when fitted
+  geom::Vec3 centre = geom::Vec3::Zero();   ///< circle centre, world, on the node's plane
+  geom::Vec3 normal = geom::Vec3::UnitY();  ///< the node's plane normal (unit, as given by the sketch)
   double radius = 0.0;                      ///< world units
   double rms = 0.0;                         ///< RMS residual of the inliers, world units
   /// The slice (points within ε of the plane). Computed only when a fit failed once, with
@@ -79,10 +85,10 @@ struct NodeResult {
   std::vector<std::uint32_t> sliceIndices;
   std::vector<std::uint32_t> testIndices;    ///< slice points in the final test region
   std::vector<std::uint32_t> inlierIndices;  ///< the circle's inliers (subset of testIndices)
-  int iterations = 0;        ///< RANSAC samples drawn, summed over all growth steps
-  double lineEpsilon = 0.0;  ///< the test region radius used last (world units)
-  int growthSteps = 0;       ///< how many times lineEpsilon grew
-  double ms = 0.0;           ///< wall time of this fit
+  int iterations = 0;                        ///< RANSAC samples drawn, summed over all growth steps
+  double lineEpsilon = 0.0;                  ///< the test region radius used last (world units)
+  int growthSteps = 0;                       ///< how many times lineEpsilon grew
+  double ms = 0.0;                           ///< wall time of this fit
   /// The circle is the node's kept circle (sketch::Node::kept), not a fit: status Fitted, no
   /// slice was cut and no RANSAC ran (keptCircleResult).
   bool kept = false;
@@ -100,8 +106,7 @@ struct NodeResult {
 SliceRegion slabRegion(const sketch::NodeGeometry& geometry, const sketch::SamplingParams& params);
 /// The node's test region for a given line tolerance: slab ∩ cylinder of radius lineEpsilon
 /// around L (screen nodes) or slab ∩ ball of that radius around planePoint (point nodes).
-SliceRegion testRegion(const sketch::NodeGeometry& geometry, const sketch::SamplingParams& params,
-                       double lineEpsilon);
+SliceRegion testRegion(const sketch::NodeGeometry& geometry, const sketch::SamplingParams& params, double lineEpsilon);
 /// The node's slice (nearPts) indices, in the index's storage order: what the viewer highlights
 /// for a selected node.
 std::vector<std::uint32_t> nodeSlice(const CloudIndex& index, const sketch::NodeGeometry& geometry,
@@ -125,9 +130,8 @@ std::vector<std::uint32_t> nodeSlice(const CloudIndex& index, const sketch::Node
 /// parent radii are refused. The result gives the chosen depth and flags a jump.
 /// params.enabled = false gives status Disabled without touching the cloud.
 /// Throws OptionsError for non-positive or non-finite sampling sizes, a zero normal/direction.
-NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& geometry,
-                   const sketch::SamplingParams& params, const NodeFitOptions& options = {},
-                   const FitPrior* prior = nullptr);
+NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& geometry, const sketch::SamplingParams& params,
+                   const NodeFitOptions& options = {}, const FitPrior* prior = nullptr);
 
 /// A node's result from its kept circle instead of a fit: status Fitted, kept = true, the centre
 /// projected onto the node's plane, the plane's normal, the circle's radius, rms 0. A disabled

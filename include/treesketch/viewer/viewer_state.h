@@ -492,6 +492,7 @@ class ViewerState {
   UpDirection viewUp_ = UpDirection::PosY;
   bool upWarningDismissed_ = false;
   std::size_t errorCount_ = 0;
+  std::vector<sketch::NotWoodLasso> colorsNotWood_;  ///< the lassos pointColors() last drew
   Tool tool_ = Tool::Sketch;
   std::vector<geom::Vec2> toolPath_;
 };
