@@ -28,6 +28,7 @@
 #include "treesketch/io/file_info.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/util/atomic_file.h"
+#include "treesketch/util/cancel.h"
 #include "treesketch/util/error.h"
 #include "treesketch/viewer/action_script.h"
 #include "treesketch/viewer/demo_scene.h"
@@ -107,7 +108,7 @@ Args parseArgs(int argc, char** argv) {
 /// Loads the input on a worker thread so the window can show progress.
 struct Loader {
   std::atomic<std::uint64_t> done{0}, total{0};
-  std::atomic<bool> finished{false};
+  std::atomic<bool> finished{false}, cancel{false};
   std::atomic<const char*> stage{"loading"};
   std::string error;
   geom::PointCloud cloud;
@@ -115,10 +116,11 @@ struct Loader {
 
   void start(const Args& args) {
     thread = std::thread([this, args] {
-      ProgressFn progress = [this](std::uint64_t d, std::uint64_t t) {
+      // Cancel (the loading window's button) throws Cancelled from the next report.
+      ProgressFn progress = cancellableProgress(cancel, [this](std::uint64_t d, std::uint64_t t) {
         done = d;
         total = t;
-      };
+      });
       try {
         if (args.input.empty()) {
           stage = "scanning the demo tree";
@@ -133,6 +135,8 @@ struct Loader {
             cloud = std::move(info.cloud);
           }
         }
+      } catch (const Cancelled&) {
+        error = "cancelled";
       } catch (const std::exception& e) {
         error = e.what();
       }
@@ -140,6 +144,7 @@ struct Loader {
     });
   }
   ~Loader() {
+    cancel = true;
     if (thread.joinable()) thread.join();
   }
 };
@@ -190,6 +195,7 @@ class App {
     glfwGetWindowSize(window_, &ww, &wh);
     glfwGetFramebufferSize(window_, &fbw, &fbh);
     state_.setViewport(gui::Layout::sceneViewport(ww, wh));
+    if (!loading()) state_.pollJob();  // a finished background job's result comes in here
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
@@ -202,6 +208,7 @@ class App {
       gui::drawConfirmDialog(state_);
       gui::drawColorLegend(state_);
       gui::drawUpWarning(state_);
+      gui::drawJobProgress(state_);
     }
     ImGui::Render();
     glViewport(0, 0, fbw, fbh);
@@ -291,6 +298,10 @@ class App {
     float f = t > 0 ? static_cast<float>(static_cast<double>(d) / static_cast<double>(t)) : 0.0f;
     ImGui::TextUnformatted(loader_.stage.load());
     ImGui::ProgressBar(f);
+    // Reading a file reports nothing until it is read; a mesh scan and the demo scan report often.
+    ImGui::BeginDisabled(loader_.cancel);
+    if (ImGui::Button("Cancel##loading")) loader_.cancel = true;
+    ImGui::EndDisabled();
     ImGui::End();
   }
 
@@ -392,6 +403,8 @@ int run(const Args& args) {
         app.frame();
       }
     }
+    app.state().cancelJob();  // closing the window stops a background job (its result is dropped)
+    app.state().waitForJob();
     // A clean end: the autosave goes when it holds nothing unsaved; else it is offered next time.
     app.state().closeSession();
     ImGui_ImplOpenGL3_Shutdown();

@@ -309,6 +309,7 @@ class ViewerState {
   /// sketch holds a person's edits (hasHandEdits()) they first ask (confirmationPending()) and run
   /// only on answerConfirmation(true). Either way the replacement is one undoable edit.
   bool requestAutoSketchUniform(int nodes = 12);
+  /// (The skeleton runs as a background job: startAutoSkeletonJob.)
   bool requestAutoSketchSkeleton(bool leafOn = false);
   /// The sketch is not empty and is not an untouched automatic sketch (a node was added, moved or
   /// changed by hand, a sketch was loaded or restored, or an edit was undone since).
@@ -319,6 +320,32 @@ class ViewerState {
   /// Yes runs the waiting action, no drops it (an info message says so). False when nothing waits
   /// or the action failed.
   bool answerConfirmation(bool yes);
+  // ---- long work on a worker thread ------------------------------------------------------------
+  /// Starts the automatic skeleton sketch (as autoSketchSkeleton) on a worker thread and returns
+  /// at once; the window keeps drawing, shows jobProgress() and may cancelJob(). pollJob() takes
+  /// the result in as one undoable edit. While the job runs, edits are refused with a message
+  /// (the view still moves); the sketch is untouched until the result is taken in, so a cancel
+  /// leaves it exactly as it was. False (error status) when a job runs already or no cloud is open.
+  bool startAutoSkeletonJob(bool leafOn = false);
+  bool busy() const;
+  struct JobProgress {
+    std::string what;         ///< "automatic skeleton: fitting nodes 128 / 640"
+    double fraction = 0.0;    ///< 0..1 within the current step
+    int step = 1, steps = 2;  ///< extraction, then the fit pass
+    bool cancelling = false;
+  };
+  JobProgress jobProgress() const;
+  /// Asks the running job to stop at its next progress report (no effect when none runs).
+  void cancelJob();
+  /// Takes a finished job in (result, cancel message or error); call once a frame. True when a job
+  /// ended in this call.
+  bool pollJob();
+  /// Blocks until the running job has ended and takes it in (scripts, and closing the window).
+  void waitForJob();
+  /// Test seam: while held, a started job waits before its first step (busy, cancellable), so a
+  /// script can check "the window works while a job runs" and "cancel" without racing the job.
+  void holdJobs(bool hold);
+
   /// Drops the selected node's kept circle (it is then fitted from the cloud) / every node's.
   /// Undoable; an error message when there is nothing to refit.
   bool refitSelected();
@@ -437,6 +464,10 @@ class ViewerState {
   std::string pendingQuestion_;
   /// Runs `action` now, or asks `question` first when the sketch has hand edits.
   bool askBeforeReplacing(const std::string& question, std::function<bool()> action);
+  struct Job;
+  std::shared_ptr<Job> job_;
+  bool holdJobs_ = false;  // shared_ptr: Job is complete only in background_job.cpp
+  bool refuseWhileBusy(const std::string& name);
   bool recoveryPending_ = false;
   std::size_t recoveryNodes_ = 0;
   std::string recoveryError_;
