@@ -235,6 +235,20 @@ class ViewerState {
   void fitView();
   void presetView(geom::PresetView view);
   void setOrthographic(bool ortho);
+  /// The view is moving (an orbit, pan or zoom within the last `viewSettleSeconds`): the window
+  /// draws a subsample of the cloud (PointLod) and the whole cloud once it is still.
+  bool viewMoving(std::chrono::steady_clock::time_point now) const {
+    return now < lastViewChange_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                       std::chrono::duration<double>(kViewSettleSeconds));
+  }
+  /// When the view counts as still (for the window's next wake-up).
+  std::chrono::steady_clock::time_point viewSettles() const {
+    return lastViewChange_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(kViewSettleSeconds));
+  }
+  /// Design choice: a pause of 0.15 s between mouse moves ends a gesture (longer than a frame at
+  /// 10 Hz, shorter than a person notices the full cloud coming back late).
+  static constexpr double kViewSettleSeconds = 0.15;
   DisplayOptions& display() { return display_; }
   const DisplayOptions& display() const { return display_; }
   void setColorMode(ColorMode mode);
@@ -485,6 +499,11 @@ class ViewerState {
   bool statusDismissed_ = false;
   UpDirection viewUp_ = UpDirection::PosY;
   bool upWarningDismissed_ = false;
+  std::chrono::steady_clock::time_point lastViewChange_{};
+  void viewMoved() {
+    lastViewChange_ = std::chrono::steady_clock::now();
+    ++sceneVersion_;
+  }
   std::size_t errorCount_ = 0;
 };
 
