@@ -488,6 +488,7 @@ class ViewerState {
   bool dirty_ = false;
 
   std::vector<Rgb> colors_;
+  DistanceColorGrid distanceGrid_;  ///< binned once per cloud for the distance colouring
   ColorMode colorsMode_ = ColorMode::Height;
   bool colorsStale_ = true;
   std::uint64_t colorsVersion_ = 1;
