@@ -100,7 +100,7 @@ void drawJobProgress(viewer::ViewerState& state) {
   if (!state.busy()) return;
   viewer::ViewerState::JobProgress p = state.jobProgress();
   const geom::Viewport vp = state.orbit().viewport();
-  ImGui::SetNextWindowPos(ImVec2(float(vp.x + vp.width * 0.5), float(vp.y + vp.height - 60)), 0, ImVec2(0.5f, 1.0f));
+  ImGui::SetNextWindowPos(ImVec2(float(vp.x + vp.width * 0.5), float(vp.y + vp.height - 100)), 0, ImVec2(0.5f, 1.0f));
   ImGui::SetNextWindowSize(ImVec2(440, 0));
   ImGui::Begin("Working##job", nullptr,
                ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |

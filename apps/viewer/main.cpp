@@ -545,7 +545,8 @@ int run(const Args& args) {
     app.state().cancelJob();  // closing the window stops a background job (its result is dropped)
     app.state().waitForJob();
     // A clean end: the autosave goes when it holds nothing unsaved; else it is offered next time.
-    app.state().closeSession();
+    // Scripted sessions keep it: their tests inspect it afterwards.
+    if (args.scriptPath.empty()) app.state().closeSession();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
