@@ -489,6 +489,7 @@ class ViewerState {
 
   std::vector<Rgb> colors_;
   DistanceColorGrid distanceGrid_;  ///< binned once per cloud for the distance colouring
+  std::uint64_t distanceGridVersion_ = 0;
   ColorMode colorsMode_ = ColorMode::Height;
   bool colorsStale_ = true;
   std::uint64_t colorsVersion_ = 1;
