@@ -5,13 +5,22 @@
 // ~1.18 M rays (the thesis's largest scan, 18 * 4^8); sketch: 8 clicks up the trunk in the front
 // view, as a user would place them.
 //
+// BM_EditRebuildsFrameData adds the CPU side of re-uploading the cloud's GPU buffers after an
+// edit (point colours recomputed in the distance colouring, put in the level-of-detail order).
+// BM_IdleWindow runs the real window (treesketch-gui --measure-idle, under xvfb-run when there is
+// no display) and reports the frames it draws and the CPU it takes while nobody touches it.
+//
 //   build-xxx/bench_viewer --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
+#include <string>
 
 #include "treesketch/viewer/demo_scene.h"
+#include "treesketch/viewer/point_lod.h"
 #include "treesketch/viewer/viewer_state.h"
 
 namespace {
@@ -124,6 +133,78 @@ void BM_FrameOverlayData(benchmark::State& st) {
   reportCounters(st, *s);
 }
 BENCHMARK(BM_FrameOverlayData)->Unit(benchmark::kMillisecond);
+
+/// One edit (drag a node by a pixel) and everything the next frame needs on the CPU to redraw it:
+/// the rebuild, the overlay data, and the cloud's colours recomputed and put in the upload order
+/// (in the distance colouring every edit changes them; in the height colouring none does).
+void BM_EditRebuildsFrameData(benchmark::State& st) {
+  treesketch::sketch::NodeId id;
+  auto s = sketchedState(&id);
+  if (id == treesketch::sketch::kNoNode) {
+    st.SkipWithError("no fitted node to edit");
+    return;
+  }
+  s->setColorMode(st.range(0) ? viewer::ColorMode::CircleDistance : viewer::ColorMode::Height);
+  viewer::PointLod lod;
+  lod.build(s->cloud().size());
+  std::vector<std::uint8_t> upload;
+  s->selectNode(id);
+  Vec2 base = s->sketch().node(id).screen;
+  int k = 0;
+  std::uint64_t colourUploads = 0;
+  for (auto _ : st) {
+    s->moveNodeTo(id, base + Vec2(0, (k++ & 1) ? 1.0 : 0.0));
+    benchmark::DoNotOptimize(s->nodeMarkers());
+    benchmark::DoNotOptimize(s->sceneLines());
+    std::uint64_t before = s->colorsVersion();
+    const auto& colors = s->pointColors();
+    if (s->colorsVersion() != before) {
+      lod.colors(colors, upload);
+      ++colourUploads;
+    }
+    benchmark::DoNotOptimize(upload.data());
+  }
+  reportCounters(st, *s);
+  st.counters["colour_uploads_per_edit"] = double(colourUploads) / double(st.iterations());
+}
+BENCHMARK(BM_EditRebuildsFrameData)->Arg(0)->Arg(1)->ArgName("distance")->Unit(benchmark::kMillisecond);
+
+/// The real window left alone: frames drawn and CPU used per second of idle (after 1 s settling).
+void BM_IdleWindow(benchmark::State& st) {
+  const std::string gui = TS_GUI_PATH;
+  if (!std::filesystem::exists(gui)) {
+    st.SkipWithError("treesketch-gui is not built");
+    return;
+  }
+  std::string cmd = "LIBGL_ALWAYS_SOFTWARE=1 " + gui + " --demo-rays 30000 --measure-idle 5 2>&1";
+  if (!std::getenv("DISPLAY"))
+    cmd = "LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s '-screen 0 1280x800x24' " + gui +
+          " --demo-rays 30000 --measure-idle 5 2>&1";
+  for (auto _ : st) {
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) {
+      st.SkipWithError("cannot run treesketch-gui");
+      return;
+    }
+    char line[512];
+    double wall = 0, perSecond = -1, cpu = 0, percent = 0;
+    unsigned long long frames = 0;
+    while (std::fgets(line, sizeof line, p)) {
+      if (std::sscanf(line, "treesketch-gui: idle %lf s: %llu frames drawn (%lf per second), CPU %lf s (%lf", &wall,
+                      &frames, &perSecond, &cpu, &percent) == 5)
+        break;
+    }
+    pclose(p);
+    if (perSecond < 0) {
+      st.SkipWithError("no idle measure from treesketch-gui (no display and no xvfb-run?)");
+      return;
+    }
+    st.counters["idle_s"] = wall;
+    st.counters["frames_per_idle_s"] = perSecond;
+    st.counters["cpu_pct_of_core"] = percent;
+  }
+}
+BENCHMARK(BM_IdleWindow)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <string>
 
 namespace treesketch::gui {
@@ -92,6 +93,27 @@ void drawUpWarning(viewer::ViewerState& state) {
   }
   ImGui::SameLine();
   if (ImGui::Button("Dismiss##upWarning")) state.dismissUpWarning();
+  ImGui::End();
+}
+
+void drawJobProgress(viewer::ViewerState& state) {
+  if (!state.busy()) return;
+  viewer::ViewerState::JobProgress p = state.jobProgress();
+  const geom::Viewport vp = state.orbit().viewport();
+  ImGui::SetNextWindowPos(ImVec2(float(vp.x + vp.width * 0.5), float(vp.y + vp.height - 100)), 0, ImVec2(0.5f, 1.0f));
+  ImGui::SetNextWindowSize(ImVec2(440, 0));
+  ImGui::Begin("Working##job", nullptr,
+               ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoSavedSettings);
+  ImGui::TextUnformatted(p.what.c_str());
+  char overlay[32];
+  std::snprintf(overlay, sizeof overlay, "step %d of %d", p.step, p.steps);
+  ImGui::ProgressBar(static_cast<float>(p.fraction), ImVec2(-1, 0), overlay);
+  ImGui::BeginDisabled(p.cancelling);
+  if (ImGui::Button("Cancel##job")) state.cancelJob();
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::TextDisabled("the view still moves; edits wait");
   ImGui::End();
 }
 

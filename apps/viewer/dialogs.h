@@ -19,6 +19,9 @@ void drawColorLegend(const viewer::ViewerState& state);
 /// choice and Dismiss.
 void drawUpWarning(viewer::ViewerState& state);
 
+/// While state.busy(): a small window over the view with the job's progress bar and Cancel.
+void drawJobProgress(viewer::ViewerState& state);
+
 /// While state.confirmationPending(): a modal with the question, Replace and Keep my sketch.
 void drawConfirmDialog(viewer::ViewerState& state);
 

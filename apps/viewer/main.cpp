@@ -9,8 +9,11 @@
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#include <sys/resource.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -28,9 +31,11 @@
 #include "treesketch/io/file_info.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/util/atomic_file.h"
+#include "treesketch/util/cancel.h"
 #include "treesketch/util/error.h"
 #include "treesketch/viewer/action_script.h"
 #include "treesketch/viewer/demo_scene.h"
+#include "treesketch/viewer/point_lod.h"
 #include "treesketch/viewer/viewer_state.h"
 
 namespace fs = std::filesystem;
@@ -47,12 +52,13 @@ struct Args {
   std::string up;
   viewer::DemoSceneOptions demo;
   int width = 1280, height = 800;
+  double measureIdleSeconds = 0;  ///< --measure-idle: measure the idle window's cost and exit
 };
 
 void usage(std::ostream& out) {
   out << "usage: treesketch-gui [CLOUD | MESH] [--sketch SKETCH.json] [--script ACTIONS.json]\n"
          "                      [--up y|z|+x|-x|+y|-y|+z|-z] [--autosave PATH] [--demo PRESET] [--demo-rays N]\n"
-         "                      [--width W] [--height H]\n"
+         "                      [--width W] [--height H] [--measure-idle SECONDS]\n"
          "Opens the interactive sketching tool on a point cloud (.ply .xyz .txt .csv .pts .las) or on a\n"
          "mesh (.obj, PLY with faces; scanned first with the sphere scanner's defaults). Without an input\n"
          "it opens the built-in demo tree. --script runs a scripted session and exits (0: every action\n"
@@ -90,6 +96,8 @@ Args parseArgs(int argc, char** argv) {
       a.demo.preset = value("--demo");
     else if (s == "--demo-rays")
       a.demo.rays = static_cast<std::uint64_t>(integer("--demo-rays"));
+    else if (s == "--measure-idle")
+      a.measureIdleSeconds = static_cast<double>(integer("--measure-idle"));
     else if (s == "--width")
       a.width = static_cast<int>(integer("--width"));
     else if (s == "--height")
@@ -107,7 +115,7 @@ Args parseArgs(int argc, char** argv) {
 /// Loads the input on a worker thread so the window can show progress.
 struct Loader {
   std::atomic<std::uint64_t> done{0}, total{0};
-  std::atomic<bool> finished{false};
+  std::atomic<bool> finished{false}, cancel{false};
   std::atomic<const char*> stage{"loading"};
   std::string error;
   geom::PointCloud cloud;
@@ -115,10 +123,11 @@ struct Loader {
 
   void start(const Args& args) {
     thread = std::thread([this, args] {
-      ProgressFn progress = [this](std::uint64_t d, std::uint64_t t) {
+      // Cancel (the loading window's button) throws Cancelled from the next report.
+      ProgressFn progress = cancellableProgress(cancel, [this](std::uint64_t d, std::uint64_t t) {
         done = d;
         total = t;
-      };
+      });
       try {
         if (args.input.empty()) {
           stage = "scanning the demo tree";
@@ -133,6 +142,8 @@ struct Loader {
             cloud = std::move(info.cloud);
           }
         }
+      } catch (const Cancelled&) {
+        error = "cancelled";
       } catch (const std::exception& e) {
         error = e.what();
       }
@@ -140,6 +151,7 @@ struct Loader {
     });
   }
   ~Loader() {
+    cancel = true;
     if (thread.joinable()) thread.join();
   }
 };
@@ -186,10 +198,15 @@ class App {
 
   /// Draws one frame; writes `shot` (if given) from the back buffer before swapping.
   void frame(const fs::path* shot = nullptr) {
+    const auto t0 = std::chrono::steady_clock::now();
+    // Level of detail: while the view moves, a subsample within the adaptive budget; the whole
+    // cloud when still and in screenshots.
+    const bool moving = !loading() && !shot && state_.viewMoving(t0);
     int ww, wh, fbw, fbh;
     glfwGetWindowSize(window_, &ww, &wh);
     glfwGetFramebufferSize(window_, &fbw, &fbh);
     state_.setViewport(gui::Layout::sceneViewport(ww, wh));
+    if (!loading()) state_.pollJob();  // a finished background job's result comes in here
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
@@ -202,12 +219,14 @@ class App {
       gui::drawConfirmDialog(state_);
       gui::drawColorLegend(state_);
       gui::drawUpWarning(state_);
+      gui::drawJobProgress(state_);
     }
     ImGui::Render();
     glViewport(0, 0, fbw, fbh);
     glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (!loading()) renderer_->draw(state_, fbh, ww > 0 ? static_cast<double>(fbw) / ww : 1.0);
+    if (!loading())
+      renderer_->draw(state_, fbh, ww > 0 ? static_cast<double>(fbw) / ww : 1.0, moving ? pointBudget_ : SIZE_MAX);
     glViewport(0, 0, fbw, fbh);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (shot) gui::writeScreenshot(*shot, fbw, fbh);
@@ -221,6 +240,56 @@ class App {
       }
     }
     glfwSwapBuffers(window_);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    ++framesDrawn_;
+    // Frame times of the 3D view (not the loading screen, not the first frame, which uploads the
+    // cloud and compiles the shaders).
+    if (!loading() && renderedOnce_) (moving ? movingStats_ : stillStats_).add(ms);
+    if (!loading()) renderedOnce_ = true;
+    if (moving)
+      pointBudget_ =
+          viewer::adaptPointBudget(pointBudget_, ms, kMovingFrameMs, kMinLodPoints, renderer_->cloudPoints());
+    if (pendingFrames_ > 0) --pendingFrames_;
+  }
+
+  // ---- redraw on change -------------------------------------------------------------------------
+  /// An input event arrived: draw a few frames (Dear ImGui settles hover and focus over two or
+  /// three), then sleep until the next event.
+  void wake() { pendingFrames_ = 3; }
+  int pendingFrames() const { return pendingFrames_; }
+  /// Seconds until something changes by itself (a job's or the loading's progress: 10 Hz; an info
+  /// message expiring; the moving view settling into the full cloud); negative: nothing will, wait
+  /// for an event.
+  double nextWakeSeconds() const {
+    if (loading() || state_.busy()) return 0.1;
+    const auto now = std::chrono::steady_clock::now();
+    double t = -1.0;
+    auto consider = [&](std::chrono::steady_clock::time_point when) {
+      if (when <= now) return;
+      double s = std::chrono::duration<double>(when - now).count() + 0.005;
+      t = t < 0 ? s : std::min(t, s);
+    };
+    if (auto expiry = state_.statusExpiry()) consider(*expiry);
+    if (state_.viewMoving(now)) consider(state_.viewSettles());
+    return t;
+  }
+  std::uint64_t framesDrawn() const { return framesDrawn_; }
+  struct FrameStats {
+    std::uint64_t count = 0;
+    double sumMs = 0, maxMs = 0;
+    void add(double ms) { ++count, sumMs += ms, maxMs = std::max(maxMs, ms); }
+    double meanMs() const { return count ? sumMs / double(count) : 0.0; }
+  };
+  /// One line for the log: frames drawn while the view moved (subsampled) and while it was still.
+  std::string frameStatsLine() const {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "frames: %llu moving (mean %.1f ms, max %.1f ms, budget now %zu of %zu points), %llu still "
+                  "(mean %.1f ms, max %.1f ms)",
+                  static_cast<unsigned long long>(movingStats_.count), movingStats_.meanMs(), movingStats_.maxMs,
+                  pointBudget_, renderer_->cloudPoints(), static_cast<unsigned long long>(stillStats_.count),
+                  stillStats_.meanMs(), stillStats_.maxMs);
+    return text;
   }
 
   /// Starts loading the input; frames show progress until finish() succeeds.
@@ -291,6 +360,10 @@ class App {
     float f = t > 0 ? static_cast<float>(static_cast<double>(d) / static_cast<double>(t)) : 0.0f;
     ImGui::TextUnformatted(loader_.stage.load());
     ImGui::ProgressBar(f);
+    // Reading a file reports nothing until it is read; a mesh scan and the demo scan report often.
+    ImGui::BeginDisabled(loader_.cancel);
+    if (ImGui::Button("Cancel##loading")) loader_.cancel = true;
+    ImGui::EndDisabled();
     ImGui::End();
   }
 
@@ -302,9 +375,57 @@ class App {
   Loader loader_;
   bool loaded_ = false;
   bool sceneButton_[3] = {false, false, false};
+  /// A moving frame aims at 50 ms (20 frames a second: an orbit that follows the hand), and never
+  /// draws fewer than 20,000 points (the tree's shape stays readable).
+  static constexpr double kMovingFrameMs = 50.0;
+  static constexpr std::size_t kMinLodPoints = 20000;
+  std::size_t pointBudget_ = 200000;
+  int pendingFrames_ = 3;
+  bool renderedOnce_ = false;
+  std::uint64_t framesDrawn_ = 0;
+  FrameStats movingStats_, stillStats_;
 };
 
 App* appOf(GLFWwindow* w) { return static_cast<App*>(glfwGetWindowUserPointer(w)); }
+
+/// --measure-idle S: the interactive loop with no input for 1 s (settling), then S seconds
+/// measured: frames drawn and process CPU time (getrusage), printed on stderr. The window's idle
+/// cost, for bench/README.md.
+int measureIdle(App& app, GLFWwindow* window, double seconds) {
+  auto cpuSeconds = [] {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  };
+  using Clock = std::chrono::steady_clock;
+  auto loopUntil = [&](Clock::time_point deadline) {
+    while (!glfwWindowShouldClose(window)) {
+      const auto now = Clock::now();
+      if (now >= deadline) return;
+      const double left = std::chrono::duration<double>(deadline - now).count();
+      if (app.pendingFrames() > 0) {
+        glfwPollEvents();
+      } else {
+        const double t = app.nextWakeSeconds();
+        glfwWaitEventsTimeout(t < 0 ? left : std::min(t, left));
+        if (Clock::now() >= deadline) return;  // woken only by the end of the measure
+      }
+      app.frame();
+    }
+  };
+  loopUntil(Clock::now() + std::chrono::seconds(1));
+  const std::uint64_t frames0 = app.framesDrawn();
+  const double cpu0 = cpuSeconds();
+  const auto t0 = Clock::now();
+  loopUntil(t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)));
+  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double cpu = cpuSeconds() - cpu0;
+  const std::uint64_t frames = app.framesDrawn() - frames0;
+  std::fprintf(stderr,
+               "treesketch-gui: idle %.2f s: %llu frames drawn (%.2f per second), CPU %.3f s (%.2f %% of a core)\n",
+               wall, static_cast<unsigned long long>(frames), double(frames) / wall, cpu, 100.0 * cpu / wall);
+  return kExitOk;
+}
 
 int run(const Args& args) {
   viewer::ActionScript script;
@@ -346,10 +467,28 @@ int run(const Args& args) {
   {
     App app(args, window);
     glfwSetWindowUserPointer(window, &app);
-    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int b, int a, int m) { appOf(w)->onMouseButton(b, a, m); });
-    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { appOf(w)->onCursor(x, y); });
-    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) { appOf(w)->onScroll(dy); });
-    glfwSetKeyCallback(window, [](GLFWwindow* w, int k, int, int a, int m) { appOf(w)->onKey(k, a, m); });
+    // Every event wakes the window for a few frames (redraw only when something changes).
+    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int b, int a, int m) {
+      appOf(w)->wake();
+      appOf(w)->onMouseButton(b, a, m);
+    });
+    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+      appOf(w)->wake();
+      appOf(w)->onCursor(x, y);
+    });
+    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
+      appOf(w)->wake();
+      appOf(w)->onScroll(dy);
+    });
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int k, int, int a, int m) {
+      appOf(w)->wake();
+      appOf(w)->onKey(k, a, m);
+    });
+    glfwSetCharCallback(window, [](GLFWwindow* w, unsigned int) { appOf(w)->wake(); });
+    glfwSetWindowSizeCallback(window, [](GLFWwindow* w, int, int) { appOf(w)->wake(); });
+    glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { appOf(w)->wake(); });
+    glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int) { appOf(w)->wake(); });
+    glfwSetCursorEnterCallback(window, [](GLFWwindow* w, int) { appOf(w)->wake(); });
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -386,14 +525,28 @@ int run(const Args& args) {
                   << " failed; last rebuild " << app.state().lastRebuildMs() << " ms\n";
         code = report.ok() ? kExitOk : kExitFailed;
       }
+    } else if (args.measureIdleSeconds > 0) {
+      code = measureIdle(app, window, args.measureIdleSeconds);
     } else {
+      // Redraw only when something changes: block in glfwWaitEvents until an event, or until the
+      // next thing that changes by itself (App::nextWakeSeconds).
       while (!glfwWindowShouldClose(window)) {
-        glfwPollEvents();
+        if (app.pendingFrames() > 0) {
+          glfwPollEvents();
+        } else if (double t = app.nextWakeSeconds(); t < 0) {
+          glfwWaitEvents();
+        } else {
+          glfwWaitEventsTimeout(t);
+        }
         app.frame();
       }
     }
+    if (!args.scriptPath.empty()) std::cerr << "treesketch-gui: " << app.frameStatsLine() << "\n";
+    app.state().cancelJob();  // closing the window stops a background job (its result is dropped)
+    app.state().waitForJob();
     // A clean end: the autosave goes when it holds nothing unsaved; else it is offered next time.
-    app.state().closeSession();
+    // Scripted sessions keep it: their tests inspect it afterwards.
+    if (args.scriptPath.empty()) app.state().closeSession();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

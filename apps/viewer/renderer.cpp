@@ -1,5 +1,6 @@
 #include "renderer.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -145,11 +146,10 @@ void Renderer::uploadCloud(viewer::ViewerState& state) {
   if (cloudVersion_ != state.cloudVersion()) {
     cloudVersion_ = state.cloudVersion();
     origin_ = cloud.empty() ? Vec3::Zero() : state.bounds().centre();
-    std::vector<float> pos(3 * cloud.size());
-    for (std::size_t i = 0; i < cloud.size(); ++i)
-      for (int k = 0; k < 3; ++k) pos[3 * i + k] = static_cast<float>(cloud.positions[i][k] - origin_[k]);
+    lod_.build(cloud.size());
+    lod_.positions(cloud, origin_, posScratch_);
     glBindBuffer(GL_ARRAY_BUFFER, cloudPos_);
-    glBufferData(GL_ARRAY_BUFFER, pos.size() * sizeof(float), pos.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, posScratch_.size() * sizeof(float), posScratch_.data(), GL_STATIC_DRAW);
     cloudCount_ = static_cast<GLsizei>(cloud.size());
     colorsVersion_ = 0;
     hlVersion_ = 0;
@@ -158,8 +158,9 @@ void Renderer::uploadCloud(viewer::ViewerState& state) {
   const std::vector<viewer::Rgb>& colors = state.pointColors();
   if (colorsVersion_ != state.colorsVersion()) {
     colorsVersion_ = state.colorsVersion();
+    lod_.colors(colors, colScratch_);  // in the upload order of the positions
     glBindBuffer(GL_ARRAY_BUFFER, cloudCol_);
-    glBufferData(GL_ARRAY_BUFFER, colors.size() * 3, colors.data(), GL_DYNAMIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, colScratch_.size(), colScratch_.data(), GL_DYNAMIC_DRAW);
   }
 }
 
@@ -210,7 +211,7 @@ void Renderer::uploadHighlights(const viewer::ViewerState& state) {
   glBufferData(GL_ARRAY_BUFFER, pos.size() * sizeof(float), pos.data(), GL_DYNAMIC_DRAW);
 }
 
-void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale) {
+void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale, std::size_t maxPoints) {
   geom::Camera cam = state.camera();
   const geom::Viewport& vp = cam.viewport;
   double k = pixelScale > 0 ? pixelScale : 1.0;
@@ -239,7 +240,7 @@ void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pi
     glUniform4f(tint, 0, 0, 0, 0);
     glUniform1f(size, static_cast<float>(d.pointSize * k));
     glBindVertexArray(cloudVao_);
-    glDrawArrays(GL_POINTS, 0, cloudCount_);
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(std::min<std::size_t>(cloudCount_, maxPoints)));
   }
   if (sliceCount_ + inlierCount_ > 0) {
     glBindVertexArray(hlVao_);

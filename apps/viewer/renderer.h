@@ -6,7 +6,9 @@
 #include <GL/glew.h>
 
 #include <cstdint>
+#include <vector>
 
+#include "treesketch/viewer/point_lod.h"
 #include "treesketch/viewer/viewer_state.h"
 
 namespace treesketch::gui {
@@ -22,7 +24,11 @@ class Renderer {
   /// Draws the scene into the state's viewport (window pixels); `framebufferHeight` flips the
   /// viewport's top-left origin into OpenGL's bottom-left one and `pixelScale` converts window
   /// pixels to framebuffer pixels (1 except on high-DPI screens).
-  void draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale = 1.0);
+  /// `maxPoints` limits the cloud's points drawn (the first ones of a fixed shuffle: a uniform
+  /// subsample; the level of detail while the view moves).
+  void draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale = 1.0,
+            std::size_t maxPoints = SIZE_MAX);
+  std::size_t cloudPoints() const { return static_cast<std::size_t>(cloudCount_); }
 
  private:
   void uploadCloud(viewer::ViewerState& state);
@@ -38,6 +44,9 @@ class Renderer {
   sketch::NodeId hlNode_ = sketch::kNoNode;
   GLsizei cloudCount_ = 0, meshIndexCount_ = 0, sliceCount_ = 0, inlierCount_ = 0;
   geom::Vec3 origin_ = geom::Vec3::Zero();  ///< subtracted from positions (float precision)
+  viewer::PointLod lod_;                    ///< the upload order
+  std::vector<float> posScratch_;
+  std::vector<std::uint8_t> colScratch_;
 };
 
 }  // namespace treesketch::gui

@@ -277,7 +277,9 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   AutoSkeletonResult res;
   // 1. The skeleton and its sketch (no circles yet).
   auto t0 = std::chrono::steady_clock::now();
-  res.skeleton = extractSkeleton(cloud, options.skeleton);
+  // `progress` sees the extraction's four steps (d of 4), then the fit pass (d of n); a callback
+  // may throw (treesketch::Cancelled) to stop at the next report.
+  res.skeleton = extractSkeleton(cloud, options.skeleton, progress);
   res.sketch = skeletonToSketch(res.skeleton, options.sketch);
   res.skeletonMs = elapsedMs(t0);
   const std::size_t n = res.skeleton.nodes.size();

@@ -36,6 +36,7 @@ const Button kButtons[] = {
     {"refit", [](ViewerState& s) { s.refitSelected(); }},
     {"refitAll", [](ViewerState& s) { s.refitAll(); }},
     {"clearNotWood", [](ViewerState& s) { s.clearNotWood(); }},
+    {"cancel", [](ViewerState& s) { s.cancelJob(); }},
 };
 
 /// {"tool": NAME}.
@@ -90,6 +91,7 @@ const Option kOptions[] = {
     {"showRegion", [](ViewerState& s, const std::string& v) { s.display().showSamplingRegion = parseBool(v); }},
     {"labels", [](ViewerState& s, const std::string& v) { s.display().labels = parseLabelMode(v); }},
     {"upAxis", [](ViewerState& s, const std::string& v) { s.setUpDirection(parseUpDirection(v)); }},
+    {"holdJobs", [](ViewerState& s, const std::string& v) { s.holdJobs(parseBool(v)); }},
 };
 
 /// {"expect": {NAME: n, ...}}: what each name reads from the state; `atLeast` keys pass with any
@@ -116,6 +118,7 @@ const Expectation kExpectations[] = {
     {"statusShown", [](const ViewerState& s) { return double(s.statusLine().has_value()); }, false},
     {"lyingDown", [](const ViewerState& s) { return double(s.upWarningShown()); }, false},
     {"legend", [](const ViewerState& s) { return double(s.colorLegend().shown); }, false},
+    {"busy", [](const ViewerState& s) { return double(s.busy()); }, false},
 };
 
 /// The entry of `table` called `name`, or nullptr.
@@ -299,6 +302,11 @@ class Parser {
       a.name = string(j["tool"], index, "tool");
       if (!entryNamed(kTools, a.name))
         fail(index, "tool must be sketch, stroke, lasso, region or reattach, got '" + a.name + "'");
+    } else if (j.contains("start")) {
+      a.kind = Kind::Start;
+      a.name = string(j["start"], index, "start");
+      if (a.name != "autoSkeleton")
+        fail(index, "start: only 'autoSkeleton' runs in the background, got '" + a.name + "'");
     } else if (j.contains("confirm")) {
       a.kind = Kind::Confirm;
       if (!j["confirm"].is_boolean()) fail(index, "confirm: expected true or false");
@@ -314,7 +322,13 @@ class Parser {
       if (a.value < 0) fail(index, "sleep: expected seconds >= 0");
     } else if (j.contains("wait")) {
       a.kind = Kind::Wait;
-      a.steps = static_cast<int>(number(j["wait"], index, "wait"));
+      if (j["wait"].is_string()) {
+        a.name = string(j["wait"], index, "wait");
+        if (a.name != "job") fail(index, "wait: expected a number of frames or \"job\"");
+        a.steps = 0;
+      } else {
+        a.steps = static_cast<int>(number(j["wait"], index, "wait"));
+      }
     } else if (j.contains("expect")) {
       a.kind = Kind::Expect;
       const json& e = j["expect"];
@@ -435,7 +449,7 @@ std::string describe(const ScriptAction& a) {
     case Kind::Screenshot:
       return "screenshot " + a.path.string();
     case Kind::Wait:
-      return "wait " + std::to_string(a.steps);
+      return a.name == "job" ? "wait for the background job" : "wait " + std::to_string(a.steps);
     case Kind::Path:
       return a.name + " (" + std::to_string(a.points.size()) + " points from " + pt(a.points.front()) + ")";
     case Kind::NodeOp:
@@ -449,6 +463,8 @@ std::string describe(const ScriptAction& a) {
       return "recovery " + a.name;
     case Kind::Confirm:
       return a.value != 0 ? "confirm yes" : "confirm no";
+    case Kind::Start:
+      return "start " + a.name;
     case Kind::Expect: {
       std::string s = "expect";
       for (const auto& [k, v] : a.expect) s += " " + k + "=" + std::to_string(static_cast<long long>(v));
@@ -464,6 +480,7 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
     std::string what = describe(a);
     if (hooks.log) hooks.log(a, what);
     std::size_t errorsBefore = state.errorCount();
+    const bool busyBefore = state.busy();
     std::string failure;
     try {
       switch (a.kind) {
@@ -554,6 +571,9 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
                                 : a.name == "discard" ? ViewerState::RecoveryChoice::Discard
                                                       : ViewerState::RecoveryChoice::Keep);
           break;
+        case Kind::Start:
+          state.startAutoSkeletonJob();
+          break;
         case Kind::Confirm:
           if (!state.confirmationPending()) throw OptionsError("no question is waiting");
           state.answerConfirmation(a.value != 0);
@@ -569,12 +589,27 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
       failure = e.what();
       state.error(what + ": " + e.what());
     }
+    // Background work started by this action (the autoSkeleton button) ends before the next
+    // action, as a person waits for the progress bar, with frames drawn meanwhile; "start" leaves
+    // it running, and {"wait": "job"} waits for it.
+    const bool waitForJob = a.kind == Kind::Wait ? a.name == "job" : a.kind != Kind::Start && !busyBefore;
+    if (waitForJob && state.busy()) {
+      if (hooks.frame) {
+        while (!state.pollJob()) {
+          hooks.frame();
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+      } else {
+        state.waitForJob();
+      }
+    }
     if (failure.empty() && state.errorCount() > errorsBefore) failure = state.lastMessage().text;
     if (!failure.empty()) {
       report.failures.push_back("action " + std::to_string(a.index) + " (" + what + "): " + failure);
       if (a.kind == Kind::Expect || a.kind == Kind::Key) state.error(report.failures.back());
     }
     ++report.actionsRun;
+    if (&a == &script.actions.back() && state.busy()) state.waitForJob();  // a script ends with its work done
     if (hooks.frame && a.kind != Kind::Wait && a.kind != Kind::Screenshot) hooks.frame();
   }
   return report;

@@ -26,7 +26,7 @@ const std::vector<KeyBinding>& keyBindings() {
       {"G", "tool: draw a limb as one stroke (drag along it; again: back to sketching)", "g"},
       {"X", "tool: lasso points as not-wood (excluded from fits and the automatic skeleton)", "x"},
       {"R", "tool: automatic skeleton inside a drawn region, merged into the sketch", "r"},
-      {"P", "tool: re-attach the selected node to the node dragged to", "p"},
+      {"P", "tool: re-attach: click a node, then its new parent", "p"},
       {"H", "automatic skeleton below the selected node, merged", "h"},
       {"F1", "help: this list of keys", ""},
   };

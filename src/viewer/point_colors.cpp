@@ -36,6 +36,86 @@ std::vector<Rgb> circleDistanceColors(const geom::PointCloud& cloud, const std::
   return colors;
 }
 
+void DistanceColorGrid::build(const geom::PointCloud& cloud, double maxDistance) {
+  cloud_ = &cloud;
+  size_ = cloud.size();
+  maxDistance_ = maxDistance;
+  const geom::BBox box = cloud.bounds();
+  origin_ = box.empty() ? Vec3::Zero() : box.min;
+  const Vec3 ext = box.extent();
+  // Cells maxDistance wide, but at most ~2M cells (a tiny scale on a large cloud).
+  cell_ = std::max(maxDistance, 1e-12);
+  auto cellsFor = [&](double c) {
+    double n = 1;
+    for (int k = 0; k < 3; ++k) n *= std::floor(ext[k] / c) + 1;
+    return n;
+  };
+  while (cellsFor(cell_) > 2e6) cell_ *= 1.5;
+  std::size_t cells = 1;
+  for (int k = 0; k < 3; ++k) {
+    dims_[k] = static_cast<int>(std::floor(ext[k] / cell_)) + 1;
+    cells *= static_cast<std::size_t>(dims_[k]);
+  }
+  std::vector<std::uint32_t> cellOf(size_);
+  start_.assign(cells + 1, 0);
+  for (std::size_t i = 0; i < size_; ++i) {
+    std::size_t c = 0;
+    for (int k = 2; k >= 0; --k) {
+      int v = std::clamp(static_cast<int>(std::floor((cloud.positions[i][k] - origin_[k]) / cell_)), 0, dims_[k] - 1);
+      c = c * static_cast<std::size_t>(dims_[k]) + static_cast<std::size_t>(v);
+    }
+    cellOf[i] = static_cast<std::uint32_t>(c);
+    ++start_[c + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
+  points_.resize(size_);
+  std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+  for (std::size_t i = 0; i < size_; ++i) points_[fill[cellOf[i]]++] = static_cast<std::uint32_t>(i);
+  best_.assign(size_, std::numeric_limits<double>::infinity());
+  touched_.clear();
+}
+
+void DistanceColorGrid::colors(const std::vector<Circle3>& circles, std::vector<Rgb>& out) {
+  out.assign(size_, render::viridis(1.0));
+  if (!cloud_ || circles.empty() || size_ == 0) return;
+  const double scale = maxDistance_ > 0 ? 1.0 / maxDistance_ : 1.0;
+  for (const Circle3& c : circles) {
+    if (!c.centre.allFinite() || !std::isfinite(c.radius)) continue;
+    // The circle's box grown by maxDistance: any point nearer than that lies inside.
+    const Vec3 n = c.normal.normalized();
+    Vec3 half;
+    for (int k = 0; k < 3; ++k)
+      half[k] =
+          (n.allFinite() ? c.radius * std::sqrt(std::max(0.0, 1.0 - n[k] * n[k])) : std::abs(c.radius)) + maxDistance_;
+    int lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::clamp(static_cast<int>(std::floor((c.centre[k] - half[k] - origin_[k]) / cell_)), 0, dims_[k] - 1);
+      hi[k] = std::clamp(static_cast<int>(std::floor((c.centre[k] + half[k] - origin_[k]) / cell_)), 0, dims_[k] - 1);
+      if (c.centre[k] + half[k] < origin_[k] || c.centre[k] - half[k] > origin_[k] + cell_ * dims_[k])
+        lo[k] = 1, hi[k] = 0;
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          const std::size_t cell = (static_cast<std::size_t>(z) * dims_[1] + static_cast<std::size_t>(y)) * dims_[0] +
+                                   static_cast<std::size_t>(x);
+          for (std::uint32_t j = start_[cell]; j < start_[cell + 1]; ++j) {
+            const std::uint32_t i = points_[j];
+            const double d = distanceToCircle(cloud_->positions[i], c);
+            if (d < best_[i]) {
+              if (best_[i] == std::numeric_limits<double>::infinity()) touched_.push_back(i);
+              best_[i] = d;
+            }
+          }
+        }
+  }
+  for (std::uint32_t i : touched_) {
+    out[i] = render::viridis(best_[i] * scale);
+    best_[i] = std::numeric_limits<double>::infinity();  // ready for the next call
+  }
+  touched_.clear();
+}
+
 std::vector<Rgb> plainColors(const geom::PointCloud& cloud, const Rgb& color) {
   return std::vector<Rgb>(cloud.size(), color);
 }

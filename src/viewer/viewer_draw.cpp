@@ -195,7 +195,11 @@ const std::vector<Rgb>& ViewerState::pointColors() {
           if (f.status == NodeStatus::Fitted) circles.push_back(f.circle);
         }
         double scale = options_.distanceColorScale * std::max(bounds_.diagonal(), 1e-12);
-        colors_ = circleDistanceColors(cloud_, circles, scale);
+        if (distanceGridVersion_ != cloudVersion_ || !distanceGrid_.builtFor(cloud_, scale)) {
+          distanceGrid_.build(cloud_, scale);  // once per cloud
+          distanceGridVersion_ = cloudVersion_;
+        }
+        distanceGrid_.colors(circles, colors_);
         break;
       }
     }

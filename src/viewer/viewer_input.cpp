@@ -71,11 +71,11 @@ void ViewerState::mouseMove(const Vec2& pos) {
       break;
     case Gesture::Orbit:
       orbit_.rotate(lastPos_, pos);
-      ++sceneVersion_;
+      viewMoved();
       break;
     case Gesture::Pan:
       orbit_.pan(pos - lastPos_);
-      ++sceneVersion_;
+      viewMoved();
       break;
     case Gesture::ToolPath:
       toolPath_.push_back(pos);
@@ -116,7 +116,7 @@ void ViewerState::mouseUp(const Vec2& pos, MouseButton button, int mods) {
 
 void ViewerState::scroll(double steps) {
   orbit_.zoom(steps);
-  ++sceneVersion_;
+  viewMoved();
 }
 
 void ViewerState::clickAt(const Vec2& pos, MouseButton button, int mods) {

@@ -46,7 +46,7 @@ ViewerState::ViewerState(const ViewerOptions& options, ReconstructionFactory fac
   recon_ = std::make_unique<NullReconstruction>();
 }
 
-ViewerState::~ViewerState() = default;
+// ~ViewerState is in background_job.cpp, where the job it stops is a complete type.
 
 bool ViewerState::runAction(const std::string& name, const std::function<void()>& action) {
   try {
@@ -65,6 +65,7 @@ bool ViewerState::runAction(const std::string& name, const std::function<void()>
 // ---- data ----------------------------------------------------------------------------------------
 
 bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::filesystem::path& sourcePath) {
+  if (refuseWhileBusy("open")) return false;  // the job reads the cloud
   return runAction("open", [&] {
     if (cloud.empty()) throw InputError("the point cloud is empty");
     recon_.reset();
@@ -168,6 +169,7 @@ void ViewerState::autosave() {
 
 bool ViewerState::edit(const std::string& name, const std::string& label, const std::string& mergeKey,
                        const std::function<void()>& body) {
+  if (refuseWhileBusy(name)) return false;
   sketch::Sketch before = sketch_;
   NodeId selBefore = selected_, actBefore = active_;
   if (!runAction(name, body)) {
@@ -344,6 +346,7 @@ bool ViewerState::setNodeEnabled(bool enabled) {
 }
 
 bool ViewerState::undo() {
+  if (refuseWhileBusy("undo")) return false;
   if (!undo_.canUndo()) {
     info("nothing to undo");
     return false;
@@ -356,6 +359,7 @@ bool ViewerState::undo() {
 }
 
 bool ViewerState::redo() {
+  if (refuseWhileBusy("redo")) return false;
   if (!undo_.canRedo()) {
     info("nothing to redo");
     return false;
@@ -429,7 +433,7 @@ bool ViewerState::requestAutoSketchUniform(int nodes) {
 bool ViewerState::requestAutoSketchSkeleton(bool leafOn) {
   return askBeforeReplacing("Replace the sketch (" + std::to_string(sketch_.size()) +
                                 " nodes, with hand edits) by the automatic skeleton? (undoable)",
-                            [this, leafOn] { return autoSketchSkeleton(leafOn); });
+                            [this, leafOn] { return startAutoSkeletonJob(leafOn); });
 }
 
 bool ViewerState::autoSketchSkeleton(bool leafOn) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "treesketch/gen/random.h"
 #include "treesketch/render/color_map.h"
 
 namespace treesketch::viewer {
@@ -33,6 +34,43 @@ TEST(PointColors, CircleDistanceColorsUseTheNearestCircle) {
   auto none = circleDistanceColors(cloud, {}, 1.0);
   EXPECT_EQ(none[0], viridis(1.0));
   EXPECT_EQ(plainColors(cloud, Rgb{1, 2, 3}).size(), 4u);
+}
+
+}  // namespace
+}  // namespace treesketch::viewer
+
+namespace treesketch::viewer {
+namespace {
+
+// The grid gives exactly circleDistanceColors' colours, call after call (its scratch is reset).
+TEST(DistanceColorGrid, SameColoursAsTheDirectComputation) {
+  gen::Rng rng(17);
+  geom::PointCloud cloud;
+  for (int i = 0; i < 20000; ++i)
+    cloud.positions.emplace_back(rng.uniform(-1, 1), rng.uniform(0, 4), rng.uniform(-1, 1));
+  std::vector<Circle3> circles = {{geom::Vec3(0, 1, 0), geom::Vec3(0, 1, 0), 0.2},
+                                  {geom::Vec3(0.3, 2.5, 0.1), geom::Vec3(0.6, 0.8, 0).normalized(), 0.1},
+                                  {geom::Vec3(5, 9, 5), geom::Vec3(0, 0, 1), 0.3}};  // outside the cloud
+  DistanceColorGrid grid;
+  grid.build(cloud, 0.15);
+  ASSERT_TRUE(grid.builtFor(cloud, 0.15));
+  EXPECT_FALSE(grid.builtFor(cloud, 0.2));
+  std::vector<Rgb> fast;
+  for (int pass = 0; pass < 2; ++pass) {
+    grid.colors(circles, fast);
+    std::vector<Rgb> direct = circleDistanceColors(cloud, circles, 0.15);
+    ASSERT_EQ(fast.size(), direct.size());
+    std::size_t differ = 0, near = 0;
+    for (std::size_t i = 0; i < fast.size(); ++i) {
+      differ += !(fast[i] == direct[i]);
+      near += !(direct[i] == render::viridis(1.0));
+    }
+    EXPECT_EQ(differ, 0u) << "pass " << pass;
+    EXPECT_GT(near, 100u);  // the check sees points near the circles, not only far ones
+    circles.pop_back();
+  }
+  grid.colors({}, fast);
+  EXPECT_EQ(fast, std::vector<Rgb>(cloud.size(), render::viridis(1.0)));
 }
 
 }  // namespace

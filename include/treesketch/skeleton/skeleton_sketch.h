@@ -172,7 +172,9 @@ struct AutoSkeletonResult {
 /// recon::Reconstruction fits every node (the fit pass, in parallel), the RadiusRules accept fits
 /// and regularise the radii, the model goes into the sketch as kept circles, and the same
 /// Reconstruction sweeps that sketch. recon is the only place that fits and sweeps. Empty cloud →
-/// empty result. Throws OptionsError for bad options or NaN input.
+/// empty result. Throws OptionsError for bad options or NaN input. `progress` reports the
+/// extraction's four steps (done of 4), then the fit pass (done of the node count); an exception
+/// it throws (e.g. treesketch::Cancelled) stops the work and propagates.
 AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoSkeletonOptions& options = {},
                                       const ProgressFn& progress = {});
 

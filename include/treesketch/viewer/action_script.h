@@ -11,8 +11,8 @@
 //   {"key": "ctrl+z"}                      see ViewerState::keyPress
 //   {"slider": "sliceHalfThickness"|"lineEpsilon"|"pointSize", "value": number}
 //   {"option": "colorMode"|"meshStyle"|"projection"|"showCloud"|"showNodes"|"showCircles"|
-//              "showRegion"|"labels"|"upAxis", "value": "height"|"wireframe"|"ortho"|true|"auto"|
-//              "-z"|...}
+//              "showRegion"|"labels"|"upAxis"|"holdJobs", "value": "height"|"wireframe"|"ortho"|
+//              true|"auto"|"-z"|...}   (holdJobs: a test seam, see ViewerState::holdJobs)
 //   {"view": "front"|"side"|"top"|"fit"}
 //   {"select": nodeId}                     -1 clears the selection
 //   {"button": "autoSketch"|"autoSkeleton"|"undo"|"redo"|"clear"|"fit"|"delete"|"deleteSubtree"|
@@ -30,12 +30,16 @@
 //                                          G, X, R, P), so "drag" actions can use the tools
 //   {"recovery": "restore"|"discard"|"keep"}   answers the offer of an earlier session's autosave
 //   {"confirm": true|false}               answers the question waiting (replace hand edits?)
+//   {"start": "autoSkeleton"}              starts the background job and goes on at once (the
+//                                          "autoSkeleton" button waits for its job to end, drawing
+//                                          frames); {"button": "cancel"} cancels it; {"wait": "job"}
+//                                          waits for it
 //   {"wait": frames}
 //   {"sleep": seconds}                     real time, drawing a frame every 0.1 s (a person idling)
 //   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
 //               "errors": n, "meshTriangles": n, "kept": n, "notWood": n, "recoveryOffered": 0|1,
 //               "confirmPending": 0|1, "handEdits": 0|1, "labelsShown": 0|1, "statusShown": 0|1,
-//               "lyingDown": 0|1, "legend": 0|1}}
+//               "lyingDown": 0|1, "legend": 0|1, "busy": 0|1}}
 //                                          ("meshTriangles" checks "at least n"; "kept": nodes
 //                                          with a kept circle; "notWood": not-wood lassos)
 // Paths are relative to the current directory.
@@ -73,6 +77,7 @@ struct ScriptAction {
     Sleep,
     Recovery,
     Confirm,
+    Start,
     Expect,
     Path,    ///< stroke / lasso / region: `name` and `points`
     NodeOp,  ///< deleteSubtree / reattach / automaticBelow: `name`, node `value`, parent `value2`

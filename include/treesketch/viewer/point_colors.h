@@ -4,6 +4,7 @@
 // no GL; RGB bytes, one per point.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "treesketch/geom/point_cloud.h"
@@ -30,6 +31,32 @@ double distanceToCircle(const geom::Vec3& p, const Circle3& circle);
 /// Runs in parallel (TBB); about 1 ms per million point-circle pairs on two cores.
 std::vector<Rgb> circleDistanceColors(const geom::PointCloud& cloud, const std::vector<Circle3>& circles,
                                       double maxDistance);
+
+/// circleDistanceColors for repeated calls on one cloud (the viewer recolours after every edit):
+/// the points are binned once into a grid of cells `maxDistance` wide, and each circle visits only
+/// the cells within `maxDistance` of it; every other point is at least that far from all circles,
+/// so it gets the ramp's end colour, as in circleDistanceColors. Same colours, in time that grows
+/// with the points near the circles rather than points x circles.
+class DistanceColorGrid {
+ public:
+  /// Bins `cloud` (which must outlive the grid and not change) for distances up to `maxDistance`.
+  void build(const geom::PointCloud& cloud, double maxDistance);
+  bool builtFor(const geom::PointCloud& cloud, double maxDistance) const {
+    return cloud_ == &cloud && size_ == cloud.size() && maxDistance == maxDistance_;
+  }
+  /// The colours (as circleDistanceColors(cloud, circles, maxDistance)) into `out`.
+  void colors(const std::vector<Circle3>& circles, std::vector<Rgb>& out);
+
+ private:
+  const geom::PointCloud* cloud_ = nullptr;
+  std::size_t size_ = 0;
+  double maxDistance_ = 0, cell_ = 1;
+  geom::Vec3 origin_ = geom::Vec3::Zero();
+  int dims_[3] = {0, 0, 0};
+  std::vector<std::uint32_t> start_, points_;  ///< CSR: cell c holds points_[start_[c] .. start_[c+1])
+  std::vector<double> best_;
+  std::vector<std::uint32_t> touched_;
+};
 
 /// The same colour for every point.
 std::vector<Rgb> plainColors(const geom::PointCloud& cloud, const Rgb& color);

@@ -243,6 +243,20 @@ class ViewerState {
   void fitView();
   void presetView(geom::PresetView view);
   void setOrthographic(bool ortho);
+  /// The view is moving (an orbit, pan or zoom within the last `viewSettleSeconds`): the window
+  /// draws a subsample of the cloud (PointLod) and the whole cloud once it is still.
+  bool viewMoving(std::chrono::steady_clock::time_point now) const {
+    return now < lastViewChange_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                       std::chrono::duration<double>(kViewSettleSeconds));
+  }
+  /// When the view counts as still (for the window's next wake-up).
+  std::chrono::steady_clock::time_point viewSettles() const {
+    return lastViewChange_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(kViewSettleSeconds));
+  }
+  /// Design choice: a pause of 0.15 s between mouse moves ends a gesture (longer than a frame at
+  /// 10 Hz, shorter than a person notices the full cloud coming back late).
+  static constexpr double kViewSettleSeconds = 0.15;
   DisplayOptions& display() { return display_; }
   const DisplayOptions& display() const { return display_; }
   void setColorMode(ColorMode mode);
@@ -317,6 +331,7 @@ class ViewerState {
   /// sketch holds a person's edits (hasHandEdits()) they first ask (confirmationPending()) and run
   /// only on answerConfirmation(true). Either way the replacement is one undoable edit.
   bool requestAutoSketchUniform(int nodes = 12);
+  /// (The skeleton runs as a background job: startAutoSkeletonJob.)
   bool requestAutoSketchSkeleton(bool leafOn = false);
   /// The sketch is not empty and is not an untouched automatic sketch (a node was added, moved or
   /// changed by hand, a sketch was loaded or restored, or an edit was undone since).
@@ -327,6 +342,32 @@ class ViewerState {
   /// Yes runs the waiting action, no drops it (an info message says so). False when nothing waits
   /// or the action failed.
   bool answerConfirmation(bool yes);
+  // ---- long work on a worker thread ------------------------------------------------------------
+  /// Starts the automatic skeleton sketch (as autoSketchSkeleton) on a worker thread and returns
+  /// at once; the window keeps drawing, shows jobProgress() and may cancelJob(). pollJob() takes
+  /// the result in as one undoable edit. While the job runs, edits are refused with a message
+  /// (the view still moves); the sketch is untouched until the result is taken in, so a cancel
+  /// leaves it exactly as it was. False (error status) when a job runs already or no cloud is open.
+  bool startAutoSkeletonJob(bool leafOn = false);
+  bool busy() const;
+  struct JobProgress {
+    std::string what;         ///< "automatic skeleton: fitting nodes 128 / 640"
+    double fraction = 0.0;    ///< 0..1 within the current step
+    int step = 1, steps = 2;  ///< extraction, then the fit pass
+    bool cancelling = false;
+  };
+  JobProgress jobProgress() const;
+  /// Asks the running job to stop at its next progress report (no effect when none runs).
+  void cancelJob();
+  /// Takes a finished job in (result, cancel message or error); call once a frame. True when a job
+  /// ended in this call.
+  bool pollJob();
+  /// Blocks until the running job has ended and takes it in (scripts, and closing the window).
+  void waitForJob();
+  /// Test seam: while held, a started job waits before its first step (busy, cancellable), so a
+  /// script can check "the window works while a job runs" and "cancel" without racing the job.
+  void holdJobs(bool hold);
+
   /// Drops the selected node's kept circle (it is then fitted from the cloud) / every node's.
   /// Undoable; an error message when there is nothing to refit.
   bool refitSelected();
@@ -474,12 +515,18 @@ class ViewerState {
   std::string pendingQuestion_;
   /// Runs `action` now, or asks `question` first when the sketch has hand edits.
   bool askBeforeReplacing(const std::string& question, std::function<bool()> action);
+  struct Job;
+  std::shared_ptr<Job> job_;
+  bool holdJobs_ = false;  // shared_ptr: Job is complete only in background_job.cpp
+  bool refuseWhileBusy(const std::string& name);
   bool recoveryPending_ = false;
   std::size_t recoveryNodes_ = 0;
   std::string recoveryError_;
   bool dirty_ = false;
 
   std::vector<Rgb> colors_;
+  DistanceColorGrid distanceGrid_;  ///< binned once per cloud for the distance colouring
+  std::uint64_t distanceGridVersion_ = 0;
   ColorMode colorsMode_ = ColorMode::Height;
   bool colorsStale_ = true;
   std::uint64_t colorsVersion_ = 1;
@@ -491,6 +538,11 @@ class ViewerState {
   bool statusDismissed_ = false;
   UpDirection viewUp_ = UpDirection::PosY;
   bool upWarningDismissed_ = false;
+  std::chrono::steady_clock::time_point lastViewChange_{};
+  void viewMoved() {
+    lastViewChange_ = std::chrono::steady_clock::now();
+    ++sceneVersion_;
+  }
   std::size_t errorCount_ = 0;
   std::vector<sketch::NotWoodLasso> colorsNotWood_;  ///< the lassos pointColors() last drew
   Tool tool_ = Tool::Sketch;

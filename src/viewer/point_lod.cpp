@@ -1,0 +1,44 @@
+#include "treesketch/viewer/point_lod.h"
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+namespace treesketch::viewer {
+
+void PointLod::build(std::size_t count, std::uint64_t seed) {
+  order_.resize(count);
+  std::iota(order_.begin(), order_.end(), 0u);
+  std::mt19937_64 rng(seed);
+  std::shuffle(order_.begin(), order_.end(), rng);
+}
+
+void PointLod::positions(const geom::PointCloud& cloud, const geom::Vec3& origin, std::vector<float>& out) const {
+  out.resize(3 * order_.size());
+  for (std::size_t i = 0; i < order_.size(); ++i) {
+    const geom::Vec3& p = cloud.positions[order_[i]];
+    for (int k = 0; k < 3; ++k) out[3 * i + k] = static_cast<float>(p[k] - origin[k]);
+  }
+}
+
+void PointLod::colors(const std::vector<render::Rgb>& colors, std::vector<std::uint8_t>& out) const {
+  out.resize(3 * order_.size());
+  for (std::size_t i = 0; i < order_.size(); ++i) {
+    const render::Rgb& c = colors[order_[i]];
+    out[3 * i] = c.r;
+    out[3 * i + 1] = c.g;
+    out[3 * i + 2] = c.b;
+  }
+}
+
+std::size_t adaptPointBudget(std::size_t current, double frameMs, double targetMs, std::size_t minPoints,
+                             std::size_t total) {
+  std::size_t lo = std::min(minPoints, total);
+  if (!(frameMs > 0) || !(targetMs > 0)) return std::clamp(current, lo, total);
+  // Damped: at most halve or double per frame, so one slow frame does not empty the view.
+  double k = std::clamp(targetMs / frameMs, 0.5, 2.0);
+  double next = static_cast<double>(std::max<std::size_t>(current, 1)) * k;
+  return std::clamp(static_cast<std::size_t>(next), lo, total);
+}
+
+}  // namespace treesketch::viewer

@@ -1,0 +1,102 @@
+// The automatic skeleton on a worker thread (src/viewer/background_job.cpp): the state stays
+// usable, progress is reported, Cancel leaves the sketch exactly as it was, the result is one
+// undoable edit.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+#include "treesketch/gen/random.h"
+#include "treesketch/io/sketch_file.h"
+#include "treesketch/viewer/viewer_state.h"
+
+namespace treesketch::viewer {
+namespace {
+
+using geom::Vec3;
+
+std::string text(const sketch::Sketch& s) {
+  std::ostringstream out;
+  io::writeSketch(out, s);
+  return out.str();
+}
+
+/// A trunk with two branches, enough for a skeleton of a few nodes.
+geom::PointCloud tree() {
+  gen::Rng rng(21);
+  geom::PointCloud cloud;
+  auto limb = [&](Vec3 a, Vec3 b, double r, int n) {
+    Vec3 d = (b - a).normalized(), u = geom::anyPerpendicular(d), v = d.cross(u);
+    for (int i = 0; i < n; ++i) {
+      double t = rng.uniform(0, 1), ang = rng.uniform(0, 2 * M_PI);
+      cloud.positions.push_back(a + t * (b - a) + r * (std::cos(ang) * u + std::sin(ang) * v));
+    }
+  };
+  limb(Vec3(0, 0, 0), Vec3(0, 3, 0), 0.15, 12000);
+  limb(Vec3(0, 2, 0), Vec3(1.2, 3.5, 0), 0.06, 4000);
+  limb(Vec3(0, 2.4, 0), Vec3(-1.0, 3.6, 0.3), 0.05, 4000);
+  return cloud;
+}
+
+struct Fixture {
+  ViewerState state;
+  Fixture() {
+    state.setViewport(geom::Viewport{0, 0, 800, 600});
+    EXPECT_TRUE(state.setCloud(tree(), geom::UpAxis::Y));
+    for (int i = 1; i <= 3; ++i) state.clickAt(state.camera().project(Vec3(0, 0.8 * i, 0)).head<2>());
+  }
+};
+
+TEST(BackgroundJob, CancelLeavesTheSketchAsItWasAndTheStateUsable) {
+  Fixture f;
+  const std::string before = text(f.state.sketch());
+  const std::size_t undoBefore = f.state.history().undoCount();
+  f.state.holdJobs(true);
+  ASSERT_TRUE(f.state.startAutoSkeletonJob());
+  EXPECT_TRUE(f.state.busy());
+  EXPECT_FALSE(f.state.pollJob());
+  // The view moves; edits and a second job are refused with a message, not lost silently.
+  f.state.dragTo(geom::Vec2(500, 300), geom::Vec2(540, 280), MouseButton::Right);
+  const std::size_t errors = f.state.errorCount();
+  EXPECT_FALSE(f.state.addNodeAt(geom::Vec2(400, 300)));
+  EXPECT_FALSE(f.state.startAutoSkeletonJob());
+  EXPECT_EQ(f.state.errorCount(), errors + 2);
+  EXPECT_NE(f.state.lastMessage().text.find("busy"), std::string::npos);
+  f.state.cancelJob();
+  EXPECT_TRUE(f.state.jobProgress().cancelling);
+  f.state.waitForJob();
+  EXPECT_FALSE(f.state.busy());
+  EXPECT_EQ(text(f.state.sketch()), before);
+  EXPECT_EQ(f.state.history().undoCount(), undoBefore);
+  EXPECT_NE(f.state.lastMessage().text.find("cancelled"), std::string::npos);
+}
+
+TEST(BackgroundJob, TheResultIsOneUndoableEditAndProgressIsReported) {
+  Fixture f;
+  const std::size_t nodes = f.state.sketch().size();
+  ASSERT_TRUE(f.state.startAutoSkeletonJob());
+  double seen = 0.0;
+  while (!f.state.pollJob()) {
+    seen = std::max(seen, f.state.jobProgress().fraction);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_GT(seen, 0.0);
+  EXPECT_FALSE(f.state.busy());
+  EXPECT_GT(f.state.sketch().keptCircleCount(), 0u);
+  EXPECT_FALSE(f.state.hasHandEdits());
+  ASSERT_TRUE(f.state.undo());
+  EXPECT_EQ(f.state.sketch().size(), nodes);
+}
+
+TEST(BackgroundJob, DestroyingTheStateStopsARunningJob) {
+  auto s = std::make_unique<Fixture>();
+  s->state.holdJobs(true);
+  ASSERT_TRUE(s->state.startAutoSkeletonJob());
+  s.reset();  // must not hang or crash
+  SUCCEED();
+}
+
+}  // namespace
+}  // namespace treesketch::viewer
