@@ -39,7 +39,10 @@ geom::Vec3 nextVertex(fuzz::ByteSource& in, const std::vector<geom::Vec3>& previ
   const geom::Vec3& base = previous[mode % previous.size()];
   if (mode < 192) return base;
   const geom::Vec3 step = nextVec3(in) * std::ldexp(1.0, -static_cast<int>(in.next<std::uint8_t>() % 64));
-  return base + step;
+  const geom::Vec3 moved = base + step;
+  // Near DBL_MAX a step can overflow to infinity: the library refuses such a mesh (OptionsError,
+  // tested in tests/accel), and the harness's meshes are finite by contract.
+  return moved.allFinite() ? moved : base;
 }
 
 std::string describe(double v) {
