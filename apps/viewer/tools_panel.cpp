@@ -30,7 +30,7 @@ void toolsSection(viewer::ViewerState& state) {
   ImGui::Text("%zu not-wood lasso(s)", state.sketch().notWood().size());
   ImGui::SameLine();
   ImGui::BeginDisabled(state.sketch().notWood().empty());
-  if (ImGui::Button("Clear")) state.clearNotWood();
+  if (ImGui::Button("Clear##notWood")) state.clearNotWood();
   ImGui::EndDisabled();
   const double depth = state.selectedDepth();
   if (std::isfinite(depth)) ImGui::Text("selected circle: %.3f from the eye", depth);
