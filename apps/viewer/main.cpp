@@ -23,6 +23,8 @@
 #include "panels.h"
 #include "renderer.h"
 #include "screenshot.h"
+#include "window_ui.h"
+#include "build_info.h"
 #include "treesketch/io/file_info.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/util/atomic_file.h"
@@ -73,6 +75,9 @@ Args parseArgs(int argc, char** argv) {
     };
     if (s == "-h" || s == "--help") {
       usage(std::cout);
+      std::exit(kExitOk);
+    } else if (s == "--version") {
+      std::cout << cli::versionString() << "\n";
       std::exit(kExitOk);
     } else if (s == "--sketch")
       a.sketchPath = value("--sketch");
@@ -176,7 +181,13 @@ class App {
     panel_.sketchPath = args.sketchPath.empty() ? "sketch.json" : args.sketchPath;
     panel_.inputName = args.input.empty() ? "demo tree (" + args.demo.preset + ")" : args.input;
     renderer_ = std::make_unique<gui::Renderer>();
+    gui::WindowHooks hooks;
+    hooks.close = [this] { glfwSetWindowShouldClose(window_, GLFW_TRUE); };
+    hooks.closing = [this] { return glfwWindowShouldClose(window_) != 0; };
+    actions_ = std::make_unique<gui::WindowActions>(state_, panel_, hooks);
   }
+
+  gui::WindowActions& actions() { return *actions_; }
 
   viewer::ViewerState& state() { return state_; }
 
@@ -186,14 +197,17 @@ class App {
     glfwGetWindowSize(window_, &ww, &wh);
     glfwGetFramebufferSize(window_, &fbw, &fbh);
     state_.setViewport(gui::Layout::sceneViewport(ww, wh));
+    if (!loading()) actions_->beforeFrame();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     if (loading())
       drawLoading(ww, wh);
     else {
-      gui::drawPanels(state_, panel_, ww, wh);
+      gui::drawPanels(state_, panel_, ww, wh, [this] { actions_->drawMenuBar(); });
       gui::drawMarkers(state_);
+      actions_->drawOverlays();
+      actions_->drawWindows();
     }
     ImGui::Render();
     glViewport(0, 0, fbw, fbh);
@@ -249,6 +263,10 @@ class App {
     glfwGetCursorPos(window_, &x, &y);
     if (action == GLFW_PRESS) {
       if (ImGui::GetIO().WantCaptureMouse) return;
+      if (b == viewer::MouseButton::Left && !(mods & GLFW_MOD_ALT) && actions_->pickMode()) {
+        actions_->pickAt({x, y});  // pick mode: a left click picks instead of sketching
+        return;
+      }
       sceneButton_[button] = true;
       state_.mouseDown({x, y}, b, toMods(mods));
     } else if (action == GLFW_RELEASE && sceneButton_[button]) {
@@ -264,6 +282,7 @@ class App {
   }
   void onKey(int key, int action, int mods) {
     if (action == GLFW_RELEASE || loading() || ImGui::GetIO().WantCaptureKeyboard) return;
+    if (action == GLFW_PRESS && actions_->onKey(key, toMods(mods))) return;  // F1, P, Ctrl+O/S/E/Q
     if (const char* name = keyName(key)) state_.keyPress(name, toMods(mods));
   }
 
@@ -285,6 +304,7 @@ class App {
   viewer::ViewerState state_;
   gui::PanelState panel_;
   std::unique_ptr<gui::Renderer> renderer_;
+  std::unique_ptr<gui::WindowActions> actions_;
   Loader loader_;
   bool loaded_ = false;
   bool sceneButton_[3] = {false, false, false};
@@ -336,6 +356,11 @@ int run(const Args& args) {
     glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { appOf(w)->onCursor(x, y); });
     glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) { appOf(w)->onScroll(dy); });
     glfwSetKeyCallback(window, [](GLFWwindow* w, int k, int, int a, int m) { appOf(w)->onKey(k, a, m); });
+    // The close button asks about unsaved work first (WindowActions::requestQuit closes when done).
+    glfwSetWindowCloseCallback(window, [](GLFWwindow* w) {
+      glfwSetWindowShouldClose(w, GLFW_FALSE);
+      appOf(w)->actions().requestQuit();
+    });
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -363,6 +388,7 @@ int run(const Args& args) {
         };
         hooks.screenshot = [&](const fs::path& p) { app.frame(&p); };
         hooks.sketchPath = args.sketchPath;
+        hooks.window = [&](const viewer::ScriptAction& a) { return app.actions().runScriptVerb(a); };
         hooks.log = [](const viewer::ScriptAction&, const std::string& what) {
           std::cerr << "treesketch-gui: " << what << "\n";
         };

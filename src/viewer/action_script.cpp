@@ -1,5 +1,6 @@
 #include "treesketch/viewer/action_script.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -92,7 +93,28 @@ const Expectation kExpectations[] = {
     {"errors", [](const ViewerState& s) { return double(s.errorCount()); }, false},
     {"meshTriangles", [](const ViewerState& s) { return double(s.mesh().triangles.size()); }, true},
     {"kept", [](const ViewerState& s) { return double(s.sketch().keptCircleCount()); }, false},
+    {"points", [](const ViewerState& s) { return double(s.cloud().size()); }, false},
 };
+
+/// Window verbs and the values each takes (checked here so a typo fails at parse time; what they do
+/// is apps/viewer's, through ScriptHooks::window).
+struct WindowVerb {
+  const char* name;
+  std::vector<std::string> values;  ///< allowed string values; empty: not a string verb
+};
+const WindowVerb kWindowVerbs[] = {
+    {"menu",
+     {"open-cloud", "open-sketch", "save", "save-as", "export", "quit", "help", "about", "reset-camera", "pick-mode",
+      "recent"}},
+    {"dialog", {"ok", "cancel", "type"}},
+    {"prompt", {"save", "discard", "cancel"}},
+    {"pick", {}},
+    {"closeWindow", {}},
+    {"expectWindow", {}},
+};
+const char* const kWindowExpectations[] = {"dialogOpen",  "dialogEntries", "promptOpen", "picks",
+                                           "distanceMin", "distanceMax",   "recent",     "quitting",
+                                           "helpOpen",    "legendClasses"};
 
 /// The entry of `table` called `name`, or nullptr.
 template <class Entry, std::size_t N>
@@ -180,6 +202,14 @@ class Parser {
     } else if (verb == "wait") {
       a.kind = Kind::Wait;
       a.steps = arg.empty() ? 1 : std::atoi(arg.c_str());
+    } else if (verb == "closeWindow") {
+      a.kind = Kind::Window;
+      a.name = verb;
+    } else if (verb == "menu" || verb == "prompt" || verb == "dialog") {
+      a.kind = Kind::Window;
+      a.name = verb;
+      a.text = arg;
+      checkWindowValue(a, index);
     } else {
       fail(index, "unknown action '" + s + "'");
     }
@@ -189,6 +219,47 @@ class Parser {
   void checkView(const std::string& v, std::size_t index) const {
     if (v != "front" && v != "side" && v != "top" && v != "fit")
       fail(index, "view must be front, side, top or fit, got '" + v + "'");
+  }
+
+  void checkWindowValue(const ScriptAction& a, std::size_t index) const {
+    for (const WindowVerb& v : kWindowVerbs) {
+      if (a.name != v.name || v.values.empty()) continue;
+      if (std::find(v.values.begin(), v.values.end(), a.text) != v.values.end()) return;
+      std::string list;
+      for (const std::string& s : v.values) list += (list.empty() ? "" : ", ") + s;
+      fail(index, a.name + " must be one of " + list + ", got '" + a.text + "'");
+    }
+  }
+
+  /// {"menu": ...}, {"dialog": ...}, {"prompt": ...}, {"pick": [x, y]}, {"closeWindow": ...},
+  /// {"expectWindow": {...}}; false when `j` holds none of them.
+  bool windowVerb(const json& j, std::size_t index, ScriptAction& a) const {
+    for (const WindowVerb& v : kWindowVerbs) {
+      if (!j.contains(v.name)) continue;
+      a.kind = Kind::Window;
+      a.name = v.name;
+      const json& arg = j[v.name];
+      if (a.name == "pick") {
+        a.from = a.to = point(arg, index, "pick");
+      } else if (a.name == "expectWindow") {
+        if (!arg.is_object()) fail(index, "expectWindow: expected an object");
+        for (const auto& [k, val] : arg.items()) {
+          if (std::find_if(std::begin(kWindowExpectations), std::end(kWindowExpectations),
+                           [&](const char* n) { return k == n; }) == std::end(kWindowExpectations))
+            fail(index, "expectWindow: unknown key '" + k + "'");
+          a.expect.emplace_back(k, number(val, index, "expectWindow " + k));
+        }
+      } else if (!v.values.empty()) {
+        a.text = string(arg, index, a.name);
+        checkWindowValue(a, index);
+      }
+      if (j.contains("path")) a.path = string(j["path"], index, "path");
+      if (j.contains("value")) a.value = number(j["value"], index, "value");
+      if (a.name == "menu" && a.text == "recent" && !j.contains("value"))
+        fail(index, "menu recent needs a \"value\" (0 = the newest entry)");
+      return true;
+    }
+    return false;
   }
 
   ScriptAction fromObject(const json& j, std::size_t index) const {
@@ -254,6 +325,8 @@ class Parser {
     } else if (j.contains("wait")) {
       a.kind = Kind::Wait;
       a.steps = static_cast<int>(number(j["wait"], index, "wait"));
+    } else if (windowVerb(j, index, a)) {
+      // done
     } else if (j.contains("expect")) {
       a.kind = Kind::Expect;
       const json& e = j["expect"];
@@ -380,6 +453,18 @@ std::string describe(const ScriptAction& a) {
       for (const auto& [k, v] : a.expect) s += " " + k + "=" + std::to_string(static_cast<long long>(v));
       return s;
     }
+    case Kind::Window: {
+      std::string s = a.name;
+      if (!a.text.empty()) s += " " + a.text;
+      if (a.name == "pick") s += " " + pt(a.from);
+      if (!a.path.empty()) s += " " + a.path.string();
+      for (const auto& [k, v] : a.expect) {
+        std::ostringstream n;
+        n << v;
+        s += " " + k + "=" + n.str();
+      }
+      return s;
+    }
   }
   return "?";
 }
@@ -452,6 +537,10 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
             if (!d.empty()) failure += (failure.empty() ? "" : "; ") + d;
           }
           break;
+        case Kind::Window:
+          if (!hooks.window) throw OptionsError(a.name + " needs a window");
+          failure = hooks.window(a);
+          break;
       }
     } catch (const std::exception& e) {
       failure = e.what();
@@ -460,7 +549,7 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
     if (failure.empty() && state.errorCount() > errorsBefore) failure = state.lastMessage().text;
     if (!failure.empty()) {
       report.failures.push_back("action " + std::to_string(a.index) + " (" + what + "): " + failure);
-      if (a.kind == Kind::Expect || a.kind == Kind::Key) state.error(report.failures.back());
+      if (a.kind == Kind::Expect || a.kind == Kind::Key || a.kind == Kind::Window) state.error(report.failures.back());
     }
     ++report.actionsRun;
     if (hooks.frame && a.kind != Kind::Wait && a.kind != Kind::Screenshot) hooks.frame();

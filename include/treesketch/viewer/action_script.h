@@ -20,8 +20,24 @@
 //                                          without a path use the session's sketch path)
 //   {"wait": frames}
 //   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
-//               "errors": n, "meshTriangles": n, "kept": n}}   ("meshTriangles" checks "at least
-//                                          n"; "kept": nodes with a kept circle)
+//               "errors": n, "meshTriangles": n, "kept": n, "points": n}}   ("meshTriangles"
+//                                          checks "at least n"; "kept": nodes with a kept circle;
+//                                          "points": the cloud's size)
+// Window verbs (the menus, dialogs and tools of apps/viewer; they need ScriptHooks::window, so a
+// script without a window fails them with a message):
+//   {"menu": ITEM}                         "open-cloud" "open-sketch" "save" "save-as" "export"
+//                                          "quit" "help" "about" "reset-camera" "pick-mode";
+//   {"menu": "recent", "value": i}         the i-th entry (0 = newest) of File > Recent files
+//   {"dialog": "ok"|"cancel"|"type", "path": P}   in the open file dialog: type P into its path
+//                                          box (optional), then press Open/Save ("ok": a folder is
+//                                          entered, a file is taken), Cancel, or nothing ("type")
+//   {"prompt": "save"|"discard"|"cancel"}  answers the unsaved-work prompt
+//   {"pick": [x, y]}                       a left click in pick mode (window pixels)
+//   "closeWindow"                          the window's close button
+//   {"expectWindow": {"dialogOpen": 0|1, "dialogEntries": n, "promptOpen": 0|1, "picks": n,
+//                     "distanceMin": d, "distanceMax": d, "recent": n, "quitting": 0|1,
+//                     "helpOpen": 0|1, "legendClasses": n}}   (distanceMin/Max bound the measured
+//                                          distance; recent: entries in the recent files list)
 // Paths are relative to the current directory.
 #pragma once
 
@@ -54,7 +70,8 @@ struct ScriptAction {
     Export,
     Screenshot,
     Wait,
-    Expect
+    Expect,
+    Window  ///< a window verb (menu, dialog, prompt, pick, closeWindow, expectWindow): `name`
   };
   Kind kind = Kind::Wait;
   std::size_t index = 0;  ///< position in the script (0-based), for messages
@@ -91,6 +108,9 @@ struct ScriptHooks {
   std::filesystem::path sketchPath;
   /// Called with each action's index and a one-line description before it runs (logging).
   std::function<void(const ScriptAction&, const std::string&)> log;
+  /// Runs a window verb (ScriptAction::Kind::Window); returns "" or what failed. Empty: window
+  /// verbs fail ("needs a window").
+  std::function<std::string(const ScriptAction&)> window;
 };
 
 struct ScriptReport {

@@ -35,13 +35,16 @@ namespace treesketch::viewer {
 using sketch::kNoNode;
 using sketch::NodeId;
 
-enum class ColorMode { Height, CircleDistance, Plain };
+/// Point colourings. The last three colour by the file's attributes (viewer/color_legend.h says
+/// which a cloud has); a cloud without the attribute is drawn plain.
+enum class ColorMode { Height, CircleDistance, Plain, Intensity, FileColor, Classification };
 enum class MeshStyle { Solid, Wireframe, Hidden };
 enum class MouseButton { Left, Right, Middle };
 /// Modifier key bits for mouse and key events.
 enum Modifier : int { kModNone = 0, kModShift = 1, kModCtrl = 2, kModAlt = 4 };
 
-/// Parses "height" / "distance" / "plain"; throws OptionsError otherwise.
+/// Parses "height" / "distance" / "plain" / "intensity" / "rgb" / "classification"; throws
+/// OptionsError otherwise.
 ColorMode parseColorMode(const std::string& s);
 /// Parses "solid" / "wireframe" / "hidden"; throws OptionsError otherwise.
 MeshStyle parseMeshStyle(const std::string& s);
