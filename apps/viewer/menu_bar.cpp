@@ -17,6 +17,7 @@ void tip(const char* text) {
 
 void WindowActions::drawMenuBar() {
   if (!ImGui::BeginMenuBar()) return;
+  if (forcedMenu_ == "File") ImGui::OpenPopup("File");  // the same id BeginMenu uses
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("Open cloud...", "Ctrl+O")) openCloudDialog();
     tip("Open another point cloud (.xyz .txt .csv .pts .las .ply) or a mesh (.obj .ply, scanned first)");
@@ -48,6 +49,7 @@ void WindowActions::drawMenuBar() {
     tip("Close the window (asks first when the sketch has unsaved changes)");
     ImGui::EndMenu();
   }
+  if (forcedMenu_ == "View") ImGui::OpenPopup("View");  // the same id BeginMenu uses
   if (ImGui::BeginMenu("View")) {
     viewer::DisplayOptions& d = state_.display();
     if (ImGui::BeginMenu("Colour points by")) {
@@ -97,6 +99,7 @@ void WindowActions::drawMenuBar() {
     tip("Which world axis points up");
     ImGui::EndMenu();
   }
+  if (forcedMenu_ == "Tools") ImGui::OpenPopup("Tools");  // the same id BeginMenu uses
   if (ImGui::BeginMenu("Tools")) {
     bool pick = pickMode_;
     if (ImGui::MenuItem("Pick points / measure", "P", pick)) setPickMode(!pick);
@@ -104,6 +107,7 @@ void WindowActions::drawMenuBar() {
     if (ImGui::MenuItem("Clear picks", "Esc", false, picks_.count() > 0)) picks_.clear();
     ImGui::EndMenu();
   }
+  if (forcedMenu_ == "Help") ImGui::OpenPopup("Help");  // the same id BeginMenu uses
   if (ImGui::BeginMenu("Help")) {
     if (ImGui::MenuItem("Keys and mouse", "F1", showHelp_)) toggleHelp();
     tip("Every key and mouse gesture");

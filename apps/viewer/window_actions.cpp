@@ -285,6 +285,7 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
     if (a.text == "ok") dialog_.accept();
     if (a.text == "cancel") dialog_.cancel();
     flush();
+    // An error the dialog shows (no such file, a folder that cannot be read) fails the action.
     if (a.text == "ok" && dialog_.isOpen() && !dialog_.error().empty()) return "dialog: " + dialog_.error();
   } else if (a.name == "prompt") {
     if (!promptOpen_) return "prompt " + a.text + ": no prompt is open";
@@ -293,6 +294,8 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
   } else if (a.name == "pick") {
     if (!pickMode_) setPickMode(true);
     if (!pickAt(a.from)) return state_.lastMessage().text;
+  } else if (a.name == "showMenu") {
+    forcedMenu_ = a.text == "none" ? std::string() : a.text;
   } else if (a.name == "closeWindow") {
     requestQuit();
   } else if (a.name == "expectWindow") {
@@ -316,6 +319,7 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
         else if (key == "quitting") got = hooks_.closing && hooks_.closing();
         else if (key == "helpOpen") got = showHelp_;
         else if (key == "legendClasses") got = static_cast<double>(legend().classes.size());
+        else if (key == "dialogError") got = dialog_.isOpen() && !dialog_.error().empty();
         ok = got == want;
       }
       if (!ok) {

@@ -106,6 +106,7 @@ class WindowActions {
   bool pickMode_ = false;
   viewer::PickSession picks_;
   bool showHelp_ = false, showAbout_ = false;
+  std::string forcedMenu_;  ///< a menu kept open by the script verb showMenu (screenshots)
   bool showLegend_ = true, showGizmo_ = true, showScaleBar_ = true;
   viewer::Legend legend_;
   std::uint64_t legendCloud_ = ~0ull;

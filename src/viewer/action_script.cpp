@@ -110,11 +110,12 @@ const WindowVerb kWindowVerbs[] = {
     {"prompt", {"save", "discard", "cancel"}},
     {"pick", {}},
     {"closeWindow", {}},
+    {"showMenu", {"File", "View", "Tools", "Help", "none"}},
     {"expectWindow", {}},
 };
 const char* const kWindowExpectations[] = {"dialogOpen",  "dialogEntries", "promptOpen", "picks",
                                            "distanceMin", "distanceMax",   "recent",     "quitting",
-                                           "helpOpen",    "legendClasses"};
+                                           "helpOpen",    "legendClasses", "dialogError"};
 
 /// The entry of `table` called `name`, or nullptr.
 template <class Entry, std::size_t N>
@@ -263,6 +264,15 @@ class Parser {
   }
 
   ScriptAction fromObject(const json& j, std::size_t index) const {
+    ScriptAction a = verbFromObject(j, index);
+    if (j.contains("expectError")) {
+      if (!j["expectError"].is_boolean()) fail(index, "expectError: expected true or false");
+      a.expectError = j["expectError"].get<bool>();
+    }
+    return a;
+  }
+
+  ScriptAction verbFromObject(const json& j, std::size_t index) const {
     ScriptAction a;
     a.index = index;
     if (j.contains("button") && !j["button"].is_string()) fail(index, "button: expected a string");
@@ -547,6 +557,10 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
       state.error(what + ": " + e.what());
     }
     if (failure.empty() && state.errorCount() > errorsBefore) failure = state.lastMessage().text;
+    if (a.expectError) {
+      if (hooks.log) hooks.log(a, failure.empty() ? "no error (one was expected)" : "refused as expected: " + failure);
+      failure = failure.empty() ? "expected this action to fail, it did not" : std::string();
+    }
     if (!failure.empty()) {
       report.failures.push_back("action " + std::to_string(a.index) + " (" + what + "): " + failure);
       if (a.kind == Kind::Expect || a.kind == Kind::Key || a.kind == Kind::Window) state.error(report.failures.back());

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "treesketch/render/color_map.h"
 #include "treesketch/viewer/view_overlays.h"
@@ -118,7 +120,10 @@ std::vector<double> niceTicks(const ValueRange& range, int maxTicks) {
   while (count(step) > maxTicks) step = roundLengthAtMost(step * 2.5 * (1 + 1e-9)) * (1 + 1e-12);
   step = roundLengthAtMost(step);
   for (double k = std::ceil(range.min / step); k <= std::floor(range.max / step); k += 1.0) {
-    double t = k * step;
+    // k * step carries binary noise (3 * 0.05 = 0.15000000000000002): keep the decimal value.
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.12g", k * step);
+    double t = std::strtod(buf, nullptr);
     ticks.push_back(std::abs(t) < step * 1e-9 ? 0.0 : t);
   }
   return ticks;

@@ -34,10 +34,15 @@
 //   {"prompt": "save"|"discard"|"cancel"}  answers the unsaved-work prompt
 //   {"pick": [x, y]}                       a left click in pick mode (window pixels)
 //   "closeWindow"                          the window's close button
+//   {"showMenu": "File"|"View"|"Tools"|"Help"|"none"}   keeps that menu open (for screenshots)
 //   {"expectWindow": {"dialogOpen": 0|1, "dialogEntries": n, "promptOpen": 0|1, "picks": n,
 //                     "distanceMin": d, "distanceMax": d, "recent": n, "quitting": 0|1,
-//                     "helpOpen": 0|1, "legendClasses": n}}   (distanceMin/Max bound the measured
-//                                          distance; recent: entries in the recent files list)
+//                     "helpOpen": 0|1, "legendClasses": n, "dialogError": 0|1}}   (distanceMin/Max
+//                                          bound the measured distance; recent: entries in the
+//                                          recent files list; dialogError: the dialog shows one)
+// Any object action may add "expectError": true: it then passes only when it fails (an error
+// message), and the failure is not counted — how a script checks that bad input is refused and the
+// session goes on.
 // Paths are relative to the current directory.
 #pragma once
 
@@ -84,6 +89,7 @@ struct ScriptAction {
   std::string text;    ///< option value (text form)
   std::filesystem::path path;
   std::vector<std::pair<std::string, double>> expect;
+  bool expectError = false;  ///< passes only when the action fails (see the format above)
 };
 
 struct ActionScript {
