@@ -184,6 +184,7 @@ class App {
     gui::WindowHooks hooks;
     hooks.close = [this] { glfwSetWindowShouldClose(window_, GLFW_TRUE); };
     hooks.closing = [this] { return glfwWindowShouldClose(window_) != 0; };
+    hooks.moveCursor = [this](const geom::Vec2& p) { glfwSetCursorPos(window_, p.x(), p.y()); };
     actions_ = std::make_unique<gui::WindowActions>(state_, panel_, hooks);
   }
 

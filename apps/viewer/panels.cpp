@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "tooltips.h"
 #include "treesketch/viewer/color_legend.h"
 
 namespace treesketch::gui {
@@ -199,6 +200,7 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   }
   ImGui::Separator();
   messagesSection(state);
+  panelTooltips();
   ImGui::PopItemWidth();
   ImGui::End();
 

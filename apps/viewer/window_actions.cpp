@@ -1,6 +1,9 @@
 // WindowActions: what the menus, the window's keys and --script window verbs do (see window_ui.h).
 #include <GLFW/glfw3.h>
 
+#include <imgui.h>
+#include <imgui_internal.h>  // FindWindowByName: is a tooltip up
+
 #include <cmath>
 #include <sstream>
 
@@ -208,6 +211,11 @@ bool WindowActions::pickAt(const geom::Vec2& screen) {
   return true;
 }
 
+bool WindowActions::tooltipShown() const {
+  ImGuiWindow* w = ImGui::FindWindowByName("##Tooltip_00");  // Dear ImGui's name for the first tooltip
+  return w && w->Active;
+}
+
 // ---- per frame -----------------------------------------------------------------------------------------
 
 void WindowActions::beforeFrame() {
@@ -294,6 +302,9 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
   } else if (a.name == "pick") {
     if (!pickMode_) setPickMode(true);
     if (!pickAt(a.from)) return state_.lastMessage().text;
+  } else if (a.name == "hover") {
+    if (!hooks_.moveCursor) return "hover needs a window";
+    hooks_.moveCursor(a.from);
   } else if (a.name == "showMenu") {
     forcedMenu_ = a.text == "none" ? std::string() : a.text;
   } else if (a.name == "closeWindow") {
@@ -320,6 +331,7 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
         else if (key == "helpOpen") got = showHelp_;
         else if (key == "legendClasses") got = static_cast<double>(legend().classes.size());
         else if (key == "dialogError") got = dialog_.isOpen() && !dialog_.error().empty();
+        else if (key == "tooltip") got = tooltipShown();
         ok = got == want;
       }
       if (!ok) {

@@ -28,6 +28,8 @@ struct WindowHooks {
   /// The up-axis control's slot in the View menu (another change adds the control; until then the
   /// slot shows the current axis): draws menu items, called inside View > Up axis.
   std::function<void(viewer::ViewerState&)> upAxisMenu;
+  /// Moves the mouse pointer to window pixels (the script verb hover).
+  std::function<void(const geom::Vec2&)> moveCursor;
 };
 
 class WindowActions {
@@ -84,6 +86,8 @@ class WindowActions {
   const viewer::RecentFiles& recent() const { return recent_; }
   /// The legend of the current colouring, recomputed when the cloud or mode changes.
   const viewer::Legend& legend();
+  /// Whether the last frame showed a tooltip.
+  bool tooltipShown() const;
 
  private:
   /// Runs `then` now when nothing would be lost, else after the prompt's Save or Discard.

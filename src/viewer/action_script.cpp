@@ -109,13 +109,14 @@ const WindowVerb kWindowVerbs[] = {
     {"dialog", {"ok", "cancel", "type"}},
     {"prompt", {"save", "discard", "cancel"}},
     {"pick", {}},
+    {"hover", {}},
     {"closeWindow", {}},
     {"showMenu", {"File", "View", "Tools", "Help", "none"}},
     {"expectWindow", {}},
 };
 const char* const kWindowExpectations[] = {"dialogOpen",  "dialogEntries", "promptOpen", "picks",
                                            "distanceMin", "distanceMax",   "recent",     "quitting",
-                                           "helpOpen",    "legendClasses", "dialogError"};
+                                           "helpOpen",    "legendClasses", "dialogError", "tooltip"};
 
 /// The entry of `table` called `name`, or nullptr.
 template <class Entry, std::size_t N>
@@ -240,8 +241,8 @@ class Parser {
       a.kind = Kind::Window;
       a.name = v.name;
       const json& arg = j[v.name];
-      if (a.name == "pick") {
-        a.from = a.to = point(arg, index, "pick");
+      if (a.name == "pick" || a.name == "hover") {
+        a.from = a.to = point(arg, index, a.name);
       } else if (a.name == "expectWindow") {
         if (!arg.is_object()) fail(index, "expectWindow: expected an object");
         for (const auto& [k, val] : arg.items()) {
@@ -466,7 +467,7 @@ std::string describe(const ScriptAction& a) {
     case Kind::Window: {
       std::string s = a.name;
       if (!a.text.empty()) s += " " + a.text;
-      if (a.name == "pick") s += " " + pt(a.from);
+      if (a.name == "pick" || a.name == "hover") s += " " + pt(a.from);
       if (!a.path.empty()) s += " " + a.path.string();
       for (const auto& [k, v] : a.expect) {
         std::ostringstream n;

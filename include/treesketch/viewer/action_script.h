@@ -33,11 +33,12 @@
 //                                          entered, a file is taken), Cancel, or nothing ("type")
 //   {"prompt": "save"|"discard"|"cancel"}  answers the unsaved-work prompt
 //   {"pick": [x, y]}                       a left click in pick mode (window pixels)
+//   {"hover": [x, y]}                      moves the mouse there (tooltips; window pixels)
 //   "closeWindow"                          the window's close button
 //   {"showMenu": "File"|"View"|"Tools"|"Help"|"none"}   keeps that menu open (for screenshots)
 //   {"expectWindow": {"dialogOpen": 0|1, "dialogEntries": n, "promptOpen": 0|1, "picks": n,
 //                     "distanceMin": d, "distanceMax": d, "recent": n, "quitting": 0|1,
-//                     "helpOpen": 0|1, "legendClasses": n, "dialogError": 0|1}}   (distanceMin/Max
+//                     "helpOpen": 0|1, "legendClasses": n, "dialogError": 0|1, "tooltip": 0|1}}   (distanceMin/Max
 //                                          bound the measured distance; recent: entries in the
 //                                          recent files list; dialogError: the dialog shows one)
 // Any object action may add "expectError": true: it then passes only when it fails (an error
