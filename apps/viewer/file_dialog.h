@@ -33,7 +33,10 @@ class FileDialog {
   /// the accept callback (for Open it must exist; for Save the filter's extension is added when
   /// there is none, and an existing file is replaced only after a second press).
   void accept();
-  void setTyped(const std::string& typed) { typed_ = typed; confirmReplace_.clear(); }
+  void setTyped(const std::string& typed) {
+    typed_ = typed;
+    confirmReplace_.clear();
+  }
 
   const viewer::DirectoryListing& listing() const { return listing_; }
   const std::string& error() const { return error_; }

@@ -20,11 +20,10 @@
 #include <string>
 #include <thread>
 
+#include "build_info.h"
 #include "panels.h"
 #include "renderer.h"
 #include "screenshot.h"
-#include "window_ui.h"
-#include "build_info.h"
 #include "treesketch/io/file_info.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/util/atomic_file.h"
@@ -32,6 +31,7 @@
 #include "treesketch/viewer/action_script.h"
 #include "treesketch/viewer/demo_scene.h"
 #include "treesketch/viewer/viewer_state.h"
+#include "window_ui.h"
 
 namespace fs = std::filesystem;
 using namespace treesketch;

@@ -20,8 +20,7 @@ ImU32 col(const render::Rgb& c, int alpha = 255) { return IM_COL32(c.r, c.g, c.b
 
 constexpr ImGuiWindowFlags kOverlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                            ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                           ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove |
-                                           ImGuiWindowFlags_NoInputs;
+                                           ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoInputs;
 
 std::string tickText(double v) {
   char buf[32];
@@ -232,7 +231,8 @@ void WindowActions::drawWindows() {
     ImGui::SetNextWindowPos(ImVec2(v->Pos.x + v->Size.x / 2 + 170, v->Pos.y + v->Size.y / 2), ImGuiCond_Appearing,
                             ImVec2(0.5f, 0.5f));
     ImGui::SetNextWindowBgAlpha(0.92f);
-    ImGui::Begin("Keys and mouse (F1)", &showHelp_, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+    ImGui::Begin("Keys and mouse (F1)", &showHelp_,
+                 ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
     std::string group;
     if (ImGui::BeginTable("##keys", 2, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg)) {
       for (const viewer::KeyHelp& k : viewer::helpKeyBindings()) {

@@ -142,10 +142,9 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
                 const std::function<void()>& menuBar) {
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(Layout::kPanelWidth, height - Layout::kStatusHeight));
-  ImGui::Begin(
-      "treesketch", nullptr,
-      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar |
-          (menuBar ? ImGuiWindowFlags_MenuBar : 0));
+  ImGui::Begin("treesketch", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar | (menuBar ? ImGuiWindowFlags_MenuBar : 0));
   if (menuBar) menuBar();
   ImGui::PushItemWidth(150);
   ImGui::TextUnformatted("treesketch");

@@ -31,7 +31,7 @@ struct PanelState {
   std::string screenshotPath = "treesketch_screenshot.png";
   std::string inputName;  ///< shown at the top
   int autoNodes = 12;
-  bool autoLeafOn = false;  ///< "in leaf" box: the skeleton sketch's settings for leafy scans
+  bool autoLeafOn = false;           ///< "in leaf" box: the skeleton sketch's settings for leafy scans
   bool screenshotRequested = false;  ///< set by the Screenshot button; the main loop takes it
   bool showHelp = true;
 };

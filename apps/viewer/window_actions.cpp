@@ -1,6 +1,5 @@
 // WindowActions: what the menus, the window's keys and --script window verbs do (see window_ui.h).
 #include <GLFW/glfw3.h>
-
 #include <imgui.h>
 #include <imgui_internal.h>  // FindWindowByName: is a tooltip up
 
@@ -272,16 +271,26 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
   };
   if (a.name == "menu") {
     const std::string& m = a.text;
-    if (m == "open-cloud") openCloudDialog();
-    else if (m == "open-sketch") openSketchDialog();
-    else if (m == "save") save();
-    else if (m == "save-as") saveAsDialog();
-    else if (m == "export") exportMeshDialog();
-    else if (m == "quit") requestQuit();
-    else if (m == "help") toggleHelp();
-    else if (m == "about") showAbout_ = !showAbout_;
-    else if (m == "reset-camera") state_.fitView();
-    else if (m == "pick-mode") setPickMode(!pickMode_);
+    if (m == "open-cloud")
+      openCloudDialog();
+    else if (m == "open-sketch")
+      openSketchDialog();
+    else if (m == "save")
+      save();
+    else if (m == "save-as")
+      saveAsDialog();
+    else if (m == "export")
+      exportMeshDialog();
+    else if (m == "quit")
+      requestQuit();
+    else if (m == "help")
+      toggleHelp();
+    else if (m == "about")
+      showAbout_ = !showAbout_;
+    else if (m == "reset-camera")
+      state_.fitView();
+    else if (m == "pick-mode")
+      setPickMode(!pickMode_);
     else if (m == "recent") {
       if (a.value < 0 || a.value != std::floor(a.value)) return "menu recent: value must be an index 0, 1, ...";
       openRecent(static_cast<std::size_t>(a.value));
@@ -322,21 +331,34 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
         got = picks_.measurement(state_.up()).distance;
         ok = key == "distanceMin" ? got >= want : got <= want;
       } else {
-        if (key == "dialogOpen") got = dialog_.isOpen();
-        else if (key == "dialogEntries") got = static_cast<double>(dialog_.listing().entries.size());
-        else if (key == "promptOpen") got = promptOpen_;
-        else if (key == "picks") got = picks_.count();
-        else if (key == "recent") got = static_cast<double>(recent_.entries().size());
-        else if (key == "quitting") got = hooks_.closing && hooks_.closing();
-        else if (key == "helpOpen") got = showHelp_;
-        else if (key == "legendClasses") got = static_cast<double>(legend().classes.size());
-        else if (key == "dialogError") got = dialog_.isOpen() && !dialog_.error().empty();
-        else if (key == "tooltip") got = tooltipShown();
+        if (key == "dialogOpen")
+          got = dialog_.isOpen();
+        else if (key == "dialogEntries")
+          got = static_cast<double>(dialog_.listing().entries.size());
+        else if (key == "promptOpen")
+          got = promptOpen_;
+        else if (key == "picks")
+          got = picks_.count();
+        else if (key == "recent")
+          got = static_cast<double>(recent_.entries().size());
+        else if (key == "quitting")
+          got = hooks_.closing && hooks_.closing();
+        else if (key == "helpOpen")
+          got = showHelp_;
+        else if (key == "legendClasses")
+          got = static_cast<double>(legend().classes.size());
+        else if (key == "dialogError")
+          got = dialog_.isOpen() && !dialog_.error().empty();
+        else if (key == "tooltip")
+          got = tooltipShown();
         ok = got == want;
       }
       if (!ok) {
         std::ostringstream s;
-        s << key << ": expected " << (key == "distanceMin" ? "at least " : key == "distanceMax" ? "at most " : "")
+        s << key << ": expected "
+          << (key == "distanceMin"   ? "at least "
+              : key == "distanceMax" ? "at most "
+                                     : "")
           << want << ", got " << got;
         failure += (failure.empty() ? "" : "; ") + s.str();
       }

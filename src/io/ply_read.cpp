@@ -264,11 +264,10 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
       r = kGreen;
     else if (p.name == "blue" || p.name == "b" || p.name == "diffuse_blue")
       r = kBlue;
-    else if (cloudAttributes && (p.name == "intensity" || p.name == "scalar_intensity" ||
-                                 p.name == "scalar_Intensity"))
+    else if (cloudAttributes && (p.name == "intensity" || p.name == "scalar_intensity" || p.name == "scalar_Intensity"))
       r = kIntensity;
-    else if (cloudAttributes && (p.name == "classification" || p.name == "scalar_classification" ||
-                                 p.name == "scalar_Classification"))
+    else if (cloudAttributes &&
+             (p.name == "classification" || p.name == "scalar_classification" || p.name == "scalar_Classification"))
       r = kClass;
     else if (meshAttributes && p.name == "quality")
       r = kQuality;

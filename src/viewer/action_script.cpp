@@ -114,8 +114,8 @@ const WindowVerb kWindowVerbs[] = {
     {"showMenu", {"File", "View", "Tools", "Help", "none"}},
     {"expectWindow", {}},
 };
-const char* const kWindowExpectations[] = {"dialogOpen",  "dialogEntries", "promptOpen", "picks",
-                                           "distanceMin", "distanceMax",   "recent",     "quitting",
+const char* const kWindowExpectations[] = {"dialogOpen",  "dialogEntries", "promptOpen",  "picks",
+                                           "distanceMin", "distanceMax",   "recent",      "quitting",
                                            "helpOpen",    "legendClasses", "dialogError", "tooltip"};
 
 /// The entry of `table` called `name`, or nullptr.

@@ -37,8 +37,7 @@ std::string formatLength(double metres) {
 
 ScaleBar scaleBarFor(double worldPerPixel, double maxPixels, double unitsMetres) {
   ScaleBar bar;
-  if (!(worldPerPixel > 0.0) || !std::isfinite(worldPerPixel) || !(maxPixels > 0.0) || !(unitsMetres > 0.0))
-    return bar;
+  if (!(worldPerPixel > 0.0) || !std::isfinite(worldPerPixel) || !(maxPixels > 0.0) || !(unitsMetres > 0.0)) return bar;
   double maxMetres = worldPerPixel * maxPixels * unitsMetres;
   double metres = roundLengthAtMost(maxMetres);
   if (metres <= 0.0) return bar;

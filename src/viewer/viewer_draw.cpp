@@ -70,8 +70,8 @@ ColorMode parseColorMode(const std::string& s) {
   if (k == "intensity") return ColorMode::Intensity;
   if (k == "rgb" || k == "color" || k == "colour") return ColorMode::FileColor;
   if (k == "classification" || k == "class") return ColorMode::Classification;
-  throw OptionsError("colour mode must be 'height', 'distance', 'plain', 'intensity', 'rgb' or 'classification', got '" +
-                     s + "'");
+  throw OptionsError(
+      "colour mode must be 'height', 'distance', 'plain', 'intensity', 'rgb' or 'classification', got '" + s + "'");
 }
 
 MeshStyle parseMeshStyle(const std::string& s) {

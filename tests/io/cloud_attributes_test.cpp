@@ -129,7 +129,8 @@ TEST(CloudAttributes, TextColumnsNamedByTheHeader) {
 }
 
 TEST(CloudAttributes, TextCloudCompareHeaderWithFloatColours) {
-  geom::PointCloud c = text("//X Y Z Rf Gf Bf scalar_Intensity\n0 0 0 1 0 0.5 3\n1 0 0 0 1 0 4\n0 1 0 0 0 1 5\n0 0 1 1 1 1 6\n");
+  geom::PointCloud c =
+      text("//X Y Z Rf Gf Bf scalar_Intensity\n0 0 0 1 0 0.5 3\n1 0 0 0 1 0 4\n0 1 0 0 0 1 5\n0 0 1 1 1 1 6\n");
   ASSERT_EQ(c.color.size(), 4u);
   EXPECT_EQ(c.color[0][0], 255);
   EXPECT_EQ(c.color[0][2], 128);  // 0.5 * 255 rounded

@@ -349,7 +349,7 @@ TEST(ViewOverlays, ScaleBarAdaptsToZoom) {
   EXPECT_DOUBLE_EQ(near.length, 0.1);
   EXPECT_EQ(near.label, "10 cm");
   ScaleBar dm = scaleBarFor(0.05, 160, 0.1);  // a cloud in decimetres: 80 cm fit
-  EXPECT_NEAR(dm.length, 5.0, 1e-12);       // 5 units = 50 cm
+  EXPECT_NEAR(dm.length, 5.0, 1e-12);         // 5 units = 50 cm
   EXPECT_EQ(dm.label, "50 cm");
   EXPECT_FALSE(scaleBarFor(0.0, 160).valid());
   EXPECT_FALSE(scaleBarFor(std::nan(""), 160).valid());
@@ -468,7 +468,8 @@ TEST(WindowScript, WindowVerbsNeedAWindowAndExpectErrorInvertsTheOutcome) {
     return a.text == "cancel" ? std::string("no prompt is open") : std::string();
   };
   ScriptReport r2 = runActionScript(state, script(R"([{"menu": "quit"}, {"prompt": "cancel"},
-      {"prompt": "cancel", "expectError": true}])"), hooks);
+      {"prompt": "cancel", "expectError": true}])"),
+                                    hooks);
   EXPECT_EQ(seen, (std::vector<std::string>{"menu:quit", "prompt:cancel", "prompt:cancel"}));
   ASSERT_EQ(r2.failures.size(), 1u);
   EXPECT_NE(r2.failures[0].find("no prompt is open"), std::string::npos);

@@ -53,12 +53,12 @@ struct LegendClass {
 struct Legend {
   enum class Kind { None, Scale, Classes };
   Kind kind = Kind::None;
-  std::string title;         ///< "height (m)", "intensity", "distance to circles (m)"
-  ValueRange range;          ///< Scale: the values at the bar's ends
-  std::vector<Rgb> ramp;     ///< Scale: colours from range.min to range.max, evenly spaced
-  std::vector<double> ticks;  ///< Scale: round values inside the range to label
+  std::string title;                 ///< "height (m)", "intensity", "distance to circles (m)"
+  ValueRange range;                  ///< Scale: the values at the bar's ends
+  std::vector<Rgb> ramp;             ///< Scale: colours from range.min to range.max, evenly spaced
+  std::vector<double> ticks;         ///< Scale: round values inside the range to label
   std::vector<LegendClass> classes;  ///< Classes: the codes present, ascending
-  std::string note;          ///< a line under it ("colours from the file", "clamped at 1–99 %")
+  std::string note;                  ///< a line under it ("colours from the file", "clamped at 1–99 %")
 };
 
 /// Round tick values (1, 2 or 5 times a power of ten apart) inside [range.min, range.max], at most

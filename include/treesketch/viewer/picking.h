@@ -33,10 +33,10 @@ PickedPoint pickPoint(const geom::PointCloud& cloud, const geom::Camera& camera,
 /// A measured segment between two picked points (world units, usually metres).
 struct Measurement {
   geom::Vec3 a = geom::Vec3::Zero(), b = geom::Vec3::Zero();
-  double distance = 0.0;    ///< |b - a|
+  double distance = 0.0;                  ///< |b - a|
   geom::Vec3 delta = geom::Vec3::Zero();  ///< b - a
-  double vertical = 0.0;    ///< |Δ| along the up axis (a height difference)
-  double horizontal = 0.0;  ///< across the up axis
+  double vertical = 0.0;                  ///< |Δ| along the up axis (a height difference)
+  double horizontal = 0.0;                ///< across the up axis
 };
 
 /// The distance from `a` to `b` and its split along and across `up`.
