@@ -192,6 +192,9 @@ void WindowActions::drawOverlays() {
 }
 
 void WindowActions::drawWindows() {
+  // One modal at a time: a prompt raised while a dialog is open (the close button) replaces it.
+  // Done here, not where the prompt is raised, which may be inside the dialog's own callback.
+  if (promptOpen_ && dialog_.isOpen()) dialog_.cancel();
   dialog_.draw();
 
   if (!pendingOpen_.empty()) {
