@@ -339,7 +339,8 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
           out.quality.push_back(v);
           break;
         case kIntensity:
-          if (!std::isfinite(v)) c.failAtRecord("non-finite intensity (NaN or Inf), expected a finite number");
+          if (!(std::abs(v) <= std::numeric_limits<float>::max()))
+            c.failAtRecord("intensity " + std::to_string(v) + " is not a finite single-precision number");
           out.intensity.push_back(static_cast<float>(v));
           break;
         case kClass:

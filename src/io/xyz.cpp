@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "io/io_util.h"
@@ -135,7 +136,8 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
                std::isfinite(a[col]);
       };
       bool ok = n >= columns.needed();
-      if (ok && columns.intensity >= 0) ok = number(columns.intensity);
+      if (ok && columns.intensity >= 0)
+        ok = number(columns.intensity) && std::abs(a[columns.intensity]) <= std::numeric_limits<float>::max();
       if (ok && columns.red >= 0) ok = number(columns.red) && number(columns.green) && number(columns.blue);
       if (ok && columns.classification >= 0)
         ok = number(columns.classification) && a[columns.classification] >= 0 && a[columns.classification] <= 255;
@@ -166,7 +168,7 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
     cloud.color.resize(colors.size());
     for (std::size_t i = 0; i < colors.size(); ++i)
       for (int k = 0; k < 3; ++k)
-        cloud.color[i][k] = static_cast<std::uint8_t>(std::clamp(std::lround(colors[i][k] * scale), 0L, 255L));
+        cloud.color[i][k] = static_cast<std::uint8_t>(std::lround(std::clamp(colors[i][k] * scale, 0.0, 255.0)));
   }
   return cloud;
 }
