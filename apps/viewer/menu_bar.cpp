@@ -87,8 +87,8 @@ void WindowActions::drawMenuBar() {
     if (ImGui::MenuItem("Front", "1")) state_.presetView(geom::PresetView::Front);
     if (ImGui::MenuItem("Side", "2")) state_.presetView(geom::PresetView::Side);
     if (ImGui::MenuItem("Top", "3")) state_.presetView(geom::PresetView::Top);
-    if (ImGui::MenuItem("Reset camera", "F")) state_.fitView();
-    tip("Frame the whole cloud");
+    if (ImGui::MenuItem("Reset camera")) state_.presetView(geom::PresetView::Front);
+    tip("Back to the start view: from the front, the whole cloud framed (F frames it keeping the direction)");
     if (ImGui::BeginMenu("Up axis")) {
       if (hooks_.upAxisMenu)
         hooks_.upAxisMenu(state_);

@@ -288,7 +288,7 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
     else if (m == "about")
       showAbout_ = !showAbout_;
     else if (m == "reset-camera")
-      state_.fitView();
+      state_.presetView(geom::PresetView::Front);
     else if (m == "pick-mode")
       setPickMode(!pickMode_);
     else if (m == "recent") {
