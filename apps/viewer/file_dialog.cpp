@@ -106,7 +106,7 @@ void FileDialog::draw() {
   float listHeight = ImGui::GetContentRegionAvail().y - 4 * ImGui::GetFrameHeightWithSpacing();
   if (ImGui::BeginChild("##entries", ImVec2(0, listHeight), true)) {
     for (int i = 0; i < static_cast<int>(listing_.entries.size()); ++i) {
-      const viewer::FileEntry& e = listing_.entries[static_cast<std::size_t>(i)];
+      const viewer::FileEntry e = listing_.entries[static_cast<std::size_t>(i)];  // a copy: accept may re-list
       char label[600];
       if (e.directory)
         std::snprintf(label, sizeof label, "[folder] %s", e.name.c_str());
@@ -123,6 +123,8 @@ void FileDialog::draw() {
             break;
           }
           accept();
+          ImGui::PopID();
+          break;
         }
       }
       if (!e.directory) {

@@ -174,6 +174,11 @@ void WindowActions::answerPrompt(const std::string& answer) {
     afterPrompt_ = nullptr;
     return;
   }
+  if (answer == "save" && state_.sketchPath().empty()) {
+    // The Save dialog cannot open over the prompt (one modal at a time): say what to do instead.
+    state_.error("save: the sketch has no file; type one in Files (or Cancel and use Save sketch as...)");
+    return;
+  }
   if (answer == "save" && !save()) return;  // the prompt stays; the error is in the status bar
   promptOpen_ = false;
   std::function<void()> then = std::move(afterPrompt_);
