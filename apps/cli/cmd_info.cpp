@@ -40,6 +40,9 @@ void runInfo(const std::string& file) {
     if (!info.cloud.station.empty()) std::printf("per-point station: yes\n");
     if (!info.cloud.meshId.empty()) std::printf("per-point mesh id: yes\n");
     if (!info.cloud.scanner.empty()) std::printf("per-point scanner position: yes\n");
+    if (!info.cloud.intensity.empty()) std::printf("per-point intensity: yes\n");
+    if (!info.cloud.color.empty()) std::printf("per-point colour (RGB): yes\n");
+    if (!info.cloud.classification.empty()) std::printf("per-point classification: yes\n");
     printBounds(info.cloud.bounds());
   }
 }

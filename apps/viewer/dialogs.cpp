@@ -37,40 +37,6 @@ void drawRecoveryDialog(viewer::ViewerState& state) {
   ImGui::EndPopup();
 }
 
-void drawColorLegend(const viewer::ViewerState& state) {
-  viewer::ColorLegend legend = state.colorLegend();
-  if (!legend.shown || legend.stops.size() < 2) return;
-  const geom::Viewport vp = state.orbit().viewport();
-  ImGui::SetNextWindowPos(ImVec2(float(vp.x + vp.width - 10), float(vp.y + vp.height - 10)), 0, ImVec2(1, 1));
-  ImGui::SetNextWindowBgAlpha(0.75f);
-  ImGui::Begin("##colorLegend", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
-                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs);
-  ImGui::TextUnformatted(legend.title.c_str());
-  const float width = 300.0f, height = 14.0f;
-  ImVec2 p = ImGui::GetCursorScreenPos();
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  const std::size_t n = legend.stops.size();
-  for (std::size_t i = 0; i + 1 < n; ++i) {
-    const auto& a = legend.stops[i].color;
-    const auto& b = legend.stops[i + 1].color;
-    float x0 = p.x + width * float(i) / float(n - 1), x1 = p.x + width * float(i + 1) / float(n - 1);
-    ImU32 ca = IM_COL32(a.r, a.g, a.b, 255), cb = IM_COL32(b.r, b.g, b.b, 255);
-    dl->AddRectFilledMultiColor(ImVec2(x0, p.y), ImVec2(x1, p.y + height), ca, cb, cb, ca);
-  }
-  ImGui::Dummy(ImVec2(width, height));
-  // First, middle and last stops under the bar (all five do not fit at a readable size).
-  ImGui::TextUnformatted(legend.stops.front().label.c_str());
-  const std::string& mid = legend.stops[n / 2].label;
-  ImGui::SameLine(width * 0.5f - ImGui::CalcTextSize(mid.c_str()).x * 0.5f);
-  ImGui::TextUnformatted(mid.c_str());
-  const std::string last = legend.stops.back().label;
-  ImGui::SameLine(width - ImGui::CalcTextSize(last.c_str()).x + ImGui::GetStyle().WindowPadding.x);
-  ImGui::TextUnformatted(last.c_str());
-  if (!legend.note.empty()) ImGui::TextDisabled("%s", legend.note.c_str());
-  ImGui::End();
-}
-
 void drawUpWarning(viewer::ViewerState& state) {
   if (!state.upWarningShown()) return;
   const geom::Viewport vp = state.orbit().viewport();

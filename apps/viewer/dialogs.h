@@ -11,9 +11,6 @@ namespace treesketch::gui {
 /// While state.recoveryPending(): a modal "Restore earlier work?" with Restore / Discard / Keep for
 /// later. Call between ImGui::NewFrame and Render, after the panels.
 void drawRecoveryDialog(viewer::ViewerState& state);
-/// The colour scale of the current point colouring (height in m, distance in m and % of the
-/// cloud's diagonal) in the bottom-right corner of the 3D view; nothing for plain colouring.
-void drawColorLegend(const viewer::ViewerState& state);
 
 /// While state.upWarningShown(): a banner at the top of the 3D view with the warning, the up-axis
 /// choice and Dismiss.

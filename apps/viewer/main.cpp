@@ -24,6 +24,7 @@
 #include <string>
 #include <thread>
 
+#include "build_info.h"
 #include "dialogs.h"
 #include "panels.h"
 #include "renderer.h"
@@ -37,6 +38,7 @@
 #include "treesketch/viewer/demo_scene.h"
 #include "treesketch/viewer/point_lod.h"
 #include "treesketch/viewer/viewer_state.h"
+#include "window_ui.h"
 
 namespace fs = std::filesystem;
 using namespace treesketch;
@@ -82,6 +84,9 @@ Args parseArgs(int argc, char** argv) {
     };
     if (s == "-h" || s == "--help") {
       usage(std::cout);
+      std::exit(kExitOk);
+    } else if (s == "--version") {
+      std::cout << cli::versionString() << "\n";
       std::exit(kExitOk);
     } else if (s == "--sketch")
       a.sketchPath = value("--sketch");
@@ -192,7 +197,14 @@ class App {
     panel_.sketchPath = args.sketchPath.empty() ? "sketch.json" : args.sketchPath;
     panel_.inputName = args.input.empty() ? "demo tree (" + args.demo.preset + ")" : args.input;
     renderer_ = std::make_unique<gui::Renderer>();
+    gui::WindowHooks hooks;
+    hooks.close = [this] { glfwSetWindowShouldClose(window_, GLFW_TRUE); };
+    hooks.closing = [this] { return glfwWindowShouldClose(window_) != 0; };
+    hooks.moveCursor = [this](const geom::Vec2& p) { glfwSetCursorPos(window_, p.x(), p.y()); };
+    actions_ = std::make_unique<gui::WindowActions>(state_, panel_, hooks);
   }
+
+  gui::WindowActions& actions() { return *actions_; }
 
   viewer::ViewerState& state() { return state_; }
 
@@ -206,20 +218,24 @@ class App {
     glfwGetWindowSize(window_, &ww, &wh);
     glfwGetFramebufferSize(window_, &fbw, &fbh);
     state_.setViewport(gui::Layout::sceneViewport(ww, wh));
-    if (!loading()) state_.pollJob();  // a finished background job's result comes in here
+    if (!loading()) {
+      state_.pollJob();  // a finished background job's result comes in here
+      actions_->beforeFrame();
+    }
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     if (loading())
       drawLoading(ww, wh);
     else {
-      gui::drawPanels(state_, panel_, ww, wh);
+      gui::drawPanels(state_, panel_, ww, wh, [this] { actions_->drawMenuBar(); });
       gui::drawMarkers(state_);
       gui::drawRecoveryDialog(state_);
       gui::drawConfirmDialog(state_);
-      gui::drawColorLegend(state_);
       gui::drawUpWarning(state_);
       gui::drawJobProgress(state_);
+      actions_->drawOverlays();
+      actions_->drawWindows();
     }
     ImGui::Render();
     glViewport(0, 0, fbw, fbh);
@@ -262,6 +278,7 @@ class App {
   /// for an event.
   double nextWakeSeconds() const {
     if (loading() || state_.busy()) return 0.1;
+    if (actions_ && actions_->hasPendingWork()) return 0.0;  // the next frame opens the cloud
     const auto now = std::chrono::steady_clock::now();
     double t = -1.0;
     auto consider = [&](std::chrono::steady_clock::time_point when) {
@@ -332,6 +349,10 @@ class App {
     glfwGetCursorPos(window_, &x, &y);
     if (action == GLFW_PRESS) {
       if (ImGui::GetIO().WantCaptureMouse) return;
+      if (b == viewer::MouseButton::Left && !(mods & GLFW_MOD_ALT) && actions_->pickMode()) {
+        actions_->pickAt({x, y});  // pick mode: a left click picks instead of sketching
+        return;
+      }
       sceneButton_[button] = true;
       state_.mouseDown({x, y}, b, toMods(mods));
     } else if (action == GLFW_RELEASE && sceneButton_[button]) {
@@ -347,6 +368,7 @@ class App {
   }
   void onKey(int key, int action, int mods) {
     if (action == GLFW_RELEASE || loading() || ImGui::GetIO().WantCaptureKeyboard) return;
+    if (action == GLFW_PRESS && actions_->onKey(key, toMods(mods))) return;  // F1, M, Ctrl+O/S/E/Q
     if (const char* name = keyName(key)) state_.keyPress(name, toMods(mods));
   }
 
@@ -372,6 +394,7 @@ class App {
   viewer::ViewerState state_;
   gui::PanelState panel_;
   std::unique_ptr<gui::Renderer> renderer_;
+  std::unique_ptr<gui::WindowActions> actions_;
   Loader loader_;
   bool loaded_ = false;
   bool sceneButton_[3] = {false, false, false};
@@ -489,6 +512,12 @@ int run(const Args& args) {
     glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { appOf(w)->wake(); });
     glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int) { appOf(w)->wake(); });
     glfwSetCursorEnterCallback(window, [](GLFWwindow* w, int) { appOf(w)->wake(); });
+    // The close button asks about unsaved work first (WindowActions::requestQuit closes when done).
+    glfwSetWindowCloseCallback(window, [](GLFWwindow* w) {
+      glfwSetWindowShouldClose(w, GLFW_FALSE);
+      appOf(w)->wake();
+      appOf(w)->actions().requestQuit();
+    });
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -516,6 +545,7 @@ int run(const Args& args) {
         };
         hooks.screenshot = [&](const fs::path& p) { app.frame(&p); };
         hooks.sketchPath = args.sketchPath;
+        hooks.window = [&](const viewer::ScriptAction& a) { return app.actions().runScriptVerb(a); };
         hooks.log = [](const viewer::ScriptAction&, const std::string& what) {
           std::cerr << "treesketch-gui: " << what << "\n";
         };

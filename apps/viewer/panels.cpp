@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <optional>
 
+#include "tooltips.h"
+#include "treesketch/viewer/color_legend.h"
 #include "treesketch/viewer/key_bindings.h"
 
 namespace treesketch::gui {
@@ -91,9 +93,11 @@ void selectedNodeSection(viewer::ViewerState& state) {
 
 void displaySection(viewer::ViewerState& state) {
   viewer::DisplayOptions& d = state.display();
-  const char* colorModes[] = {"height", "distance to circles", "plain"};
-  int cm = static_cast<int>(d.colorMode);
-  if (ImGui::Combo("colour", &cm, colorModes, 3)) d.colorMode = static_cast<viewer::ColorMode>(cm);
+  if (ImGui::BeginCombo("colour", viewer::colorModeLabel(d.colorMode))) {
+    for (viewer::ColorMode m : viewer::availableColorModes(state.cloud()))  // the file's attributes too
+      if (ImGui::Selectable(viewer::colorModeLabel(m), m == d.colorMode)) d.colorMode = m;
+    ImGui::EndCombo();
+  }
   ImGui::SliderFloat("point size", &d.pointSize, 1.0f, 8.0f, "%.1f px");
   int ms = static_cast<int>(d.meshStyle);
   ImGui::Text("tubes:");
@@ -142,12 +146,14 @@ void messagesSection(const viewer::ViewerState& state) {
 
 }  // namespace
 
-void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height) {
+void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height,
+                const std::function<void()>& menuBar) {
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(Layout::kPanelWidth, height - Layout::kStatusHeight));
-  ImGui::Begin(
-      "treesketch", nullptr,
-      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar);
+  ImGui::Begin("treesketch", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar | (menuBar ? ImGuiWindowFlags_MenuBar : 0));
+  if (menuBar) menuBar();
   ImGui::PushItemWidth(150);
   ImGui::TextUnformatted("treesketch");
   ImGui::TextDisabled("%s", panel.inputName.c_str());
@@ -200,6 +206,7 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   }
   ImGui::Separator();
   messagesSection(state);
+  panelTooltips();
   ImGui::PopItemWidth();
   ImGui::End();
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "treesketch/viewer/viewer_state.h"
@@ -36,7 +37,9 @@ struct PanelState {
 };
 
 /// Builds the side panel and the status bar for this frame (between ImGui::NewFrame and Render).
-void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height);
+/// `menuBar`, when given, draws the panel's menu bar (window_ui.h).
+void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height,
+                const std::function<void()>& menuBar = {});
 /// The correction tools section (tools_panel.cpp).
 void toolsSection(viewer::ViewerState& state);
 /// Draws node markers and parent links over the 3D view (ImGui background draw list).

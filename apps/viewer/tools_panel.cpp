@@ -11,19 +11,19 @@ namespace treesketch::gui {
 
 void toolsSection(viewer::ViewerState& state) {
   using Tool = viewer::ViewerState::Tool;
-  auto toolButton = [&](const char* label, Tool tool, const char* tip) {
+  // Tooltips: tooltips.cpp's table, like every panel control.
+  auto toolButton = [&](const char* label, Tool tool) {
     const bool on = state.tool() == tool;
     if (on) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.2f, 0.5f, 0.3f, 1));
     if (ImGui::Button(label)) state.setTool(on ? Tool::Sketch : tool);
     if (on) ImGui::PopStyleColor();
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tip);
   };
-  toolButton("Stroke (G)", Tool::Stroke, "Drag along a missing limb, starting on the node it grows from");
+  toolButton("Stroke (G)", Tool::Stroke);
   ImGui::SameLine();
-  toolButton("Lasso (X)", Tool::Lasso, "Drag around points that are not wood: fits and the skeleton leave them out");
-  toolButton("Region (R)", Tool::Region, "Drag around a region: the automatic skeleton runs there and is merged");
+  toolButton("Lasso (X)", Tool::Lasso);
+  toolButton("Region (R)", Tool::Region);
   ImGui::SameLine();
-  toolButton("Re-attach (P)", Tool::Reattach, "Click a node, then its new parent");
+  toolButton("Re-attach (P)", Tool::Reattach);
   ImGui::BeginDisabled(state.selected() == sketch::kNoNode);
   if (ImGui::Button("Automatic below selected (H)")) state.automaticBelow(state.selected());
   ImGui::EndDisabled();

@@ -108,7 +108,10 @@ Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double m = std::max({ab.cwiseAbs().maxCoeff(), ac.cwiseAbs().maxCoeff(), ap.cwiseAbs().maxCoeff()});
   if ((m > kUnscaledRange || m < 1 / kUnscaledRange) && m > 0 && std::isfinite(m)) {
-    const double s = std::ldexp(1.0, -std::ilogb(m));  // exact: a power of two
+    // Exact: a power of two. Capped at 2^1000: for a subnormal m (below 2^-1022, found by fuzzing:
+    // a triangle 1e-312 across) 2^-ilogb(m) itself overflows to inf; 2^1000 brings such m to at
+    // least 2^-74, well inside the unscaled range.
+    const double s = std::ldexp(1.0, std::min(-std::ilogb(m), 1000));
     return a + closestUnscaled(ap * s, Vec3::Zero(), ab * s, ac * s, region) / s;
   }
   return closestUnscaled(p, a, b, c, region);

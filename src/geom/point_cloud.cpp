@@ -1,5 +1,7 @@
 #include "treesketch/geom/point_cloud.h"
 
+#include <string>
+
 #include "treesketch/util/error.h"
 
 namespace treesketch::geom {
@@ -10,7 +12,31 @@ BBox PointCloud::bounds() const {
   return b;
 }
 
+namespace {
+
+/// Appends `b` to `a` when both clouds have the attribute (one per point); else drops it.
+template <class T>
+void appendAttribute(std::vector<T>& a, std::size_t aPoints, const std::vector<T>& b, std::size_t bPoints) {
+  if (a.size() == aPoints && b.size() == bPoints)
+    a.insert(a.end(), b.begin(), b.end());
+  else
+    a.clear();
+}
+
+template <class T>
+void checkAttribute(const std::vector<T>& a, std::size_t points, const char* name) {
+  if (!a.empty() && a.size() != points)
+    throw OptionsError(std::string("point cloud: ") + name + " array has " + std::to_string(a.size()) +
+                       " entries for " + std::to_string(points) + " points");
+}
+
+}  // namespace
+
 void PointCloud::append(const PointCloud& other) {
+  const std::size_t n = size();
+  appendAttribute(intensity, n, other.intensity, other.size());
+  appendAttribute(color, n, other.color, other.size());
+  appendAttribute(classification, n, other.classification, other.size());
   bool keepStation = (station.size() == size()) && (other.station.size() == other.size());
   bool keepMesh = (meshId.size() == size()) && (other.meshId.size() == other.size());
   bool keepScanner = (scanner.size() == size()) && (other.scanner.size() == other.size());
@@ -30,6 +56,9 @@ void PointCloud::append(const PointCloud& other) {
 }
 
 void PointCloud::checkConsistent() const {
+  checkAttribute(intensity, size(), "intensity");
+  checkAttribute(color, size(), "color");
+  checkAttribute(classification, size(), "classification");
   if (!station.empty() && station.size() != size())
     throw OptionsError("point cloud: station array has " + std::to_string(station.size()) + " entries for " +
                        std::to_string(size()) + " points");

@@ -122,6 +122,63 @@ LasHeader readLasHeader(const std::filesystem::path& path) {
 
 namespace {
 
+/// Byte offset of the RGB triple in a record of `format`, or -1 when the format has none (LAS 1.4
+/// R15, tables 7–17).
+int rgbOffset(int format) {
+  switch (format) {
+    case 2:
+      return 20;
+    case 3:
+    case 5:
+      return 28;
+    case 7:
+    case 8:
+    case 10:
+      return 30;
+    default:
+      return -1;
+  }
+}
+
+/// Reads intensity, classification and RGB of every record into `cloud` (positions already read).
+/// Decisions, as CloudCompare does: an attribute that is 0 in every record is the writer's "not
+/// recorded" and is dropped; colours are 16-bit by the specification, but many writers store 8-bit
+/// values in them, so they are divided by 257 (65535 -> 255) only when some channel exceeds 255.
+/// Formats 0–5 keep the class in the low 5 bits of byte 15 (the others are flags); 6–10 give it a
+/// whole byte (16).
+void readLasAttributes(const char* records, const LasHeader& h, geom::PointCloud& cloud) {
+  const std::size_t n = cloud.size();
+  const bool extended = h.pointFormat >= 6;
+  const int rgb = rgbOffset(h.pointFormat);
+  cloud.intensity.resize(n);
+  cloud.classification.resize(n);
+  if (rgb >= 0) cloud.color.resize(n);
+  bool anyIntensity = false, anyClass = false, anyColor = false, wideColor = false;
+  std::vector<std::array<std::uint16_t, 3>> wide(rgb >= 0 ? n : 0);
+  const char* p = records;
+  for (std::size_t i = 0; i < n; ++i, p += h.recordLength) {
+    std::uint16_t intensity = detail::loadLE<std::uint16_t>(p + 12);
+    std::uint8_t cls = extended ? static_cast<std::uint8_t>(p[16]) : static_cast<std::uint8_t>(p[15] & 0x1F);
+    cloud.intensity[i] = static_cast<float>(intensity);
+    cloud.classification[i] = cls;
+    anyIntensity |= intensity != 0;
+    anyClass |= cls != 0;
+    if (rgb >= 0) {
+      for (int k = 0; k < 3; ++k) {
+        wide[i][k] = detail::loadLE<std::uint16_t>(p + rgb + 2 * k);
+        anyColor |= wide[i][k] != 0;
+        wideColor |= wide[i][k] > 255;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < wide.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      cloud.color[i][k] = static_cast<std::uint8_t>(wideColor ? (wide[i][k] + 128) / 257 : wide[i][k]);
+  if (!anyIntensity) cloud.intensity.clear();
+  if (!anyClass) cloud.classification.clear();
+  if (!anyColor) cloud.color.clear();
+}
+
 geom::PointCloud parseLas(std::string_view data, const std::string& source, const CloudReadOptions& options,
                           LasHeader* headerOut) {
   LasHeader h = parseLasHeader(data, source);
@@ -147,6 +204,7 @@ geom::PointCloud parseLas(std::string_view data, const std::string& source, cons
                                 "coordinate overflows to Inf after scale and offset, expected finite"));
   }
   checkCloudSize(cloud, source, options.minPoints);
+  readLasAttributes(data.data() + h.offsetToPointData, h, cloud);
   cloud.up = geom::UpAxis::Z;  // LAS coordinates are Z-up by the format's specification
   return cloud;
 }

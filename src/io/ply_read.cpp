@@ -198,6 +198,8 @@ struct VertexData {
   std::vector<geom::Vec3> scanner;
   std::vector<std::array<std::uint8_t, 3>> colors;
   std::vector<double> quality;
+  std::vector<float> intensity;
+  std::vector<std::uint8_t> classification;
 };
 
 enum Role {
@@ -214,6 +216,8 @@ enum Role {
   kGreen,
   kBlue,
   kQuality,
+  kIntensity,
+  kClass,
   kRoles
 };
 
@@ -254,12 +258,17 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
       r = kScannerY;
     else if (cloudAttributes && p.name == "scanner_z")
       r = kScannerZ;
-    else if (meshAttributes && (p.name == "red" || p.name == "r"))
-      r = kRed;
-    else if (meshAttributes && (p.name == "green" || p.name == "g"))
+    else if (p.name == "red" || p.name == "r" || p.name == "diffuse_red")
+      r = kRed;  // clouds (CloudCompare, PDAL) and meshes (MeshLab) alike
+    else if (p.name == "green" || p.name == "g" || p.name == "diffuse_green")
       r = kGreen;
-    else if (meshAttributes && (p.name == "blue" || p.name == "b"))
+    else if (p.name == "blue" || p.name == "b" || p.name == "diffuse_blue")
       r = kBlue;
+    else if (cloudAttributes && (p.name == "intensity" || p.name == "scalar_intensity" || p.name == "scalar_Intensity"))
+      r = kIntensity;
+    else if (cloudAttributes &&
+             (p.name == "classification" || p.name == "scalar_classification" || p.name == "scalar_Classification"))
+      r = kClass;
     else if (meshAttributes && p.name == "quality")
       r = kQuality;
     if (r != kNone && has[r]) r = kNone;  // a repeated name: the first one counts
@@ -277,6 +286,8 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
   if (wantColors) out.colors.reserve(reserve);
   if (wantScanner) out.scanner.reserve(reserve);
   if (has[kQuality]) out.quality.reserve(reserve);
+  if (has[kIntensity]) out.intensity.reserve(reserve);
+  if (has[kClass]) out.classification.reserve(reserve);
   std::size_t rs = c.ascii() ? 0 : fixedRecordSize(e);
   if (rs > 0) c.requireRecords(e.count, rs);
   for (std::uint64_t i = 0; i < e.count; ++i) {
@@ -326,6 +337,16 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
           break;
         case kQuality:
           out.quality.push_back(v);
+          break;
+        case kIntensity:
+          if (!(std::abs(v) <= std::numeric_limits<float>::max()))
+            c.failAtRecord("intensity " + std::to_string(v) + " is not a finite single-precision number");
+          out.intensity.push_back(static_cast<float>(v));
+          break;
+        case kClass:
+          if (!(v >= 0 && v <= 255 && v == std::floor(v)))
+            c.failAtRecord("classification must be an integer 0 to 255, got " + std::to_string(v));
+          out.classification.push_back(static_cast<std::uint8_t>(v));
           break;
         case kNone:
         case kRoles:
@@ -407,6 +428,9 @@ geom::PointCloud parsePlyCloud(std::string_view data, const std::string& source,
       cloud.station = std::move(v.station);
       cloud.meshId = std::move(v.meshId);
       cloud.scanner = std::move(v.scanner);
+      cloud.intensity = std::move(v.intensity);
+      cloud.classification = std::move(v.classification);
+      cloud.color = std::move(v.colors);
       break;  // nothing after the vertices is needed
     }
     skipElement(c, e);

@@ -1,7 +1,11 @@
 #include "treesketch/io/xyz.h"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "io/io_util.h"
 #include "treesketch/util/atomic_file.h"
@@ -29,28 +33,82 @@ int splitFields(const char* b, const char* e, std::string_view* fields, int maxF
   return n;
 }
 
+/// Which columns hold which attribute (-1: none).
+struct ColumnMap {
+  int intensity = -1, red = -1, green = -1, blue = -1, classification = -1;
+  bool any() const { return intensity >= 0 || red >= 0 || classification >= 0; }
+  int needed() const { return std::max({intensity, red, green, blue, classification}) + 1; }
+};
+
+constexpr int kMaxFields = 32;
+
+/// Columns named by a header line ("X,Y,Z,Intensity,R,G,B", "//X Y Z Rf Gf Bf Classification"):
+/// names are matched case-insensitively, with CloudCompare's "scalar_" prefix and "f" suffix on
+/// colour names dropped. Returns an empty map when the line names no attribute.
+ColumnMap columnsFromHeader(std::string_view header) {
+  std::string_view f[kMaxFields];
+  int n = splitFields(header.data(), header.data() + header.size(), f, kMaxFields);
+  ColumnMap m;
+  for (int i = 0; i < n; ++i) {
+    std::string name;
+    for (char c : f[i])
+      if (c != '/' && c != '#') name += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (name.rfind("scalar_", 0) == 0) name = name.substr(7);
+    if (name == "intensity" || name == "i" || name == "reflectance")
+      m.intensity = i;
+    else if (name == "r" || name == "red" || name == "rf")
+      m.red = i;
+    else if (name == "g" || name == "green" || name == "gf")
+      m.green = i;
+    else if (name == "b" || name == "blue" || name == "bf")
+      m.blue = i;
+    else if (name == "classification" || name == "class")
+      m.classification = i;
+  }
+  if (m.red < 0 || m.green < 0 || m.blue < 0) m.red = m.green = m.blue = -1;  // colour needs all three
+  return m;
+}
+
+/// Columns by count when no header names them: 4 = x y z intensity; 6 = x y z r g b; 7 = x y z
+/// intensity r g b (Leica PTS). Any other count: no attributes (we do not guess).
+ColumnMap columnsFromCount(int n) {
+  ColumnMap m;
+  if (n == 4 || n == 7) m.intensity = 3;
+  if (n == 6) m.red = 3, m.green = 4, m.blue = 5;
+  if (n == 7) m.red = 4, m.green = 5, m.blue = 6;
+  return m;
+}
+
 geom::PointCloud parseXyz(std::string_view data, const std::string& source, const CloudReadOptions& options) {
   geom::PointCloud cloud;
   // One point a line, and a point line takes at least 6 bytes ("0 0 0\n").
   const std::size_t lineCount = static_cast<std::size_t>(std::count(data.begin(), data.end(), '\n')) + 1;
   cloud.positions.reserve(std::min(lineCount, data.size() / 6 + 1));
   std::size_t headerLines = 0;
-  std::string_view f[3];
+  std::string_view lastHeader;
+  std::string_view f[kMaxFields];
+  ColumnMap columns;
+  bool attributes = false;  // every line so far had the attribute columns as numbers
+  std::vector<std::array<double, 3>> colors;
   detail::Lines lines(data);
   std::string_view line;
   while (lines.next(line)) {
     const std::size_t lineNo = lines.number();
     const char* lineStart = line.data();
     const char* lineEnd = lineStart + line.size();
-    int n = splitFields(lineStart, lineEnd, f, 3);
-    if (n == 0) continue;                                                             // blank line
-    if (f[0][0] == '#' || (f[0].size() >= 2 && f[0].substr(0, 2) == "//")) continue;  // comment
+    int n = splitFields(lineStart, lineEnd, f, kMaxFields);
+    if (n == 0) continue;  // blank line
+    if (f[0][0] == '#' || (f[0].size() >= 2 && f[0].substr(0, 2) == "//")) {
+      if (cloud.empty()) lastHeader = line;  // "//X Y Z Rf Gf Bf" names columns
+      continue;                              // comment
+    }
     double v[3];
-    bool numeric = n == 3;
+    bool numeric = n >= 3;
     for (int i = 0; numeric && i < 3; ++i) numeric = detail::parseDouble(f[i].data(), f[i].data() + f[i].size(), v[i]);
     if (!numeric) {
       if (cloud.empty() && headerLines < options.maxHeaderLines) {
         ++headerLines;
+        lastHeader = line;
         continue;
       }
       throw InputError(atLine(
@@ -64,8 +122,37 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
       if (line.find(';') != std::string_view::npos && line.find(',') != std::string_view::npos)
         throw InputError(
             atLine(source, lineNo, "line mixes ';' and ',' (decimal commas?); expected '.' as the decimal separator"));
+      columns = columnsFromHeader(lastHeader);
+      if (!columns.any()) columns = columnsFromCount(n);
+      attributes = columns.any();
     }
     cloud.positions.emplace_back(v[0], v[1], v[2]);
+    if (attributes) {
+      // Extra columns are optional: a line without them (or with text there) drops the attributes
+      // of the whole file rather than failing, as before they were read.
+      double a[kMaxFields];
+      auto number = [&](int col) {
+        return col < n && detail::parseDouble(f[col].data(), f[col].data() + f[col].size(), a[col]) &&
+               std::isfinite(a[col]);
+      };
+      bool ok = n >= columns.needed();
+      if (ok && columns.intensity >= 0)
+        ok = number(columns.intensity) && std::abs(a[columns.intensity]) <= std::numeric_limits<float>::max();
+      if (ok && columns.red >= 0) ok = number(columns.red) && number(columns.green) && number(columns.blue);
+      if (ok && columns.classification >= 0)
+        ok = number(columns.classification) && a[columns.classification] >= 0 && a[columns.classification] <= 255;
+      if (!ok) {
+        attributes = false;
+        cloud.intensity.clear();
+        cloud.classification.clear();
+        colors.clear();
+      } else {
+        if (columns.intensity >= 0) cloud.intensity.push_back(static_cast<float>(a[columns.intensity]));
+        if (columns.red >= 0) colors.push_back({a[columns.red], a[columns.green], a[columns.blue]});
+        if (columns.classification >= 0)
+          cloud.classification.push_back(static_cast<std::uint8_t>(std::lround(a[columns.classification])));
+      }
+    }
   }
   if (cloud.empty()) {
     if (data.empty()) throw InputError(source + ": file is empty, expected lines of 'x y z' numbers");
@@ -73,6 +160,16 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
                      " lines, expected lines of 'x y z' numbers");
   }
   checkCloudSize(cloud, source, options.minPoints);
+  if (!colors.empty()) {
+    // Colours in [0, 1] (CloudCompare's "Rf Gf Bf") are scaled to bytes; others are clamped to 0–255.
+    double top = 0.0;
+    for (const auto& c : colors) top = std::max({top, c[0], c[1], c[2]});
+    const double scale = top <= 1.0 ? 255.0 : 1.0;
+    cloud.color.resize(colors.size());
+    for (std::size_t i = 0; i < colors.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        cloud.color[i][k] = static_cast<std::uint8_t>(std::lround(std::clamp(colors[i][k] * scale, 0.0, 255.0)));
+  }
   return cloud;
 }
 

@@ -1,5 +1,6 @@
 #include "treesketch/viewer/action_script.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -8,6 +9,7 @@
 #include <thread>
 
 #include "treesketch/util/error.h"
+#include "treesketch/viewer/color_legend.h"
 
 namespace treesketch::viewer {
 
@@ -45,8 +47,8 @@ struct ToolName {
   ViewerState::Tool tool;
 };
 const ToolName kTools[] = {
-    {"sketch", ViewerState::Tool::Sketch}, {"stroke", ViewerState::Tool::Stroke},
-    {"lasso", ViewerState::Tool::Lasso},   {"region", ViewerState::Tool::Region},
+    {"sketch", ViewerState::Tool::Sketch},     {"stroke", ViewerState::Tool::Stroke},
+    {"lasso", ViewerState::Tool::Lasso},       {"region", ViewerState::Tool::Region},
     {"reattach", ViewerState::Tool::Reattach},
 };
 
@@ -117,9 +119,32 @@ const Expectation kExpectations[] = {
     {"labelsShown", [](const ViewerState& s) { return double(s.labelsShown()); }, false},
     {"statusShown", [](const ViewerState& s) { return double(s.statusLine().has_value()); }, false},
     {"lyingDown", [](const ViewerState& s) { return double(s.upWarningShown()); }, false},
-    {"legend", [](const ViewerState& s) { return double(s.colorLegend().shown); }, false},
+    {"legend", [](const ViewerState& s) { return double(colorLegend(s).kind != Legend::Kind::None); }, false},
     {"busy", [](const ViewerState& s) { return double(s.busy()); }, false},
+    {"points", [](const ViewerState& s) { return double(s.cloud().size()); }, false},
 };
+
+/// Window verbs and the values each takes (checked here so a typo fails at parse time; what they do
+/// is apps/viewer's, through ScriptHooks::window).
+struct WindowVerb {
+  const char* name;
+  std::vector<std::string> values;  ///< allowed string values; empty: not a string verb
+};
+const WindowVerb kWindowVerbs[] = {
+    {"menu",
+     {"open-cloud", "open-sketch", "save", "save-as", "export", "quit", "help", "about", "reset-camera", "pick-mode",
+      "recent"}},
+    {"dialog", {"ok", "cancel", "type"}},
+    {"prompt", {"save", "discard", "cancel"}},
+    {"pick", {}},
+    {"hover", {}},
+    {"closeWindow", {}},
+    {"showMenu", {"File", "View", "Tools", "Help", "none"}},
+    {"expectWindow", {}},
+};
+const char* const kWindowExpectations[] = {"dialogOpen",  "dialogEntries", "promptOpen",  "picks",
+                                           "distanceMin", "distanceMax",   "recent",      "quitting",
+                                           "helpOpen",    "legendClasses", "dialogError", "tooltip"};
 
 /// The entry of `table` called `name`, or nullptr.
 template <class Entry, std::size_t N>
@@ -207,6 +232,14 @@ class Parser {
     } else if (verb == "wait") {
       a.kind = Kind::Wait;
       a.steps = arg.empty() ? 1 : std::atoi(arg.c_str());
+    } else if (verb == "closeWindow") {
+      a.kind = Kind::Window;
+      a.name = verb;
+    } else if (verb == "menu" || verb == "prompt" || verb == "dialog") {
+      a.kind = Kind::Window;
+      a.name = verb;
+      a.text = arg;
+      checkWindowValue(a, index);
     } else {
       fail(index, "unknown action '" + s + "'");
     }
@@ -218,7 +251,57 @@ class Parser {
       fail(index, "view must be front, side, top or fit, got '" + v + "'");
   }
 
+  void checkWindowValue(const ScriptAction& a, std::size_t index) const {
+    for (const WindowVerb& v : kWindowVerbs) {
+      if (a.name != v.name || v.values.empty()) continue;
+      if (std::find(v.values.begin(), v.values.end(), a.text) != v.values.end()) return;
+      std::string list;
+      for (const std::string& s : v.values) list += (list.empty() ? "" : ", ") + s;
+      fail(index, a.name + " must be one of " + list + ", got '" + a.text + "'");
+    }
+  }
+
+  /// {"menu": ...}, {"dialog": ...}, {"prompt": ...}, {"pick": [x, y]}, {"closeWindow": ...},
+  /// {"expectWindow": {...}}; false when `j` holds none of them.
+  bool windowVerb(const json& j, std::size_t index, ScriptAction& a) const {
+    for (const WindowVerb& v : kWindowVerbs) {
+      if (!j.contains(v.name)) continue;
+      a.kind = Kind::Window;
+      a.name = v.name;
+      const json& arg = j[v.name];
+      if (a.name == "pick" || a.name == "hover") {
+        a.from = a.to = point(arg, index, a.name);
+      } else if (a.name == "expectWindow") {
+        if (!arg.is_object()) fail(index, "expectWindow: expected an object");
+        for (const auto& [k, val] : arg.items()) {
+          if (std::find_if(std::begin(kWindowExpectations), std::end(kWindowExpectations),
+                           [&](const char* n) { return k == n; }) == std::end(kWindowExpectations))
+            fail(index, "expectWindow: unknown key '" + k + "'");
+          a.expect.emplace_back(k, number(val, index, "expectWindow " + k));
+        }
+      } else if (!v.values.empty()) {
+        a.text = string(arg, index, a.name);
+        checkWindowValue(a, index);
+      }
+      if (j.contains("path")) a.path = string(j["path"], index, "path");
+      if (j.contains("value")) a.value = number(j["value"], index, "value");
+      if (a.name == "menu" && a.text == "recent" && !j.contains("value"))
+        fail(index, "menu recent needs a \"value\" (0 = the newest entry)");
+      return true;
+    }
+    return false;
+  }
+
   ScriptAction fromObject(const json& j, std::size_t index) const {
+    ScriptAction a = verbFromObject(j, index);
+    if (j.contains("expectError")) {
+      if (!j["expectError"].is_boolean()) fail(index, "expectError: expected true or false");
+      a.expectError = j["expectError"].get<bool>();
+    }
+    return a;
+  }
+
+  ScriptAction verbFromObject(const json& j, std::size_t index) const {
     ScriptAction a;
     a.index = index;
     if (j.contains("button") && !j["button"].is_string()) fail(index, "button: expected a string");
@@ -329,6 +412,8 @@ class Parser {
       } else {
         a.steps = static_cast<int>(number(j["wait"], index, "wait"));
       }
+    } else if (windowVerb(j, index, a)) {
+      // done
     } else if (j.contains("expect")) {
       a.kind = Kind::Expect;
       const json& e = j["expect"];
@@ -470,6 +555,18 @@ std::string describe(const ScriptAction& a) {
       for (const auto& [k, v] : a.expect) s += " " + k + "=" + std::to_string(static_cast<long long>(v));
       return s;
     }
+    case Kind::Window: {
+      std::string s = a.name;
+      if (!a.text.empty()) s += " " + a.text;
+      if (a.name == "pick" || a.name == "hover") s += " " + pt(a.from);
+      if (!a.path.empty()) s += " " + a.path.string();
+      for (const auto& [k, v] : a.expect) {
+        std::ostringstream n;
+        n << v;
+        s += " " + k + "=" + n.str();
+      }
+      return s;
+    }
   }
   return "?";
 }
@@ -584,6 +681,10 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
             if (!d.empty()) failure += (failure.empty() ? "" : "; ") + d;
           }
           break;
+        case Kind::Window:
+          if (!hooks.window) throw OptionsError(a.name + " needs a window");
+          failure = hooks.window(a);
+          break;
       }
     } catch (const std::exception& e) {
       failure = e.what();
@@ -604,9 +705,13 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
       }
     }
     if (failure.empty() && state.errorCount() > errorsBefore) failure = state.lastMessage().text;
+    if (a.expectError) {
+      if (hooks.log) hooks.log(a, failure.empty() ? "no error (one was expected)" : "refused as expected: " + failure);
+      failure = failure.empty() ? "expected this action to fail, it did not" : std::string();
+    }
     if (!failure.empty()) {
       report.failures.push_back("action " + std::to_string(a.index) + " (" + what + "): " + failure);
-      if (a.kind == Kind::Expect || a.kind == Kind::Key) state.error(report.failures.back());
+      if (a.kind == Kind::Expect || a.kind == Kind::Key || a.kind == Kind::Window) state.error(report.failures.back());
     }
     ++report.actionsRun;
     if (&a == &script.actions.back() && state.busy()) state.waitForJob();  // a script ends with its work done

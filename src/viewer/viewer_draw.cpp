@@ -10,6 +10,7 @@
 #include "treesketch/render/color_map.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/text.h"
+#include "treesketch/viewer/color_legend.h"
 #include "treesketch/viewer/viewer_state.h"
 
 namespace treesketch::viewer {
@@ -66,7 +67,11 @@ ColorMode parseColorMode(const std::string& s) {
   if (k == "height") return ColorMode::Height;
   if (k == "distance" || k == "circle-distance") return ColorMode::CircleDistance;
   if (k == "plain") return ColorMode::Plain;
-  throw OptionsError("colour mode must be 'height', 'distance' or 'plain', got '" + s + "'");
+  if (k == "intensity") return ColorMode::Intensity;
+  if (k == "rgb" || k == "color" || k == "colour") return ColorMode::FileColor;
+  if (k == "classification" || k == "class") return ColorMode::Classification;
+  throw OptionsError(
+      "colour mode must be 'height', 'distance', 'plain', 'intensity', 'rgb' or 'classification', got '" + s + "'");
 }
 
 MeshStyle parseMeshStyle(const std::string& s) {
@@ -85,6 +90,12 @@ const char* toString(ColorMode mode) {
       return "distance";
     case ColorMode::Plain:
       return "plain";
+    case ColorMode::Intensity:
+      return "intensity";
+    case ColorMode::FileColor:
+      return "rgb";
+    case ColorMode::Classification:
+      return "classification";
   }
   return "?";
 }
@@ -202,6 +213,12 @@ const std::vector<Rgb>& ViewerState::pointColors() {
         distanceGrid_.colors(circles, colors_);
         break;
       }
+      case ColorMode::Intensity:
+      case ColorMode::FileColor:
+      case ColorMode::Classification:
+        colors_ = attributeColors(cloud_, colorsMode_);
+        if (colors_.size() != cloud_.size()) colors_ = plainColors(cloud_, options_.plainColor);
+        break;
     }
     // Not-wood points (the sketch's lassos, issue 20) are drawn dark, whatever the colour mode.
     if (!sketch_.notWood().empty())

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "treesketch/util/text.h"
+#include "treesketch/viewer/color_legend.h"
 #include "treesketch/viewer/viewer_state.h"
 
 namespace treesketch::viewer {
@@ -181,7 +182,7 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
   } else if (key == "w") {
     display_.meshStyle = static_cast<MeshStyle>((static_cast<int>(display_.meshStyle) + 1) % 3);
   } else if (key == "c") {
-    display_.colorMode = static_cast<ColorMode>((static_cast<int>(display_.colorMode) + 1) % 3);
+    display_.colorMode = nextColorMode(display_.colorMode, cloud_);  // the file's attributes too
   } else if (key == "l") {
     display_.labels = static_cast<LabelMode>((static_cast<int>(display_.labels) + 1) % 3);
     info(std::string("node labels: ") + toString(display_.labels));

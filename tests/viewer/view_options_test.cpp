@@ -7,6 +7,7 @@
 #include "treesketch/gen/random.h"
 #include "treesketch/render/color_map.h"
 #include "treesketch/util/error.h"
+#include "treesketch/viewer/color_legend.h"
 #include "treesketch/viewer/point_colors.h"
 #include "treesketch/viewer/viewer_state.h"
 
@@ -74,33 +75,38 @@ TEST(Labels, AutoHidesThemOnLargeSketchesAndTheKeyCycles) {
   EXPECT_THROW(parseLabelMode("maybe"), OptionsError);
 }
 
-TEST(Legend, DistanceScaleInMetresAndPercentMatchesThePointColours) {
+TEST(Legend, DistanceScaleMatchesThePointColoursAndHeightFollowsTheViewUp) {
   ViewerState s;
   s.setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
   s.setColorMode(ColorMode::CircleDistance);
-  ColorLegend l = s.colorLegend();
-  ASSERT_TRUE(l.shown);
-  ASSERT_GE(l.stops.size(), 2u);
+  Legend l = colorLegend(s);
+  ASSERT_EQ(l.kind, Legend::Kind::Scale);
+  ASSERT_GE(l.ramp.size(), 2u);
   const double scale = s.options().distanceColorScale * s.bounds().diagonal();
-  EXPECT_DOUBLE_EQ(l.stops.front().value, 0.0);
-  EXPECT_NEAR(l.stops.back().value, scale, 1e-12);
-  EXPECT_NE(l.stops.back().label.find("2 %"), std::string::npos) << l.stops.back().label;
+  EXPECT_DOUBLE_EQ(l.range.min, 0.0);
+  EXPECT_NEAR(l.range.max, scale, 1e-12);
+  EXPECT_NE(l.note.find("no fitted circle"), std::string::npos) << l.note;
   // The legend's colours are those circleDistanceColors gives a point at that distance.
   Circle3 c{Vec3(0, 0, 0), Vec3(0, 1, 0), 1.0};
   geom::PointCloud probe;
-  for (const LegendStop& stop : l.stops) probe.positions.push_back(Vec3(1.0 + stop.value, 0, 0));
+  const std::size_t n = l.ramp.size();
+  for (std::size_t i = 0; i < n; ++i) probe.positions.push_back(Vec3(1.0 + scale * double(i) / double(n - 1), 0, 0));
   std::vector<Rgb> colors = circleDistanceColors(probe, {c}, scale);
-  for (std::size_t i = 0; i < l.stops.size(); ++i) {
-    EXPECT_EQ(colors[i].r, l.stops[i].color.r) << i;
-    EXPECT_EQ(colors[i].g, l.stops[i].color.g) << i;
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_NEAR(colors[i].r, l.ramp[i].r, 1) << i;
+    EXPECT_NEAR(colors[i].g, l.ramp[i].g, 1) << i;
   }
   s.setColorMode(ColorMode::Height);
-  l = s.colorLegend();
-  ASSERT_TRUE(l.shown);
-  EXPECT_NEAR(l.stops.back().value - l.stops.front().value, s.bounds().extent().y(), 1e-9);
+  l = colorLegend(s);
+  ASSERT_EQ(l.kind, Legend::Kind::Scale);
+  EXPECT_NEAR(l.range.max - l.range.min, s.bounds().extent().y(), 1e-9);
+  s.setUpDirection(UpDirection::PosX);  // the ramp follows the view's up: the legend too
+  l = colorLegend(s);
+  EXPECT_NEAR(l.range.max - l.range.min, s.bounds().extent().x(), 1e-9);
+  EXPECT_NE(l.title.find(toString(UpDirection::PosX)), std::string::npos) << l.title;
   s.setColorMode(ColorMode::Plain);
-  EXPECT_FALSE(s.colorLegend().shown);
+  EXPECT_EQ(colorLegend(s).kind, Legend::Kind::None);
 }
 
 TEST(UpDirection, TheLibraryRuleDecidesAndALyingCloudIsWarnedAbout) {

@@ -3,7 +3,8 @@
 // other. Headless: Dear ImGui runs without a window or GL; the mouse is moved over a grid covering
 // the panel and the hovered ID is recorded at each point; one widget covers one connected region,
 // so an ID seen in two separate regions belongs to two widgets. Run by CTest (gui.panels_unique_ids)
-// with a node selected and without, so that every section is drawn.
+// with a node selected and without, so that every section is drawn. The same scan checks that every
+// hovered widget shows a tooltip.
 #include <imgui.h>
 #include <imgui_internal.h>
 
@@ -34,13 +35,18 @@ constexpr int kStep = 3;  // pixels; less than ImGui's item spacing (4 px vertic
 
 /// Scans the panel; returns the number of IDs seen in more than one region (and prints them).
 int clashes(viewer::ViewerState& state, gui::PanelState& panel, int width, int height) {
+  int bad = 0;
   std::map<ImGuiID, std::set<std::pair<int, int>>> cells;
+  std::map<ImGuiID, std::pair<int, int>> untipped;  // hovered widgets that showed no tooltip
   ImGuiIO& io = ImGui::GetIO();
+  bool tipShown = false;
   auto frame = [&](float x, float y) {
     io.MousePos = ImVec2(x, y);
     ImGui::NewFrame();
     gui::drawPanels(state, panel, width, height);
     ImGuiID id = ImGui::GetCurrentContext()->HoveredId;
+    ImGuiWindow* tip = ImGui::FindWindowByName("##Tooltip_00");  // Dear ImGui's tooltip window
+    tipShown = tip && tip->Active;
     ImGui::Render();
     return id;
   };
@@ -50,8 +56,13 @@ int clashes(viewer::ViewerState& state, gui::PanelState& panel, int width, int h
       frame(float(gx * kStep), float(gy * kStep));  // hover is resolved against the previous frame
       ImGuiID id = frame(float(gx * kStep), float(gy * kStep));
       if (id != 0) cells[id].insert({gx, gy});
+      if (id != 0 && !tipShown) untipped.emplace(id, std::pair{gx * kStep, gy * kStep});
     }
-  int bad = 0;
+  // Every control explains itself (tooltips.cpp's table, or its own tooltip).
+  for (auto& [id, at] : untipped) {
+    ++bad;
+    std::printf("ID %08x at (%d, %d) shows no tooltip\n", id, at.first, at.second);
+  }
   for (auto& [id, set] : cells) {
     // Flood-fill one region; any cell left over is a second widget with the same ID.
     std::set<std::pair<int, int>> todo = set, seen;
@@ -70,7 +81,7 @@ int clashes(viewer::ViewerState& state, gui::PanelState& panel, int width, int h
                   seen.begin()->second * kStep, todo.begin()->first * kStep, todo.begin()->second * kStep);
     }
   }
-  std::printf("%zu widget IDs, %d shared\n", cells.size(), bad);
+  std::printf("%zu widget IDs, %d shared or without a tooltip\n", cells.size(), bad);
   return bad;
 }
 
@@ -98,6 +109,6 @@ int main() {
   state.selectNode(sketch::kNoNode);
   bad += clashes(state, panel, width, height);  // no node: the sizes for new nodes
   ImGui::DestroyContext();
-  if (bad) std::printf("FAILED: give each widget a unique label or a ##suffix\n");
+  if (bad) std::printf("FAILED: give each widget a unique label or a ##suffix, and a row in tooltips.cpp\n");
   return bad ? 1 : 0;
 }

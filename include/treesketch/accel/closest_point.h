@@ -29,7 +29,9 @@ geom::Vec3 closestPointOnTriangle(const geom::Vec3& p, const geom::Vec3& a, cons
 /// One closest-point query's answer.
 struct ClosestHit {
   geom::Vec3 point = geom::Vec3::Zero();                      ///< closest point on the target (world, metres)
-  double distance = std::numeric_limits<double>::infinity();  ///< metres; +inf when not found
+  double distance = std::numeric_limits<double>::infinity();  ///< metres; +inf when not found. Computed as sqrt of the
+                                                              ///< squared distance: below ~1e-154 (far below any
+                                                              ///< physical scale) it underflows to 0
   /// Index of the target triangle (mesh) or point (cloud) holding `point`; -1 when none lies
   /// within the search distance.
   std::int64_t index = -1;

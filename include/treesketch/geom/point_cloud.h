@@ -6,6 +6,7 @@
 // which is affordable here and saves every algorithm from handling an offset.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -27,6 +28,15 @@ struct PointCloud {
   /// station because the sphere pattern fires every ray from its own origin, and because that is
   /// how other tools read a sensor position from a PLY (three scalar fields, see io/ply.h).
   std::vector<Vec3> scanner;
+  /// Optional: the return's intensity as the file gives it (LAS: 0–65535; a text column or a PLY
+  /// `intensity` / `scalar_Intensity` property: its value); empty or one per point.
+  std::vector<float> intensity;
+  /// Optional: the point's colour, 8 bits a channel (LAS stores 16: see io/las.h for the scaling);
+  /// empty or one per point.
+  std::vector<std::array<std::uint8_t, 3>> color;
+  /// Optional: the ASPRS classification code (LAS; a text column or PLY property named
+  /// `classification`); empty or one per point.
+  std::vector<std::uint8_t> classification;
   /// Optional: the up axis the file declares (LAS: Z by its specification; a PLY written by
   /// treesketch: its `comment up_axis y|z` line), or the producer's (a synthetic scan of a Y-up
   /// tree). Empty when nothing says; io/up_axis.h then picks the field's convention (Z).

@@ -1,6 +1,8 @@
-// ASPRS LAS 1.0–1.4 point clouds, uncompressed, point data record formats 0–10. Only the
-// coordinates are read (X, Y, Z int32 at the start of every record, times scale plus offset);
-// compressed LAZ is refused with a message saying how to decompress it.
+// ASPRS LAS 1.0–1.4 point clouds, uncompressed, point data record formats 0–10. Read: the
+// coordinates (X, Y, Z int32 at the start of every record, times scale plus offset), intensity,
+// classification and, in the formats that have it, RGB (geom::PointCloud's optional attributes;
+// one that is 0 in every record is dropped as "not recorded"); compressed LAZ is refused with a
+// message saying how to decompress it.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,9 @@
-// Plain-text point clouds: one point a line, "x y z" followed by any extra columns (intensity,
-// colour, ...) which are ignored. Fields are separated by spaces, tabs, commas or semicolons.
+// Plain-text point clouds: one point a line, "x y z" followed by any extra columns. Intensity,
+// RGB and classification are read into the cloud's attributes when a header line names their
+// columns ("X Y Z Intensity R G B Classification", CloudCompare's "//X Y Z Rf Gf Bf
+// scalar_Intensity"), or, with no such header, by the column count: x y z i; x y z r g b; x y z i
+// r g b (Leica PTS). Other columns are ignored; a line without the attribute columns drops them
+// for the file. Fields are separated by spaces, tabs, commas or semicolons.
 // Header lines at the top ("X,Y,Z", a point count, "# comment") are skipped; CRLF is accepted.
 #pragma once
 

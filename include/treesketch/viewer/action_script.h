@@ -37,11 +37,33 @@
 //   {"wait": frames}
 //   {"sleep": seconds}                     real time, drawing a frame every 0.1 s (a person idling)
 //   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
-//               "errors": n, "meshTriangles": n, "kept": n, "notWood": n, "recoveryOffered": 0|1,
-//               "confirmPending": 0|1, "handEdits": 0|1, "labelsShown": 0|1, "statusShown": 0|1,
-//               "lyingDown": 0|1, "legend": 0|1, "busy": 0|1}}
+//               "errors": n, "meshTriangles": n, "kept": n, "notWood": n, "points": n,
+//               "recoveryOffered": 0|1, "confirmPending": 0|1, "handEdits": 0|1, "labelsShown": 0|1,
+//               "statusShown": 0|1, "lyingDown": 0|1, "legend": 0|1, "busy": 0|1}}
 //                                          ("meshTriangles" checks "at least n"; "kept": nodes
-//                                          with a kept circle; "notWood": not-wood lassos)
+//                                          with a kept circle; "notWood": not-wood lassos;
+//                                          "points": the cloud's size)
+// Window verbs (the menus, dialogs and tools of apps/viewer; they need ScriptHooks::window, so a
+// script without a window fails them with a message):
+//   {"menu": ITEM}                         "open-cloud" "open-sketch" "save" "save-as" "export"
+//                                          "quit" "help" "about" "reset-camera" "pick-mode";
+//   {"menu": "recent", "value": i}         the i-th entry (0 = newest) of File > Recent files
+//   {"dialog": "ok"|"cancel"|"type", "path": P}   in the open file dialog: type P into its path
+//                                          box (optional), then press Open/Save ("ok": a folder is
+//                                          entered, a file is taken), Cancel, or nothing ("type")
+//   {"prompt": "save"|"discard"|"cancel"}  answers the unsaved-work prompt
+//   {"pick": [x, y]}                       a left click in pick mode (window pixels)
+//   {"hover": [x, y]}                      moves the mouse there (tooltips; window pixels)
+//   "closeWindow"                          the window's close button
+//   {"showMenu": "File"|"View"|"Tools"|"Help"|"none"}   keeps that menu open (for screenshots)
+//   {"expectWindow": {"dialogOpen": 0|1, "dialogEntries": n, "promptOpen": 0|1, "picks": n,
+//                     "distanceMin": d, "distanceMax": d, "recent": n, "quitting": 0|1,
+//                     "helpOpen": 0|1, "legendClasses": n, "dialogError": 0|1, "tooltip": 0|1}}   (distanceMin/Max
+//                                          bound the measured distance; recent: entries in the
+//                                          recent files list; dialogError: the dialog shows one)
+// Any object action may add "expectError": true: it then passes only when it fails (an error
+// message), and the failure is not counted — how a script checks that bad input is refused and the
+// session goes on.
 // Paths are relative to the current directory.
 #pragma once
 
@@ -81,7 +103,8 @@ struct ScriptAction {
     Expect,
     Path,    ///< stroke / lasso / region: `name` and `points`
     NodeOp,  ///< deleteSubtree / reattach / automaticBelow: `name`, node `value`, parent `value2`
-    Tool     ///< `name`
+    Tool,    ///< `name`
+    Window   ///< a window verb (menu, dialog, prompt, pick, closeWindow, expectWindow): `name`
   };
   Kind kind = Kind::Wait;
   std::size_t index = 0;  ///< position in the script (0-based), for messages
@@ -96,6 +119,7 @@ struct ScriptAction {
   std::vector<std::pair<std::string, double>> expect;
   std::vector<geom::Vec2> points;  ///< Path
   double value2 = 0.0;             ///< NodeOp reattach: the new parent
+  bool expectError = false;        ///< passes only when the action fails (see the format above)
 };
 
 struct ActionScript {
@@ -120,6 +144,9 @@ struct ScriptHooks {
   std::filesystem::path sketchPath;
   /// Called with each action's index and a one-line description before it runs (logging).
   std::function<void(const ScriptAction&, const std::string&)> log;
+  /// Runs a window verb (ScriptAction::Kind::Window); returns "" or what failed. Empty: window
+  /// verbs fail ("needs a window").
+  std::function<std::string(const ScriptAction&)> window;
 };
 
 struct ScriptReport {

@@ -9,16 +9,19 @@
 namespace treesketch::viewer {
 
 struct KeyBinding {
+  /// The help overlay's heading: "Mouse", "Sketch", "Tools", "View", "File", "Help".
+  std::string group;
   /// What the person presses, as shown to them ("Ctrl+Z", "Right drag").
   std::string keys;
   /// What it does, one line.
   std::string action;
   /// The name ViewerState::keyPress takes for it ("ctrl+z"); empty for mouse gestures and for
-  /// keys the window handles itself (F1).
+  /// keys the window handles itself (F1, M, the File menu's shortcuts: apps/viewer's
+  /// WindowActions::onKey).
   std::string keyName;
 };
 
-/// The table, in the order a help screen lists it (mouse first, then keys).
+/// The table, in the order a help screen lists it (mouse first, then keys, grouped).
 const std::vector<KeyBinding>& keyBindings();
 
 }  // namespace treesketch::viewer

@@ -38,13 +38,16 @@ namespace treesketch::viewer {
 using sketch::kNoNode;
 using sketch::NodeId;
 
-enum class ColorMode { Height, CircleDistance, Plain };
+/// Point colourings. The last three colour by the file's attributes (viewer/color_legend.h says
+/// which a cloud has); a cloud without the attribute is drawn plain.
+enum class ColorMode { Height, CircleDistance, Plain, Intensity, FileColor, Classification };
 enum class MeshStyle { Solid, Wireframe, Hidden };
 enum class MouseButton { Left, Right, Middle };
 /// Modifier key bits for mouse and key events.
 enum Modifier : int { kModNone = 0, kModShift = 1, kModCtrl = 2, kModAlt = 4 };
 
-/// Parses "height" / "distance" / "plain"; throws OptionsError otherwise.
+/// Parses "height" / "distance" / "plain" / "intensity" / "rgb" / "classification"; throws
+/// OptionsError otherwise.
 ColorMode parseColorMode(const std::string& s);
 /// Parses "solid" / "wireframe" / "hidden"; throws OptionsError otherwise.
 MeshStyle parseMeshStyle(const std::string& s);
@@ -78,20 +81,6 @@ enum class LabelMode { Auto, On, Off };
 /// Parses "auto" / "on" / "off"; throws OptionsError otherwise.
 LabelMode parseLabelMode(const std::string& s);
 const char* toString(LabelMode mode);
-
-/// The colour scale of the current point colouring, for a legend: the ramp's colour at each
-/// stop and what it means. Units are the cloud's (metres for field scans).
-struct LegendStop {
-  double value = 0.0;  ///< height or distance, world units
-  Rgb color;
-  std::string label;  ///< "0.12 m (1.5 %)"
-};
-struct ColorLegend {
-  bool shown = false;             ///< false for plain colouring
-  std::string title;              ///< "distance to the nearest circle"
-  std::vector<LegendStop> stops;  ///< low to high
-  std::string note;               ///< "and beyond", "no fitted circle yet"
-};
 
 struct DisplayOptions {
   ColorMode colorMode = ColorMode::Height;
@@ -262,8 +251,6 @@ class ViewerState {
   void setColorMode(ColorMode mode);
   /// Node numbers are drawn (display().labels and the node count).
   bool labelsShown() const;
-  /// The legend of the current colouring (shown = false for plain).
-  ColorLegend colorLegend() const;
   /// The view's up direction (initially the cloud's up axis). Setting it re-orients the view
   /// (front preset) and the height colouring; the cloud and the sketch are untouched, and for +Y
   /// or +Z the library's up axis (automatic sketches, the sketch file's "up") follows. Other

@@ -1,0 +1,120 @@
+#include "treesketch/viewer/color_legend.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "treesketch/render/color_map.h"
+#include "treesketch/viewer/view_up.h"
+
+namespace treesketch::viewer {
+
+namespace {
+constexpr ColorMode kMenuOrder[] = {ColorMode::Height,    ColorMode::CircleDistance, ColorMode::Plain,
+                                    ColorMode::Intensity, ColorMode::FileColor,      ColorMode::Classification};
+}
+
+bool colorModeAvailable(ColorMode mode, const geom::PointCloud& cloud) {
+  const std::size_t n = cloud.size();
+  switch (mode) {
+    case ColorMode::Intensity:
+      return n > 0 && cloud.intensity.size() == n;
+    case ColorMode::FileColor:
+      return n > 0 && cloud.color.size() == n;
+    case ColorMode::Classification:
+      return n > 0 && cloud.classification.size() == n;
+    default:
+      return true;
+  }
+}
+
+std::vector<ColorMode> availableColorModes(const geom::PointCloud& cloud) {
+  std::vector<ColorMode> out;
+  for (ColorMode m : kMenuOrder)
+    if (colorModeAvailable(m, cloud)) out.push_back(m);
+  return out;
+}
+
+ColorMode nextColorMode(ColorMode mode, const geom::PointCloud& cloud) {
+  std::vector<ColorMode> modes = availableColorModes(cloud);
+  auto it = std::find(modes.begin(), modes.end(), mode);
+  if (it == modes.end() || ++it == modes.end()) return modes.front();
+  return *it;
+}
+
+const char* colorModeLabel(ColorMode mode) {
+  switch (mode) {
+    case ColorMode::Height:
+      return "height";
+    case ColorMode::CircleDistance:
+      return "distance to circles";
+    case ColorMode::Plain:
+      return "plain";
+    case ColorMode::Intensity:
+      return "intensity (file)";
+    case ColorMode::FileColor:
+      return "RGB (file)";
+    case ColorMode::Classification:
+      return "classification (file)";
+  }
+  return "?";
+}
+
+std::vector<Rgb> attributeColors(const geom::PointCloud& cloud, ColorMode mode) {
+  if (!colorModeAvailable(mode, cloud)) return {};
+  switch (mode) {
+    case ColorMode::Intensity:
+      return intensityColors(cloud.intensity, quantileRange(cloud.intensity));
+    case ColorMode::FileColor:
+      return fileColors(cloud.color);
+    case ColorMode::Classification:
+      return classificationColors(cloud.classification);
+    default:
+      return {};
+  }
+}
+
+Legend colorLegend(const ViewerState& state) {
+  const geom::PointCloud& cloud = state.cloud();
+  const ColorMode mode = state.display().colorMode;
+  if (cloud.empty()) return {};
+  if (!colorModeAvailable(mode, cloud)) {
+    Legend l;
+    l.note = std::string("the file has no ") + toString(mode) + ": drawn plain";
+    return l;
+  }
+  switch (mode) {
+    case ColorMode::Height: {
+      // The colours run along the view's up direction (heightColorsAlong), from the lowest point.
+      const geom::Vec3 u = upDirectionVector(state.upDirection());
+      const geom::BBox& b = state.bounds();
+      const double span = std::abs((b.max - b.min).dot(u));
+      return scaleLegend(std::string("height along ") + toString(state.upDirection()) + " above the lowest point (m)",
+                         {0.0, span}, render::viridis);
+    }
+    case ColorMode::CircleDistance: {
+      double scale = state.options().distanceColorScale * std::max(state.bounds().diagonal(), 1e-12);
+      Legend l = scaleLegend("distance to the nearest fitted circle (m)", {0.0, scale}, render::viridis);
+      l.note = state.fittedCount() == 0 ? "no fitted circle yet: every point is at the far end"
+                                        : "the top colour: that far or farther";
+      return l;
+    }
+    case ColorMode::Intensity: {
+      Legend l = scaleLegend("intensity", quantileRange(cloud.intensity), intensityGrey);
+      l.note = "1-99 % of the returns; the rest clamped";
+      return l;
+    }
+    case ColorMode::Classification:
+      return classLegend(cloud.classification);
+    case ColorMode::FileColor: {
+      Legend l;
+      l.title = "RGB";
+      l.note = "the colours stored in the file";
+      return l;
+    }
+    case ColorMode::Plain:
+      return {};
+  }
+  return {};
+}
+
+}  // namespace treesketch::viewer
