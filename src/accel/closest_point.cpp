@@ -145,16 +145,20 @@ std::vector<std::uint32_t> mortonOrder(const std::vector<Vec3>& points) {
     std::uint32_t index;
   };
   std::vector<Key> keys(n), tmp(n);
-  const Vec3 ext = box.extent();
-  const double maxExt = std::max({ext.x(), ext.y(), ext.z(), 1e-300});
-  const double scale = 65535.0 / maxExt;
+  // Half-coordinates: max − min overflows to inf for points spread near ±DBL_MAX (and then
+  // inf × 0 or inf / inf made a NaN cell index, found by fuzzing); halves cannot overflow.
+  const Vec3 halfExt = 0.5 * box.max - 0.5 * box.min;
+  const double maxExt = std::max({halfExt.x(), halfExt.y(), halfExt.z(), 1e-300});
+  const double scale = 65535.0 / maxExt;  // finite: maxExt >= 1e-300
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) {
       std::uint64_t code = 0;
       if (points[i].allFinite() && !box.empty()) {
         std::uint64_t q[3];
-        for (int k = 0; k < 3; ++k)
-          q[k] = static_cast<std::uint64_t>(std::clamp((points[i][k] - box.min[k]) * scale, 0.0, 65535.0));
+        for (int k = 0; k < 3; ++k) {
+          const double t = (0.5 * points[i][k] - 0.5 * box.min[k]) * scale;
+          q[k] = t >= 0 ? static_cast<std::uint64_t>(std::min(t, 65535.0)) : 0;  // NaN-safe
+        }
         code = spreadBits16(q[0]) | spreadBits16(q[1]) << 1 | spreadBits16(q[2]) << 2;
       }
       keys[i] = {code, static_cast<std::uint32_t>(i)};

@@ -224,6 +224,18 @@ TEST(MortonOrder, IsAPermutationThatGroupsNeighbours) {
   EXPECT_TRUE(mortonOrder({}).empty());
 }
 
+// Found by fuzz/closest_point_fuzz.cpp (fuzz/regressions/closest_point/morton_extent_overflows.bin):
+// points spread near ±DBL_MAX made the box's extent inf, the cell scale 0 and inf × 0 a NaN cell
+// index (undefined behaviour), so every code was the same and nothing was ordered.
+TEST(MortonOrder, OrdersPointsSpreadAcrossTheWholeDoubleRange) {
+  const double big = 1.5e308;
+  const std::vector<Vec3> pts = {Vec3(big, big, big), Vec3(0, 0, 0), Vec3(-big, -big, -big)};
+  EXPECT_EQ(mortonOrder(pts), (std::vector<std::uint32_t>{2, 1, 0}));
+  const double tiny = 1e-310;  // subnormal extents: a permutation still
+  std::vector<std::uint32_t> order = mortonOrder({Vec3(tiny, 0, 0), Vec3(0, 0, 0), Vec3(-tiny, 0, 0)});
+  EXPECT_EQ(std::set<std::uint32_t>(order.begin(), order.end()).size(), 3u);
+}
+
 TEST(CloudClosestPoint, MatchesBruteForce) {
   std::mt19937_64 rng(11);
   geom::PointCloud cloud;

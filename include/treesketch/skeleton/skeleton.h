@@ -79,9 +79,14 @@ struct SkeletonOptions {
   double collinearToleranceRadii = 0.5;
   double collinearToleranceVoxels = 0.5;
   /// ...and kept nodes are at most max(maxSegmentRadii × radius, maxSegmentBins level sets) apart
-  /// (a curved branch keeps nodes where a straight tolerance would not).
+  /// (a curved branch keeps nodes where a straight tolerance would not). One level set: a thin
+  /// branch keeps a node per level set. In a sparse scan a level set is several times a thin
+  /// limb's radius (and so is the collinear tolerance, through the voxel), and 4 level sets drew
+  /// chords up to 0.7 m long and 3 radii off their limbs (oak_medium_s1290, 4-station TLS); 1
+  /// lowered the backward error on every condition of the matrix, held-out as tuning (session 13,
+  /// docs/notes/skeleton_options.md), for 1.9× the nodes.
   double maxSegmentRadii = 6.0;
-  double maxSegmentBins = 4.0;
+  double maxSegmentBins = 1.0;
   /// Running median of the raw nodes' radii along a chain, nodes (odd; 1 = none): one noisy piece
   /// does not make a bulge.
   int radiusMedianWindow = 5;
