@@ -23,16 +23,30 @@ double distanceToTrueAxes(const gen::Skeleton& truth, const Vec3& p) {
     }
   return best;
 }
+/// A built-in tree without leaves and its branches' sphere scan with `rays` rays.
+struct ScannedTree {
+  gen::TreeOptions options;
+  gen::GeneratedTree tree;
+  geom::PointCloud cloud;
+};
+ScannedTree scanLeaflessTree(const char* preset, std::size_t rays) {
+  ScannedTree t;
+  t.options = gen::presetOptions(preset);
+  t.options.leaves = false;
+  t.tree = gen::generateTree(t.options);
+  scan::SphereScanOptions so;
+  so.rays = rays;
+  const std::vector<geom::TriMesh> meshes = {t.tree.branches.mesh};
+  t.cloud = scan::sphereScan(meshes, so).cloud;
+  return t;
+}
 }  // namespace
 
 TEST(GeneratedTree, ScannedSparseTreeNodesLieNearTheTrueAxes) {
-  gen::TreeOptions to = gen::presetOptions("sparse");
-  to.leaves = false;
-  const gen::GeneratedTree tree = gen::generateTree(to);
-  scan::SphereScanOptions so;
-  so.rays = 60000;
-  const std::vector<geom::TriMesh> meshes = {tree.branches.mesh};
-  const geom::PointCloud cloud = scan::sphereScan(meshes, so).cloud;
+  const ScannedTree scanned = scanLeaflessTree("sparse", 60000);
+  const gen::TreeOptions& to = scanned.options;
+  const gen::GeneratedTree& tree = scanned.tree;
+  const geom::PointCloud& cloud = scanned.cloud;
   ASSERT_GT(cloud.size(), 5000u);
   skeleton::AutoSkeletonOptions o;
   o.skeleton.up = to.up;
@@ -101,13 +115,10 @@ TEST(GeneratedTree, LeafyLimbsAreFollowed) {
 // 4-station TLS oak). With a node per level set on thin branches (maxSegmentBins 1) the model's
 // segments, sampled along their length, lie closer to the true axes than with four.
 TEST(GeneratedTree, ASparseScansSegmentsFollowCurvedLimbs) {
-  gen::TreeOptions to = gen::presetOptions("default");
-  to.leaves = false;
-  const gen::GeneratedTree tree = gen::generateTree(to);
-  scan::SphereScanOptions so;
-  so.rays = 100000;
-  const std::vector<geom::TriMesh> meshes = {tree.branches.mesh};
-  const geom::PointCloud cloud = scan::sphereScan(meshes, so).cloud;
+  const ScannedTree scanned = scanLeaflessTree("default", 100000);
+  const gen::TreeOptions& to = scanned.options;
+  const gen::GeneratedTree& tree = scanned.tree;
+  const geom::PointCloud& cloud = scanned.cloud;
   auto segmentRms = [&](double maxSegmentBins, std::size_t* nodes) {
     skeleton::AutoSkeletonOptions o;
     o.skeleton.up = to.up;
