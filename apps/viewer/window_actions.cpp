@@ -231,7 +231,12 @@ void WindowActions::beforeFrame() {
 }
 
 const viewer::Legend& WindowActions::legend() {
-  if (legendCloud_ != state_.cloudVersion() || legendMode_ != state_.display().colorMode) {
+  // Only the attribute legends cost O(points) (quantiles, class counts): those are cached per cloud
+  // and mode. Height and distance legends follow the view's up, the colour scale and the fits,
+  // and are O(1): made afresh every frame so they never go stale.
+  const viewer::ColorMode mode = state_.display().colorMode;
+  const bool perPoint = mode == viewer::ColorMode::Intensity || mode == viewer::ColorMode::Classification;
+  if (!perPoint || legendCloud_ != state_.cloudVersion() || legendMode_ != mode) {
     legend_ = viewer::colorLegend(state_);
     legendCloud_ = state_.cloudVersion();
     legendMode_ = state_.display().colorMode;

@@ -25,6 +25,15 @@ std::vector<skeleton::SkeletonNode> linkUp(std::vector<skeleton::SkeletonNode> n
     if (nodes[i].parent >= 0) nodes[nodes[i].parent].children.push_back(static_cast<std::int32_t>(i));
   return nodes;
 }
+/// Carried length in segments (parent-first nodes): the node's own segment plus every segment above it.
+std::vector<double> carriedSegments(const std::vector<skeleton::SkeletonNode>& nodes) {
+  std::vector<double> carried(nodes.size(), 0.0);
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    carried[i] += nodes[i].parent >= 0 ? 1.0 : 0.0;
+    if (nodes[i].parent >= 0) carried[nodes[i].parent] += carried[i];
+  }
+  return carried;
+}
 }  // namespace
 
 TEST(SkeletonSketch, RegularizeInterpolatesSmoothsAndCaps) {
@@ -114,12 +123,7 @@ TEST(SkeletonSketch, AllometryCapsAFatSideBranch) {
   const std::size_t fatStart = nodes.size();
   side(6, 3, -1.0, 1);
   nodes = linkUp(nodes);
-  // Carried length: own segment + every segment above + one segment.
-  std::vector<double> carried(nodes.size(), 0.0);
-  for (std::size_t i = nodes.size(); i-- > 0;) {
-    carried[i] += nodes[i].parent >= 0 ? 1.0 : 0.0;
-    if (nodes[i].parent >= 0) carried[nodes[i].parent] += carried[i];
-  }
+  const std::vector<double> carried = carriedSegments(nodes);
   std::vector<double> fitted(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) fitted[i] = 0.05 * std::sqrt(carried[i] + 1.0);
   for (std::size_t i = fatStart; i < nodes.size(); ++i) fitted[i] = 0.45;
@@ -370,11 +374,7 @@ TEST(SkeletonSketch, ABranchTapersPastItsLastFit) {
   for (int at : {4, 8, 12, 16}) side(at, 5, 1.0);
   const std::size_t once = side(6, 8, -1.0), never = side(10, 6, -1.0);
   nodes = linkUp(nodes);
-  std::vector<double> carried(nodes.size(), 0.0);
-  for (std::size_t i = nodes.size(); i-- > 0;) {
-    carried[i] += nodes[i].parent >= 0 ? 1.0 : 0.0;
-    if (nodes[i].parent >= 0) carried[nodes[i].parent] += carried[i];
-  }
+  const std::vector<double> carried = carriedSegments(nodes);
   std::vector<double> fitted(nodes.size());
   std::vector<char> valid(nodes.size(), 1);
   for (std::size_t i = 0; i < nodes.size(); ++i) fitted[i] = 0.05 * std::sqrt(carried[i] + 1.0);
