@@ -11,6 +11,7 @@
 
 #include "skeleton/checks.h"
 #include "skeleton/node_tree.h"
+#include "skeleton/stem_tracking.h"
 #include "treesketch/skeleton/skeleton.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/union_find.h"
@@ -131,9 +132,43 @@ void mergeSplitRings(const VoxelGraph& g, const GeodesicLevels& lv, UnionFind& u
   }
 }
 
+// One piece per level set on the tracked stem (stem_tracking.h): its voxels in the stem's tube.
+void joinStemRings(const GeodesicLevels& lv, const std::vector<char>& tube, UnionFind& uf) {
+  std::vector<std::int64_t> anchor;
+  for (std::size_t v = 0; v < tube.size(); ++v) {
+    const std::int32_t l = lv.level[v];
+    if (l < 0 || !tube[v]) continue;
+    if (static_cast<std::size_t>(l) >= anchor.size()) anchor.resize(static_cast<std::size_t>(l) + 1, -1);
+    if (anchor[l] < 0)
+      anchor[l] = static_cast<std::int64_t>(v);
+    else
+      uf.unite(static_cast<std::uint32_t>(anchor[l]), static_cast<std::uint32_t>(v));
+  }
+}
+
+// The stem's pieces (most of their voxels in its tube) are put on its axis, with its radius: a
+// level set of a sparsely scanned stem holds a few voxels, and their centroid lies off the axis
+// towards whichever side they are on.
+void snapToStem(const GeodesicLevels& lv, const std::vector<char>& tube, const std::vector<detail::StemSample>& stem,
+                std::vector<SkeletonNode>& nodes) {
+  std::vector<std::uint32_t> inside(nodes.size(), 0), all(nodes.size(), 0);
+  for (std::size_t v = 0; v < tube.size(); ++v) {
+    const std::int32_t id = lv.vertexNode[v];
+    if (id < 0) continue;
+    ++all[id];
+    inside[id] += tube[v] ? 1 : 0;
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (2 * inside[i] <= all[i]) continue;
+    const detail::StemSample at = detail::stemAt(stem, nodes[i].position);
+    nodes[i].position = at.centre;
+    nodes[i].radius = at.radius;
+  }
+}
+
 // Connected pieces of each level set, as union-find sets; all of level 0 is one piece (a single
-// root), and split rings are joined.
-UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv) {
+// root), the stem's rings are whole and split rings are joined.
+UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv, const std::vector<char>& stemTube) {
   UnionFind uf(g.size());
   const std::uint32_t anchor = lv.rootVertices.front();
   for (std::size_t v = 0; v < g.size(); ++v) {
@@ -142,6 +177,7 @@ UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv) {
     for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k)
       if (lv.level[g.targets[k]] == lv.level[v]) uf.unite(static_cast<std::uint32_t>(v), g.targets[k]);
   }
+  joinStemRings(lv, stemTube, uf);
   mergeSplitRings(g, lv, uf);
   return uf;
 }
@@ -268,11 +304,16 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
   if (centroids && centroids->size() != g.size())
     throw OptionsError("skeleton: levelSetNodes needs one centroid position per voxel");
   if (g.size() == 0 || lv.rootVertices.empty()) return {};
-  UnionFind uf = levelPieces(g, lv);
+  const std::vector<detail::StemSample> stem =
+      options.trackStem ? detail::trackStem(g, lv.rootVertices, options.up) : std::vector<detail::StemSample>{};
+  const std::vector<char> tube = stem.empty() ? std::vector<char>(g.size(), 0) : detail::stemTube(g, stem);
+  UnionFind uf = levelPieces(g, lv, tube);
   std::vector<std::uint32_t> count;
   std::vector<SkeletonNode> nodes = pieceNodes(g, lv, uf, centroids ? *centroids : g.positions, count);
+  if (!stem.empty()) snapToStem(lv, tube, stem, nodes);
   setDirections(nodes, options.up);
   setRadiiAndShape(g, lv, centroids, count, options, nodes);
+  if (!stem.empty()) snapToStem(lv, tube, stem, nodes);  // the radii too
   return nodes;
 }
 

@@ -126,9 +126,16 @@ std::vector<Vec3> straightenForks(const RawTree& t, const std::vector<char>& kep
   for (std::size_t f = 0; f < raw.size(); ++f) {
     if (!kept[f] || keptChildren[f].size() < 2) continue;
     const double near = o.forkZoneRadii * t.radius[f] + binWidth;
+    // The line is the fork's own branch: it stops below the previous fork (a side branch that
+    // forks soon after leaving its parent would otherwise be put on the parent's line).
+    std::int32_t previousFork = raw[f].parent;
+    while (previousFork >= 0 && keptChildren[previousFork].size() < 2) previousFork = raw[previousFork].parent;
     std::int32_t a1 = raw[f].parent;
-    while (a1 >= 0 && raw[f].distance - raw[a1].distance < near) a1 = raw[a1].parent;
-    auto inLine = [&](std::int32_t a) { return a >= 0 && raw[f].distance - raw[a].distance < kForkLineDepths * near; };
+    while (a1 >= 0 && a1 != previousFork && raw[f].distance - raw[a1].distance < near) a1 = raw[a1].parent;
+    if (a1 < 0 || a1 == previousFork) continue;
+    auto inLine = [&](std::int32_t a) {
+      return a >= 0 && a != previousFork && raw[f].distance - raw[a].distance < kForkLineDepths * near;
+    };
     Vec3 mean = Vec3::Zero();
     double weight = 0;
     int count = 0;

@@ -145,3 +145,67 @@ TEST(GeneratedTree, ASparseScansSegmentsFollowCurvedLimbs) {
               cloud.size(), now, nodesNow, before, nodesBefore);
   EXPECT_LT(now, 0.92 * before);  // measured 0.875 (0.0356 vs 0.0407)
 }
+
+// The thesis's sphere pattern (rays aimed at the tree's centre with a 1° jitter) scans a trunk's
+// base with a few points per level set: its rings broke into arcs, each arc went on as a thin
+// chain up the trunk's surface, and the trunk's own chain wandered from arc to arc (a corkscrew
+// of tubes thinner than the trunk). Tracked from its base by circle fits (trackStem), the trunk
+// is one straight chain on its axis.
+TEST(GeneratedTree, ASparselyScannedTrunkIsOneStraightChain) {
+  gen::TreeOptions to = gen::presetOptions("default");
+  to.leaves = false;
+  const gen::GeneratedTree tree = gen::generateTree(to);
+  scan::SphereScanOptions so;
+  so.rays = 40000;
+  so.jitterDeg = 1.0;
+  const std::vector<geom::TriMesh> meshes = {tree.branches.mesh};
+  const geom::PointCloud cloud = scan::sphereScan(meshes, so).cloud;
+  const auto& trunk = tree.skeleton.branches.front();
+  const double baseRadius = trunk.sections.front().radius;
+  const double trunkTop = geom::height(trunk.sections.back().centre, to.up);
+  // Below the first side branch the model's stem has only the trunk to follow.
+  double lowerTrunk = trunkTop;
+  for (std::size_t b = 1; b < tree.skeleton.branches.size(); ++b)
+    lowerTrunk = std::min(lowerTrunk, geom::height(tree.skeleton.branches[b].sections.front().centre, to.up));
+  auto trunkAxisDistance = [&](const Vec3& p) {
+    gen::Skeleton only;
+    only.branches.push_back(trunk);
+    return distanceToTrueAxes(only, p);
+  };
+  struct Figures {
+    double rms = 0;
+    int thinChains = 0;
+  };
+  auto measure = [&](bool track) {
+    skeleton::AutoSkeletonOptions o;
+    o.skeleton.up = to.up;
+    o.skeleton.trackStem = track;
+    const auto res = skeleton::autoSkeletonSketch(cloud, o);
+    Figures f;
+    double sum = 0;
+    int count = 0;
+    for (const auto& n : res.model) {
+      if (n.parent < 0 || geom::height(n.position, to.up) > lowerTrunk) continue;
+      const Vec3 a = res.model[n.parent].position, b = n.position;
+      // The stem's segments on the lower trunk: their distance to the trunk's axis.
+      if (n.branchOrder == 0)
+        for (int k = 1; k <= 4; ++k) {
+          const double d = trunkAxisDistance(a + (b - a) * (k / 4.0));
+          sum += d * d;
+          ++count;
+        }
+      // Thin segments on the trunk's surface: bark chains.
+      if (n.radius < 0.4 * baseRadius && trunkAxisDistance(0.5 * (a + b)) < 1.5 * baseRadius) ++f.thinChains;
+    }
+    f.rms = count ? std::sqrt(sum / count) : 1e300;
+    return f;
+  };
+  const Figures on = measure(true), off = measure(false);
+  std::printf(
+      "sparse trunk (%zu points): lower trunk segment-to-axis RMS %.4f with stem tracking, %.4f without; thin "
+      "segments along it %d / %d (trunk radius %.4f)\n",
+      cloud.size(), on.rms, off.rms, on.thinChains, off.thinChains, baseRadius);
+  EXPECT_LT(on.rms, 0.6 * off.rms);
+  EXPECT_LT(on.rms, 0.25 * baseRadius);
+  EXPECT_LT(on.thinChains, off.thinChains);
+}

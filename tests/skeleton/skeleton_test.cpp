@@ -335,6 +335,7 @@ TEST(Skeleton, LevelSetCentroidPositionsMoveCentroidsAndRadiiButNotTheShapeTest)
   const auto cloud = test::sampleCylinders(stem, 0.02, 0.001, 4);
   skeleton::SkeletonOptions o;
   o.graph.voxelSize = 0.04;
+  o.trackStem = false;  // the tracked stem would give its pieces its own axis and radius
   const auto graph = skeleton::buildVoxelGraph(cloud, o.graph);
   auto levels = skeleton::computeGeodesicLevels(graph, o);
   const auto own = skeleton::levelSetNodes(graph, levels, o);
@@ -558,4 +559,32 @@ TEST(Skeleton, EachTipReachesItsBranchsLastPoints) {
     EXPECT_GT(along, -0.25 * s.levels.binWidth) << n.position.transpose();
     EXPECT_LT(along, 0.5 * s.levels.binWidth) << n.position.transpose();
   }
+}
+
+TEST(Skeleton, AForkNearItsBranchsStartStaysOnItsBranch) {
+  // A limb leaves the trunk sideways and forks soon after, within its fork zone's reach of the
+  // trunk. Forks are put back on their branch's line below them; that line stopped nowhere, took
+  // the trunk's nodes, and put the limb's fork on the trunk's axis (a tube from the trunk
+  // straight to the twigs). It stops below the previous fork now.
+  const Vec3 junction(0, 2, 0), forkAt(0.5, 2.05, 0);
+  const std::vector<test::Cyl> cyls = {{Vec3(0, 0, 0), Vec3(0, 4, 0), 0.15, -1},
+                                       {junction, forkAt, 0.12, 0},
+                                       {forkAt, forkAt + Vec3(0.9, 0.2, 0.7), 0.08, 1},
+                                       {forkAt, forkAt + Vec3(0.9, 0.2, -0.7), 0.08, 1}};
+  const auto cloud = test::sampleCylinders(cyls, 0.02, 0.002, 5);
+  const auto s = skeleton::extractSkeleton(cloud);
+  ASSERT_EQ(skeleton::countEnds(s.nodes), 3u);
+  // The fork the two twigs' tips meet at.
+  std::vector<std::int32_t> tips;
+  for (std::size_t i = 0; i < s.nodes.size(); ++i)
+    if (s.nodes[i].children.empty() && s.nodes[i].position.x() > 1.0) tips.push_back(static_cast<std::int32_t>(i));
+  ASSERT_EQ(tips.size(), 2u);
+  std::vector<std::int32_t> path;
+  for (std::int32_t a = tips[0]; a >= 0; a = s.nodes[a].parent) path.push_back(a);
+  std::int32_t fork = tips[1];
+  while (std::find(path.begin(), path.end(), fork) == path.end()) fork = s.nodes[fork].parent;
+  const Vec3 p = s.nodes[fork].position;
+  std::printf("twigs' fork at %.3f %.3f %.3f\n", p.x(), p.y(), p.z());
+  EXPECT_GT(p.x(), 0.35) << "the twigs' fork at " << p.transpose();
+  EXPECT_LT((p - forkAt).norm(), 0.3) << "the twigs' fork at " << p.transpose();
 }

@@ -49,6 +49,10 @@ struct SkeletonOptions {
   /// ...or a ring: std / mean of those distances at most this (a noisy ring ~0.1-0.3, a leaf cluster
   /// a blob ~0.5 and more).
   double maxRingVariation = 0.4;
+  /// Track the stem from its base by circle fits and make each level set's voxels in its tube one
+  /// piece (stem_tracking.h): on a sparsely scanned trunk a level set's ring breaks into arcs,
+  /// and each arc went on as a thin chain up the trunk's surface beside a one-sided trunk node.
+  bool trackStem = true;
 
   // ---- pruning (simplify.cpp) ----
   /// Spurs: a side sub-tree whose longest path from its fork is shorter than the largest of

@@ -1,0 +1,239 @@
+#include "skeleton/stem_tracking.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "skeleton/node_tree.h"
+#include "treesketch/fit/circle_fit.h"
+
+namespace treesketch::skeleton::detail {
+namespace {
+
+using geom::Vec2;
+using geom::Vec3;
+
+// The base slab: this many voxels above the tree's lowest voxel.
+constexpr double kBaseSlabVoxels = 6.0;
+// The base circle is looked for within this many times the root region's width (plus voxels) of
+// its centroid: the lowest voxels may all lie on one side of the stem.
+constexpr double kBaseSearchSpreads = 4.0, kBaseSearchVoxels = 10.0;
+// Base slabs tried, one above the other.
+constexpr int kBaseTries = 3;
+// A slab is one radius tall (at least kMinSlabVoxels voxels) and the next one a radius further.
+constexpr double kSlabRadii = 1.0;
+constexpr double kMinSlabVoxels = 3.0;
+constexpr double kStepRadii = 1.0;
+// A slab with too few voxels for a circle is made twice as tall, up to this many times (8 radii
+// at most: a stem is straight over that length, and a sparsely scanned one needs it).
+constexpr int kMaxSlabDoublings = 3;
+// Candidates: within this many radii (plus a voxel) of the predicted axis.
+constexpr double kSearchRadii = 1.6;
+// Inlier band of the circle: 15 % of the candidate circle's radius (a stem's cross-section is a
+// polygon in a mesh, 13 % inside its circle's radius at six sides, and bark is rough), at least
+// half a voxel (the voxel centroids' own scatter about the surface).
+constexpr double kBandRadii = 0.15;
+constexpr double kMinBandVoxels = 0.5;
+// A slab is a stem's cross-section when its circle holds this share of the candidates (a fork's
+// two limbs, or foliage, leave far fewer on any one circle)...
+constexpr double kMinInlierShare = 0.6;
+// ...at least this many voxels...
+constexpr int kMinVoxels = 6;
+// ...around at least this much of the circle (one station sees a little more than half a stem)...
+constexpr double kMinArcDegrees = 150.0;
+// ...with a radius within these factors of the last one, its centre within half a radius (plus a
+// voxel) of the predicted axis.
+constexpr double kMinRadiusRatio = 0.6, kMaxRadiusRatio = 1.2;
+constexpr double kMaxCentreMoveRadii = 0.5;
+// The base's ring must be at least this many voxels in radius: a thinner stem's level sets are a
+// voxel or two across and hold no ring to break.
+constexpr double kMinStemRadiusVoxels = 2.0;
+// The axis runs through the last this many centres; a stem leaning more than kMaxLeanDeg from the
+// up axis is a limb, not the stem, and tracking stops.
+constexpr int kAxisSamples = 4;
+constexpr double kMaxLeanDeg = 45.0;
+// One slab may fail (an occlusion, a branch's base): the tracker steps over it; two stop it.
+constexpr int kMaxMisses = 1;
+// The tube holds voxels within this many radii plus a voxel of the axis.
+constexpr double kTubeRadii = 1.0;
+constexpr double kPi = 3.14159265358979323846;
+
+struct Frame {
+  Vec3 u, w;
+};
+
+Frame frameFor(const Vec3& d) {
+  const Vec3 a = std::abs(d.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 u = d.cross(a).normalized();
+  return {u, d.cross(u)};
+}
+
+// The share of the circle its inliers cover, degrees: 360 minus the widest gap between them.
+double coveredDegrees(const std::vector<Vec2>& pts, const fit::CircleFitResult& r) {
+  std::vector<double> angle;
+  for (std::uint32_t i : r.inliers) angle.push_back(std::atan2(pts[i].y() - r.centre.y(), pts[i].x() - r.centre.x()));
+  if (angle.size() < 2) return 0;
+  std::sort(angle.begin(), angle.end());
+  double gap = angle.front() + 2 * kPi - angle.back();
+  for (std::size_t k = 1; k < angle.size(); ++k) gap = std::max(gap, angle[k] - angle[k - 1]);
+  return 360.0 - gap * 180.0 / kPi;
+}
+
+// A circle through the voxels of the slab |(p - c)·d| ≤ halfHeight within `search` of the axis
+// (c, d); false when the slab is not a stem's cross-section (see the constants).
+enum class Slab { TooFew, NoStem, Stem };
+
+Slab fitSlab(const VoxelGraph& g, const Vec3& c, const Vec3& d, double halfHeight, double search, double minRadius,
+             double maxRadius, StemSample& out) {
+  const Frame f = frameFor(d);
+  std::vector<Vec2> pts;
+  for (const Vec3& p : g.positions) {
+    const Vec3 q = p - c;
+    const double t = q.dot(d);
+    if (std::abs(t) > halfHeight) continue;
+    const Vec3 radial = q - t * d;
+    if (radial.squaredNorm() > search * search) continue;
+    pts.emplace_back(radial.dot(f.u), radial.dot(f.w));
+  }
+  if (static_cast<int>(pts.size()) < kMinVoxels) return Slab::TooFew;
+  fit::CircleFitOptions o;
+  o.inlierThreshold = kMinBandVoxels * g.voxelSize;
+  o.inlierThresholdRelative = kBandRadii;
+  o.minInliers = kMinVoxels;
+  o.minInlierFraction = kMinInlierShare;
+  o.minArcDegrees = 0;  // the fit's own arc test counts well-filled bins: a sparse slab has none
+  o.minRadius = minRadius;
+  o.maxRadius = maxRadius;
+  o.inputFinite = true;
+  const fit::CircleFitResult r = fit::fitCircleRansac(pts, o);
+  if (!r.ok || coveredDegrees(pts, r) < kMinArcDegrees) return Slab::NoStem;
+  out.centre = c + r.centre.x() * f.u + r.centre.y() * f.w;
+  out.radius = r.radius;
+  return Slab::Stem;
+}
+
+}  // namespace
+
+std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis upAxis) {
+  if (root.empty() || g.size() == 0 || !(g.voxelSize > 0)) return {};
+  const double voxel = g.voxelSize;
+  const Vec3 up = geom::upVector(upAxis);
+  // The base: the root region's centroid, raised to the middle of the base slab.
+  double lowest = std::numeric_limits<double>::infinity();
+  Vec3 mean = Vec3::Zero();
+  for (std::uint32_t v : root) {
+    lowest = std::min(lowest, geom::height(g.positions[v], upAxis));
+    mean += g.positions[v];
+  }
+  mean /= static_cast<double>(root.size());
+  double spread = 0;
+  for (std::uint32_t v : root) {
+    const Vec3 q = g.positions[v] - mean;
+    spread = std::max(spread, (q - q.dot(up) * up).norm());
+  }
+  StemSample base;
+  Vec3 centre;
+  Slab found = Slab::TooFew;
+  // The lowest slab may hold a closed mesh's end cap, or roots, or the ground's last points: a
+  // slab above it is tried next.
+  for (int j = 0; j < kBaseTries && found != Slab::Stem; ++j) {
+    found = Slab::TooFew;
+    for (int k = 0; k <= kMaxSlabDoublings && found == Slab::TooFew; ++k) {
+      const double half = 0.5 * kBaseSlabVoxels * voxel * std::ldexp(1.0, k);
+      const double bottom = lowest + j * kBaseSlabVoxels * voxel;
+      centre = mean + (bottom + half - geom::height(mean, upAxis)) * up;
+      const double search = kBaseSearchSpreads * spread + kBaseSearchVoxels * voxel;
+      found = fitSlab(g, centre, up, half, search, kMinStemRadiusVoxels * voxel, search, base);
+    }
+  }
+  if (found != Slab::Stem) return {};
+  std::vector<StemSample> stem{base};
+  Vec3 axis = up;
+  centre = base.centre;
+  double radius = base.radius;
+  const double maxLeanCos = std::cos(kMaxLeanDeg * kPi / 180.0);
+  int misses = 0;
+  const std::size_t cap = g.size();  // more steps than voxels: no stem is that long
+  while (stem.size() < cap) {
+    const Vec3 predicted = centre + std::max(kStepRadii * radius, 2 * voxel) * axis;
+    StemSample next;
+    Slab slab = Slab::TooFew;
+    for (int k = 0; k <= kMaxSlabDoublings && slab == Slab::TooFew; ++k)
+      slab =
+          fitSlab(g, predicted, axis, 0.5 * std::max(kSlabRadii * radius, kMinSlabVoxels * voxel) * std::ldexp(1.0, k),
+                  kSearchRadii * radius + voxel, kMinRadiusRatio * radius, kMaxRadiusRatio * radius, next);
+    const bool ok = slab == Slab::Stem && (next.centre - predicted).norm() <= kMaxCentreMoveRadii * radius + voxel;
+    if (!ok) {
+      if (++misses > kMaxMisses) break;
+      centre = predicted;
+      continue;
+    }
+    misses = 0;
+    stem.push_back(next);
+    centre = next.centre;
+    radius = next.radius;
+    const std::size_t from = stem.size() > kAxisSamples ? stem.size() - kAxisSamples : 0;
+    const Vec3 d = safeNormalized(stem.back().centre - stem[from].centre, axis);
+    if (d.dot(up) < maxLeanCos) break;
+    axis = d;
+  }
+  if (stem.size() < 3) return {};
+  // The stem reaches down to the tree's lowest voxel, along its first segment: the lowest slabs
+  // may have been skipped (see kBaseTries) or made tall.
+  const Vec3 firstAxis = safeNormalized(stem[1].centre - stem[0].centre, up);
+  const double drop = geom::height(stem[0].centre, upAxis) - lowest;
+  if (drop > 0 && firstAxis.dot(up) > maxLeanCos)
+    stem.insert(stem.begin(), StemSample{stem[0].centre - drop / firstAxis.dot(up) * firstAxis, stem[0].radius});
+  return stem;
+}
+
+StemSample stemAt(const std::vector<StemSample>& stem, const Vec3& p) {
+  StemSample best = stem.front();
+  double bestDistance = (p - best.centre).squaredNorm();
+  for (std::size_t k = 0; k + 1 < stem.size(); ++k) {
+    const Vec3 a = stem[k].centre, ab = stem[k + 1].centre - a;
+    const double len2 = ab.squaredNorm();
+    // Past the first and last samples the end segments go on straight (the tube reaches there).
+    const double lo = k == 0 ? -std::numeric_limits<double>::infinity() : 0.0;
+    const double hi = k + 2 == stem.size() ? std::numeric_limits<double>::infinity() : 1.0;
+    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, lo, hi) : 0.0;
+    const Vec3 q = a + t * ab;
+    const double d = (p - q).squaredNorm();
+    if (d < bestDistance) {
+      bestDistance = d;
+      const double tr = std::clamp(t, 0.0, 1.0);
+      best = {q, stem[k].radius + tr * (stem[k + 1].radius - stem[k].radius)};
+    }
+  }
+  return best;
+}
+
+std::vector<char> stemTube(const VoxelGraph& g, const std::vector<StemSample>& stem) {
+  std::vector<char> in(g.size(), 0);
+  if (stem.size() < 2) return in;
+  const double voxel = g.voxelSize;
+  for (std::size_t v = 0; v < g.size(); ++v) {
+    const Vec3& p = g.positions[v];
+    for (std::size_t k = 0; k + 1 < stem.size(); ++k) {
+      const Vec3 a = stem[k].centre, b = stem[k + 1].centre, ab = b - a;
+      const double len2 = ab.squaredNorm();
+      if (!(len2 > 0)) continue;
+      // The first and last segments reach half a slab past their samples.
+      const double len = std::sqrt(len2);
+      const double lo = k == 0 ? -0.5 * std::max(kBaseSlabVoxels * voxel, stem[k].radius) / len : 0.0;
+      const double hi =
+          k + 2 == stem.size() ? 1.0 + 0.5 * std::max(kMinSlabVoxels * voxel, stem[k + 1].radius) / len : 1.0;
+      const double t = (p - a).dot(ab) / len2;
+      if (t < lo || t > hi) continue;
+      const double tc = std::clamp(t, 0.0, 1.0);
+      const double r = stem[k].radius + tc * (stem[k + 1].radius - stem[k].radius);
+      if ((p - (a + t * ab)).norm() <= kTubeRadii * r + voxel) {
+        in[v] = 1;
+        break;
+      }
+    }
+  }
+  return in;
+}
+
+}  // namespace treesketch::skeleton::detail
