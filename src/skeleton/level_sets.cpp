@@ -163,6 +163,7 @@ void snapToStem(const GeodesicLevels& lv, const std::vector<char>& tube, const s
     const detail::StemSample at = detail::stemAt(stem, nodes[i].position);
     nodes[i].position = at.centre;
     nodes[i].radius = at.radius;
+    nodes[i].stem = true;
   }
 }
 

@@ -69,9 +69,16 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
   const std::size_t n = nodes.size();
   std::vector<double> r(n);
   std::vector<char> ok(n);
+  // A node on the tracked stem has a measured radius even without a fit of its own (the stem's
+  // circle fits over whole slabs), and no rule below raises it: the pipe model and the allometry
+  // stand in for radii the data cannot give. (Leaf-on, thousands of leaf clusters as children
+  // made the pipe model give an oak's 0.14 m trunk a 0.57 m radius.)
+  std::vector<char> measured(n);
   for (std::size_t i = 0; i < n; ++i) {
     ok[i] = valid[i] && std::isfinite(fitted[i]) && fitted[i] > 0;
     r[i] = ok[i] ? fitted[i] : nodes[i].radius;
+    measured[i] = nodes[i].stem && nodes[i].radius > 0;
+    ok[i] = ok[i] || measured[i];
   }
   // 0. Fits much thicker than the tree's own allometry (radius against the length it carries)
   // are rejected; no radius ends above that bound (step 5).
@@ -81,7 +88,7 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
     if (allometry.valid)
       for (std::size_t i = 0; i < n; ++i) {
         const double p = allometry.predict(i);
-        if (ok[i] && r[i] > p * rules.allometryMaxRatio) ok[i] = 0;
+        if (ok[i] && !measured[i] && r[i] > p * rules.allometryMaxRatio) ok[i] = 0;
       }
   }
   const auto chains = detail::branchChains(nodes);
@@ -143,7 +150,7 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
   // 3. Pipe model at forks, bottom-up (nodes are parent-first).
   if (rules.pipeModel) {
     for (std::size_t i = n; i-- > 0;) {
-      if (nodes[i].children.size() < 2) continue;
+      if (nodes[i].children.size() < 2 || measured[i]) continue;
       double sum = 0;
       for (std::int32_t c : nodes[i].children) sum += r[c] * r[c];
       r[i] = std::max(r[i], std::sqrt(sum));
@@ -168,6 +175,7 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
   // 5. Not above the allometry's bound.
   if (allometry.valid)
     for (std::size_t i = 0; i < n; ++i) {
+      if (measured[i]) continue;
       const double p = allometry.predict(i);
       r[i] = std::min(r[i], p * rules.allometryMaxRatio);
     }

@@ -101,6 +101,30 @@ TEST(SkeletonSketch, PipeModelGrowsForks) {
   EXPECT_NEAR(r[2], 0.1, 1e-12);
 }
 
+TEST(SkeletonSketch, TheTrackedStemsRadiusIsNotRaised) {
+  // A stem node (radius measured by the stem tracker, no fit of its own) with many children:
+  // leaf-on, thousands of leaf clusters made the pipe model give a trunk four times its radius.
+  std::vector<skeleton::SkeletonNode> nodes = {chainNode(-1, 0, 0.1), chainNode(0, 1, 0.1)};
+  for (int k = 0; k < 6; ++k) {
+    nodes.push_back(chainNode(1, 2, 0.08));
+    nodes.back().branchOrder = k == 0 ? 0 : 1;
+  }
+  nodes[0].stem = nodes[1].stem = true;
+  nodes = linkUp(nodes);
+  skeleton::RadiusRules rules;
+  rules.medianWindow = 1;
+  rules.pipeModel = true;
+  std::vector<double> fitted(nodes.size(), 0.08);
+  std::vector<char> valid(nodes.size(), 1);
+  valid[0] = valid[1] = 0;  // the stem's own nodes did not fit
+  auto r = skeleton::regularizeRadii(nodes, fitted, valid, rules);
+  EXPECT_NEAR(r[1], 0.1, 1e-12);
+  // Not on the tracked stem, the same node is a fork the pipe model raises.
+  nodes[0].stem = nodes[1].stem = false;
+  r = skeleton::regularizeRadii(nodes, fitted, valid, rules);
+  EXPECT_GT(r[1], 0.12);
+}
+
 // A trunk of 20 unit segments with four side branches of 5 whose fits follow one allometry
 // (r = 0.05·L^0.5, L = the length a node carries plus one segment), and one short side branch
 // whose fits took in something else (0.45, thinner than the trunk there, so "no child thicker"

@@ -160,6 +160,9 @@ struct SkeletonNode {
   /// Share of the piece's voxels the leaf-plane test found flat (leaves; see
   /// SkeletonOptions::leafEntryPositions); 0 when the test did not run (leaf-off settings).
   float flatFraction = 0;
+  /// On the tracked stem (SkeletonOptions::trackStem): its position and radius are the stem's
+  /// circle fits over slabs of the cloud, a measurement and not a piece's spread.
+  bool stem = false;
   std::int32_t branchOrder = 0;  ///< 0 = trunk; +1 at every fork for the side (non-main) child
   std::int32_t raw = -1;         ///< simplified nodes: the raw node it came from
 };
