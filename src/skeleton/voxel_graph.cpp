@@ -246,18 +246,17 @@ void addSparseLinks(VoxelGraph& g, const VoxelGraphOptions& o) {
   const double maxLink2 = std::pow(o.maxGapVoxels * g.voxelSize, 2);
   const std::vector<std::int32_t> label = util::labelComponents(g.offsets, g.targets, nullptr);
   std::vector<std::vector<Bridge>> found(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kCellsPerTask),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                        for (const accel::Neighbour& nb : index.nearest(g.positions[i], k + 1)) {
-                          // Same piece (the voxel itself, grid neighbours): the grid joins them already.
-                          if (label[nb.index] == label[i] || nb.distance2 > maxLink2) continue;
-                          const auto lo = static_cast<std::uint32_t>(std::min<std::size_t>(i, nb.index));
-                          const auto hi = static_cast<std::uint32_t>(std::max<std::size_t>(i, nb.index));
-                          found[i].push_back(Bridge{lo, hi, std::sqrt(nb.distance2)});
-                        }
-                      }
-                    });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kCellsPerTask), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      for (const accel::Neighbour& nb : index.nearest(g.positions[i], k + 1)) {
+        // Same piece (the voxel itself, grid neighbours): the grid joins them already.
+        if (label[nb.index] == label[i] || nb.distance2 > maxLink2) continue;
+        const auto lo = static_cast<std::uint32_t>(std::min<std::size_t>(i, nb.index));
+        const auto hi = static_cast<std::uint32_t>(std::max<std::size_t>(i, nb.index));
+        found[i].push_back(Bridge{lo, hi, std::sqrt(nb.distance2)});
+      }
+    }
+  });
   std::vector<Bridge> links;
   for (const auto& f : found) links.insert(links.end(), f.begin(), f.end());
   std::sort(links.begin(), links.end(),
