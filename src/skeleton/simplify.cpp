@@ -90,12 +90,32 @@ RawTree describe(const std::vector<SkeletonNode>& raw, const SkeletonOptions& op
 
 // Drop spurs and foliage: a side child c of node i is kept when its sub-tree is long enough not to
 // be a spur and tubular enough not to be leaves (long sub-trees need a smaller share).
+// How far a side sub-tree reaches out of its parent's surface: the largest distance of its nodes
+// from the parent's axis (the line through node i along its direction) less i's radius.
+double reachOutOfParent(const RawTree& t, std::size_t i, std::int32_t c) {
+  const Vec3 a = t.raw[i].position, d = t.raw[i].direction;
+  double out = -std::numeric_limits<double>::infinity();
+  std::vector<std::int32_t> stack{c};
+  while (!stack.empty()) {
+    const std::int32_t k = stack.back();
+    stack.pop_back();
+    const Vec3 q = t.raw[k].position - a;
+    out = std::max(out, (q - q.dot(d) * d).norm() - t.radius[i]);
+    for (std::int32_t g : t.raw[k].children) stack.push_back(g);
+  }
+  return out;
+}
+
 bool keepSideBranch(const RawTree& t, std::size_t i, std::int32_t c, double binWidth, const SkeletonOptions& o) {
   const double spur = std::max(o.spurLengthRadii * t.radius[i], o.spurLengthBins * binWidth);
   const double length = t.reach[c] + (t.raw[c].position - t.raw[i].position).norm();
   const double minTub = length >= o.longBranchBins * binWidth ? std::min(o.minTubularFraction, o.minTubularFractionLong)
                                                               : o.minTubularFraction;
-  return length >= spur && t.tubularShare[c] >= minTub;
+  if (t.tubularShare[c] < minTub) return false;
+  if (length >= spur) return true;
+  // Shorter than a spur, but standing out of the parent's surface: a twig, not a bump or a strip
+  // of bark (those lie on the surface).
+  return o.twigOutBins > 0 && reachOutOfParent(t, i, c) >= o.twigOutBins * binWidth;
 }
 
 // Pruning, from the root down (a dropped node takes its sub-tree with it): main children are kept,

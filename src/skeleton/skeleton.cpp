@@ -28,6 +28,7 @@ void checkOptions(const SkeletonOptions& o) {
   nonNegative(o.minRadiusVoxels, "minRadiusVoxels");
   nonNegative(o.spurLengthRadii, "spurLengthRadii");
   nonNegative(o.spurLengthBins, "spurLengthBins");
+  nonNegative(o.twigOutBins, "twigOutBins");
   nonNegative(o.minEndSupportFraction, "minEndSupportFraction");
   nonNegative(o.forkZoneRadii, "forkZoneRadii");
   nonNegative(o.thinRadiusVoxels, "thinRadiusVoxels");
@@ -151,6 +152,7 @@ SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base) {
   base.graph.coneAngleDeg = 45.0;
   base.graph.minBridgeLinearity = 0.4;
   base.minEndSupportFraction = 0.5;  // partial tips in a crown are leaf ends (see the option)
+  base.twigOutBins = 0;              // a short piece standing out of a twig is a leaf as often
   base.leafEntryPositions = true;
   return base;
 }

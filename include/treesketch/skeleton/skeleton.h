@@ -59,6 +59,15 @@ struct SkeletonOptions {
   /// spurLengthRadii × the fork's radius and spurLengthBins level sets is dropped (surface bumps).
   double spurLengthRadii = 3.0;
   double spurLengthBins = 3.0;
+  /// ...unless it stands out of the parent's surface (its nodes' largest distance from the
+  /// parent's axis, less the parent's radius) by at least this many level sets: a short twig,
+  /// where a bump or a strip of bark lies on the surface. 0 = off. In a sparse scan three level
+  /// sets are 0.4 m and more, and twigs that the stations saw were dropped as spurs: 1 lowered
+  /// the forward error of every condition (tls-base 0.356 → 0.322 %) and raised the real scans'
+  /// share of points within ±2 cm by 1.5–2.6 points, backward within ±0.006; 0.5 raised the
+  /// spurious tips at 73k rays to 2.5 per limb, 1.5–2 gained half as much
+  /// (docs/notes/skeleton_options.md, session 14).
+  double twigOutBins = 1.0;
   /// Foliage: a side sub-tree whose tubular share (by points) is below this is dropped as leaves.
   /// 0 (off) for leaf-off scans: there are no leaves, and the rule dropped sparsely or noisily
   /// scanned limbs (real scans' missed wood 7.5 → 4 %, 40 → 20 %); leaf-on 0.2
@@ -138,10 +147,10 @@ struct SkeletonOptions {
 /// instead of 2.5), level sets one voxel wide, the foliage guards on (bridges only along a piece's
 /// axis within 8 voxels; a weak cross-section rule, minTubularFraction 0.2, 0.3 for long
 /// sub-trees), partial tips dropped below half their parent's support (in a crown
-/// they are leaf ends) and leaf-entry positions with plane convergence. Finer pieces keep
-/// neighbouring twigs' clusters apart and follow them out to the twigs, where the strict rule drops
-/// them with the limbs that carry them. Not the default: on densely, randomly sampled surfaces 1.5
-/// spacings leave holes in the voxel graph that split rings into arcs (spurious forks).
+/// they are leaf ends), no short twigs kept for standing out (twigOutBins 0: leaves stand out too) and leaf-entry
+/// positions with plane convergence. Finer pieces keep neighbouring twigs' clusters apart and follow them out to the
+/// twigs, where the strict rule drops them with the limbs that carry them. Not the default: on densely, randomly
+/// sampled surfaces 1.5 spacings leave holes in the voxel graph that split rings into arcs (spurious forks).
 SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base = {});
 
 /// One skeleton node (raw level-set piece, or a kept node after simplification).
