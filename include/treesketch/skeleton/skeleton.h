@@ -146,11 +146,12 @@ struct SkeletonOptions {
 /// Settings for scans of trees in leaf, applied to `base`: finer voxels (graph.autoSpacingFactor 1.5
 /// instead of 2.5), level sets one voxel wide, the foliage guards on (bridges only along a piece's
 /// axis within 8 voxels; a weak cross-section rule, minTubularFraction 0.2, 0.3 for long
-/// sub-trees), partial tips dropped below half their parent's support (in a crown
-/// they are leaf ends), no short twigs kept for standing out (twigOutBins 0: leaves stand out too) and leaf-entry
-/// positions with plane convergence. Finer pieces keep neighbouring twigs' clusters apart and follow them out to the
-/// twigs, where the strict rule drops them with the limbs that carry them. Not the default: on densely, randomly
-/// sampled surfaces 1.5 spacings leave holes in the voxel graph that split rings into arcs (spurious forks).
+/// sub-trees), partial tips dropped below half their parent's support (in a crown they are leaf
+/// ends), no short side branch kept for standing out of its parent (twigOutBins 0: leaves stand
+/// out too) and leaf-entry positions with plane convergence. Finer pieces keep neighbouring
+/// twigs' clusters apart and follow them out to the twigs, where the strict rule drops them with
+/// the limbs that carry them. Not the default: on densely, randomly sampled surfaces 1.5 spacings
+/// leave holes in the voxel graph that split rings into arcs (spurious forks).
 SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base = {});
 
 /// One skeleton node (raw level-set piece, or a kept node after simplification).
