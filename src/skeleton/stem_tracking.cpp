@@ -39,6 +39,9 @@ constexpr double kMinBandVoxels = 0.5;
 constexpr double kMinInlierShare = 0.6;
 // ...at least this many voxels...
 constexpr int kMinVoxels = 6;
+// ...with at most this share of them well inside it (deeper than the band: a stem is hollow in a
+// scan; the bases of a bush's stems, or a real scan's base with its roots, are not)...
+constexpr double kMaxInsideShare = 0.2;
 // ...around at least this much of the circle (one station sees a little more than half a stem)...
 constexpr double kMinArcDegrees = 150.0;
 // ...with a radius within these factors of the last one, its centre within half a radius (plus a
@@ -107,6 +110,12 @@ Slab fitSlab(const VoxelGraph& g, const Vec3& c, const Vec3& d, double halfHeigh
   o.inputFinite = true;
   const fit::CircleFitResult r = fit::fitCircleRansac(pts, o);
   if (!r.ok || coveredDegrees(pts, r) < kMinArcDegrees) return Slab::NoStem;
+  // A stem's cross-section is empty inside; a circle through a ring of stems (a bush's base) or
+  // around a stem and its neighbours' near sides has voxels well inside it.
+  const double band = std::max(o.inlierThreshold, o.inlierThresholdRelative * r.radius);
+  std::size_t inside = 0;
+  for (const Vec2& q : pts) inside += (q - r.centre).norm() < r.radius - band ? 1 : 0;
+  if (static_cast<double>(inside) > kMaxInsideShare * static_cast<double>(pts.size())) return Slab::NoStem;
   out.centre = c + r.centre.x() * f.u + r.centre.y() * f.w;
   out.radius = r.radius;
   return Slab::Stem;
