@@ -71,8 +71,8 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
   std::vector<char> ok(n);
   // A node on the tracked stem has a measured radius even without a fit of its own (the stem's
   // circle fits over whole slabs), and no rule below raises it: the pipe model and the allometry
-  // stand in for radii the data cannot give. (Leaf-on, thousands of leaf clusters as children
-  // made the pipe model give an oak's 0.14 m trunk a 0.57 m radius.)
+  // stand in for radii the data cannot give. (Leaf-on, the allometry, fitted mostly to leaf
+  // clusters that carry thousands of leaf pieces, gave an oak's 0.14 m trunk a 0.57 m radius.)
   std::vector<char> measured(n);
   for (std::size_t i = 0; i < n; ++i) {
     ok[i] = valid[i] && std::isfinite(fitted[i]) && fitted[i] > 0;

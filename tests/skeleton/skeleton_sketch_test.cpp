@@ -103,7 +103,8 @@ TEST(SkeletonSketch, PipeModelGrowsForks) {
 
 TEST(SkeletonSketch, TheTrackedStemsRadiusIsNotRaised) {
   // A stem node (radius measured by the stem tracker, no fit of its own) with many children:
-  // leaf-on, thousands of leaf clusters made the pipe model give a trunk four times its radius.
+  // leaf-on, the allometry (fitted mostly to leaf clusters) gave a trunk four times its radius;
+  // the pipe model, with these many children, would raise it too.
   std::vector<skeleton::SkeletonNode> nodes = {chainNode(-1, 0, 0.1), chainNode(0, 1, 0.1)};
   for (int k = 0; k < 6; ++k) {
     nodes.push_back(chainNode(1, 2, 0.08));
