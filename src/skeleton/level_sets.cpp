@@ -132,7 +132,8 @@ void mergeSplitRings(const VoxelGraph& g, const GeodesicLevels& lv, UnionFind& u
   }
 }
 
-// One piece per level set on the tracked stem (stem_tracking.h): its voxels in the stem's tube.
+// One piece per level set on the tracked stem (stem_tracking.h): its voxels in the stem's tube
+// (`tube` empty: no stem).
 void joinStemRings(const GeodesicLevels& lv, const std::vector<char>& tube, UnionFind& uf) {
   std::vector<std::int64_t> anchor;
   for (std::size_t v = 0; v < tube.size(); ++v) {
@@ -270,7 +271,8 @@ void setRadiiAndShape(const VoxelGraph& g, const GeodesicLevels& lv, const std::
   if (centroids) axisDistances(lv, nodes, *centroids, atSum, atSq);
   const std::vector<double>& radiusSum = centroids ? atSum : ownSum;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    nodes[i].radius = std::max(radiusSum[i] / count[i], options.minRadiusVoxels * g.voxelSize);
+    // A stem piece keeps the tracked stem's radius (snapToStem): its few voxels' spread is not it.
+    if (!nodes[i].stem) nodes[i].radius = std::max(radiusSum[i] / count[i], options.minRadiusVoxels * g.voxelSize);
     const double mean = ownSum[i] / count[i];
     const double var = std::max(ownSq[i] / count[i] - mean * mean, 0.0);
     nodes[i].ringVariation = static_cast<float>(mean > 0 ? std::sqrt(var) / mean : 0.0);
@@ -307,14 +309,13 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
   if (g.size() == 0 || lv.rootVertices.empty()) return {};
   const std::vector<detail::StemSample> stem =
       options.trackStem ? detail::trackStem(g, lv.rootVertices, options.up) : std::vector<detail::StemSample>{};
-  const std::vector<char> tube = stem.empty() ? std::vector<char>(g.size(), 0) : detail::stemTube(g, stem);
+  const std::vector<char> tube = stem.empty() ? std::vector<char>{} : detail::stemTube(g, stem);
   UnionFind uf = levelPieces(g, lv, tube);
   std::vector<std::uint32_t> count;
   std::vector<SkeletonNode> nodes = pieceNodes(g, lv, uf, centroids ? *centroids : g.positions, count);
   if (!stem.empty()) snapToStem(lv, tube, stem, nodes);
   setDirections(nodes, options.up);
   setRadiiAndShape(g, lv, centroids, count, options, nodes);
-  if (!stem.empty()) snapToStem(lv, tube, stem, nodes);  // the radii too
   return nodes;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "skeleton/node_tree.h"
 #include "treesketch/fit/circle_fit.h"
@@ -59,7 +60,6 @@ constexpr double kMaxLeanDeg = 45.0;
 constexpr int kMaxMisses = 1;
 // The tube holds voxels within this many radii plus a voxel of the axis.
 constexpr double kTubeRadii = 1.0;
-constexpr double kPi = 3.14159265358979323846;
 
 struct Frame {
   Vec3 u, w;
@@ -77,9 +77,9 @@ double coveredDegrees(const std::vector<Vec2>& pts, const fit::CircleFitResult& 
   for (std::uint32_t i : r.inliers) angle.push_back(std::atan2(pts[i].y() - r.centre.y(), pts[i].x() - r.centre.x()));
   if (angle.size() < 2) return 0;
   std::sort(angle.begin(), angle.end());
-  double gap = angle.front() + 2 * kPi - angle.back();
+  double gap = angle.front() + 2 * std::numbers::pi - angle.back();
   for (std::size_t k = 1; k < angle.size(); ++k) gap = std::max(gap, angle[k] - angle[k - 1]);
-  return 360.0 - gap * 180.0 / kPi;
+  return 360.0 - gap * 180.0 / std::numbers::pi;
 }
 
 // A circle through the voxels of the slab |(p - c)·d| ≤ halfHeight within `search` of the axis
@@ -160,7 +160,7 @@ std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::ui
   Vec3 axis = up;
   centre = base.centre;
   double radius = base.radius;
-  const double maxLeanCos = std::cos(kMaxLeanDeg * kPi / 180.0);
+  const double maxLeanCos = std::cos(kMaxLeanDeg * std::numbers::pi / 180.0);
   int misses = 0;
   const std::size_t cap = g.size();  // more steps than voxels: no stem is that long
   while (stem.size() < cap) {
