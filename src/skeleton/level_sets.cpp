@@ -10,6 +10,7 @@
 #include <queue>
 
 #include "skeleton/checks.h"
+#include "skeleton/fork_split.h"
 #include "skeleton/node_tree.h"
 #include "skeleton/stem_tracking.h"
 #include "treesketch/skeleton/skeleton.h"
@@ -312,7 +313,9 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
   const std::vector<char> tube = stem.empty() ? std::vector<char>{} : detail::stemTube(g, stem);
   UnionFind uf = levelPieces(g, lv, tube);
   std::vector<std::uint32_t> count;
-  std::vector<SkeletonNode> nodes = pieceNodes(g, lv, uf, centroids ? *centroids : g.positions, count);
+  const std::vector<Vec3>& at = centroids ? *centroids : g.positions;
+  std::vector<SkeletonNode> nodes = pieceNodes(g, lv, uf, at, count);
+  if (options.splitMergedForks) detail::splitMergedForks(g, lv, at, tube, options, nodes, count);
   if (!stem.empty()) snapToStem(lv, tube, stem, nodes);
   setDirections(nodes, options.up);
   setRadiiAndShape(g, lv, centroids, count, options, nodes);

@@ -153,6 +153,9 @@ SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base) {
   base.graph.minBridgeLinearity = 0.4;
   base.minEndSupportFraction = 0.5;  // partial tips in a crown are leaf ends (see the option)
   base.twigOutBins = 0;              // a short piece standing out of a twig is a leaf as often
+  // Leaf clusters at the twigs are as long as limbs to the split, and a fork moved down made
+  // their spurs long enough to be kept (the leaf-clutter test: 5 forks and 7 ends, not 4 and 5).
+  base.splitMergedForks = false;
   base.leafEntryPositions = true;
   return base;
 }

@@ -175,6 +175,7 @@ TEST(Skeleton, LeafClutterDoesNotGrowBranches) {
   guarded.graph.coneAngleDeg = 45;
   guarded.graph.minBridgeLinearity = 0.4;
   guarded.twigOutBins = 0;  // as leafOnSkeletonOptions: a short piece standing out is a leaf as often
+  guarded.splitMergedForks = false;  // as leafOnSkeletonOptions: leaf clusters are not limbs
   const auto s = skeleton::extractSkeleton(cloud, guarded);
   // Known limit: with this dense clutter (80 leaves within 0.35 of two tips) a few leaf spurs
   // survive; the true tree has 1 fork and 2 ends. The foliage rules remove most of them.
@@ -633,4 +634,48 @@ TEST(Skeleton, ABushsStemsAreNotTrackedAsOneStem) {
   for (const auto& n : s.rawNodes)
     if (n.stem) thickest = std::max(thickest, n.radius);
   EXPECT_LT(thickest, 0.5) << "a tracked stem of radius " << thickest;
+}
+
+TEST(Skeleton, ANarrowForksLimbsAreApartWhereTheirTubesAre) {
+  // Two limbs of radius 0.1 leave a trunk 17° apart: their axes are 0.3 × h apart at h above the
+  // junction, and their tubes stop overlapping at h = 0.67. A level set holds both limbs as one
+  // piece while their surfaces are within a voxel or two, and that piece's node sat between the
+  // limbs, off the wood, with the fork at its top. Cut along the limbs' lines, the pieces are one
+  // per limb down to where the tubes overlap, and the fork is there. Sparsely sampled (a point
+  // every 4 cm, voxels of 10 cm, as on a real scan's crown) the merged pieces reach highest.
+  const Vec3 junction(0, 2, 0);
+  const std::vector<test::Cyl> cyls = {{Vec3(0, 0, 0), junction, 0.15, -1},
+                                       {junction, Vec3(-0.45, 5, 0), 0.1, 0},
+                                       {junction, Vec3(0.45, 5, 0), 0.1, 0}};
+  const auto cloud = test::sampleCylinders(cyls, 0.04, 0.005, 1);
+  struct Fork {
+    double height = -1;  // of the fork node
+    double offAxes = 0;  // mean distance of the nodes between 2.6 and 3.6 high to the true axes
+  };
+  auto fork = [&](bool split) {
+    skeleton::SkeletonOptions o;
+    o.graph.voxelSize = 0.1;
+    o.splitMergedForks = split;
+    const auto s = skeleton::extractSkeleton(cloud, o);
+    EXPECT_EQ(skeleton::countBranchPoints(s.nodes), 1u);
+    Fork f;
+    int n = 0;
+    for (const auto& node : s.nodes) {
+      if (node.children.size() >= 2) f.height = node.position.y();
+      if (node.position.y() > 2.6 && node.position.y() < 3.6) {
+        f.offAxes += test::distanceToAxes(cyls, node.position);
+        ++n;
+      }
+    }
+    f.offAxes /= std::max(n, 1);
+    std::printf("split %d: fork at %.3f, nodes between 2.6 and 3.6 %.3f off the axes\n", split, f.height, f.offAxes);
+    return f;
+  };
+  const Fork split = fork(true), merged = fork(false);
+  const double apart = junction.y() + 0.2 / 0.3;
+  EXPECT_GT(split.height, apart - 0.1);
+  EXPECT_LT(split.height, apart + 0.4);
+  EXPECT_LT(split.offAxes, 0.06);
+  EXPECT_GT(merged.height, split.height + 0.25);
+  EXPECT_GT(merged.offAxes, 1.5 * split.offAxes);
 }

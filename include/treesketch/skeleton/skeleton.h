@@ -12,7 +12,7 @@
 // that touch merge their level sets (one node between them until they separate); a fork's node
 // sits where the level set splits, i.e. a little past the true junction on the child's side;
 // centroids of one-sided (occluded) rings are biased towards the visible side (the circle fits
-// that follow correct this). Foliage is the weak point: on leaf-on scans the default cross-section
+// that follow correct this); narrow forks are cut along their limbs' lines (fork_split.h). Foliage is the weak point: on leaf-on scans the default cross-section
 // rule drops most limbs together with the leaves, while leafOnSkeletonOptions() follows the crown
 // out to the twigs at the price of nodes half a leaf off them (leaf-entry positions cut that by a
 // third).
@@ -53,6 +53,10 @@ struct SkeletonOptions {
   /// piece (stem_tracking.h): on a sparsely scanned trunk a level set's ring breaks into arcs,
   /// and each arc went on as a thin chain up the trunk's surface beside a one-sided trunk node.
   bool trackStem = true;
+  /// Cut the pieces below a fork that hold both its limbs into one piece per limb, down to where
+  /// the limbs' tubes overlap (fork_split.h): a level set joins two limbs whose surfaces are a
+  /// voxel or two apart, so a narrow fork's node sat between them and too high.
+  bool splitMergedForks = true;
 
   // ---- pruning (simplify.cpp) ----
   /// Spurs: a side sub-tree whose longest path from its fork is shorter than the largest of
@@ -148,7 +152,7 @@ struct SkeletonOptions {
 /// axis within 8 voxels; a weak cross-section rule, minTubularFraction 0.2, 0.3 for long
 /// sub-trees), partial tips dropped below half their parent's support (in a crown they are leaf
 /// ends), no short side branch kept for standing out of its parent (twigOutBins 0: leaves stand
-/// out too) and leaf-entry positions with plane convergence. Finer pieces keep neighbouring
+/// out too), no pieces cut along a fork's limbs (splitMergedForks off: leaf clusters are not limbs) and leaf-entry positions with plane convergence. Finer pieces keep neighbouring
 /// twigs' clusters apart and follow them out to the twigs, where the strict rule drops them with
 /// the limbs that carry them. Not the default: on densely, randomly sampled surfaces 1.5 spacings
 /// leave holes in the voxel graph that split rings into arcs (spurious forks).
