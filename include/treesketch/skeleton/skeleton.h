@@ -9,12 +9,14 @@
 // Why level sets rather than, say, Laplacian contraction or a space colonisation: they are linear
 // in the cloud size after downsampling (1M points in well under a second), give the hierarchy
 // (parents) for free, and follow a scanned surface's rings on thick stems. Known limits: branches
-// that touch merge their level sets (one node between them until they separate); a fork's node
-// sits where the level set splits, i.e. a little past the true junction on the child's side;
-// centroids of one-sided (occluded) rings are biased towards the visible side (the circle fits
-// that follow correct this); narrow forks are cut along their limbs' lines (fork_split.h). Foliage is the weak point: on leaf-on scans the default cross-section
-// rule drops most limbs together with the leaves, while leafOnSkeletonOptions() follows the crown
-// out to the twigs at the price of nodes half a leaf off them (leaf-entry positions cut that by a
+// that touch merge their level sets (one node between them until they separate; below a fork the
+// pieces are cut along the limbs' lines down to where their tubes overlap, fork_split.h, but two
+// limbs that merely cross stay merged); a fork's node sits where the level set splits, i.e. a
+// little past the true junction on the child's side; centroids of one-sided (occluded) rings are
+// biased towards the visible side (the circle fits that follow correct this). Foliage is the weak
+// point: on leaf-on scans the default cross-section rule drops most limbs together with the
+// leaves, while leafOnSkeletonOptions() follows the crown out to the twigs at the price of nodes
+// half a leaf off them (leaf-entry positions cut that by a
 // third).
 // The measurements behind every default: docs/notes/skeleton_options.md.
 #pragma once
