@@ -147,11 +147,6 @@ void splitMergedForks(const VoxelGraph& g, GeodesicLevels& lv, const std::vector
   if (original < 3) return;
   const Pieces pieces = piecesOf(lv, original);
   const std::vector<std::int32_t> topLevel = topLevels(nodes);
-  const std::vector<std::vector<std::int32_t>> children = [&] {
-    std::vector<std::vector<std::int32_t>> c(original);
-    for (std::size_t i = 0; i < original; ++i) c[i] = nodes[i].children;
-    return c;
-  }();
   const double minRadius = options.minRadiusVoxels * g.voxelSize;
   const double binWidth = lv.binWidth;
   auto onStem = [&](std::int32_t k) {
@@ -164,12 +159,13 @@ void splitMergedForks(const VoxelGraph& g, GeodesicLevels& lv, const std::vector
   std::vector<Line> lines;
   std::vector<std::int32_t> limbs, above, groupNode;
   std::vector<std::vector<std::uint32_t>> groups;
-  // Lowest forks first: a fork's lines run through the unsplit nodes above it.
+  // Lowest forks first: a fork's lines run through the unsplit nodes above it. The children lists
+  // stay those of the pieces as first cut (only parents are rewritten until the end).
   for (std::size_t f = 0; f < original; ++f) {
-    if (children[f].size() < 2) continue;
+    if (nodes[f].children.size() < 2) continue;
     limbs.clear();
     lines.clear();
-    for (std::int32_t c : children[f]) {
+    for (std::int32_t c : nodes[f].children) {  // no node is added in this loop
       Line line;
       if (topLevel[c] - nodes[c].level + 1 < options.spurLengthBins) continue;  // a spur, not a limb
       if (!limbLine(nodes, topLevel, pieces, at, c, minRadius, line)) continue;
@@ -181,7 +177,7 @@ void splitMergedForks(const VoxelGraph& g, GeodesicLevels& lv, const std::vector
     for (auto cur = static_cast<std::int32_t>(f);;) {
       if (cur >= static_cast<std::int32_t>(original)) break;  // a piece of a fork below, already cut
       if (nodes[cur].level <= 0 || onStem(cur)) break;
-      if (cur != static_cast<std::int32_t>(f) && children[cur].size() != 1) break;  // another fork
+      if (cur != static_cast<std::int32_t>(f) && nodes[cur].children.size() != 1) break;  // another fork
       if (!separate(nodes[cur].position, lines, binWidth)) break;
       // Each voxel to the nearest line (over the voxels of the piece as first cut).
       groups.assign(lines.size(), {});
@@ -189,8 +185,12 @@ void splitMergedForks(const VoxelGraph& g, GeodesicLevels& lv, const std::vector
         const std::uint32_t v = pieces.voxels[i];
         if (lv.vertexNode[v] != cur) continue;
         std::size_t best = 0;
+        double nearest = lines[0].distance(at[v]);
         for (std::size_t l = 1; l < lines.size(); ++l)
-          if (lines[l].distance(at[v]) < lines[best].distance(at[v])) best = l;
+          if (const double d = lines[l].distance(at[v]); d < nearest) {
+            nearest = d;
+            best = l;
+          }
         groups[best].push_back(v);
       }
       bool whole = true;
@@ -215,7 +215,7 @@ void splitMergedForks(const VoxelGraph& g, GeodesicLevels& lv, const std::vector
         nodes[above[l]].parent = groupNode[l];
       }
       if (cur == static_cast<std::int32_t>(f))  // the fork's spurs go with the nearest limb's piece
-        for (std::int32_t c : children[f]) {
+        for (std::int32_t c : nodes[f].children) {
           if (std::find(limbs.begin(), limbs.end(), c) != limbs.end()) continue;
           std::size_t best = 0;
           for (std::size_t l = 1; l < lines.size(); ++l)
