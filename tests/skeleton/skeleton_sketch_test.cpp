@@ -5,8 +5,10 @@
 #include <sstream>
 
 #include "synthetic_tree.h"
+#include "treesketch/compare/model_fit.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/recon/reconstruction.h"
+#include "treesketch/skeleton/skeleton_export.h"
 #include "treesketch/util/error.h"
 
 using namespace treesketch;
@@ -304,6 +306,17 @@ TEST(SkeletonSketch, PresetsNameTheCondition) {
   EXPECT_FALSE(off.skeleton.leafEntryPositions);
   EXPECT_TRUE(on.skeleton.leafEntryPositions);
   EXPECT_EQ(on.skeleton.binWidthVoxels, skeleton::leafOnSkeletonOptions().binWidthVoxels);
+  EXPECT_TRUE(off.completion.enabled);
+  EXPECT_FALSE(on.completion.enabled);  // leaf-on, the points off the model are leaves
+  const geom::PointCloud one{{Vec3(0, 0, 0)}};
+  for (auto bad : {&skeleton::CompletionRules::marginVoxels, &skeleton::CompletionRules::maxGapVoxels}) {
+    skeleton::AutoSkeletonOptions o;
+    o.completion.*bad = -1;
+    EXPECT_THROW(skeleton::autoSkeletonSketch(one, o), OptionsError);
+  }
+  skeleton::AutoSkeletonOptions o;
+  o.completion.minPoints = 0;
+  EXPECT_THROW(skeleton::autoSkeletonSketch(one, o), OptionsError);
 }
 
 // An edit in the handed-over sketch re-fits the node it touches, from the cloud, and no other.
@@ -415,4 +428,51 @@ TEST(SkeletonSketch, ABranchTapersPastItsLastFit) {
     EXPECT_LT(r[i], 0.5) << i;  // the level sets' estimate was 0.5
     EXPECT_NEAR(r[i], fitted[i], 0.25 * fitted[i]) << i;
   }
+}
+
+// A twig that leaves its limb at a narrow angle (here 3.5°, 0.1 m from the trunk's 0.12 m
+// surface at its tip, voxels of 0.05 m) lies within a voxel or two of the limb for its length: the level sets hold both
+// as one piece and one node on the limb, and the twig's points lie outside the model. The completion models those
+// points on their own and grafts the part onto the limb, so the model explains them; the tree stays one tree.
+TEST(SkeletonSketch, ATwigAlongItsLimbIsGraftedOn) {
+  const std::vector<test::Cyl> cyls = {{Vec3(0, 0, 0), Vec3(0, 3, 0), 0.12, -1},
+                                       {Vec3(0.1, 1.0, 0), Vec3(0.21, 2.8, 0), 0.015, 0}};
+  const auto cloud = test::sampleCylinders(cyls, 0.012, 0.002, 5);
+  std::vector<std::size_t> twig;  // the twig's points, where it is off the trunk's surface
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (test::distanceToSegment(cloud.positions[i], cyls[1].a, cyls[1].b) < 0.025 &&
+        test::distanceToSegment(cloud.positions[i], cyls[0].a, cyls[0].b) > cyls[0].radius + 0.03)
+      twig.push_back(i);
+  ASSERT_GT(twig.size(), 100u);
+  struct Outcome {
+    double explained = 0;  // share of those twig points within 1.5 cm (its radius) of the model's surface
+    std::size_t nodes = 0, ends = 0;
+  };
+  auto run = [&](bool complete) {
+    skeleton::AutoSkeletonOptions o;
+    o.skeleton.graph.voxelSize = 0.05;
+    o.completion.enabled = complete;
+    const auto res = skeleton::autoSkeletonSketch(cloud, o);
+    const compare::CylinderModelIndex index(skeleton::cylinderModelFromSkeleton(res.model));
+    Outcome out;
+    for (std::size_t i : twig) out.explained += std::abs(index.signedDistance(cloud.positions[i])) < 0.015;
+    out.explained /= static_cast<double>(twig.size());
+    out.nodes = res.model.size();
+    out.ends = skeleton::countEnds(res.model);
+    // One tree: every node but the root has a parent before it, and the sketch holds them all.
+    for (std::size_t i = 1; i < res.model.size(); ++i) {
+      EXPECT_GE(res.model[i].parent, 0) << i;
+      EXPECT_LT(res.model[i].parent, static_cast<std::int32_t>(i)) << i;
+    }
+    EXPECT_EQ(res.sketch.size(), res.model.size());
+    EXPECT_EQ(res.fits.size(), res.model.size());
+    std::printf("completion %d: %zu nodes, %zu ends, %.3f of the twig's points explained\n", complete, out.nodes,
+                out.ends, out.explained);
+    return out;
+  };
+  const Outcome without = run(false), with = run(true);
+  EXPECT_LT(without.explained, 0.1);  // measured 0.000 without, 0.861 with
+  EXPECT_GT(with.explained, 0.75);
+  EXPECT_GT(with.nodes, without.nodes);
+  EXPECT_LE(with.ends, without.ends + 1);  // the twig is one branch, not a fringe of stubs
 }

@@ -115,6 +115,29 @@ inline fit::NodeFitOptions autoNodeFitOptions() {
   return o;
 }
 
+/// Completion of the model from the points it leaves unexplained (skeleton/completion.h): where
+/// twigs cross or lie within a voxel or two of each other, a level set holds them as one piece and
+/// one node, and the twigs off that node's tube are left out. The same pipeline is run on the
+/// points farther than a margin outside the model, one connected part at a time (largest first),
+/// and each part is grafted onto the model at its nearest node. On leaf-off, off in the leaf-on
+/// preset (leaf clusters off the twigs are not wood).
+struct CompletionRules {
+  bool enabled = true;
+  /// A point is unexplained when it lies farther than this many voxels outside the model's
+  /// surface. 1 measured best on the tuning half (docs/notes/skeleton_options.md, session 16):
+  /// 0.75 let 10 mm range noise through as twigs (tips up to 2× the limbs), 1.5 left most of the
+  /// gain on the table.
+  double marginVoxels = 1.0;
+  /// A part needs this many points (fewer cannot hold two level sets of a twig).
+  int minPoints = 10;
+  /// A part's nearest node lies within this many voxels of the model's surface, and its voxel
+  /// graph bridges no longer gaps: a part farther out is a neighbour or noise and its bridge a
+  /// guess (8 drew straight tubes through the air and raised the backward error).
+  double maxGapVoxels = 4.0;
+  /// At most this many parts are modelled, largest first (each is a run of the pipeline).
+  int maxParts = 200;
+};
+
 struct AutoSkeletonOptions {
   SkeletonOptions skeleton;
   SkeletonSketchOptions sketch;
@@ -136,6 +159,7 @@ struct AutoSkeletonOptions {
   std::uint64_t seed = 1;
   /// Vertices per ring of the swept mesh.
   int ringVertices = 16;
+  CompletionRules completion;
 };
 // The measurements behind these defaults: docs/notes/auto_sketch_options.md.
 

@@ -1,0 +1,92 @@
+#include "skeleton/completion.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace treesketch::skeleton::detail {
+
+geom::PointCloud unexplainedPoints(const geom::PointCloud& cloud, const compare::CylinderModelIndex& model,
+                                   double margin) {
+  const std::size_t n = cloud.size();
+  std::vector<char> out(n, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) out[i] = model.signedDistance(cloud.positions[i]) > margin;
+  });
+  geom::PointCloud rest;
+  rest.up = cloud.up;
+  for (std::size_t i = 0; i < n; ++i)
+    if (out[i]) rest.positions.push_back(cloud.positions[i]);
+  return rest;
+}
+
+bool graftPart(std::vector<SkeletonNode>& nodes, const std::vector<SkeletonNode>& part,
+               const std::vector<SkeletonNode>& model, const compare::CylinderModelIndex& index, double maxGap) {
+  const std::size_t m = part.size();
+  if (m < 2 || model.empty() || model.size() > nodes.size()) return false;
+  // Where the part is nearest to the model: its foot.
+  std::vector<double> gap(m);
+  for (std::size_t i = 0; i < m; ++i) gap[i] = index.signedDistance(part[i].position);
+  const auto foot = static_cast<std::int32_t>(std::min_element(gap.begin(), gap.end()) - gap.begin());
+  if (!(gap[foot] <= maxGap)) return false;
+
+  // The node the part grows from: the node nearest to its foot, of the model or of a part
+  // grafted before (its skeleton's position and radius).
+  auto at = [&](std::size_t k) -> const SkeletonNode& { return k < model.size() ? model[k] : nodes[k]; };
+  std::int32_t host = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    const double d = (at(k).position - part[foot].position).squaredNorm();
+    if (d < best) {
+      best = d;
+      host = static_cast<std::int32_t>(k);
+    }
+  }
+
+  // Re-rooted at the foot: breadth-first over the part's links, parents first.
+  std::vector<std::int32_t> order{foot}, newParent(m, -1);
+  std::vector<char> seen(m, 0), reversed(m, 0);
+  seen[foot] = 1;
+  for (std::size_t head = 0; head < order.size(); ++head) {
+    const std::int32_t u = order[head];
+    auto visit = [&](std::int32_t v, bool up) {
+      if (v < 0 || seen[v]) return;
+      seen[v] = 1;
+      newParent[v] = u;
+      reversed[v] = up;  // reached from its old child: it now points the other way
+      order.push_back(v);
+    };
+    visit(part[u].parent, true);
+    for (std::int32_t c : part[u].children) visit(c, false);
+  }
+  if (order.size() != m) return false;  // not one tree
+
+  const auto base = static_cast<std::int32_t>(nodes.size());
+  std::vector<std::int32_t> newIndex(m, -1);
+  for (std::size_t k = 0; k < m; ++k) newIndex[order[k]] = base + static_cast<std::int32_t>(k);
+  const double cap = at(host).radius;
+  const std::int32_t order1 = nodes[host].branchOrder + 1;
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::int32_t v = order[k];
+    SkeletonNode node = part[v];
+    node.parent = k == 0 ? host : newIndex[newParent[v]];
+    node.children.clear();
+    if (reversed[v]) node.direction = -node.direction;
+    node.radius = std::min(node.radius, cap);
+    node.raw = -1;  // not one of the skeleton's raw nodes
+    node.stem = false;
+    node.branchOrder = order1;
+    const SkeletonNode& p = nodes[node.parent];
+    node.level = p.level + 1;
+    node.distance = p.distance + (node.position - p.position).norm();
+    nodes[node.parent].children.push_back(base + static_cast<std::int32_t>(k));
+    nodes.push_back(std::move(node));
+  }
+  return true;
+}
+
+}  // namespace treesketch::skeleton::detail
