@@ -211,9 +211,10 @@ void checkOptions(const AutoSkeletonOptions& options) {
         "centroidPrecisionVoxels finite and >= 0");
   const CompletionRules& c = options.completion;
   if (!(c.marginVoxels >= 0) || !(c.maxGapVoxels >= 0) || !std::isfinite(c.marginVoxels) ||
-      !std::isfinite(c.maxGapVoxels) || c.minPoints < 1 || c.maxParts < 0)
+      !std::isfinite(c.maxGapVoxels) || c.minPoints < 1 || c.maxParts < 0 || c.maxRounds < 0)
     throw OptionsError(
-        "skeleton completion: marginVoxels and maxGapVoxels must be finite and >= 0, minPoints >= 1, maxParts >= 0");
+        "skeleton completion: marginVoxels and maxGapVoxels must be finite and >= 0, minPoints >= 1, maxParts and "
+        "maxRounds >= 0");
 }
 
 recon::ReconstructionOptions reconstructionOptions(const AutoSkeletonOptions& options, double voxel) {
@@ -315,7 +316,7 @@ void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const AutoSke
 /// grafted onto the skeleton. Returns whether any was.
 bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options, AutoSkeletonResult& res) {
   const CompletionRules& c = options.completion;
-  if (!c.enabled || res.model.size() < 2 || c.maxParts == 0) return false;
+  if (!c.enabled || res.model.size() < 2 || c.maxParts == 0 || c.maxRounds == 0) return false;
   const auto t0 = std::chrono::steady_clock::now();
   const double voxel = res.skeleton.graph.voxelSize;
   SkeletonOptions partOptions = options.skeleton;
@@ -373,20 +374,22 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   // 2.-4. Its sketch, the fit pass (recon builds the slice index and fits every node) and the model.
   recon::Reconstruction rec(cloud, reconstructionOptions(options, res.skeleton.graph.voxelSize));
   fitModel(res, rec, options, progress);
-  // 4b. The parts the model left out, grafted on and fitted (recon fits only the new nodes). The
-  // model's own nodes keep their positions and radii: a part carries little length but a fit
-  // taken on it, against its host's side, can be thick, and with the carried-length allometry
-  // refitted over both, the limbs of a dense crown grew (adtree_tree7: 3.6 → 5.5 % of the points
-  // deeper than 2 cm inside). A part is no thicker than the node it grows from.
-  const std::size_t modelled = res.model.size();
-  if (complete(cloud, options, res)) {
-    const std::vector<SkeletonNode> first = res.model;
+  // 4b. The parts the model left out, grafted on and fitted (recon fits only the new nodes), round
+  // after round while a round grafts any (a part grafted on explains points near it, and the
+  // points beyond are the next round's parts). The model's nodes keep their positions and radii: a part carries little
+  // length but a fit taken on it, against its host's side, can be thick, and with the carried-length allometry refitted
+  // over both, the limbs of a dense crown grew (adtree_tree7: 3.6 → 5.5 % of the points deeper than 2 cm inside). A
+  // part is no thicker than the node it grows from.
+  for (int round = 0; round < options.completion.maxRounds; ++round) {
+    const std::size_t modelled = res.model.size();
+    if (!complete(cloud, options, res)) break;
+    const std::vector<SkeletonNode> before = res.model;
     fitModel(res, rec, options, progress);
     for (std::size_t i = 0; i < res.model.size(); ++i) {
       SkeletonNode& node = res.model[i];
       if (i < modelled) {
-        node.position = first[i].position;
-        node.radius = first[i].radius;
+        node.position = before[i].position;
+        node.radius = before[i].radius;
       } else {
         node.radius = std::min(node.radius, res.model[node.parent].radius);  // parent-first
       }

@@ -119,7 +119,8 @@ inline fit::NodeFitOptions autoNodeFitOptions() {
 /// twigs cross or lie within a voxel or two of each other, a level set holds them as one piece and
 /// one node, and the twigs off that node's tube are left out. The same pipeline is run on the
 /// points farther than a margin outside the model, one connected part at a time (largest first),
-/// and each part is grafted onto the model at its nearest node. On leaf-off, off in the leaf-on
+/// and each part is grafted onto the model at its nearest node; then again on what is still out
+/// (CompletionRules::maxRounds). On leaf-off, off in the leaf-on
 /// preset (leaf clusters off the twigs are not wood).
 struct CompletionRules {
   bool enabled = true;
@@ -134,8 +135,12 @@ struct CompletionRules {
   /// graph bridges no longer gaps: a part farther out is a neighbour or noise and its bridge a
   /// guess (8 drew straight tubes through the air and raised the backward error).
   double maxGapVoxels = 4.0;
-  /// At most this many parts are modelled, largest first (each is a run of the pipeline).
+  /// At most this many parts are modelled in a round, largest first (each is a skeleton run).
   int maxParts = 200;
+  /// Rounds run while one grafts a part (the points beyond a grafted part are the next round's),
+  /// at most this many: on the real scans the second round added 0.4–2.5 points of the share
+  /// within ±2 cm and the fourth nothing that shows.
+  int maxRounds = 4;
 };
 
 struct AutoSkeletonOptions {
