@@ -25,12 +25,24 @@ geom::PointCloud unexplainedPoints(const geom::PointCloud& cloud, const compare:
 }
 
 bool graftPart(std::vector<SkeletonNode>& nodes, const std::vector<SkeletonNode>& part,
-               const std::vector<SkeletonNode>& model, const compare::CylinderModelIndex& index, double maxGap) {
+               const std::vector<SkeletonNode>& model, const geom::CylinderModel& pieces,
+               const compare::CylinderModelIndex& index, double maxGap) {
   const std::size_t m = part.size();
   if (m < 2 || model.empty() || model.size() > nodes.size()) return false;
-  // Where the part is nearest to the model: its foot.
+  // Each node's distance outside the model, and whether it lies farther out than the radius of
+  // the piece nearest to it.
   std::vector<double> gap(m);
-  for (std::size_t i = 0; i < m; ++i) gap[i] = index.signedDistance(part[i].position);
+  bool leaves = false;
+  for (std::size_t i = 0; i < m; ++i) {
+    std::int64_t piece = -1;
+    gap[i] = index.signedDistance(part[i].position, &piece);
+    if (piece >= 0) {
+      const auto& c = pieces.cylinders[static_cast<std::size_t>(piece)];
+      leaves = leaves || gap[i] > std::max(c.startRadius, c.endRadius);
+    }
+  }
+  if (!leaves) return false;  // along a limb's side: that limb's own surface
+  // Where the part is nearest to the model: its foot.
   const auto foot = static_cast<std::int32_t>(std::min_element(gap.begin(), gap.end()) - gap.begin());
   if (!(gap[foot] <= maxGap)) return false;
 
@@ -79,6 +91,7 @@ bool graftPart(std::vector<SkeletonNode>& nodes, const std::vector<SkeletonNode>
     node.radius = std::min(node.radius, cap);
     node.raw = -1;  // not one of the skeleton's raw nodes
     node.stem = false;
+    node.grafted = true;
     node.branchOrder = order1;
     const SkeletonNode& p = nodes[node.parent];
     node.level = p.level + 1;

@@ -20,12 +20,18 @@ geom::PointCloud unexplainedPoints(const geom::PointCloud& cloud, const compare:
                                    double margin);
 
 /// Grafts `part` (the skeleton of some unexplained points: parent-first, root 0) onto `nodes`
-/// (the skeleton; `model` is its fitted model, index for index up to the parts grafted since, and
-/// `index` that model's surface): the part is re-rooted at its node nearest to the surface (its
-/// foot), which becomes a child of the node nearest to it. Refused (returns false, `nodes` unchanged) when the
-/// part has fewer than two nodes (no tube) or its foot lies farther than `maxGap` outside the
-/// model. The part's radius estimates are capped by the node it grows from.
+/// (the skeleton; `model` is its fitted model, index for index up to the parts grafted since,
+/// `pieces` that model's frustums and `index` their surface): the part is re-rooted at its node
+/// nearest to the surface (its foot), which becomes a child of the node nearest to it. The part's
+/// radius estimates are capped by the node it grows from. Refused (returns false, `nodes`
+/// unchanged) when
+/// - the part has fewer than two nodes (no tube);
+/// - its foot lies farther than `maxGap` outside the model;
+/// - none of its nodes lies farther outside than the radius of the piece nearest to it: a part
+///   along a limb's side is that limb's own surface, missed by a tube too thin or off the limb's
+///   axis (dense scans of the bushes' clustered stems: thin scribbles at their base), not a twig.
 bool graftPart(std::vector<SkeletonNode>& nodes, const std::vector<SkeletonNode>& part,
-               const std::vector<SkeletonNode>& model, const compare::CylinderModelIndex& index, double maxGap);
+               const std::vector<SkeletonNode>& model, const geom::CylinderModel& pieces,
+               const compare::CylinderModelIndex& index, double maxGap);
 
 }  // namespace treesketch::skeleton::detail

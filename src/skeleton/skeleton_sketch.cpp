@@ -226,13 +226,21 @@ recon::ReconstructionOptions reconstructionOptions(const AutoSkeletonOptions& op
   return ro;
 }
 
-/// Step 2: the fit pass. Every node but the leaf pieces is fitted from the cloud by recon.
+/// Why node `node` is not fitted, or null when it is.
+const char* notFitted(const SkeletonNode& node, const AutoSkeletonOptions& options) {
+  if (isLeafPiece(node, options)) return "leaf piece (mostly flat voxels): not fitted";
+  if (node.grafted) return "grafted twig beside its limb: not fitted";
+  return nullptr;
+}
+
+/// Step 2: the fit pass. Every node but the leaf pieces and the grafted twigs is fitted from the
+/// cloud by recon.
 std::vector<fit::NodeResult> fitPass(recon::Reconstruction& rec, const sketch::Sketch& skeletonSketch,
                                      const std::vector<SkeletonNode>& nodes, const AutoSkeletonOptions& options,
                                      const ProgressFn& progress) {
   sketch::Sketch s = skeletonSketch;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (!isLeafPiece(nodes[i], options)) continue;
+    if (!notFitted(nodes[i], options)) continue;
     const auto id = static_cast<sketch::NodeId>(i);
     sketch::SamplingParams p = s.node(id).params;
     p.enabled = false;
@@ -241,9 +249,9 @@ std::vector<fit::NodeResult> fitPass(recon::Reconstruction& rec, const sketch::S
   rec.update(s, progress);
   std::vector<fit::NodeResult> fits(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (isLeafPiece(nodes[i], options)) {
+    if (const char* why = notFitted(nodes[i], options)) {
       fits[i].status = fit::NodeStatus::Skipped;
-      fits[i].reason = "leaf piece (mostly flat voxels): not fitted";
+      fits[i].reason = why;
     } else {
       fits[i] = *rec.result(static_cast<sketch::NodeId>(i));
     }
@@ -325,7 +333,8 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
   // Sparse links no longer than a graft's gap: scattered clusters are parts of their own, each
   // grafted where it is, not one part bridged across the crown (straight tubes through the air).
   partOptions.graph.maxGapVoxels = std::min(partOptions.graph.maxGapVoxels, c.maxGapVoxels);
-  const compare::CylinderModelIndex index(cylinderModelFromSkeleton(res.model));
+  const geom::CylinderModel pieces = cylinderModelFromSkeleton(res.model);
+  const compare::CylinderModelIndex index(pieces);
   const geom::PointCloud rest = detail::unexplainedPoints(cloud, index, c.marginVoxels * voxel);
   if (rest.size() < static_cast<std::size_t>(c.minPoints)) return false;
 
@@ -349,7 +358,7 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
     points.positions.reserve(members[k].size());
     for (std::uint32_t i : members[k]) points.positions.push_back(rest.positions[i]);
     const Skeleton part = extractSkeleton(points, partOptions);
-    grafted |= detail::graftPart(res.skeleton.nodes, part.nodes, res.model, index, c.maxGapVoxels * voxel);
+    grafted |= detail::graftPart(res.skeleton.nodes, part.nodes, res.model, pieces, index, c.maxGapVoxels * voxel);
   }
   res.skeletonMs += elapsedMs(t0);
   return grafted;

@@ -154,10 +154,10 @@ struct SkeletonOptions {
 /// axis within 8 voxels; a weak cross-section rule, minTubularFraction 0.2, 0.3 for long
 /// sub-trees), partial tips dropped below half their parent's support (in a crown they are leaf
 /// ends), no short side branch kept for standing out of its parent (twigOutBins 0: leaves stand
-/// out too), no pieces cut along a fork's limbs (splitMergedForks off: leaf clusters are not limbs) and leaf-entry positions with plane convergence. Finer pieces keep neighbouring
-/// twigs' clusters apart and follow them out to the twigs, where the strict rule drops them with
-/// the limbs that carry them. Not the default: on densely, randomly sampled surfaces 1.5 spacings
-/// leave holes in the voxel graph that split rings into arcs (spurious forks).
+/// out too), no pieces cut along a fork's limbs (splitMergedForks off: leaf clusters are not limbs) and leaf-entry
+/// positions with plane convergence. Finer pieces keep neighbouring twigs' clusters apart and follow them out to the
+/// twigs, where the strict rule drops them with the limbs that carry them. Not the default: on densely, randomly
+/// sampled surfaces 1.5 spacings leave holes in the voxel graph that split rings into arcs (spurious forks).
 SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base = {});
 
 /// One skeleton node (raw level-set piece, or a kept node after simplification).
@@ -176,6 +176,11 @@ struct SkeletonNode {
   /// Share of the piece's voxels the leaf-plane test found flat (leaves; see
   /// SkeletonOptions::leafEntryPositions); 0 when the test did not run (leaf-off settings).
   float flatFraction = 0;
+  /// Grafted on by the completion of the automatic model (CompletionRules in skeleton_sketch.h): a
+  /// twig's node beside the limb it was merged with, where a slice holds the limb's surface too.
+  /// Not fitted: its radius follows the tree's allometry and its parent (a fit there took the
+  /// limb's circle and moved the twig inside the limb).
+  bool grafted = false;
   /// On the tracked stem (SkeletonOptions::trackStem): its position and radius are the stem's
   /// circle fits over slabs of the cloud, a measurement and not a piece's spread.
   bool stem = false;

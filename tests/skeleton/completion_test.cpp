@@ -1,0 +1,78 @@
+#include "skeleton/completion.h"
+
+#include <gtest/gtest.h>
+
+#include "treesketch/skeleton/skeleton_export.h"
+
+using namespace treesketch;
+using geom::Vec3;
+
+namespace {
+
+/// A chain of nodes along y, parent-first, each with the given radius and direction +y.
+std::vector<skeleton::SkeletonNode> chain(const std::vector<Vec3>& at, double radius) {
+  std::vector<skeleton::SkeletonNode> nodes(at.size());
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    nodes[i].position = at[i];
+    nodes[i].radius = radius;
+    nodes[i].direction = Vec3::UnitY();
+    nodes[i].parent = static_cast<std::int32_t>(i) - 1;
+    if (i > 0) nodes[i - 1].children.push_back(static_cast<std::int32_t>(i));
+  }
+  return nodes;
+}
+
+struct Limb {
+  std::vector<skeleton::SkeletonNode> nodes = chain({Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(0, 2, 0), Vec3(0, 3, 0)}, 0.1);
+  geom::CylinderModel pieces = skeleton::cylinderModelFromSkeleton(nodes);
+  compare::CylinderModelIndex index{pieces};
+};
+
+}  // namespace
+
+TEST(Completion, ATwigIsReRootedAtItsFootAndGraftedOnTheNearestNode) {
+  Limb limb;
+  // The part's skeleton ran from its far end (its lowest point) back to the limb: its root is the
+  // twig's tip, its last node the foot beside the limb at y = 2.
+  auto twig = chain({Vec3(0.6, 1.6, 0), Vec3(0.4, 1.8, 0), Vec3(0.13, 2.0, 0)}, 0.5);
+  std::vector<skeleton::SkeletonNode> nodes = limb.nodes;
+  ASSERT_TRUE(skeleton::detail::graftPart(nodes, twig, limb.nodes, limb.pieces, limb.index, 0.2));
+  ASSERT_EQ(nodes.size(), 7u);
+  EXPECT_EQ(nodes[4].position, twig[2].position);  // the foot first
+  EXPECT_EQ(nodes[4].parent, 2);                   // on the limb's node at y = 2
+  EXPECT_EQ(nodes[5].parent, 4);
+  EXPECT_EQ(nodes[6].parent, 5);
+  EXPECT_EQ(nodes[6].position, twig[0].position);  // the old root is the tip
+  EXPECT_EQ(nodes[2].children, (std::vector<std::int32_t>{3, 4}));
+  for (std::size_t i = 4; i < 7; ++i) {
+    EXPECT_TRUE(nodes[i].grafted) << i;
+    EXPECT_LE(nodes[i].radius, 0.1) << i;  // no thicker than the node it grows from
+    EXPECT_EQ(nodes[i].branchOrder, 1) << i;
+  }
+  EXPECT_EQ(nodes[5].direction, -Vec3::UnitY());  // reversed: it now points away from the foot
+}
+
+TEST(Completion, APartAlongTheLimbsSideIsNotGrafted) {
+  Limb limb;
+  // 5 cm outside a 0.1 m limb along its length: the limb's own far side, not a twig.
+  const auto side = chain({Vec3(0.15, 0.5, 0), Vec3(0.16, 1.5, 0), Vec3(0.15, 2.5, 0)}, 0.02);
+  std::vector<skeleton::SkeletonNode> nodes = limb.nodes;
+  EXPECT_FALSE(skeleton::detail::graftPart(nodes, side, limb.nodes, limb.pieces, limb.index, 0.2));
+  // Farther than maxGap from the model at its nearest: a neighbour or noise.
+  const auto far = chain({Vec3(0.5, 1.0, 0), Vec3(0.9, 1.2, 0)}, 0.02);
+  EXPECT_FALSE(skeleton::detail::graftPart(nodes, far, limb.nodes, limb.pieces, limb.index, 0.2));
+  // One node: no tube.
+  const auto one = chain({Vec3(0.3, 1.0, 0)}, 0.02);
+  EXPECT_FALSE(skeleton::detail::graftPart(nodes, one, limb.nodes, limb.pieces, limb.index, 0.2));
+  EXPECT_EQ(nodes.size(), limb.nodes.size());
+}
+
+TEST(Completion, UnexplainedPointsAreThoseBeyondTheMargin) {
+  Limb limb;
+  geom::PointCloud cloud;
+  cloud.positions = {Vec3(0.1, 1, 0), Vec3(0.15, 1, 0), Vec3(0.25, 1, 0), Vec3(0, 1.5, 0.3)};
+  const geom::PointCloud rest = skeleton::detail::unexplainedPoints(cloud, limb.index, 0.1);
+  ASSERT_EQ(rest.size(), 2u);
+  EXPECT_EQ(rest.positions[0], cloud.positions[2]);
+  EXPECT_EQ(rest.positions[1], cloud.positions[3]);
+}
