@@ -184,9 +184,10 @@ TEST_F(FitReportCli, ReconstructAutoReportMatchesItsCylinderTable) {
 
 // The automatic model on the three real leaf-off scans (../shared/data/real; skipped without
 // it), as the README's real-scan table reports it: a floor under each figure, a little below
-// the session-15 measurement (rtwig 93.6 %, archi_Tree_2 90.6 %, adtree_tree7 67.2 % of the
-// points within ±2 cm; 0.1 / 0.1 / 3.1 % deeper than 2 cm inside), so that a change that loses
-// what the fork split gained fails here before the evaluation is re-run.
+// the session-16 measurement (rtwig 95.3 %, archi_Tree_2 95.1 %, adtree_tree7 81.5 % of the
+// points within ±2 cm; 0.1 / 0.1 / 3.2 % deeper than 2 cm inside), so that a change that loses
+// what the fork split (session 15: 93.6 / 90.6 / 67.2 %) and the completion gained fails here
+// before the evaluation is re-run.
 TEST(RealScans, TheAutomaticModelExplainsEachCloudAsReported) {
   const auto real = test::sharedDataDir() / "real";
   if (!std::filesystem::exists(real)) GTEST_SKIP() << "no " << real;
@@ -195,8 +196,8 @@ TEST(RealScans, TheAutomaticModelExplainsEachCloudAsReported) {
     double minWithin2cm, maxInside2cm;
   };
   TempDir dir;
-  for (const Case& c : {Case{"rtwig_cloud.txt", 0.925, 0.005}, Case{"archi_Tree_2_point_cloud.las", 0.895, 0.005},
-                        Case{"adtree_tree7.xyz", 0.655, 0.035}}) {
+  for (const Case& c : {Case{"rtwig_cloud.txt", 0.945, 0.005}, Case{"archi_Tree_2_point_cloud.las", 0.945, 0.005},
+                        Case{"adtree_tree7.xyz", 0.80, 0.035}}) {
     std::string out;
     ASSERT_EQ(runCli("reconstruct " + q(real / c.file) + " --auto --up z --report " + q(dir / "r.json") + " -o " +
                          q(dir / "m.ply"),
