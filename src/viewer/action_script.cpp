@@ -696,7 +696,10 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
     const bool waitForJob = a.kind == Kind::Wait ? a.name == "job" : a.kind != Kind::Start && !busyBefore;
     if (waitForJob && state.busy()) {
       if (hooks.frame) {
-        while (!state.pollJob()) {
+        // The frame takes a finished job in itself (the window's own pollJob), so the loop ends
+        // when the state is no longer busy, whoever took the result: waiting for pollJob() alone
+        // to return true hung when a frame took it first (CI: gui.background_job timed out).
+        while (state.busy() && !state.pollJob()) {
           hooks.frame();
           std::this_thread::sleep_for(std::chrono::milliseconds(20));
         }

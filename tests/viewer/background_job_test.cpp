@@ -10,6 +10,7 @@
 
 #include "treesketch/gen/random.h"
 #include "treesketch/io/sketch_file.h"
+#include "treesketch/viewer/action_script.h"
 #include "treesketch/viewer/viewer_state.h"
 
 namespace treesketch::viewer {
@@ -88,6 +89,33 @@ TEST(BackgroundJob, TheResultIsOneUndoableEditAndProgressIsReported) {
   EXPECT_FALSE(f.state.hasHandEdits());
   ASSERT_TRUE(f.state.undo());
   EXPECT_EQ(f.state.sketch().size(), nodes);
+}
+
+// The window's frame takes a finished job in itself (main.cpp calls pollJob every frame); a
+// script's {"wait": "job"} must end then too, not wait for a result nobody will hand it again
+// (it hung CI's gui.background_job when a frame happened to take the result first). Here the
+// job is held until the wait's first frame, which lets it go and takes its result itself.
+TEST(BackgroundJob, AScriptWaitEndsWhenAFrameTookTheResult) {
+  Fixture f;
+  std::istringstream text(
+      R"([{"option": "holdJobs", "value": true}, {"start": "autoSkeleton"}, {"wait": "job"}, {"expect": {"busy": 0}}])");
+  const ActionScript script = parseActionScript(text, "wait.json");
+  ScriptHooks hooks;
+  int frames = 0;
+  bool took = false;
+  hooks.frame = [&] {
+    if (++frames < 3) return;  // after the option and the start; the third is the wait's
+    f.state.holdJobs(false);
+    for (int i = 0; i < 6000 && f.state.busy(); ++i) {
+      if (f.state.pollJob()) took = true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  };
+  const ScriptReport report = runActionScript(f.state, script, hooks);
+  EXPECT_TRUE(report.failures.empty()) << report.failures.front();
+  EXPECT_TRUE(took);
+  EXPECT_FALSE(f.state.busy());
+  EXPECT_GT(f.state.sketch().keptCircleCount(), 0u);
 }
 
 TEST(BackgroundJob, DestroyingTheStateStopsARunningJob) {
