@@ -101,12 +101,13 @@ BENCHMARK(BM_ExtractSkeleton1M)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   const auto& cloud = cloud1M();
-  double skel = 0, fit = 0, sweep = 0;
+  double skel = 0, fit = 0, sweep = 0, completion = 0;
   std::size_t nodes = 0, forks = 0;
   // Arg 0: defaults. Arg 1: the fits' inlier band 15 % of the hypothesis's radius (sessions 2-6).
-  // Arg 2: session 9's leaf-off model (its skeleton, no allometric radius bound). For same-run
-  // ratios.
+  // Arg 2: session 9's leaf-off model (its skeleton, no allometric radius bound). Arg 3: no
+  // completion (session 15's model). For same-run ratios.
   skeleton::AutoSkeletonOptions o;
+  if (state.range(0) == 3) o.completion.enabled = false;
   if (state.range(0) == 1) o.fit.circle.inlierThresholdRelative = 0.15;
   if (state.range(0) == 2) {
     session9Skeleton(o.skeleton);
@@ -117,6 +118,7 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
     skel = r.skeletonMs;
     fit = r.fitMs;
     sweep = r.sweepMs;
+    completion = r.completionMs;
     nodes = r.model.size();
     forks = skeleton::countBranchPoints(r.model);
     benchmark::DoNotOptimize(r);
@@ -127,8 +129,9 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   state.counters["skeletonMs"] = skel;
   state.counters["fitMs"] = fit;
   state.counters["sweepMs"] = sweep;
+  state.counters["completionMs"] = completion;
 }
-BENCHMARK(BM_AutoSkeletonSketch1M)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AutoSkeletonSketch1M)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 
 const geom::PointCloud& leafyCloud1M() {
   static const geom::PointCloud cloud = [] {

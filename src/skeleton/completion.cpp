@@ -10,17 +10,45 @@
 
 namespace treesketch::skeleton::detail {
 
-geom::PointCloud unexplainedPoints(const geom::PointCloud& cloud, const compare::CylinderModelIndex& model,
-                                   double margin) {
-  const std::size_t n = cloud.size();
+std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, const compare::CylinderModelIndex& model,
+                                             double margin, const VoxelGraph* grid,
+                                             const std::vector<std::uint32_t>* among) {
+  const std::size_t n = among ? among->size() : cloud.size();
+  auto pointAt = [&](std::size_t k) { return among ? (*among)[k] : static_cast<std::uint32_t>(k); };
+  // Per voxel: 0 = measure each point, 1 = all explained, 2 = none explained.
+  std::vector<char> verdict;
+  const bool useGrid = grid && grid->pointVoxel.size() == cloud.size() && !grid->positions.empty();
+  if (useGrid) {
+    const std::size_t voxels = grid->positions.size();
+    std::vector<double> spread(voxels, -1.0);  // < 0: no point of `among` in it
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t i = pointAt(k);
+      const std::uint32_t v = grid->pointVoxel[i];
+      spread[v] = std::max(spread[v], (cloud.positions[i] - grid->positions[v]).norm());
+    }
+    verdict.assign(voxels, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t v = r.begin(); v < r.end(); ++v) {
+        if (spread[v] < 0) continue;
+        const double d = model.signedDistance(grid->positions[v]);
+        if (std::max(d, 0.0) + spread[v] <= margin)
+          verdict[v] = 1;
+        else if (d - spread[v] > margin)
+          verdict[v] = 2;
+      }
+    });
+  }
   std::vector<char> out(n, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) out[i] = model.signedDistance(cloud.positions[i]) > margin;
+    for (std::size_t k = r.begin(); k < r.end(); ++k) {
+      const std::uint32_t i = pointAt(k);
+      const char known = useGrid ? verdict[grid->pointVoxel[i]] : 0;
+      out[k] = known != 0 ? known == 2 : model.signedDistance(cloud.positions[i]) > margin;
+    }
   });
-  geom::PointCloud rest;
-  rest.up = cloud.up;
-  for (std::size_t i = 0; i < n; ++i)
-    if (out[i]) rest.positions.push_back(cloud.positions[i]);
+  std::vector<std::uint32_t> rest;
+  for (std::size_t k = 0; k < n; ++k)
+    if (out[k]) rest.push_back(pointAt(k));
   return rest;
 }
 

@@ -7,17 +7,30 @@
 // at its nearest node.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
+#include "treesketch/skeleton/voxel_graph.h"
 
 namespace treesketch::skeleton::detail {
 
-/// The points of `cloud` farther than `margin` (cloud units) outside the model's surface.
-geom::PointCloud unexplainedPoints(const geom::PointCloud& cloud, const compare::CylinderModelIndex& model,
-                                   double margin);
+/// Indices of the points of `cloud` farther than `margin` (cloud units) outside the model's
+/// surface: of all its points, or of those in `among` only (ascending indices).
+///
+/// With `grid` (a voxel graph of `cloud`: each point's voxel and the centroid of its points), a
+/// voxel is decided for all its points at once from the distance d at its centroid and its
+/// points' spread s (farthest from the centroid): outside the model the signed distance is the
+/// exact distance to the surface, which changes no faster than the position, and a point within
+/// s of a centroid inside the model is no farther than s outside it. So max(d, 0) + s <= margin:
+/// all are explained; d - s > margin: none is. Only the other voxels' points are measured one by
+/// one. The result is the same as without `grid` (test Completion.*); on the 1M-point bench tree
+/// it queried ~4x fewer points.
+std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, const compare::CylinderModelIndex& model,
+                                             double margin, const VoxelGraph* grid = nullptr,
+                                             const std::vector<std::uint32_t>* among = nullptr);
 
 /// Grafts `part` (the skeleton of some unexplained points: parent-first, root 0) onto `nodes`
 /// (the skeleton; `model` is its fitted model, index for index up to the parts grafted since,

@@ -321,8 +321,12 @@ void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const AutoSke
 
 /// Step 4b (CompletionRules): the points the model leaves out, cut into connected parts (the
 /// voxel graph's components at the model's voxel size); each part's skeleton, largest first, is
-/// grafted onto the skeleton. Returns whether any was.
-bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options, AutoSkeletonResult& res) {
+/// grafted onto the skeleton. Returns whether any was. `unexplained` holds the indices of the
+/// points left out by the previous round (empty before the first): a round only adds to the model
+/// (the model's nodes keep their circles), so a point explained once stays explained and later
+/// rounds measure only the points left out before.
+bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options, AutoSkeletonResult& res,
+              std::vector<std::uint32_t>& unexplained, int round) {
   const CompletionRules& c = options.completion;
   if (!c.enabled || res.model.size() < 2 || c.maxParts == 0 || c.maxRounds == 0) return false;
   const auto t0 = std::chrono::steady_clock::now();
@@ -335,8 +339,16 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
   partOptions.graph.maxGapVoxels = std::min(partOptions.graph.maxGapVoxels, c.maxGapVoxels);
   const geom::CylinderModel pieces = cylinderModelFromSkeleton(res.model);
   const compare::CylinderModelIndex index(pieces);
-  const geom::PointCloud rest = detail::unexplainedPoints(cloud, index, c.marginVoxels * voxel);
-  if (rest.size() < static_cast<std::size_t>(c.minPoints)) return false;
+  unexplained = detail::unexplainedPoints(cloud, index, c.marginVoxels * voxel, &res.skeleton.graph,
+                                          round == 0 ? nullptr : &unexplained);
+  if (unexplained.size() < static_cast<std::size_t>(c.minPoints)) {
+    res.completionMs += elapsedMs(t0);
+    return false;
+  }
+  geom::PointCloud rest;
+  rest.up = cloud.up;
+  rest.positions.reserve(unexplained.size());
+  for (std::uint32_t i : unexplained) rest.positions.push_back(cloud.positions[i]);
 
   const VoxelGraph graph = buildVoxelGraph(rest, partOptions.graph);
   std::int32_t count = 0;
@@ -360,7 +372,7 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
     const Skeleton part = extractSkeleton(points, partOptions);
     grafted |= detail::graftPart(res.skeleton.nodes, part.nodes, res.model, pieces, index, c.maxGapVoxels * voxel);
   }
-  res.skeletonMs += elapsedMs(t0);
+  res.completionMs += elapsedMs(t0);
   return grafted;
 }
 
@@ -381,7 +393,9 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
     return res;
   }
   // 2.-4. Its sketch, the fit pass (recon builds the slice index and fits every node) and the model.
+  const auto t2 = std::chrono::steady_clock::now();
   recon::Reconstruction rec(cloud, reconstructionOptions(options, res.skeleton.graph.voxelSize));
+  res.fitMs += elapsedMs(t2);
   fitModel(res, rec, options, progress);
   // 4b. The parts the model left out, grafted on and fitted (recon fits only the new nodes), round
   // after round while a round grafts any (a part grafted on explains points near it, and the
@@ -389,9 +403,10 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   // length but a fit taken on it, against its host's side, can be thick, and with the carried-length allometry refitted
   // over both, the limbs of a dense crown grew (adtree_tree7: 3.6 → 5.5 % of the points deeper than 2 cm inside). A
   // part is no thicker than the node it grows from.
+  std::vector<std::uint32_t> unexplained;
   for (int round = 0; round < options.completion.maxRounds; ++round) {
     const std::size_t modelled = res.model.size();
-    if (!complete(cloud, options, res)) break;
+    if (!complete(cloud, options, res, unexplained, round)) break;
     const std::vector<SkeletonNode> before = res.model;
     fitModel(res, rec, options, progress);
     for (std::size_t i = 0; i < res.model.size(); ++i) {

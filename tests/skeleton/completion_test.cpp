@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "treesketch/gen/random.h"
+
 #include "treesketch/skeleton/skeleton_export.h"
 
 using namespace treesketch;
@@ -71,8 +75,35 @@ TEST(Completion, UnexplainedPointsAreThoseBeyondTheMargin) {
   Limb limb;
   geom::PointCloud cloud;
   cloud.positions = {Vec3(0.1, 1, 0), Vec3(0.15, 1, 0), Vec3(0.25, 1, 0), Vec3(0, 1.5, 0.3)};
-  const geom::PointCloud rest = skeleton::detail::unexplainedPoints(cloud, limb.index, 0.1);
-  ASSERT_EQ(rest.size(), 2u);
-  EXPECT_EQ(rest.positions[0], cloud.positions[2]);
-  EXPECT_EQ(rest.positions[1], cloud.positions[3]);
+  EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, limb.index, 0.1), (std::vector<std::uint32_t>{2, 3}));
+  const std::vector<std::uint32_t> among{0, 3};
+  EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, limb.index, 0.1, nullptr, &among),
+            (std::vector<std::uint32_t>{3}));
+}
+
+// Voxels decided at once (by the distance at their centroid and their points' spread) give the
+// points measured one by one: a cloud on, inside and around the limb at every distance, on grids
+// coarser and finer than the margin.
+TEST(Completion, TheGridDecidesVoxelsAsThePointsWould) {
+  Limb limb;
+  gen::Rng rng(5);
+  geom::PointCloud cloud;
+  for (int i = 0; i < 20000; ++i) {
+    const double a = rng.uniform(0, 2 * M_PI), r = rng.uniform(0, 0.6);
+    cloud.positions.emplace_back(r * std::cos(a), rng.uniform(-0.3, 3.3), r * std::sin(a));
+  }
+  const std::vector<std::uint32_t> all = skeleton::detail::unexplainedPoints(cloud, limb.index, 0.05);
+  ASSERT_GT(all.size(), 1000u);
+  ASSERT_LT(all.size(), cloud.size() - 1000);
+  for (double voxel : {0.02, 0.05, 0.12}) {
+    skeleton::VoxelGraphOptions o;
+    o.voxelSize = voxel;
+    const skeleton::VoxelGraph grid = skeleton::buildVoxelGraph(cloud, o);
+    EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, limb.index, 0.05, &grid), all) << voxel;
+    std::vector<std::uint32_t> among, expected;
+    for (std::uint32_t i = 0; i < cloud.size(); i += 3) among.push_back(i);
+    for (std::uint32_t i : all)
+      if (i % 3 == 0) expected.push_back(i);
+    EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, limb.index, 0.05, &grid, &among), expected) << voxel;
+  }
 }

@@ -194,7 +194,9 @@ struct AutoSkeletonResult {
   /// the cylinder table is written from).
   std::vector<SkeletonNode> model;
   geom::TriMesh mesh;  ///< recon's tubes through `sketch`
-  double skeletonMs = 0, fitMs = 0, sweepMs = 0;
+  /// Wall times: the skeleton's extraction; the slice index and the fit passes; the radius rules
+  /// and the sweep; the completion's residual, parts and grafts (CompletionRules).
+  double skeletonMs = 0, fitMs = 0, sweepMs = 0, completionMs = 0;
 };
 
 /// The automatic skeleton as a sketch source: extractSkeleton, skeletonToSketch, then
