@@ -48,7 +48,8 @@ TEST(CylinderTable, TreesketchCsvWithStartRadius) {
   EXPECT_DOUBLE_EQ(a.endRadius, 0.2);
   EXPECT_EQ(a.parent, -1);
   EXPECT_EQ(t.model.cylinders[1].parent, 0);
-  EXPECT_DOUBLE_EQ(t.model.cylinders[2].startRadius, 0.2);
+  EXPECT_DOUBLE_EQ(t.model.cylinders[2].startRadius, 0.05);  // a branch starts with its own radius
+  EXPECT_DOUBLE_EQ(t.model.cylinders[1].startRadius, 0.2);   // the stem with its parent node's
   EXPECT_EQ(t.model.cylinders[2].parent, 0);
   EXPECT_EQ(t.model.cylinders[2].branchOrder, 1);
 }

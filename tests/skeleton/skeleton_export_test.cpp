@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <fstream>
 #include <sstream>
 
@@ -40,7 +42,8 @@ TEST(SkeletonExport, CsvAndObjParseBack) {
     EXPECT_NEAR(v[8], n.radius, 1e-6);
     EXPECT_NEAR(v[9], (n.position - p.position).norm(), 1e-6);
     EXPECT_EQ(static_cast<int>(v[10]), n.branchOrder);
-    EXPECT_NEAR(v[11], p.radius, 1e-6);
+    // The parent's radius; a branch's first row its own (no cone of the parent's thickness).
+    EXPECT_NEAR(v[11], n.branchOrder > p.branchOrder ? std::min(p.radius, n.radius) : p.radius, 1e-6);
     ++rows;
   }
   EXPECT_EQ(rows, s.nodes.size() - 1);
@@ -98,7 +101,9 @@ TEST(SkeletonExport, SkeletonModelIsFrustumsBetweenNodes) {
   EXPECT_DOUBLE_EQ(m.cylinders[0].endRadius, 0.2);
   EXPECT_EQ(m.cylinders[0].parent, -1);
   EXPECT_EQ(m.cylinders[1].parent, 0);
-  EXPECT_DOUBLE_EQ(m.cylinders[2].startRadius, 0.2);  // a side branch starts with its fork's radius
+  // A side branch starts with its own radius at its fork (not a cone of the fork's thickness).
+  EXPECT_DOUBLE_EQ(m.cylinders[2].startRadius, 0.05);
+  EXPECT_DOUBLE_EQ(m.cylinders[1].startRadius, 0.2);  // the stem continues with its own
   EXPECT_EQ(m.cylinders[2].parent, 0);
   EXPECT_EQ(m.cylinders[2].branchOrder, 1);
   nodes[3].parent = 9;

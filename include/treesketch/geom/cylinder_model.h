@@ -69,7 +69,9 @@ struct ModelNode {
 };
 
 /// One frustum per node that has a parent, from the parent's position and radius to the node's
-/// (the shape a tube swept through the nodes' rings has), in node order. A piece's parent is the
+/// (the shape a tube swept through the nodes' rings has), in node order; a node whose branch order
+/// is above its parent's starts a branch, and its piece starts with the smaller of the two radii
+/// (the branch's own cylinder, not a cone of the parent's thickness). A piece's parent is the
 /// parent node's own piece (-1 when the parent node is a root); its branch order is the node's.
 /// Throws OptionsError when a parent index is out of range.
 CylinderModel cylinderModelFromNodes(const std::vector<ModelNode>& nodes);

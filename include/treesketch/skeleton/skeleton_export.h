@@ -18,8 +18,8 @@ inline constexpr const char* kCylinderCsvHeader =
 
 /// One row per non-root node i: the segment from its parent's
 /// position to its own, radius = the node's radius, length in world units, branch order of the
-/// node, start_radius = the parent's radius (the row is the frustum between the two nodes'
-/// circles, as the swept tube is; io/cylinder_table.h reads it back). Cylinder ids are the node
+/// node, start_radius = the parent's radius, or the node's own where the row starts a branch (the
+/// row is the frustum of cylinderModelFromSkeleton; io/cylinder_table.h reads it back). Cylinder ids are the node
 /// indices; `parent` is the parent node's cylinder id, or -1 when the parent is the root (which
 /// has no cylinder). Numbers with 9 significant digits. Empty or single-node skeleton → header
 /// only.
