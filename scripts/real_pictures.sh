@@ -19,7 +19,7 @@ draw rtwig rtwig_cloud.txt
 draw adtree7 adtree_tree7.xyz
 draw archi_tree2 archi_Tree_2_point_cloud.las
 "$bin" fit-report "$real/rtwig_cloud.txt" "$real/rtwig_QSM_simpleforest.csv"
-/usr/bin/python3 - "$tmp/rtwig.csv" "$real/rtwig_QSM_simpleforest.csv" <<'PY'
+python3 - "$tmp/rtwig.csv" "$real/rtwig_QSM_simpleforest.csv" <<'PY'
 import csv, math, sys
 def table(path):
     with open(path) as f:
