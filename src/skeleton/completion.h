@@ -27,7 +27,7 @@ namespace treesketch::skeleton::detail {
 /// s of a centroid inside the model is no farther than s outside it. So max(d, 0) + s <= margin:
 /// all are explained; d - s > margin: none is. Only the other voxels' points are measured one by
 /// one. The result is the same as without `grid` (test Completion.*); on the 1M-point bench tree
-/// it queried ~4x fewer points.
+/// the completion took 0.18 s instead of 0.75 s (bench/README.md).
 std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, const compare::CylinderModelIndex& model,
                                              double margin, const VoxelGraph* grid = nullptr,
                                              const std::vector<std::uint32_t>* among = nullptr);
