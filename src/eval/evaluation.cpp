@@ -160,6 +160,7 @@ MethodOutput methodSkeleton(const MethodInput& in) {
   so.seed = in.options.seed;
   skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, so);
   MethodOutput out;
+  out.model = model::fromAutoSkeleton(r, in.tree.up);
   out.mesh = std::move(r.mesh);
   out.sketch = std::move(r.sketch);
   out.nodes = static_cast<int>(out.sketch.size());

@@ -31,6 +31,7 @@
 #include "treesketch/eval/tree_suite.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/tri_mesh.h"
+#include "treesketch/model/tree_model.h"
 #include "treesketch/sketch/sketch.h"
 
 namespace treesketch::eval {
@@ -141,6 +142,9 @@ struct MethodOutput {
   /// Where the sketch's root is in 3D (world): its circle's centre when it has one (fitted or
   /// kept), else a point node's point; empty when unknown (an unfitted screen node has no depth).
   std::optional<geom::Vec3> root;
+  /// The cylinder model behind the mesh, for the outputs a user gets (the skeleton method's;
+  /// empty for the others).
+  model::TreeModel model;
 };
 
 struct MethodInput {
