@@ -218,7 +218,7 @@ bool ViewerState::addNodeAt(const Vec2& screen) {
     info(parent == kNoNode ? "added node " + std::to_string(added) + " (the root)"
                            : "added node " + std::to_string(added) + " under node " + std::to_string(parent) + how);
   }
-  // Never a silent jump in depth (issue 20): say where the circle went when it is not where the
+  // Never a silent jump in depth: say where the circle went when it is not where the
   // parent (or the front-most surface) said it would be.
   if (ok && recon_->nodeFit(added).depthJump)
     info("warning: node " + std::to_string(added) + ": " + recon_->nodeFit(added).warning);

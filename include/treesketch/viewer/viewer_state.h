@@ -367,7 +367,7 @@ class ViewerState {
   /// Undoable; an error message when there is nothing to refit.
   bool refitSelected();
   bool refitAll();
-  // ---- correction tools (issue 20; src/viewer/viewer_tools.cpp over edit/correction_tools.h) ----
+  // ---- correction tools (src/viewer/viewer_tools.cpp over edit/correction_tools.h) ----
   /// What a left-button drag in the view does: Sketch (add / pick / drag nodes, the default),
   /// Stroke (draw a limb as one stroke), Lasso (mark points as not-wood), Region (automatic
   /// skeleton inside the drawn region, merged), Reattach (a click on a node makes it the selected
