@@ -117,6 +117,7 @@ def main():
                          "--up", "z", "--size", "600x600", "-o", os.path.join(out_dir, name + ".png")])
             else:
                 r["error"] = text.strip().splitlines()[-1] if text.strip() else "exit %d" % rc
+                r["error"] = r["error"].replace(cloud, file)  # no machine paths in the table
             qv = treeqsm_volume(qsm_stem) if qsm_stem else None
             r["treeqsmVolume"] = qv
             r["treeqsmCredible"] = credible
@@ -136,23 +137,24 @@ def main():
     for title, tuning in (("Tuning clouds", True), ("Held-out clouds", False)):
         lines += ["", "### " + title, "",
                   "| cloud | leaf | within ±2 cm % (TreeQSM) | > 2 cm inside % (TreeQSM) | missed > 5 cm % | volume m³ "
-                  "| × TreeQSM (credible?) | measured share % | DBH cm | height m | form factor |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|"]
+                  "| × TreeQSM (credible?) | measured share % | DBH cm | height m | form factor | verdict |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for r in results:
             if r["tuning"] != tuning:
                 continue
             leaf = "on" if r["leafOn"] else "off"
             if r["rc"] != 0:
-                lines.append("| %s | %s | failed: %s | | | | | | | | |" % (r["name"], leaf, r["error"]))
+                lines.append("| %s | %s | failed: %s | | | | | | | | | |" % (r["name"], leaf, r["error"]))
                 continue
             ratio = "%.2f (%s)" % (r["volumeRatio"], "yes" if r["treeqsmCredible"] else "no") \
                 if r.get("volumeRatio") else "—"
             ff = "%.2f" % r["formFactor"] if r.get("formFactor") else "—"
-            lines.append("| %s | %s | %s (%s) | %s (%s) | %s | %.4f | %s | %s | %s | %s | %s |" % (
+            verdict = (r.get("verdict") or {}).get("level", "—")
+            lines.append("| %s | %s | %s (%s) | %s (%s) | %s | %.4f | %s | %s | %s | %s | %s | %s |" % (
                 r["name"], leaf, pct(r["within2"]), pct(r.get("treeqsmWithin2")), pct(r["inside2"]),
                 pct(r.get("treeqsmInside2")), pct(r["missed5"]), r["volume"], ratio, pct(r.get("measuredShare")),
                 "%.1f" % (100 * r["dbh"]) if r["dbh"] is not None else "—",
-                "%.2f" % r["height"] if r["height"] is not None else "—", ff))
+                "%.2f" % r["height"] if r["height"] is not None else "—", ff, verdict))
     ok = [r for r in results if r["rc"] == 0]
     if ok:
         worst = max(ok, key=lambda r: r["inside2"])

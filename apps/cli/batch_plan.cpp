@@ -155,7 +155,8 @@ std::string csvField(const nlohmann::json& v) {
 std::size_t writeBatchSummary(const fs::path& out, const BatchPlan& plan) {
   static const char* kColumns[] = {"tree",     "cloud",        "status",  "error",     "points",
                                    "up",       "totalMs",      "heightM", "dbhModelM", "dbhCloudM",
-                                   "volumeM3", "stemVolumeM3", "lengthM", "branches",  "crownAreaM2"};
+                                   "volumeM3", "volumeLowM3", "volumeHighM3", "measuredVolumeShare", "stemVolumeM3",
+                                   "lengthM", "branches", "crownAreaM2", "verdict", "verdictReasons"};
   nlohmann::json rows = nlohmann::json::array();
   std::size_t notDone = 0;
   for (const auto& t : plan.trees) {

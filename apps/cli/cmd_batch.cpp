@@ -32,6 +32,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// The verdict's reasons as one field ("; " between them).
+std::string joined(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : "; ") + p;
+  return out;
+}
+
 struct BatchArgs {
   std::string input, out, up;
   int jobs = 1;
@@ -99,13 +106,18 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
                                     {"dbhModelM", number(m.figures.trunkDiameter)},
                                     {"dbhCloudM", number(m.cloudDbh.diameter)},
                                     {"volumeM3", m.figures.volume},
+                                    {"volumeLowM3", r.measures.volumeLow},
+                                    {"volumeHighM3", r.measures.volumeHigh},
+                                    {"measuredVolumeShare", r.measures.measuredVolumeShare},
+                                    {"verdict", model::toString(r.measures.verdict.level)},
+                                    {"verdictReasons", joined(r.measures.verdict.reasons)},
                                     {"stemVolumeM3", m.stemVolume},
                                     {"lengthM", m.figures.length},
                                     {"branches", m.branches},
                                     {"crownAreaM2", m.crownArea},
                                     {"input", inputStamp(t.cloud)}});
-    std::printf("batch: %s: %zu points, up %s, %.0f ms\n%s", t.name.c_str(), r.points, r.upReason.c_str(), r.totalMs,
-                compare::metricsTable(m).c_str());
+    std::printf("batch: %s: %zu points, up %s, %.0f ms\n%s\n%s", t.name.c_str(), r.points, r.upReason.c_str(),
+                r.totalMs, r.measures.verdictLine().c_str(), compare::metricsTable(m).c_str());
   } catch (const InputError& e) {
     recordFailure(dir, t, e.what(), kExitInput);
     throw;

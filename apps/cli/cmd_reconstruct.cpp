@@ -147,7 +147,6 @@ void runReconstruct(const ReconstructArgs& a) {
   const model::TreeModel tree = model::fromReconstruction(r, sk.up);  // the sketch's up axis
   model::MeasureOptions mo;
   mo.unitMetres = a.unitMetres == 0.0 ? 1.0 : a.unitMetres;
-  mo.fit = !a.report.empty();
   const model::ModelMeasures measures = model::measure(tree, cloud, mo);
   const bool wantsModel = !a.cylinders.empty() || !a.qsm.empty() || !a.metrics.empty();
   if (fitted + kept > 0 && !(r.mesh.area() > 0))

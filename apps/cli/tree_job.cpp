@@ -82,7 +82,8 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   const model::TreeModel tree = model::fromAutoSkeleton(s, up.up);
   model::MeasureOptions mo;
   mo.unitMetres = a.unitMetres;
-  mo.fit = !a.report.empty();
+  mo.leafOn = a.leafOn;
+  mo.leafPieceShare = r.skeletonNodes ? static_cast<double>(r.leafPieces) / static_cast<double>(r.skeletonNodes) : 0.0;
   const model::ModelMeasures measures = model::measure(tree, cloud, mo);
   r.metricsMs = msSince(tm);
 
@@ -114,7 +115,10 @@ TreeJobResult runTreeJob(const TreeJob& a) {
 }
 
 void printModelSummary(const model::ModelMeasures& m, const model::OutputPaths& outputs) {
-  if (m.hasFit) std::printf("model fit: %s -> %s\n", m.summary().c_str(), outputs.report.c_str());
+  if (m.hasFit)
+    std::printf("model fit: %s%s\n", m.summary().c_str(),
+                outputs.report.empty() ? "" : (" -> " + outputs.report).c_str());
+  std::printf("%s\n", m.verdictLine().c_str());
   if (!outputs.report.empty() || !outputs.metrics.empty())
     std::printf("tree metrics:\n%s", compare::metricsTable(m.metrics).c_str());
 }

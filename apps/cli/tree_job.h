@@ -30,14 +30,15 @@ struct TreeJobResult {
   std::string up, upReason;
   std::size_t skeletonNodes = 0, forks = 0, fitsAccepted = 0, leafPieces = 0, vertices = 0, triangles = 0;
   double readMs = 0, skeletonMs = 0, fitMs = 0, sweepMs = 0, metricsMs = 0, totalMs = 0;
-  model::ModelMeasures measures;  ///< metrics; the fit against the cloud only with a report
+  model::ModelMeasures measures;  ///< metrics, the fit against the cloud, the volume's range, the verdict
 };
 
 /// Runs the job. Throws InputError (unreadable cloud, no skeleton), OptionsError, OutputError.
 TreeJobResult runTreeJob(const TreeJob& job);
 
-/// The lines every command that makes a model prints after it: the fit summary (when measured,
-/// with the report's path) and the metrics table (when a report or metrics file was written).
+/// The lines every command that makes a model prints after it: the fit summary (with the report's
+/// path), the volume's range and the verdict, and the metrics table (when a report or metrics file
+/// was written).
 void printModelSummary(const model::ModelMeasures& measures, const model::OutputPaths& outputs);
 
 }  // namespace treesketch::cli

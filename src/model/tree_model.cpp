@@ -2,8 +2,11 @@
 #include "treesketch/model/tree_model.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
+#include <numbers>
 
 #include "treesketch/io/cylinder_table.h"
 #include "treesketch/io/mesh_io.h"
@@ -109,6 +112,98 @@ TreeModel fromAutoSkeleton(const skeleton::AutoSkeletonResult& r, geom::UpAxis u
   return model;
 }
 
+namespace {
+
+/// Relative radius spread of a piece on a fitted circle, and the factors of an inferred one.
+constexpr double kMeasuredRadiusSpread = 0.10;
+constexpr double kInferredRadiusLow = 2.0 / 3.0, kInferredRadiusHigh = 1.5;
+/// The verdict's limits, each with its physical reading.
+constexpr double kMaxInside = 0.05;          ///< points deeper than 2 cm inside: a scanner sees bark
+constexpr double kMinMeasuredShare = 0.5;    ///< below: most of the volume is the pipe model's guess
+constexpr double kMaxFormFactor = 4.0;       ///< above: more wood than a tree of that DBH and height holds
+constexpr double kMaxMissed = 0.2;           ///< points > 5 cm outside: leaves, noise or other objects
+constexpr double kMaxLeafPieceShare = 0.2;   ///< flat pieces in a leaf-off model: a tree in leaf
+constexpr double kMinPointsPerMetre = 50.0;  ///< a circle fit needs a few dozen points per slice
+
+std::string percent(double share) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * share);
+  return buf;
+}
+
+void volumeRange(const TreeModel& model, double unit3, ModelMeasures* m) {
+  double low = 0, high = 0;
+  for (std::size_t i = 0; i < model.cylinders.size(); ++i) {
+    const double v = model.cylinders.cylinders[i].volume() * unit3;
+    const bool measured = i < model.measured.size() && model.measured[i];
+    const double lo = measured ? 1 - kMeasuredRadiusSpread : kInferredRadiusLow;
+    const double hi = measured ? 1 + kMeasuredRadiusSpread : kInferredRadiusHigh;
+    low += v * lo * lo;
+    high += v * hi * hi;
+  }
+  m->volumeLow = low;
+  m->volumeHigh = high;
+}
+
+Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions& o) {
+  Verdict v;
+  auto add = [&](Verdict::Level level, std::string reason, std::string advice) {
+    v.level = std::max(v.level, level);
+    v.reasons.push_back(std::move(reason));
+    if (!advice.empty() && std::find(v.advice.begin(), v.advice.end(), advice) == v.advice.end())
+      v.advice.push_back(std::move(advice));
+  };
+  using L = Verdict::Level;
+  const std::string leafOn = o.leafOn ? "" : "if the tree was in leaf, run with --leaf-on";
+  if (m.hasFit && m.fit.insideDeeper2cm > kMaxInside)
+    add(L::NotTrusted,
+        percent(m.fit.insideDeeper2cm) + " of the points lie deeper than 2 cm inside the model: its tubes are "
+                                         "thicker than the wood the scanner saw",
+        leafOn);
+  if (m.formFactor > kMaxFormFactor) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  "the volume is %.1f× a cylinder of the stem's DBH and the tree's height (trees: about 0.5–2.5)",
+                  m.formFactor);
+    add(L::NotTrusted, buf, leafOn);
+  }
+  if (m.figures.volume > 0 && m.measuredVolumeShare < kMinMeasuredShare)
+    add(L::Uncertain,
+        "only " + percent(m.measuredVolumeShare) +
+            " of the volume rests on circles fitted to the points; the rest follows the pipe model from the stem",
+        "a denser or less noisy scan of the crown measures more of it");
+  if (m.hasFit && m.fit.outsideFarther5cm > kMaxMissed)
+    add(L::Uncertain,
+        percent(m.fit.outsideFarther5cm) +
+            " of the points lie more than 5 cm outside the model (leaves, noise, other objects or branches it "
+            "missed)",
+        leafOn.empty() ? "remove ground, neighbours and outliers from the cloud" : leafOn);
+  if (!o.leafOn && o.leafPieceShare > kMaxLeafPieceShare)
+    add(L::Uncertain, percent(o.leafPieceShare) + " of the skeleton's pieces are flat, as leaves are", leafOn);
+  const double length = m.figures.length;
+  if (length > 0 && static_cast<double>(points) / length < kMinPointsPerMetre) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%.0f points per metre of branch: too few to measure branch radii",
+                  static_cast<double>(points) / length);
+    add(L::Uncertain, buf, "");
+  }
+  return v;
+}
+
+}  // namespace
+
+const char* toString(Verdict::Level level) {
+  switch (level) {
+    case Verdict::Level::Trusted:
+      return "trusted";
+    case Verdict::Level::Uncertain:
+      return "uncertain";
+    case Verdict::Level::NotTrusted:
+      return "not trusted";
+  }
+  return "?";
+}
+
 double measuredVolumeShare(const TreeModel& model) {
   double all = 0, measured = 0;
   for (std::size_t i = 0; i < model.cylinders.size(); ++i) {
@@ -136,7 +231,23 @@ ModelMeasures measure(const TreeModel& model, const geom::PointCloud& cloud, con
     m.fit = compare::measureModelFit(cloud, model.cylinders, fo);
     m.hasFit = true;
   }
+  const double u = options.unitMetres;
+  volumeRange(model, u * u * u, &m);
+  const double dbh = m.metrics.figures.trunkDiameter, height = m.metrics.height;
+  const double cylinder = std::numbers::pi / 4 * dbh * dbh * height;
+  m.formFactor = cylinder > 0 ? m.figures.volume / cylinder : std::numeric_limits<double>::quiet_NaN();
+  m.verdict = assess(m, cloud.size(), options);
   return m;
+}
+
+std::string ModelMeasures::verdictLine() const {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "volume %.4f m³ (range %.4f–%.4f, %.0f %% on fitted circles); verdict: %s",
+                figures.volume, volumeLow, volumeHigh, 100.0 * measuredVolumeShare, toString(verdict.level));
+  std::string line = buf;
+  for (const std::string& r : verdict.reasons) line += "\n  - " + r;
+  for (const std::string& a : verdict.advice) line += "\n  what to do: " + a;
+  return line;
 }
 
 void checkOutputs(const OutputPaths& paths, const std::vector<std::string>& inputs) {
@@ -160,11 +271,18 @@ void checkOutputs(const OutputPaths& paths, const std::vector<std::string>& inpu
   }
 }
 
+nlohmann::json verdictJson(const Verdict& v) {
+  return {{"level", toString(v.level)}, {"reasons", v.reasons}, {"advice", v.advice}};
+}
+
 nlohmann::json reportJson(const ModelMeasures& m, nlohmann::json header) {
   if (!m.hasFit) throw OptionsError("a report needs the model measured against its cloud");
   header["model"] = {{"fit", compare::toJson(m.fit)},
                      {"figures", compare::toJson(m.figures)},
-                     {"measuredVolumeShare", m.measuredVolumeShare}};
+                     {"measuredVolumeShare", m.measuredVolumeShare},
+                     {"volumeRangeM3", {m.volumeLow, m.volumeHigh}},
+                     {"formFactor", std::isfinite(m.formFactor) ? nlohmann::json(m.formFactor) : nlohmann::json()}};
+  header["verdict"] = verdictJson(m.verdict);
   header["metrics"] = compare::toJson(m.metrics);
   return header;
 }

@@ -6,14 +6,10 @@
 namespace treesketch::skeleton::detail {
 namespace {
 
-// Fewer trusted fits than this cannot pin down a slope.
-constexpr std::size_t kMinFits = 12;
-// The slope is kept within what tree architecture allows: 0.25 (long, thin, whip-like growth) to
-// 0.75 (stout, short-branched); the pipe model's 0.5 in between.
-constexpr double kMinSlope = 0.25, kMaxSlope = 0.75;
-// Tukey biweight tuning constant (95 % efficiency for normal residuals) and iterations.
-constexpr double kTukey = 4.685;
-constexpr int kIterations = 10;
+// Fewer anchoring radii than this do not set the law's scale.
+constexpr std::size_t kMinAnchors = 3;
+// The pipe model's exponent: cross-section area proportional to the carried length.
+constexpr double kPipeExponent = 0.5;
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -45,41 +41,26 @@ std::vector<double> carriedLengths(const std::vector<SkeletonNode>& nodes) {
 double Allometry::predict(std::size_t i) const { return std::exp(logA + b * std::log(carried[i])); }
 
 Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector<double>& r,
-                       const std::vector<char>& trusted) {
+                       const std::vector<char>& trusted, const std::vector<char>& stem) {
   Allometry a;
   a.carried = carriedLengths(nodes);
-  std::vector<double> x, y;
+  a.b = kPipeExponent;
+  const auto usable = [&](std::size_t i) { return r[i] > 0 && std::isfinite(r[i]); };
+  std::vector<double> logScale;
   for (std::size_t i = 0; i < nodes.size(); ++i)
-    if (trusted[i] && r[i] > 0 && std::isfinite(r[i])) {
-      x.push_back(std::log(a.carried[i]));
-      y.push_back(std::log(r[i]));
-    }
-  if (x.size() < kMinFits) return a;
-  std::vector<double> w(x.size(), 1.0), res(x.size());
-  for (int it = 0; it < kIterations; ++it) {
-    double sw = 0, sx = 0, sy = 0;
-    for (std::size_t k = 0; k < x.size(); ++k) {
-      sw += w[k];
-      sx += w[k] * x[k];
-      sy += w[k] * y[k];
-    }
-    if (!(sw > 0)) break;
-    const double mx = sx / sw, my = sy / sw;
-    double sxx = 0, sxy = 0;
-    for (std::size_t k = 0; k < x.size(); ++k) {
-      sxx += w[k] * (x[k] - mx) * (x[k] - mx);
-      sxy += w[k] * (x[k] - mx) * (y[k] - my);
-    }
-    a.b = std::clamp(sxx > 0 ? sxy / sxx : 0.5, kMinSlope, kMaxSlope);
-    for (std::size_t k = 0; k < x.size(); ++k) res[k] = y[k] - a.b * x[k];
-    a.logA = median(res);  // robust intercept for the clamped slope
-    for (std::size_t k = 0; k < x.size(); ++k) res[k] = std::abs(res[k] - a.logA);
-    const double scale = std::max(1.4826 * median(res), 1e-6);
-    for (std::size_t k = 0; k < x.size(); ++k) {
-      const double u = res[k] / (kTukey * scale);
-      w[k] = u < 1 ? (1 - u * u) * (1 - u * u) : 0.0;
-    }
+    if (stem[i] && usable(i)) logScale.push_back(std::log(r[i]) - a.b * std::log(a.carried[i]));
+  // Without a measured stem: the fits of the lower trunk (the nodes carrying at least half the
+  // tree), then any fits.
+  const double most = a.carried.empty() ? 0.0 : *std::max_element(a.carried.begin(), a.carried.end());
+  for (const double share : {0.5, 0.0}) {
+    if (logScale.size() >= kMinAnchors) break;
+    logScale.clear();
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (trusted[i] && usable(i) && a.carried[i] >= share * most)
+        logScale.push_back(std::log(r[i]) - a.b * std::log(a.carried[i]));
   }
+  if (logScale.size() < kMinAnchors) return a;
+  a.logA = median(logScale);
   a.valid = true;
   return a;
 }

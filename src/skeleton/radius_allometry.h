@@ -1,8 +1,10 @@
-// Radius prior from the tree's own shape: the pipe model's allometry. A branch's cross-section
-// carries the wood above it (Shinozaki et al. 1964), so a node's radius grows with the length of
-// the sub-tree it carries, r ≈ a · L^b (b = 0.5 for area-preserving pipes). a and b are fitted to
-// the tree's own trusted circle fits by a robust regression in log–log space, so the prior follows
-// the species and the scan; a fit far from it took in noise, a neighbour or a one-sided arc.
+// Radius prior from the tree's own shape: the pipe model. A branch's cross-section carries the
+// wood above it (Shinozaki et al. 1964), so its area grows with the length of the sub-tree it
+// carries: r = a · L^0.5. The scale a is taken where the scan measures a radius best, the stem
+// (its slab circle fits, else the fits of the lower trunk), never from the crown's fits: on a
+// noisy or sparse crown a circle fitted to a twig's shell of noise is several times the twig, and
+// a law fitted to those fits (the exponent fitted too) inherited their inflation — 4–13× the
+// volume of other tools' models on unseen scans, twigs nearly as thick as the stem.
 #pragma once
 
 #include <cstdint>
@@ -14,16 +16,19 @@ namespace treesketch::skeleton::detail {
 
 struct Allometry {
   bool valid = false;  ///< false when too few trusted fits to fit it
-  double logA = 0, b = 0.5;
+  double logA = 0, b = 0.5;  ///< r = exp(logA) · L^b
   std::vector<double> carried;  ///< per node: length of the sub-tree it carries, world units
 
   /// Predicted radius of node i.
   double predict(std::size_t i) const;
 };
 
-/// Fits the allometry to the radii `r` of the nodes with `trusted[i]`; nodes are parent-first.
+/// The pipe law of `nodes` (parent-first): b = 0.5 and log a the median of log r − 0.5 log L over
+/// the nodes with `stem[i]` (a measured stem radius), or, with fewer than three of those, over the
+/// `trusted[i]` nodes that carry at least half the tree (the lower trunk), then over all `trusted`
+/// nodes. Not valid with fewer than three such radii.
 Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector<double>& r,
-                       const std::vector<char>& trusted);
+                       const std::vector<char>& trusted, const std::vector<char>& stem);
 
 /// In place: the least-squares non-increasing sequence to `values` with `weights` > 0
 /// (isotonic regression by pooling adjacent violators): a branch's taper.

@@ -83,11 +83,11 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
     measured[i] = nodes[i].stem && nodes[i].radius > 0;
     ok[i] = ok[i] || measured[i];
   }
-  // 0. Fits much thicker than the tree's own allometry (radius against the length it carries)
-  // are rejected; no radius ends above that bound (step 5).
+  // 0. Fits much thicker than the pipe model anchored at the stem (radius against the length a
+  // node carries) are rejected; no radius ends above that bound (step 5).
   detail::Allometry allometry;
   if (rules.allometryMaxRatio > 0) {
-    allometry = detail::fitAllometry(nodes, r, ok);
+    allometry = detail::fitAllometry(nodes, r, ok, measured);
     if (allometry.valid)
       for (std::size_t i = 0; i < n; ++i) {
         const double p = allometry.predict(i);
@@ -106,7 +106,7 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
     for (std::size_t k = 0; k < chain.size(); ++k)
       if (ok[chain[k]]) good.push_back(k);
     if (good.empty()) {
-      // No fit on the whole branch: the tree's allometry where there is one (the level-set
+      // No fit on the whole branch: the pipe law where there is one (the level-set
       // pieces' own radii are the spread of whatever the bins held: twigs and noise), else
       // those estimates.
       if (allometry.valid)
@@ -115,7 +115,7 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
     }
     for (std::size_t k = 0; k < chain.size(); ++k) {
       if (ok[chain[k]]) continue;
-      // With the tree's allometry, the fits give the scale and the allometry the shape: the
+      // With the pipe law, the fits give the scale and the law the shape: the
       // ratio fit / prediction is interpolated, so a branch still tapers past its last fit
       // instead of keeping that fit's radius out to its tip. Without one, the radii themselves.
       auto value = [&](std::size_t j) {
@@ -175,7 +175,7 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
       const double cap = parent >= 0 ? r[parent] : std::numeric_limits<double>::infinity();
       for (std::size_t k = 0; k < chain.size(); ++k) r[chain[k]] = std::min(values[k], cap);
     }
-  // 5. Not above the allometry's bound.
+  // 5. Not above the pipe law's bound.
   if (allometry.valid)
     for (std::size_t i = 0; i < n; ++i) {
       if (measured[i]) continue;
@@ -420,8 +420,8 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
     }
   }
 
-  // 5.-6. The model into the sketch, and recon sweeps that sketch (kept circles need no fit).
   const auto t1 = std::chrono::steady_clock::now();
+  // 5.-6. The model into the sketch, and recon sweeps that sketch (kept circles need no fit).
   handOver(res, options.bridgeUnfittedForks);
   rec.update(res.sketch);
   res.mesh = rec.mesh();

@@ -54,8 +54,22 @@ double measuredVolumeShare(const TreeModel& model);
 
 struct MeasureOptions {
   double unitMetres = 1.0;  ///< metres per cloud unit (> 0)
-  bool fit = true;          ///< measure the cloud's points against the model (the report needs it)
+  bool fit = true;          ///< measure the cloud's points against the model (the report and the verdict need it)
+  bool leafOn = false;      ///< the model was made with the leaf-on settings (the verdict's advice)
+  /// Share of the automatic skeleton's pieces that looked like leaves (flat), or < 0 when unknown.
+  double leafPieceShare = -1;
 };
+
+/// Whether the model's figures can be trusted, with the measured reasons and what to do.
+struct Verdict {
+  enum class Level { Trusted, Uncertain, NotTrusted };
+  Level level = Level::Trusted;
+  std::vector<std::string> reasons;  ///< each with its measured figure
+  std::vector<std::string> advice;
+};
+
+/// "trusted", "uncertain", "not trusted".
+const char* toString(Verdict::Level level);
 
 /// What is known of a model against its cloud.
 struct ModelMeasures {
@@ -64,8 +78,17 @@ struct ModelMeasures {
   compare::ModelFitReport fit;    ///< shares of the points by signed distance (when hasFit)
   compare::ModelFigures figures;  ///< volume, length, trunk diameter
   double measuredVolumeShare = 0;
+  /// The volume's range, m³: pieces on fitted circles with their radii ±10 % (a circle fitted to a
+  /// scanned arc), inferred pieces ×2/3 to ×1.5 (the pipe model's spread between trees).
+  double volumeLow = 0, volumeHigh = 0;
+  /// Volume over the cylinder of the stem's DBH and the tree's height (a tree's form factor,
+  /// branches included: about 0.5–2.5); NaN without a DBH.
+  double formFactor = 0;
+  Verdict verdict;
   /// One line: the fit's shares (when measured) and the model's figures.
   std::string summary() const;
+  /// One line: the volume with its range and measured share, and the verdict with its reasons.
+  std::string verdictLine() const;
 };
 
 ModelMeasures measure(const TreeModel& model, const geom::PointCloud& cloud, const MeasureOptions& options = {});
@@ -85,8 +108,12 @@ struct OutputPaths {
 /// .ply (OptionsError / OutputError naming the path).
 void checkOutputs(const OutputPaths& paths, const std::vector<std::string>& inputs);
 
+/// {"level", "reasons", "advice"}.
+nlohmann::json verdictJson(const Verdict& verdict);
+
 /// The report: `header` (what the path knows: its nodes' fits, or the automatic model's counts
-/// and timings) with "model" ({"fit", "figures", "measuredVolumeShare"}) and "metrics" added.
+/// and timings) with "model" ({"fit", "figures", "measuredVolumeShare", "volumeRangeM3",
+/// "formFactor"}), "verdict" ({"level", "reasons", "advice"}) and "metrics" added.
 nlohmann::json reportJson(const ModelMeasures& measures, nlohmann::json header);
 
 /// Writes every wanted output, each atomically, in this order: cylinder table, TreeQSM text, mesh,

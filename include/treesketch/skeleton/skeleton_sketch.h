@@ -58,13 +58,16 @@ struct RadiusRules {
   /// by growing a fork's radius when its children need more (never shrinking it). Off by default:
   /// the fits measure radii, the rule only fills in where they are unreliable.
   bool pipeModel = false;
-  /// Allometric bound (a factor ≥ 1; 0 = off): the tree's own radius-against-carried-length law
-  /// (r = a·L^b, fitted robustly to its accepted fits; skeleton/radius_allometry.h) rejects fits
-  /// more than this factor above it, and no final radius exceeds it by more. Only an upper bound:
-  /// a fit that took in noise, a neighbour or a one-sided arc is too thick far more often than
-  /// too thin, and raising thin radii put real scans' points inside the model (adtree_tree7: 1 →
-  /// 5.5 % deeper than 2 cm). 2 measured best (1.5 lengthened the forward error).
-  double allometryMaxRatio = 2.0;
+  /// Pipe-model bound (a factor ≥ 1; 0 = off): the pipe model's law r = a·L^0.5 (radius against
+  /// the length a node carries), its scale taken from the measured stem
+  /// (skeleton/radius_allometry.h), rejects fits more than this factor above it, and no final
+  /// radius exceeds it by more. Only an upper bound: a fit that took in noise, a neighbour or a
+  /// one-sided arc is too thick far more often than too thin, and raising thin radii put real
+  /// scans' points inside the model. The factor is the room real crowns take beyond the pure
+  /// pipe model: 3 keeps the volume of every credible tuning scan within 0.67–1.5× of TreeQSM's
+  /// model of it (2 cut clean scans' crowns to half, 4 let a noisy crown to 1.7×;
+  /// docs/notes/radii_and_volume.md).
+  double allometryMaxRatio = 3.0;
 };
 
 /// How the branch axes are re-estimated after the fits (skeleton/axis_smoothing.h): a local,

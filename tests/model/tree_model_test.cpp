@@ -1,0 +1,79 @@
+// The one tree model: its volume's range and its verdict.
+#include "treesketch/model/tree_model.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "skeleton/synthetic_tree.h"
+
+namespace treesketch::model {
+namespace {
+
+using geom::Vec3;
+
+/// A model of one upright cylinder of `radius` from z = 0 to z = 4, in four pieces; `measured`
+/// says whether its radii rest on fitted circles.
+TreeModel stem(double radius, bool measured) {
+  std::vector<geom::ModelNode> nodes(5);
+  for (int i = 0; i < 5; ++i) {
+    nodes[i].position = Vec3(0, 0, i);
+    nodes[i].radius = radius;
+    nodes[i].parent = i - 1;
+    nodes[i].branchOrder = 0;
+  }
+  TreeModel m;
+  m.cylinders = geom::cylinderModelFromNodes(nodes);
+  m.measured.assign(m.cylinders.size(), measured ? 1 : 0);
+  m.up = geom::UpAxis::Z;
+  return m;
+}
+
+geom::PointCloud stemScan(double radius) {
+  return test::sampleCylinders({{Vec3(0, 0, 0), Vec3(0, 0, 4), radius, -1}}, 0.01, 0.002, 3);
+}
+
+TEST(TreeModel, AModelOnItsPointsIsTrustedWithANarrowRange) {
+  const geom::PointCloud cloud = stemScan(0.1);
+  const ModelMeasures m = measure(stem(0.1, true), cloud);
+  EXPECT_EQ(m.verdict.level, Verdict::Level::Trusted) << m.verdictLine();
+  EXPECT_DOUBLE_EQ(m.measuredVolumeShare, 1.0);
+  EXPECT_NEAR(m.volumeLow / m.figures.volume, 0.81, 1e-9);
+  EXPECT_NEAR(m.volumeHigh / m.figures.volume, 1.21, 1e-9);
+  EXPECT_NEAR(m.formFactor, 1.0, 0.05);  // a cylinder: its own DBH and height
+  const nlohmann::json report = reportJson(m, nlohmann::json::object());
+  EXPECT_EQ(report["verdict"]["level"], "trusted");
+  EXPECT_EQ(report["model"]["volumeRangeM3"].size(), 2u);
+}
+
+TEST(TreeModel, TubesThickerThanThePointsAreNotTrustedAndSaySo) {
+  const geom::PointCloud cloud = stemScan(0.05);
+  const ModelMeasures m = measure(stem(0.2, true), cloud);  // 4× the points' radius
+  EXPECT_EQ(m.verdict.level, Verdict::Level::NotTrusted);
+  ASSERT_FALSE(m.verdict.reasons.empty());
+  EXPECT_NE(m.verdict.reasons.front().find("deeper than 2 cm inside"), std::string::npos) << m.verdictLine();
+  EXPECT_NE(m.verdictLine().find("--leaf-on"), std::string::npos);  // the advice for a leaf-off run
+  MeasureOptions leafOn;
+  leafOn.leafOn = true;
+  EXPECT_EQ(measure(stem(0.2, true), cloud, leafOn).verdictLine().find("--leaf-on"), std::string::npos);
+}
+
+TEST(TreeModel, InferredRadiiWidenTheRangeAndAreNamed) {
+  const geom::PointCloud cloud = stemScan(0.1);
+  const ModelMeasures m = measure(stem(0.1, false), cloud);
+  EXPECT_DOUBLE_EQ(m.measuredVolumeShare, 0.0);
+  EXPECT_NEAR(m.volumeLow / m.figures.volume, 4.0 / 9.0, 1e-9);
+  EXPECT_NEAR(m.volumeHigh / m.figures.volume, 2.25, 1e-9);
+  EXPECT_EQ(m.verdict.level, Verdict::Level::Uncertain);
+  EXPECT_NE(m.verdictLine().find("pipe model"), std::string::npos) << m.verdictLine();
+}
+
+TEST(TreeModel, ASparseCloudIsNamed) {
+  geom::PointCloud few;
+  for (int i = 0; i < 40; ++i) few.positions.emplace_back(0.1 * std::cos(i), 0.1 * std::sin(i), 0.1 * i);
+  const ModelMeasures m = measure(stem(0.1, true), few);
+  EXPECT_NE(m.verdictLine().find("points per metre"), std::string::npos) << m.verdictLine();
+}
+
+}  // namespace
+}  // namespace treesketch::model
