@@ -1,6 +1,7 @@
 // One tree through the automatic pipeline (see tree_job.h).
 #include "tree_job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -20,22 +21,24 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// A model is made only from a fitted circle: a cloud whose points are all equal, on one line or
-/// too few for a circle gives none, and a tube swept without one (or of zero area) is no success.
+/// A model needs a skeleton and a tube of some area. A cloud too sparse for any circle fit (an
+/// airborne scan) still gets one, with every radius inferred (and its verdict says so); a cloud
+/// whose points are all equal or on one line gives none.
 void checkAutoModel(const TreeJob& a, const geom::PointCloud& cloud, const skeleton::AutoSkeletonResult& r) {
-  std::size_t accepted = 0;
-  for (char c : r.fitAccepted) accepted += c != 0;
   char what[512];
   std::snprintf(what, sizeof what, "%s (%zu points, bounding-box diagonal %.6g)", a.cloud.c_str(), cloud.size(),
                 cloud.bounds().diagonal());
-  if (r.mesh.empty() || r.model.empty())
-    throw DegenerateInputError(std::string(what) + ": no skeleton found; no mesh written");
-  if (accepted == 0)
+  if (r.mesh.empty() || r.model.size() < 2)
+    throw DegenerateInputError(std::string(what) + ": no skeleton found (points all equal, on a line, or too few?); no mesh written");
+  const bool fitted = std::any_of(r.fitAccepted.begin(), r.fitAccepted.end(), [](char c) { return c != 0; }) ||
+                      std::any_of(r.model.begin(), r.model.end(), [](const skeleton::SkeletonNode& n) { return n.stem; });
+  if (!fitted && !r.radiiFromCrown)
     throw DegenerateInputError(std::string(what) + ": no circle could be fitted at any of the " +
                                std::to_string(r.model.size()) +
-                               " skeleton nodes (points all equal, on a line, or too few?); no mesh written");
+                               " skeleton nodes and no crown to infer a stem from (points all equal, on a line, or "
+                               "too few?); no mesh written");
   if (!(r.mesh.area() > 0))
-    throw DegenerateInputError(std::string(what) + ": the model has zero area; no mesh written");
+    throw DegenerateInputError(std::string(what) + ": the model has zero area (points on a line?); no mesh written");
 }
 
 }  // namespace

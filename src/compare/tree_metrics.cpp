@@ -90,6 +90,10 @@ void modelMetrics(const geom::CylinderModel& model, geom::UpAxis up, const TreeM
   m->crownArea *= u * u;
   m->crownSpread *= u;
   m->crownDiameter = 2 * std::sqrt(m->crownArea / std::numbers::pi);
+  // The taper table of a tree: at most kMaxTaperSamples heights (a taller "tree" is a cloud in the
+  // wrong units or with far outliers; its table would fill the memory, one row per metre).
+  constexpr int kMaxTaperSamples = 2000;
+  if (!(m->height / o.taperStep < kMaxTaperSamples)) return;
   for (int k = 0; k * o.taperStep <= m->height * (1 + 1e-12); ++k) {
     const double h = k * o.taperStep;
     double r = 0;

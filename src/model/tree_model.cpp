@@ -241,8 +241,8 @@ ModelMeasures measure(const TreeModel& model, const geom::PointCloud& cloud, con
 }
 
 std::string ModelMeasures::verdictLine() const {
-  char buf[200];
-  std::snprintf(buf, sizeof buf, "volume %.4f m³ (range %.4f–%.4f, %.0f %% on fitted circles); verdict: %s",
+  char buf[400];
+  std::snprintf(buf, sizeof buf, "volume %.4g m³ (range %.4g–%.4g, %.0f %% on fitted circles); verdict: %s",
                 figures.volume, volumeLow, volumeHigh, 100.0 * measuredVolumeShare, toString(verdict.level));
   std::string line = buf;
   for (const std::string& r : verdict.reasons) line += "\n  - " + r;

@@ -65,6 +65,14 @@ Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector
   return a;
 }
 
+std::vector<double> pipeRadii(const std::vector<SkeletonNode>& nodes, double rootRadius) {
+  const std::vector<double> carried = carriedLengths(nodes);
+  std::vector<double> r(nodes.size(), rootRadius);
+  if (nodes.empty() || !(carried[0] > 0)) return r;
+  for (std::size_t i = 0; i < nodes.size(); ++i) r[i] = rootRadius * std::pow(carried[i] / carried[0], kPipeExponent);
+  return r;
+}
+
 void nonIncreasingFit(std::vector<double>& values, const std::vector<double>& weights) {
   struct Block {
     double mean, weight;

@@ -30,6 +30,10 @@ struct Allometry {
 Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector<double>& r,
                        const std::vector<char>& trusted, const std::vector<char>& stem);
 
+/// The pipe law through the root: r_i = rootRadius · (L_i / L_root)^0.5, where L is the length a
+/// node carries (nodes parent-first; the first root is the root).
+std::vector<double> pipeRadii(const std::vector<SkeletonNode>& nodes, double rootRadius);
+
 /// In place: the least-squares non-increasing sequence to `values` with `weights` > 0
 /// (isotonic regression by pooling adjacent violators): a branch's taper.
 void nonIncreasingFit(std::vector<double>& values, const std::vector<double>& weights);

@@ -3,6 +3,7 @@
 #include "treesketch/skeleton/skeleton_sketch.h"
 
 #include <algorithm>
+#include <numbers>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -10,6 +11,7 @@
 #include "skeleton/axis_smoothing.h"
 #include "skeleton/completion.h"
 #include "skeleton/radius_allometry.h"
+#include "treesketch/compare/tree_metrics.h"
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/skeleton/skeleton_export.h"
 #include "treesketch/util/error.h"
@@ -299,8 +301,27 @@ void handOver(AutoSkeletonResult& res, bool bridgeUnfittedForks) {
 
 /// Steps 2.-4.: the sketch of `res.skeleton`, the fit pass by `rec`, and the model (accepted fits,
 /// regularised radii, smoothed axes). `rec` re-fits only the nodes it has not fitted before.
-void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const AutoSkeletonOptions& options,
-              const ProgressFn& progress) {
+/// Radii for a cloud where no circle could be fitted and no stem was measured (an airborne scan:
+/// scaffold limbs as lines of points): the pipe model from a stem inferred from the crown. An
+/// open-grown tree's crown is about 20–25 times as wide as its stem at breast height; the
+/// crown's width is the diameter of the circle with the area of the cloud's ground projection.
+/// Every radius is inferred (no fit is accepted), and the model says so.
+std::vector<double> radiiFromTheCrown(const std::vector<SkeletonNode>& nodes, const geom::PointCloud& cloud,
+                                      geom::UpAxis up) {
+  constexpr double kCrownPerStemDiameter = 22.0;
+  std::vector<geom::Vec2> ground;
+  ground.reserve(cloud.size());
+  for (const geom::Vec3& p : cloud.positions)
+    ground.push_back(up == geom::UpAxis::Y ? geom::Vec2(p.x(), p.z()) : geom::Vec2(p.x(), p.y()));
+  double area = 0, spread = 0;
+  compare::convexHullFigures(std::move(ground), &area, &spread);
+  const double crown = 2 * std::sqrt(area / std::numbers::pi);
+  if (!(crown > 0) || !std::isfinite(crown)) return {};  // no crown: points on a line or a plane on edge
+  return detail::pipeRadii(nodes, 0.5 * crown / kCrownPerStemDiameter);
+}
+
+void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const geom::PointCloud& cloud,
+              const AutoSkeletonOptions& options, const ProgressFn& progress) {
   auto t0 = std::chrono::steady_clock::now();
   res.sketch = skeletonToSketch(res.skeleton, options.sketch);
   const double voxel = res.skeleton.graph.voxelSize;
@@ -309,7 +330,13 @@ void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const AutoSke
 
   t0 = std::chrono::steady_clock::now();
   const std::vector<double> fitted = acceptFits(res, options.radii, voxel);
-  const std::vector<double> radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, options.radii);
+  const bool measured = std::any_of(res.fitAccepted.begin(), res.fitAccepted.end(), [](char a) { return a != 0; }) ||
+                        std::any_of(res.skeleton.nodes.begin(), res.skeleton.nodes.end(),
+                                    [](const SkeletonNode& n) { return n.stem && n.radius > 0; });
+  std::vector<double> radii;
+  if (!measured) radii = radiiFromTheCrown(res.skeleton.nodes, cloud, options.skeleton.up);
+  res.radiiFromCrown = !radii.empty();
+  if (radii.empty()) radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, options.radii);
   const std::vector<geom::Vec3> axes =
       detail::smoothAxes(res.model, res.fitAccepted, radii, options.axes.centroidPrecisionVoxels * voxel, options.axes);
   for (std::size_t i = 0; i < res.model.size(); ++i) {
@@ -396,7 +423,7 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   const auto t2 = std::chrono::steady_clock::now();
   recon::Reconstruction rec(cloud, reconstructionOptions(options, res.skeleton.graph.voxelSize));
   res.fitMs += elapsedMs(t2);
-  fitModel(res, rec, options, progress);
+  fitModel(res, rec, cloud, options, progress);
   // 4b. The parts the model left out, grafted on and fitted (recon fits only the new nodes), round
   // after round while a round grafts any (a part grafted on explains points near it, and the
   // points beyond are the next round's parts). The model's nodes keep their positions and radii: a part carries little
@@ -408,7 +435,7 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
     const std::size_t modelled = res.model.size();
     if (!complete(cloud, options, res, unexplained, round)) break;
     const std::vector<SkeletonNode> before = res.model;
-    fitModel(res, rec, options, progress);
+    fitModel(res, rec, cloud, options, progress);
     for (std::size_t i = 0; i < res.model.size(); ++i) {
       SkeletonNode& node = res.model[i];
       if (i < modelled) {

@@ -197,6 +197,9 @@ struct AutoSkeletonResult {
   /// the cylinder table is written from).
   std::vector<SkeletonNode> model;
   geom::TriMesh mesh;  ///< recon's tubes through `sketch`
+  /// No circle could be fitted and no stem measured (a sparse airborne cloud): every radius is
+  /// the pipe model's from a stem inferred from the crown's width (none accepted in fitAccepted).
+  bool radiiFromCrown = false;
   /// Wall times: the skeleton's extraction; the slice index and the fit passes; the radius rules
   /// and the sweep; the completion's residual, parts and grafts (CompletionRules).
   double skeletonMs = 0, fitMs = 0, sweepMs = 0, completionMs = 0;
