@@ -23,7 +23,7 @@ std::string lower(std::string s) {
 }
 
 bool isCloudExtension(const std::string& ext) {
-  static const char* kExt[] = {".las", ".laz", ".ply", ".xyz", ".txt", ".csv", ".pts"};
+  static const char* kExt[] = {".las", ".laz", ".ply", ".xyz", ".txt", ".csv", ".pts", ".asc"};
   return std::find_if(std::begin(kExt), std::end(kExt), [&](const char* e) { return ext == e; }) != std::end(kExt);
 }
 
