@@ -29,9 +29,11 @@ constexpr std::uint16_t kLaszipRecordId = 22204;
 constexpr std::size_t kVlrHeaderSize = 54;
 constexpr std::size_t kLazVlrFixedSize = 34, kLazItemSize = 6;
 /// Most points a chunk may claim per compressed byte. The adaptive models cap a symbol's
-/// probability, so even identical records cost about 0.01 bit each (under 1000 points a byte);
-/// this bound, 16 times that, only stops damaged counts from allocating without limit.
-constexpr std::uint64_t kMaxPointsPerByte = 16384;
+/// probability (bits at 8191/8192, symbols near 1 - n/32768), so a record costs at least about
+/// 0.008 bit (a change symbol and three corrections) even when all records are identical: under
+/// 1000 points a byte. Real scans take 3–10 bytes a point. The bound stops a damaged count from
+/// allocating memory the data could never fill.
+constexpr std::uint64_t kMaxPointsPerByte = 1024;
 
 /// Throws unless `count` points can come from `bytes` compressed bytes (see kMaxPointsPerByte).
 void checkPlausible(std::uint64_t count, std::uint64_t bytes, std::uint64_t at, const std::string& source) {
@@ -62,7 +64,8 @@ std::uint16_t itemFixedSize(std::uint16_t type) {
 }
 
 /// Checks the item list against the compressor and the point format; `at` is the list's offset.
-void checkItems(const LazInfo& info, const LasHeader& h, std::uint64_t at, const std::string& source) {
+void checkItems(const LazInfo& info, int pointFormat, std::uint16_t recordLength, std::uint64_t at,
+                const std::string& source) {
   const bool layered = info.compressor == 3;
   std::uint32_t total = 0;
   for (std::size_t i = 0; i < info.items.size(); ++i) {
@@ -99,14 +102,14 @@ void checkItems(const LazInfo& info, const LasHeader& h, std::uint64_t at, const
     total += it.size;
   }
   if (info.items.empty()) throw InputError(atOffset(source, at, "LASzip VLR lists no items, expected at least one"));
-  if ((info.items[0].type == laz::kPoint14) != (h.pointFormat >= 6))
+  if (pointFormat >= 0 && (info.items[0].type == laz::kPoint14) != (pointFormat >= 6))
     throw InputError(atOffset(source, at, "LAZ item " + info.items[0].name + " does not code point format " +
-                                              std::to_string(h.pointFormat) + ", expected " +
-                                              (h.pointFormat >= 6 ? "POINT14" : "POINT10")));
-  if (total != h.recordLength)
+                                              std::to_string(pointFormat) + ", expected " +
+                                              (pointFormat >= 6 ? "POINT14" : "POINT10")));
+  if (total != recordLength)
     throw InputError(atOffset(source, at, "LAZ items add up to " + std::to_string(total) +
                                               " bytes, expected the point record length " +
-                                              std::to_string(h.recordLength)));
+                                              std::to_string(recordLength)));
 }
 
 struct Chunk {
@@ -195,9 +198,9 @@ std::vector<Chunk> readChunkTable(std::string_view file, const LasHeader& h, con
 
 /// Decodes one point-wise chunk into `out` (c.count records).
 void decodePointwise(std::string_view file, const Chunk& c, const LazInfo& info, std::uint16_t recordLength,
-                     unsigned char* out, const std::string& source) {
+                     unsigned char* out, const std::string& source, std::uint64_t base = 0) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(file.data());
-  laz::ArithmeticDecoder dec(bytes + c.begin, bytes + c.end, c.begin, source);
+  laz::ArithmeticDecoder dec(bytes + c.begin, bytes + c.end, base + c.begin, source);
   std::vector<std::unique_ptr<laz::PointwiseItem>> items;
   std::size_t off = 0;
   for (const LazItem& it : info.items) {
@@ -219,9 +222,9 @@ void decodePointwise(std::string_view file, const Chunk& c, const LazInfo& info,
 
 /// Decodes one layered chunk into `out` (c.count records).
 void decodeLayered(std::string_view file, const Chunk& c, const LazInfo& info, std::uint16_t recordLength,
-                   unsigned char* out, const std::string& source) {
+                   unsigned char* out, const std::string& source, std::uint64_t base = 0) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(file.data());
-  laz::ArithmeticDecoder in(bytes + c.begin, bytes + c.end, c.begin, source);
+  laz::ArithmeticDecoder in(bytes + c.begin, bytes + c.end, base + c.begin, source);
   std::vector<std::unique_ptr<laz::LayeredItem>> items;
   std::size_t off = 0;
   unsigned channel = 0;
@@ -322,7 +325,7 @@ LazInfo parseLazVlr(std::string_view file, const LasHeader& h, const std::string
         it.name = laz::itemName(it.type);
         info.items.push_back(it);
       }
-      checkItems(info, h, body + kLazVlrFixedSize, source);
+      checkItems(info, h.pointFormat, h.recordLength, body + kLazVlrFixedSize, source);
       return info;
     }
     at = body + length;
@@ -331,6 +334,24 @@ LazInfo parseLazVlr(std::string_view file, const LasHeader& h, const std::string
                             "compressed point data (LAZ) but no LASzip VLR (user id 'laszip encoded', record " +
                                 std::to_string(kLaszipRecordId) + ") among the " + std::to_string(h.numVlrs) +
                                 " VLRs, expected one"));
+}
+
+std::string decompressLazChunk(std::string_view chunk, const LazInfo& info, std::uint16_t recordLength,
+                               std::uint64_t count, const std::string& source, std::uint64_t fileOffset) {
+  if (info.compressor < 1 || info.compressor > 3)
+    throw InputError(source + ": unknown LAZ compressor " + std::to_string(info.compressor) + ", expected 1, 2 or 3");
+  checkItems(info, -1, recordLength, fileOffset, source);
+  // The chunk's bytes sit at offset 0 of their own view; messages add fileOffset.
+  checkPlausible(count, chunk.size(), fileOffset, source);
+  std::string out(static_cast<std::size_t>(count) * recordLength, '\0');
+  if (count == 0) return out;
+  const Chunk c{0, chunk.size(), 0, count};
+  auto* dst = reinterpret_cast<unsigned char*>(out.data());
+  if (info.compressor == 3)
+    decodeLayered(chunk, c, info, recordLength, dst, source, fileOffset);
+  else
+    decodePointwise(chunk, c, info, recordLength, dst, source, fileOffset);
+  return out;
 }
 
 std::string decompressLaz(std::string_view file, const LasHeader& h, const std::string& source, LazInfo* infoOut,

@@ -59,4 +59,12 @@ LazInfo parseLazVlr(std::string_view file, const LasHeader& header, const std::s
 std::string decompressLaz(std::string_view file, const LasHeader& header, const std::string& source,
                           LazInfo* info = nullptr, int threads = 0);
 
+/// Decodes one chunk as stored in a LAZ file (`chunk`: its bytes, from its raw first record to
+/// its end) into `count` uncompressed records of `recordLength` bytes, coded with `info`'s
+/// compressor and items (for tools that locate chunks themselves, and the fuzz harness).
+/// `fileOffset`: where the chunk starts in `source`, for messages. Throws InputError for items
+/// that do not fit the compressor or do not add up to `recordLength`, and for data that ends early.
+std::string decompressLazChunk(std::string_view chunk, const LazInfo& info, std::uint16_t recordLength,
+                               std::uint64_t count, const std::string& source, std::uint64_t fileOffset = 0);
+
 }  // namespace treesketch::io
