@@ -11,7 +11,7 @@ const fs = require('fs');
 const path = require('path');
 
 async function main() {
-  const [moduleDir, file] = process.argv.slice(2);
+  const [moduleDir, file, mode] = process.argv.slice(2);
   if (!moduleDir || !file) {
     process.stderr.write('usage: node laz_oracle.js MODULE_DIR FILE.laz\n');
     process.exit(2);
@@ -21,6 +21,22 @@ async function main() {
   const bytes = fs.readFileSync(file);
   const filePtr = lp._malloc(bytes.length);
   lp.HEAPU8.set(bytes, filePtr);
+  if (mode === '--time') {
+    let best = Infinity, n = 0;
+    for (let r = 0; r < 3; ++r) {
+      const t0 = process.hrtime.bigint();
+      const z = new lp.LASZip();
+      z.open(filePtr, bytes.length);
+      n = z.getCount();
+      const p = lp._malloc(z.getPointLength());
+      for (let i = 0; i < n; ++i) z.getPoint(p);
+      z.delete();
+      lp._free(p);
+      best = Math.min(best, Number(process.hrtime.bigint() - t0) / 1e9);
+    }
+    process.stdout.write(`${n} ${best}\n`);
+    return;
+  }
   const laszip = new lp.LASZip();
   laszip.open(filePtr, bytes.length);
   const format = laszip.getPointFormat();
