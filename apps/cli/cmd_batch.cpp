@@ -232,7 +232,7 @@ void registerBatch(CLI::App& app, Action& action) {
                                  "metrics and report per tree, and a summary");
   auto a = std::make_shared<BatchArgs>();
   sub->add_option("input", a->input,
-                  "A folder of clouds (.las .ply .xyz .txt .csv .pts; cylinder tables skipped) or a manifest (one "
+                  "A folder of clouds (.las .laz .ply .xyz .txt .csv .pts .asc; cylinder tables skipped) or a manifest (one "
                   "cloud path per line)")
       ->required();
   sub->add_option("--out", a->out, "Output folder: OUT/<tree>/ per tree, OUT/summary.csv and .json")->required();
