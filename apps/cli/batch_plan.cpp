@@ -98,7 +98,8 @@ BatchPlan planBatch(const fs::path& input) {
   } else {
     throw InputError(input.string() + ": no such folder or manifest");
   }
-  if (plan.trees.empty()) throw InputError(input.string() + ": no point clouds found (.las .laz .ply .xyz .txt .csv .pts .asc)");
+  if (plan.trees.empty())
+    throw InputError(input.string() + ": no point clouds found (.las .laz .ply .xyz .txt .csv .pts .asc)");
   nameTrees(plan.trees);
   return plan;
 }

@@ -199,7 +199,8 @@ void registerCompare(CLI::App& app, Action& action) {
       "compare", "Hausdorff comparison of two surfaces as Metro / MeshLab (forward, backward, symmetric)");
   auto args = std::make_shared<CompareArgs>();
   sub->add_option("a", args->a, "Mesh A, e.g. the original (.obj .ply)")->required();
-  sub->add_option("b", args->b, "Mesh or point cloud B, e.g. the reconstruction (.obj .ply .xyz .txt .csv .pts .asc .las .laz)")
+  sub->add_option("b", args->b,
+                  "Mesh or point cloud B, e.g. the reconstruction (.obj .ply .xyz .txt .csv .pts .asc .las .laz)")
       ->required();
   sub->add_option("--samples", args->samples, "Samples per enabled kind (default: the sampled mesh's vertex count)");
   sub->add_flag("--no-vertex", args->noVertex, "Do not sample vertices");

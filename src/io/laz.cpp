@@ -38,10 +38,10 @@ constexpr std::uint64_t kMaxPointsPerByte = 1024;
 /// Throws unless `count` points can come from `bytes` compressed bytes (see kMaxPointsPerByte).
 void checkPlausible(std::uint64_t count, std::uint64_t bytes, std::uint64_t at, const std::string& source) {
   if (count > 1 + bytes * kMaxPointsPerByte)
-    throw InputError(atOffset(source, at, std::to_string(count) + " points cannot come from " + std::to_string(bytes) +
-                                              " compressed bytes, expected at most " +
-                                              std::to_string(1 + bytes * kMaxPointsPerByte) +
-                                              " (damaged point count?)"));
+    throw InputError(atOffset(source, at,
+                              std::to_string(count) + " points cannot come from " + std::to_string(bytes) +
+                                  " compressed bytes, expected at most " +
+                                  std::to_string(1 + bytes * kMaxPointsPerByte) + " (damaged point count?)"));
 }
 
 /// The size an item type must have (0: any non-zero size, the extra bytes).
@@ -76,40 +76,46 @@ void checkItems(const LazInfo& info, int pointFormat, std::uint16_t recordLength
     const bool layeredType =
         it.type == laz::kPoint14 || it.type == laz::kRgb14 || it.type == laz::kRgbNir14 || it.type == laz::kByte14;
     if (it.type == laz::kWavePacket13 || it.type == laz::kWavePacket14)
-      throw InputError(atOffset(source, off, "LAZ item " + it.name + " (waveform packets) is not supported, expected "
-                                             "point formats 0-3 or 6-8"));
+      throw InputError(atOffset(source, off,
+                                "LAZ item " + it.name +
+                                    " (waveform packets) is not supported, expected "
+                                    "point formats 0-3 or 6-8"));
     if (!pointwiseType && !layeredType)
-      throw InputError(atOffset(source, off, "unknown LAZ item " + it.name +
-                                                 ", expected POINT10, GPSTIME11, RGB12, BYTE, POINT14, RGB14, "
-                                                 "RGBNIR14 or BYTE14"));
+      throw InputError(atOffset(source, off,
+                                "unknown LAZ item " + it.name +
+                                    ", expected POINT10, GPSTIME11, RGB12, BYTE, POINT14, RGB14, "
+                                    "RGBNIR14 or BYTE14"));
     if (layered != layeredType)
-      throw InputError(atOffset(source, off, "LAZ item " + it.name + " does not belong to compressor " +
-                                                 info.compressorName() + ", expected " +
-                                                 (layered ? "POINT14, RGB14, RGBNIR14 or BYTE14"
-                                                          : "POINT10, GPSTIME11, RGB12 or BYTE")));
+      throw InputError(
+          atOffset(source, off,
+                   "LAZ item " + it.name + " does not belong to compressor " + info.compressorName() + ", expected " +
+                       (layered ? "POINT14, RGB14, RGBNIR14 or BYTE14" : "POINT10, GPSTIME11, RGB12 or BYTE")));
     const std::uint16_t wantVersion = layered ? 3 : 2;
     if (it.version != wantVersion)
-      throw InputError(atOffset(source, off + 4, "LAZ item " + it.name + " has coding version " +
-                                                     std::to_string(it.version) + ", expected version " +
-                                                     std::to_string(wantVersion) + " (the only one supported)"));
+      throw InputError(atOffset(source, off + 4,
+                                "LAZ item " + it.name + " has coding version " + std::to_string(it.version) +
+                                    ", expected version " + std::to_string(wantVersion) + " (the only one supported)"));
     const std::uint16_t want = itemFixedSize(it.type);
     if ((want && it.size != want) || it.size == 0)
-      throw InputError(atOffset(source, off + 2, "LAZ item " + it.name + " has size " + std::to_string(it.size) +
-                                                     ", expected " + (want ? std::to_string(want) : "at least 1")));
+      throw InputError(atOffset(source, off + 2,
+                                "LAZ item " + it.name + " has size " + std::to_string(it.size) + ", expected " +
+                                    (want ? std::to_string(want) : "at least 1")));
     if ((i == 0) != (it.type == laz::kPoint10 || it.type == laz::kPoint14))
-      throw InputError(atOffset(source, off, "LAZ item " + it.name + " at position " + std::to_string(i + 1) +
-                                                 ", expected POINT10 or POINT14 first and only first"));
+      throw InputError(atOffset(source, off,
+                                "LAZ item " + it.name + " at position " + std::to_string(i + 1) +
+                                    ", expected POINT10 or POINT14 first and only first"));
     total += it.size;
   }
   if (info.items.empty()) throw InputError(atOffset(source, at, "LASzip VLR lists no items, expected at least one"));
   if (pointFormat >= 0 && (info.items[0].type == laz::kPoint14) != (pointFormat >= 6))
-    throw InputError(atOffset(source, at, "LAZ item " + info.items[0].name + " does not code point format " +
-                                              std::to_string(pointFormat) + ", expected " +
-                                              (pointFormat >= 6 ? "POINT14" : "POINT10")));
+    throw InputError(atOffset(source, at,
+                              "LAZ item " + info.items[0].name + " does not code point format " +
+                                  std::to_string(pointFormat) + ", expected " +
+                                  (pointFormat >= 6 ? "POINT14" : "POINT10")));
   if (total != recordLength)
-    throw InputError(atOffset(source, at, "LAZ items add up to " + std::to_string(total) +
-                                              " bytes, expected the point record length " +
-                                              std::to_string(recordLength)));
+    throw InputError(atOffset(source, at,
+                              "LAZ items add up to " + std::to_string(total) +
+                                  " bytes, expected the point record length " + std::to_string(recordLength)));
 }
 
 struct Chunk {
@@ -126,14 +132,15 @@ std::vector<Chunk> readChunkTable(std::string_view file, const LasHeader& h, con
   std::vector<Chunk> chunks;
   if (info.compressor == 1) {  // one stream, no table
     if (size < pointData)
-      throw InputError(atOffset(source, size, "truncated: point data should start at byte " + std::to_string(pointData)));
+      throw InputError(
+          atOffset(source, size, "truncated: point data should start at byte " + std::to_string(pointData)));
     checkPlausible(h.pointCount, size - pointData, pointData, source);
     if (h.pointCount) chunks.push_back({pointData, size, 0, h.pointCount});
     return chunks;
   }
   if (size < pointData + 8)
-    throw InputError(atOffset(source, size, "truncated: expected the 8-byte chunk table offset at byte " +
-                                                std::to_string(pointData)));
+    throw InputError(atOffset(
+        source, size, "truncated: expected the 8-byte chunk table offset at byte " + std::to_string(pointData)));
   auto tableAt = detail::loadLE<std::int64_t>(file.data() + pointData);
   std::uint64_t tableFieldAt = pointData;
   if (tableAt == -1) {  // not written back: the file's last 8 bytes hold it
@@ -142,9 +149,11 @@ std::vector<Chunk> readChunkTable(std::string_view file, const LasHeader& h, con
   }
   if (tableAt < static_cast<std::int64_t>(pointData + 8) || static_cast<std::uint64_t>(tableAt) + 8 > size)
     throw InputError(atOffset(source, tableFieldAt,
-                              "chunk table offset " + std::to_string(tableAt) + " lies outside the point data, "
-                              "expected " + std::to_string(pointData + 8) + " to " +
-                              std::to_string(size >= 8 ? size - 8 : 0) + " (truncated file?)"));
+                              "chunk table offset " + std::to_string(tableAt) +
+                                  " lies outside the point data, "
+                                  "expected " +
+                                  std::to_string(pointData + 8) + " to " + std::to_string(size >= 8 ? size - 8 : 0) +
+                                  " (truncated file?)"));
   const auto table = static_cast<std::uint64_t>(tableAt);
   const auto version = detail::loadLE<std::uint32_t>(file.data() + table);
   const auto count = detail::loadLE<std::uint32_t>(file.data() + table + 4);
@@ -155,8 +164,9 @@ std::vector<Chunk> readChunkTable(std::string_view file, const LasHeader& h, con
     throw InputError(atOffset(source, table, "chunk size 0 in the LASzip VLR, expected a positive point count"));
   // Every chunk takes at least one byte, so a count beyond the table's position is damage.
   if (count > table - pointData)
-    throw InputError(atOffset(source, table + 4, "chunk table lists " + std::to_string(count) +
-                                                     " chunks, more than the point data can hold"));
+    throw InputError(
+        atOffset(source, table + 4,
+                 "chunk table lists " + std::to_string(count) + " chunks, more than the point data can hold"));
   const auto* bytes = reinterpret_cast<const unsigned char*>(file.data());
   laz::ArithmeticDecoder dec(bytes + table + 8, bytes + size, table + 8, source);
   if (count) dec.start();
@@ -177,22 +187,24 @@ std::vector<Chunk> readChunkTable(std::string_view file, const LasHeader& h, con
     c.end = at + static_cast<std::uint32_t>(prevSize);
     c.firstPoint = first;
     if (c.end > table)
-      throw InputError(atOffset(source, c.begin, "chunk " + std::to_string(i + 1) + " of " + std::to_string(count) +
-                                                     " (" + std::to_string(static_cast<std::uint32_t>(prevSize)) +
-                                                     " bytes) runs past the chunk table at byte " +
-                                                     std::to_string(table) + ", expected it before"));
+      throw InputError(atOffset(source, c.begin,
+                                "chunk " + std::to_string(i + 1) + " of " + std::to_string(count) + " (" +
+                                    std::to_string(static_cast<std::uint32_t>(prevSize)) +
+                                    " bytes) runs past the chunk table at byte " + std::to_string(table) +
+                                    ", expected it before"));
     if (c.count > left || c.count == 0)
-      throw InputError(atOffset(source, c.begin, "chunk " + std::to_string(i + 1) + " holds " +
-                                                     std::to_string(c.count) + " points, expected 1 to the " +
-                                                     std::to_string(left) + " the header has left"));
+      throw InputError(atOffset(source, c.begin,
+                                "chunk " + std::to_string(i + 1) + " holds " + std::to_string(c.count) +
+                                    " points, expected 1 to the " + std::to_string(left) + " the header has left"));
     checkPlausible(c.count, c.end - c.begin, c.begin, source);
     at = c.end;
     first += c.count;
     left -= c.count;
   }
   if (left != 0)
-    throw InputError(atOffset(source, table, "the chunk table covers " + std::to_string(first) + " points, expected " +
-                                                 "the header's " + std::to_string(h.pointCount)));
+    throw InputError(atOffset(source, table,
+                              "the chunk table covers " + std::to_string(first) + " points, expected " +
+                                  "the header's " + std::to_string(h.pointCount)));
   return chunks;
 }
 
@@ -237,8 +249,9 @@ void decodeLayered(std::string_view file, const Chunk& c, const LazInfo& info, s
   const std::uint64_t countAt = in.offset();
   const std::uint32_t count = in.readRawU32();
   if (count != c.count)
-    throw InputError(atOffset(source, countAt, "chunk holds " + std::to_string(count) + " points, expected " +
-                                                   std::to_string(c.count) + " as the chunk table says"));
+    throw InputError(atOffset(source, countAt,
+                              "chunk holds " + std::to_string(count) + " points, expected " + std::to_string(c.count) +
+                                  " as the chunk table says"));
   for (auto& item : items) item->readSizes(in);
   for (auto& item : items) item->startLayers(in);
   for (std::uint64_t p = 1; p < c.count; ++p) {
@@ -280,8 +293,9 @@ LazInfo parseLazVlr(std::string_view file, const LasHeader& h, const std::string
   std::uint64_t at = h.headerSize;
   for (std::uint32_t v = 0; v < h.numVlrs; ++v) {
     if (at + kVlrHeaderSize > h.offsetToPointData || at + kVlrHeaderSize > file.size())
-      throw InputError(atOffset(source, at, "VLR " + std::to_string(v + 1) + " of " + std::to_string(h.numVlrs) +
-                                                " runs past the start of the point data, expected the LASzip VLR"));
+      throw InputError(atOffset(source, at,
+                                "VLR " + std::to_string(v + 1) + " of " + std::to_string(h.numVlrs) +
+                                    " runs past the start of the point data, expected the LASzip VLR"));
     const char* p = file.data() + at;
     std::string userId(p + 2, 16);
     userId.resize(std::strlen(userId.c_str()));
@@ -289,12 +303,14 @@ LazInfo parseLazVlr(std::string_view file, const LasHeader& h, const std::string
     const auto length = detail::loadLE<std::uint16_t>(p + 20);
     const std::uint64_t body = at + kVlrHeaderSize;
     if (body + length > h.offsetToPointData || body + length > file.size())
-      throw InputError(atOffset(source, at + 20, "VLR " + std::to_string(v + 1) + " of " + std::to_string(length) +
-                                                     " bytes runs past the start of the point data"));
+      throw InputError(atOffset(source, at + 20,
+                                "VLR " + std::to_string(v + 1) + " of " + std::to_string(length) +
+                                    " bytes runs past the start of the point data"));
     if (userId == kLaszipUserId && recordId == kLaszipRecordId) {
       if (length < kLazVlrFixedSize)
-        throw InputError(atOffset(source, at + 20, "LASzip VLR of " + std::to_string(length) +
-                                                       " bytes, expected at least " + std::to_string(kLazVlrFixedSize)));
+        throw InputError(atOffset(source, at + 20,
+                                  "LASzip VLR of " + std::to_string(length) + " bytes, expected at least " +
+                                      std::to_string(kLazVlrFixedSize)));
       const char* b = file.data() + body;
       LazInfo info;
       info.compressor = detail::loadLE<std::uint16_t>(b);
@@ -306,16 +322,17 @@ LazInfo parseLazVlr(std::string_view file, const LasHeader& h, const std::string
       info.chunkSize = detail::loadLE<std::uint32_t>(b + 12);
       const auto numItems = detail::loadLE<std::uint16_t>(b + 32);
       if (info.compressor < 1 || info.compressor > 3)
-        throw InputError(atOffset(source, body, "unknown LAZ compressor " + std::to_string(info.compressor) +
-                                                    ", expected 1 (point-wise), 2 (point-wise chunked) or 3 "
-                                                    "(layered chunked)"));
+        throw InputError(atOffset(source, body,
+                                  "unknown LAZ compressor " + std::to_string(info.compressor) +
+                                      ", expected 1 (point-wise), 2 (point-wise chunked) or 3 "
+                                      "(layered chunked)"));
       if (info.coder != 0)
-        throw InputError(
-            atOffset(source, body + 2, "unknown LAZ coder " + std::to_string(info.coder) + ", expected 0 (arithmetic)"));
+        throw InputError(atOffset(source, body + 2,
+                                  "unknown LAZ coder " + std::to_string(info.coder) + ", expected 0 (arithmetic)"));
       if (kLazVlrFixedSize + std::size_t(numItems) * kLazItemSize > length)
-        throw InputError(atOffset(source, body + 32, "LASzip VLR lists " + std::to_string(numItems) +
-                                                         " items, more than its " + std::to_string(length) +
-                                                         " bytes hold"));
+        throw InputError(atOffset(source, body + 32,
+                                  "LASzip VLR lists " + std::to_string(numItems) + " items, more than its " +
+                                      std::to_string(length) + " bytes hold"));
       for (std::uint16_t i = 0; i < numItems; ++i) {
         const char* q = b + kLazVlrFixedSize + i * kLazItemSize;
         LazItem it;
@@ -358,8 +375,8 @@ std::string decompressLaz(std::string_view file, const LasHeader& h, const std::
                           int threads) {
   LazInfo info = parseLazVlr(file, h, source);
   if (h.offsetToPointData > file.size())
-    throw InputError(atOffset(source, file.size(), "truncated: point data should start at byte " +
-                                                       std::to_string(h.offsetToPointData)));
+    throw InputError(atOffset(source, file.size(),
+                              "truncated: point data should start at byte " + std::to_string(h.offsetToPointData)));
   std::vector<Chunk> chunks = readChunkTable(file, h, info, source);
   info.chunkCount = chunks.size();
   if (infoOut) *infoOut = info;

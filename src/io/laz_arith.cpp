@@ -93,8 +93,9 @@ ArithmeticDecoder ArithmeticDecoder::layer(std::uint32_t size) {
 
 unsigned char ArithmeticDecoder::pastEnd() {
   if (++overrun_ > kMaxOverrun)
-    throw InputError(atOffset(*source_, offset(), "compressed points end early (truncated or corrupted LAZ data), "
-                                                 "expected more bytes of the chunk"));
+    throw InputError(atOffset(*source_, offset(),
+                              "compressed points end early (truncated or corrupted LAZ data), "
+                              "expected more bytes of the chunk"));
   return 0;
 }
 
@@ -106,9 +107,9 @@ void ArithmeticDecoder::start() {
 
 void ArithmeticDecoder::readRaw(unsigned char* out, std::size_t n) {
   if (static_cast<std::size_t>(end_ - p_) < n)
-    throw InputError(atOffset(*source_, static_cast<std::uint64_t>(fileOffset_ + (end_ - begin_)),
-                              "compressed points end early: expected " + std::to_string(n) +
-                                  " bytes of a chunk's first point"));
+    throw InputError(
+        atOffset(*source_, static_cast<std::uint64_t>(fileOffset_ + (end_ - begin_)),
+                 "compressed points end early: expected " + std::to_string(n) + " bytes of a chunk's first point"));
   std::copy(p_, p_ + n, out);
   p_ += n;
 }

@@ -61,8 +61,7 @@ struct GpsTimeState {
   std::array<std::int32_t, 4> diff{}, extreme{};
   /// Decodes the next time into last[cur]. `layered`: the codes of version 3 (POINT14), whose
   /// models have 515 and 5 symbols (version 2: 516 and 6).
-  void decode(ArithmeticDecoder& dec, SymbolModel& multi, SymbolModel& zeroDiff, IntegerDecompressor& ic,
-              bool layered);
+  void decode(ArithmeticDecoder& dec, SymbolModel& multi, SymbolModel& zeroDiff, IntegerDecompressor& ic, bool layered);
 };
 
 /// A point-wise item: `first` takes the raw bytes of a chunk's first record, `next` decodes the

@@ -179,7 +179,8 @@ class Point14Item final : public LayeredItem {
     }
     if (sizes_[kIntensity]) {
       const unsigned ic = unsigned(gpsChanged) | unsigned(r >= n) << 1 | unsigned(r == 1) << 2;
-      const auto v = static_cast<std::uint16_t>(c.intensity.decompress(layers_[kIntensity], c.lastIntensity[ic], ic >> 1));
+      const auto v =
+          static_cast<std::uint16_t>(c.intensity.decompress(layers_[kIntensity], c.lastIntensity[ic], ic >> 1));
       c.lastIntensity[ic] = v;
       storeU16(l + 12, v);
     }
@@ -187,7 +188,8 @@ class Point14Item final : public LayeredItem {
       const auto prevAngle = static_cast<std::int16_t>(loadU16(l + 18));
       storeU16(l + 18, static_cast<std::uint32_t>(c.scanAngle.decompress(layers_[kScanAngle], prevAngle, gpsChanged)));
     }
-    if (sizes_[kUserData]) l[17] = static_cast<unsigned char>(layers_[kUserData].decodeSymbol(lazy(c.userData[l[17] / 4], 256)));
+    if (sizes_[kUserData])
+      l[17] = static_cast<unsigned char>(layers_[kUserData].decodeSymbol(lazy(c.userData[l[17] / 4], 256)));
     if (changed & 32)
       storeU16(l + 20, static_cast<std::uint32_t>(c.pointSource.decompress(layers_[kPointSource], loadU16(l + 20), 0)));
     if (gpsChanged) {
@@ -329,7 +331,8 @@ class Byte14Item final : public LayeredItem {
     BytesState& c = channelState(ch_, current_, channel);
     if (c.models.empty()) c.models.resize(n_);
     for (std::size_t i = 0; i < n_; ++i) {
-      if (sizes_[i]) c.last[i] = static_cast<unsigned char>(c.last[i] + layers_[i].decodeSymbol(lazy(c.models[i], 256)));
+      if (sizes_[i])
+        c.last[i] = static_cast<unsigned char>(c.last[i] + layers_[i].decodeSymbol(lazy(c.models[i], 256)));
       out[i] = c.last[i];
     }
   }

@@ -97,7 +97,7 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
   std::size_t headerLines = 0;
   std::string_view lastHeader;
   std::string_view f[kMaxFields];
-  ColumnMap columns;  // from the last header line until the first point, then fixed
+  ColumnMap columns;        // from the last header line until the first point, then fixed
   bool attributes = false;  // every line so far had the attribute columns as numbers
   std::vector<std::array<double, 3>> colors;
   detail::Lines lines(data);
@@ -130,7 +130,8 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
       throw InputError(atLine(source, lineNo,
                               columns.defaultXyz()
                                   ? "expected 'x y z' (3 numbers separated by spaces, tabs, commas or semicolons), "
-                                    "got " + detail::quoted(line)
+                                    "got " +
+                                        detail::quoted(line)
                                   : "expected numbers in columns " + std::to_string(columns.x + 1) + ", " +
                                         std::to_string(columns.y + 1) + " and " + std::to_string(columns.z + 1) +
                                         " (x y z, as the header names them), got " + detail::quoted(line)));

@@ -44,9 +44,9 @@ TEST(InfoCli, LazFilePrintsCompressorChunkSizeAndPointFormat) {
   if (!std::filesystem::exists(laz)) GTEST_SKIP() << "no shared data at " << laz.parent_path();
   std::string out;
   ASSERT_EQ(test::runCli("info " + test::quoted(laz), &out), 0) << out;
-  for (const char* line : {"format: LAZ (compressed LAS) 1.4\n", "point data format: 6\n",
-                           "compressor: LASzip layered chunked", "compressed items: POINT14 v3\n",
-                           "chunk size: 50000 points\n", "chunks: 9\n", "points: 400754\n"})
+  for (const char* line :
+       {"format: LAZ (compressed LAS) 1.4\n", "point data format: 6\n", "compressor: LASzip layered chunked",
+        "compressed items: POINT14 v3\n", "chunk size: 50000 points\n", "chunks: 9\n", "points: 400754\n"})
     EXPECT_NE(out.find(line), std::string::npos) << "missing '" << line << "' in\n" << out;
 }
 

@@ -16,7 +16,7 @@ async function main() {
     process.stderr.write('usage: node laz_oracle.js MODULE_DIR FILE.laz\n');
     process.exit(2);
   }
-  const { createLazPerf } = require(path.join(path.resolve(moduleDir), 'node_modules', 'laz-perf'));
+  const {createLazPerf} = require(path.join(path.resolve(moduleDir), 'node_modules', 'laz-perf'));
   const lp = await createLazPerf();
   const bytes = fs.readFileSync(file);
   const filePtr = lp._malloc(bytes.length);

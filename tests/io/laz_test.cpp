@@ -113,7 +113,8 @@ TEST(Laz, BadLaszipVlrNamesOffsetAndExpectation) {
 }
 
 TEST(Laz, DamagedTinyFilesGiveInputErrorsOnly) {
-  testing::expectOnlyInputErrors(tinyLaz(), [](const std::string& b) { readLazBytes(b); }, 2000);
+  testing::expectOnlyInputErrors(
+      tinyLaz(), [](const std::string& b) { readLazBytes(b); }, 2000);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -273,9 +274,9 @@ std::string recordsAsText(const std::string& rec, const LasHeader& h) {
   auto u8 = [&](std::size_t at) { return static_cast<unsigned>(static_cast<unsigned char>(rec[at])); };
   for (std::size_t i = 0; i < h.pointCount; ++i) {
     const std::size_t p = i * len;
-    std::string line = std::to_string(load<std::int32_t>(rec, p)) + " " + std::to_string(load<std::int32_t>(rec, p + 4)) +
-                       " " + std::to_string(load<std::int32_t>(rec, p + 8)) + " " +
-                       std::to_string(load<std::uint16_t>(rec, p + 12));
+    std::string line =
+        std::to_string(load<std::int32_t>(rec, p)) + " " + std::to_string(load<std::int32_t>(rec, p + 4)) + " " +
+        std::to_string(load<std::int32_t>(rec, p + 8)) + " " + std::to_string(load<std::uint16_t>(rec, p + 12));
     auto add = [&](long long v) { line += " " + std::to_string(v); };
     auto addHex64 = [&](std::size_t at) {
       std::snprintf(buf, sizeof buf, " %016llx", static_cast<unsigned long long>(load<std::uint64_t>(rec, at)));
@@ -319,7 +320,8 @@ std::string recordsAsText(const std::string& rec, const LasHeader& h) {
 /// Runs the oracle on `file`; empty when it fails.
 std::string oracleDecode(const fs::path& file) {
   const fs::path script = fs::path(TS_TESTS_DIR) / "io" / "laz_oracle.js";
-  const std::string cmd = "node '" + script.string() + "' '" + std::string(TS_LAZ_ORACLE_DIR) + "' '" + file.string() + "'";
+  const std::string cmd =
+      "node '" + script.string() + "' '" + std::string(TS_LAZ_ORACLE_DIR) + "' '" + file.string() + "'";
   std::string out;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return out;
@@ -352,7 +354,8 @@ TEST(Laz, EveryFieldOfEveryPointMatchesLazPerf) {
     while (std::getline(a, la)) {
       ++line;
       if (!std::getline(b, lb)) lb = "(missing)";
-      if (la != lb && differing++ == 0) first = "line " + std::to_string(line) + ": ours '" + la + "', laz-perf '" + lb + "'";
+      if (la != lb && differing++ == 0)
+        first = "line " + std::to_string(line) + ": ours '" + la + "', laz-perf '" + lb + "'";
     }
     ADD_FAILURE() << differing << " of " << line << " lines differ; first at " << first;
   }

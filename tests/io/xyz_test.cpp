@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "io_test_util.h"
-#include "treesketch/io/point_cloud_io.h"
 #include "test_support.h"
+#include "treesketch/io/point_cloud_io.h"
 
 namespace treesketch::io {
 namespace {
@@ -89,8 +89,9 @@ TEST(Xyz, HeaderPlacesCoordinatesAndAttributesWhereItNamesThem) {
 }
 
 TEST(Xyz, TabsAndCrlfWithUnnamedExtraColumnsIgnored) {
-  geom::PointCloud c = readText("X\tY\tZ\tlabel\tscore\r\n1\t2\t3\tA\t0.5\r\n4\t5\t6\tB\t0.25\r\n"
-                                "7\t8\t9\tC\t1\r\n1\t1\t1\tD\t0\r\n");
+  geom::PointCloud c = readText(
+      "X\tY\tZ\tlabel\tscore\r\n1\t2\t3\tA\t0.5\r\n4\t5\t6\tB\t0.25\r\n"
+      "7\t8\t9\tC\t1\r\n1\t1\t1\tD\t0\r\n");
   ASSERT_EQ(c.size(), 4u);
   EXPECT_EQ(c.positions[2], geom::Vec3(7, 8, 9));
   EXPECT_TRUE(c.intensity.empty());
@@ -98,8 +99,9 @@ TEST(Xyz, TabsAndCrlfWithUnnamedExtraColumnsIgnored) {
 }
 
 TEST(Xyz, ManyDigitsFarFromTheOriginKeepDoublePrecision) {
-  geom::PointCloud c = readText("x y z\n512345.678901234 5412345.987654321 254.123456789\n"
-                                "512345.678901235 5412345.987654322 254.123456790\n0 0 0\n1 1 1\n");
+  geom::PointCloud c = readText(
+      "x y z\n512345.678901234 5412345.987654321 254.123456789\n"
+      "512345.678901235 5412345.987654322 254.123456790\n0 0 0\n1 1 1\n");
   ASSERT_EQ(c.size(), 4u);
   EXPECT_EQ(c.positions[0].x(), 512345.678901234);
   EXPECT_EQ(c.positions[0].y(), 5412345.987654321);

@@ -44,8 +44,8 @@ std::uint16_t lasMinRecordLength(int pointFormat);
 
 /// Parses the public header block at the start of `data` (the whole file or at least its
 /// header). Throws InputError with the byte offset for: a signature other than "LASF", a version
-/// other than 1.0–1.4, a header size too small for its version, a point format above 10, a record length too short for its format, a zero or non-finite
-/// scale, an offset to point data inside the header.
+/// other than 1.0–1.4, a header size too small for its version, a point format above 10, a record length too short for
+/// its format, a zero or non-finite scale, an offset to point data inside the header.
 LasHeader parseLasHeader(std::string_view data, const std::string& source);
 /// Reads the header of a LAS or LAZ file (the LASzip VLR is read by readLas only).
 LasHeader readLasHeader(const std::filesystem::path& path);

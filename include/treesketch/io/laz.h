@@ -28,8 +28,8 @@ inline constexpr std::uint32_t kLazVariableChunkSize = 0xFFFFFFFFu;
 
 /// What the LASzip VLR (user id "laszip encoded", record 22204) says.
 struct LazInfo {
-  std::uint16_t compressor = 0;  ///< 1 point-wise, 2 point-wise chunked, 3 layered chunked
-  std::uint16_t coder = 0;       ///< 0: arithmetic (the only one)
+  std::uint16_t compressor = 0;                          ///< 1 point-wise, 2 point-wise chunked, 3 layered chunked
+  std::uint16_t coder = 0;                               ///< 0: arithmetic (the only one)
   int versionMajor = 0, versionMinor = 0, revision = 0;  ///< of the LASzip that wrote the file
   std::uint32_t options = 0;
   std::uint32_t chunkSize = 0;  ///< points a chunk, or kLazVariableChunkSize

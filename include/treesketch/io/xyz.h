@@ -4,8 +4,8 @@
 // "id;x;y;z;label") places x, y and z where it names them; intensity, RGB and classification are
 // read into the cloud's attributes where named, other columns (labels, ids) are ignored. With no
 // such header, attributes go by the column count: x y z i; x y z r g b; x y z i r g b (Leica
-// PTS). A line without the attribute columns drops them for the file. Fields are separated by spaces, tabs, commas or semicolons.
-// Header lines at the top ("X,Y,Z", a point count, "# comment") are skipped; CRLF is accepted.
+// PTS). A line without the attribute columns drops them for the file. Fields are separated by spaces, tabs, commas or
+// semicolons. Header lines at the top ("X,Y,Z", a point count, "# comment") are skipped; CRLF is accepted.
 #pragma once
 
 #include <filesystem>
