@@ -223,15 +223,14 @@ IntegerDecompressor::IntegerDecompressor(std::uint32_t bits, std::uint32_t conte
     corrRange_ = 0;
     corrMin_ = INT32_MIN;
   }
-  bitsModels_.reserve(contexts);
-  for (std::uint32_t i = 0; i < contexts; ++i) bitsModels_.emplace_back(corrBits_ + 1);
-  correctors_.reserve(corrBits_);
-  for (std::uint32_t i = 1; i <= corrBits_; ++i) correctors_.emplace_back(i <= bitsHigh_ ? 1u << i : 1u << bitsHigh_);
+  bitsModels_.resize(contexts);
+  correctors_.resize(corrBits_);
 }
 
 std::int32_t IntegerDecompressor::decompress(ArithmeticDecoder& dec, std::int32_t pred, std::uint32_t context) {
   // Wrapping arithmetic, as the encoder's: the sum is taken modulo the range of the numbers.
-  std::int64_t real = static_cast<std::int64_t>(pred) + readCorrector(dec, bitsModels_[context]);
+  std::int64_t real =
+      static_cast<std::int64_t>(pred) + readCorrector(dec, lazyModel(bitsModels_[context], corrBits_ + 1));
   if (corrRange_) {
     if (real < 0)
       real += corrRange_;
@@ -245,12 +244,14 @@ std::int32_t IntegerDecompressor::readCorrector(ArithmeticDecoder& dec, SymbolMo
   k_ = dec.decodeSymbol(bitsModel);
   if (k_ == 0) return static_cast<std::int32_t>(dec.decodeBit(corrector0_));  // 0 or 1
   if (k_ >= 32) return corrMin_;
+  // The model of k-bit corrections has 2^k symbols, or 2^bitsHigh for the high bits of wider ones.
+  SymbolModel& m = lazyModel(correctors_[k_ - 1], 1u << std::min(k_, bitsHigh_));
   std::int64_t c;
   if (k_ <= bitsHigh_) {
-    c = dec.decodeSymbol(correctors_[k_ - 1]);
+    c = dec.decodeSymbol(m);
   } else {
     const std::uint32_t lowBits = k_ - bitsHigh_;
-    c = (static_cast<std::int64_t>(dec.decodeSymbol(correctors_[k_ - 1])) << lowBits) | dec.readBits(lowBits);
+    c = (static_cast<std::int64_t>(dec.decodeSymbol(m)) << lowBits) | dec.readBits(lowBits);
   }
   // c in [0, 2^k): the upper half maps to [2^(k-1) + 1, 2^k], the lower to [-(2^k - 1), -2^(k-1)].
   if (c >= (std::int64_t(1) << (k_ - 1)))

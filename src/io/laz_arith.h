@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,12 @@ struct SymbolModel {
   std::uint32_t tableSize = 0, tableShift = 0;
   std::vector<std::uint32_t> distribution, count, table;
 };
+
+/// `m`, made with `symbols` symbols if it does not exist yet.
+inline SymbolModel& lazyModel(std::unique_ptr<SymbolModel>& m, std::uint32_t symbols) {
+  if (!m) m = std::make_unique<SymbolModel>(symbols);
+  return *m;
+}
 
 /// An adaptive model of one bit.
 struct BitModel {
@@ -96,9 +103,11 @@ class IntegerDecompressor {
   std::uint32_t bitsHigh_, corrBits_, corrRange_;
   std::int32_t corrMin_;
   std::uint32_t k_ = 0;
-  std::vector<SymbolModel> bitsModels_;
+  // Models are made on first use (a fresh model is the same whenever it is made): most contexts
+  // and bit counts never occur in a chunk, and making them all would cost more than decoding.
+  std::vector<std::unique_ptr<SymbolModel>> bitsModels_;
   BitModel corrector0_;
-  std::vector<SymbolModel> correctors_;
+  std::vector<std::unique_ptr<SymbolModel>> correctors_;
 };
 
 }  // namespace treesketch::io::laz

@@ -129,32 +129,25 @@ namespace {
 /// user data, point source id).
 class Point10Item final : public PointwiseItem {
  public:
-  Point10Item() : changed_(64), intensity_(16, 4), pointSource_(16), dx_(32, 2), dy_(32, 22), z_(32, 20) {
-    for (auto& m : scanAngle_) m = std::make_unique<SymbolModel>(256);
-    for (int i = 0; i < 256; ++i) {
-      returnByte_[i] = std::make_unique<SymbolModel>(256);
-      classification_[i] = std::make_unique<SymbolModel>(256);
-      userData_[i] = std::make_unique<SymbolModel>(256);
-    }
-  }
+  Point10Item() : changed_(64), intensity_(16, 4), pointSource_(16), dx_(32, 2), dy_(32, 22), z_(32, 20) {}
 
   void first(const unsigned char* raw) override { std::memcpy(last_, raw, 20); }
 
   void next(ArithmeticDecoder& dec, unsigned char* out) override {
     unsigned char* l = last_;
     const std::uint32_t changed = dec.decodeSymbol(changed_);
-    if (changed & 32) l[14] = static_cast<unsigned char>(dec.decodeSymbol(*returnByte_[l[14]]));
+    if (changed & 32) l[14] = static_cast<unsigned char>(dec.decodeSymbol(lazyModel(returnByte_[l[14]], 256)));
     const std::uint32_t r = l[14] & 7, n = (l[14] >> 3) & 7;
     const std::uint32_t m = kReturnContext[n][r], lvl = kReturnLevel[n][r];
     if (changed & 16)
       lastIntensity_[m] = static_cast<std::uint16_t>(intensity_.decompress(dec, lastIntensity_[m], m < 3 ? m : 3));
     storeU16(l + 12, lastIntensity_[m]);
-    if (changed & 8) l[15] = static_cast<unsigned char>(dec.decodeSymbol(*classification_[l[15]]));
+    if (changed & 8) l[15] = static_cast<unsigned char>(dec.decodeSymbol(lazyModel(classification_[l[15]], 256)));
     if (changed & 4) {
-      const std::uint32_t d = dec.decodeSymbol(*scanAngle_[(l[14] >> 6) & 1]);
+      const std::uint32_t d = dec.decodeSymbol(lazyModel(scanAngle_[(l[14] >> 6) & 1], 256));
       l[16] = static_cast<unsigned char>(d + l[16]);
     }
-    if (changed & 2) l[17] = static_cast<unsigned char>(dec.decodeSymbol(*userData_[l[17]]));
+    if (changed & 2) l[17] = static_cast<unsigned char>(dec.decodeSymbol(lazyModel(userData_[l[17]], 256)));
     if (changed & 1) storeU16(l + 18, static_cast<std::uint32_t>(pointSource_.decompress(dec, loadU16(l + 18), 0)));
 
     const std::int32_t dx = dx_.decompress(dec, xMedian_[m].get(), n == 1);

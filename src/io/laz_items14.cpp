@@ -32,11 +32,7 @@ void storeU64(unsigned char* p, std::uint64_t v) {
   for (int i = 0; i < 8; ++i, v >>= 8) p[i] = static_cast<unsigned char>(v);
 }
 
-/// A model created on first use (a fresh model is the same whenever it is made).
-SymbolModel& lazy(std::unique_ptr<SymbolModel>& m, std::uint32_t symbols) {
-  if (!m) m = std::make_unique<SymbolModel>(symbols);
-  return *m;
-}
+SymbolModel& lazy(std::unique_ptr<SymbolModel>& m, std::uint32_t symbols) { return lazyModel(m, symbols); }
 
 // Context of the x/y predictions from the number of returns n and the return number r ([n][r]).
 constexpr unsigned char kReturnContext6[16][16] = {

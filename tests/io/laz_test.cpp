@@ -257,7 +257,7 @@ TEST(Laz, DamagedRealFilesGiveInputErrorsOnly) {
           std::istringstream in(b);
           readLas(in, "damaged.laz");
         },
-        40, 20);
+        20, 10);
   }
 }
 
