@@ -208,11 +208,31 @@ std::vector<Chunk> readChunkTable(std::string_view file, const LasHeader& h, con
   return chunks;
 }
 
-/// Decodes one point-wise chunk into `out` (c.count records).
+/// The records of one chunk, grown as they are decoded: damaged data fails after a few records,
+/// so a damaged point count never allocates what the data could not fill.
+class ChunkRecords {
+ public:
+  ChunkRecords(std::string& out, std::uint16_t length, std::uint64_t count)
+      : out_(out), length_(length), total_(static_cast<std::size_t>(count) * length) {}
+  /// Record `i` (< count), valid until the next call.
+  unsigned char* operator[](std::uint64_t i) {
+    const std::size_t need = static_cast<std::size_t>(i + 1) * length_;
+    if (need > out_.size()) out_.resize(std::min(total_, std::max(need, 2 * out_.size())));
+    return reinterpret_cast<unsigned char*>(out_.data()) + i * length_;
+  }
+
+ private:
+  std::string& out_;
+  std::size_t length_, total_;
+};
+
+/// Decodes one point-wise chunk into `records` (c.count records).
 void decodePointwise(std::string_view file, const Chunk& c, const LazInfo& info, std::uint16_t recordLength,
-                     unsigned char* out, const std::string& source, std::uint64_t base = 0) {
+                     std::string& records, const std::string& source, std::uint64_t base = 0) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(file.data());
   laz::ArithmeticDecoder dec(bytes + c.begin, bytes + c.end, base + c.begin, source);
+  ChunkRecords rec(records, recordLength, c.count);
+  unsigned char* out = rec[0];
   std::vector<std::unique_ptr<laz::PointwiseItem>> items;
   std::size_t off = 0;
   for (const LazItem& it : info.items) {
@@ -223,20 +243,22 @@ void decodePointwise(std::string_view file, const Chunk& c, const LazInfo& info,
   }
   dec.start();
   for (std::uint64_t p = 1; p < c.count; ++p) {
-    unsigned char* rec = out + p * recordLength;
+    unsigned char* r = rec[p];
     std::size_t o = 0;
     for (std::size_t i = 0; i < items.size(); ++i) {
-      items[i]->next(dec, rec + o);
+      items[i]->next(dec, r + o);
       o += info.items[i].size;
     }
   }
 }
 
-/// Decodes one layered chunk into `out` (c.count records).
+/// Decodes one layered chunk into `records` (c.count records).
 void decodeLayered(std::string_view file, const Chunk& c, const LazInfo& info, std::uint16_t recordLength,
-                   unsigned char* out, const std::string& source, std::uint64_t base = 0) {
+                   std::string& records, const std::string& source, std::uint64_t base = 0) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(file.data());
   laz::ArithmeticDecoder in(bytes + c.begin, bytes + c.end, base + c.begin, source);
+  ChunkRecords rec(records, recordLength, c.count);
+  unsigned char* out = rec[0];
   std::vector<std::unique_ptr<laz::LayeredItem>> items;
   std::size_t off = 0;
   unsigned channel = 0;
@@ -255,10 +277,11 @@ void decodeLayered(std::string_view file, const Chunk& c, const LazInfo& info, s
   for (auto& item : items) item->readSizes(in);
   for (auto& item : items) item->startLayers(in);
   for (std::uint64_t p = 1; p < c.count; ++p) {
-    unsigned char* rec = out + p * recordLength;
+    unsigned char* r = rec[p];
     std::size_t o = 0;
+    channel = 0;  // as the format's reference decoder: set by POINT14 only when it changes
     for (std::size_t i = 0; i < items.size(); ++i) {
-      items[i]->next(rec + o, channel);
+      items[i]->next(r + o, channel);
       o += info.items[i].size;
     }
   }
@@ -360,14 +383,13 @@ std::string decompressLazChunk(std::string_view chunk, const LazInfo& info, std:
   checkItems(info, -1, recordLength, fileOffset, source);
   // The chunk's bytes sit at offset 0 of their own view; messages add fileOffset.
   checkPlausible(count, chunk.size(), fileOffset, source);
-  std::string out(static_cast<std::size_t>(count) * recordLength, '\0');
+  std::string out;
   if (count == 0) return out;
   const Chunk c{0, chunk.size(), 0, count};
-  auto* dst = reinterpret_cast<unsigned char*>(out.data());
   if (info.compressor == 3)
-    decodeLayered(chunk, c, info, recordLength, dst, source, fileOffset);
+    decodeLayered(chunk, c, info, recordLength, out, source, fileOffset);
   else
-    decodePointwise(chunk, c, info, recordLength, dst, source, fileOffset);
+    decodePointwise(chunk, c, info, recordLength, out, source, fileOffset);
   return out;
 }
 
@@ -380,18 +402,17 @@ std::string decompressLaz(std::string_view file, const LasHeader& h, const std::
   std::vector<Chunk> chunks = readChunkTable(file, h, info, source);
   info.chunkCount = chunks.size();
   if (infoOut) *infoOut = info;
-  std::string out(static_cast<std::size_t>(h.pointCount) * h.recordLength, '\0');
-  auto* records = reinterpret_cast<unsigned char*>(out.data());
-  // Each chunk is decoded on its own; the first failing chunk (in file order) names the error.
+  // Each chunk is decoded on its own into its own records; the first failing chunk (in file
+  // order) names the error.
+  std::vector<std::string> parts(chunks.size());
   std::vector<std::optional<InputError>> errors(chunks.size());
   auto decodeRange = [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       try {
-        unsigned char* dst = records + chunks[i].firstPoint * h.recordLength;
         if (info.compressor == 3)
-          decodeLayered(file, chunks[i], info, h.recordLength, dst, source);
+          decodeLayered(file, chunks[i], info, h.recordLength, parts[i], source);
         else
-          decodePointwise(file, chunks[i], info, h.recordLength, dst, source);
+          decodePointwise(file, chunks[i], info, h.recordLength, parts[i], source);
       } catch (const InputError& e) {
         errors[i] = e;
       }
@@ -406,6 +427,13 @@ std::string decompressLaz(std::string_view file, const LasHeader& h, const std::
   }
   for (const auto& e : errors)
     if (e) throw *e;
+  if (parts.size() == 1) return std::move(parts[0]);
+  std::string out;
+  out.reserve(static_cast<std::size_t>(h.pointCount) * h.recordLength);
+  for (std::string& p : parts) {
+    out += p;
+    std::string().swap(p);
+  }
   return out;
 }
 

@@ -124,8 +124,8 @@ class Point14Item final : public LayeredItem {
         ch_[sc]->startFrom(prev.last);
       }
       current_ = sc;
+      channel = sc;  // the other items hear of the channel only when it changes (format v3)
     }
-    channel = sc;
     Point14Channel& c = *ch_[sc];
     unsigned char* l = c.last;
     l[15] = static_cast<unsigned char>((l[15] & ~0x30) | sc << 4);
@@ -204,33 +204,37 @@ class Point14Item final : public LayeredItem {
   std::vector<ArithmeticDecoder> layers_;
 };
 
-/// Per-channel state of RGB14 / RGBNIR14 / BYTE14: the channel's last value and its models.
+/// The context switch of RGB14, RGBNIR14 and BYTE14, as version 3 of the format defines it:
+/// `channel` (0 unless POINT14 switched channels at this record) selects whose models code the
+/// record; a channel seen for the first time starts from a copy of the current one's last value
+/// and predicts from it, while a channel seen before keeps predicting from (and updating) the
+/// last value of the channel that was current. Returns that state; `models` is the new channel's.
 template <class State>
-State& channelState(std::array<std::unique_ptr<State>, 4>& ch, unsigned& current, unsigned sc) {
-  if (sc != current) {
-    if (!ch[sc]) {
-      ch[sc] = std::make_unique<State>();
-      ch[sc]->last = ch[current]->last;
+State& switchChannel(std::array<std::unique_ptr<State>, 4>& ch, unsigned& current, unsigned channel,
+                     State*& models) {
+  State* last = ch[current].get();
+  if (channel != current) {
+    current = channel;
+    if (!ch[current]) {
+      ch[current] = std::make_unique<State>();
+      ch[current]->last = last->last;
+      last = ch[current].get();
     }
-    current = sc;
   }
-  return *ch[sc];
+  models = ch[current].get();
+  return *last;
 }
 
-struct RgbState {
-  RgbState() : used(128) {
+/// RGB14 and RGBNIR14: per channel, the models and the last R G B (NIR) values.
+struct RgbNirState {
+  RgbNirState() : used(128), nirUsed(4) {
     for (auto& m : diff) m = std::make_unique<SymbolModel>(256);
   }
   SymbolModel used;
   std::array<std::unique_ptr<SymbolModel>, 6> diff;
-  std::array<std::uint32_t, 3> last{};
-};
-
-struct NirState {
-  NirState() : used(4), diff{SymbolModel(256), SymbolModel(256)} {}
-  SymbolModel used;
-  std::array<SymbolModel, 2> diff;
-  std::uint32_t last = 0;
+  SymbolModel nirUsed;
+  std::array<std::unique_ptr<SymbolModel>, 2> nirDiff;
+  std::array<std::uint32_t, 4> last{};  // R G B NIR
 };
 
 /// RGB14 (6 bytes) and RGBNIR14 (8 bytes: RGB then NIR, each its own layer).
@@ -240,12 +244,8 @@ class Rgb14Item final : public LayeredItem {
 
   void first(const unsigned char* raw, unsigned& channel) override {
     current_ = channel;
-    rgb_[channel] = std::make_unique<RgbState>();
-    for (int k = 0; k < 3; ++k) rgb_[channel]->last[k] = loadU16(raw + 2 * k);
-    if (nir_) {
-      nirs_[channel] = std::make_unique<NirState>();
-      nirs_[channel]->last = loadU16(raw + 6);
-    }
+    ch_[channel] = std::make_unique<RgbNirState>();
+    for (int k = 0; k < (nir_ ? 4 : 3); ++k) ch_[channel]->last[k] = loadU16(raw + 2 * k);
   }
 
   void readSizes(ArithmeticDecoder& in) override {
@@ -264,37 +264,36 @@ class Rgb14Item final : public LayeredItem {
   }
 
   void next(unsigned char* out, unsigned& channel) override {
-    unsigned rgbCurrent = current_;
-    RgbState& c = channelState(rgb_, rgbCurrent, channel);
+    RgbNirState* m = nullptr;
+    RgbNirState& s = switchChannel(ch_, current_, channel, m);
     if (rgbSize_) {
-      std::array<std::uint32_t, 3> v{};
-      decodeRgb(layers_[0], c.used, c.diff, c.last, v);
-      c.last = v;
+      std::array<std::uint32_t, 3> last{s.last[0], s.last[1], s.last[2]}, v{};
+      decodeRgb(layers_[0], m->used, m->diff, last, v);
+      for (int k = 0; k < 3; ++k) s.last[k] = v[k];
     }
-    for (int k = 0; k < 3; ++k) storeU16(out + 2 * k, c.last[k]);
+    for (int k = 0; k < 3; ++k) storeU16(out + 2 * k, s.last[k]);
     if (nir_) {
-      unsigned nirCurrent = current_;
-      NirState& s = channelState(nirs_, nirCurrent, channel);
       if (nirSize_) {
-        const std::uint32_t sym = layers_[1].decodeSymbol(s.used);
-        std::uint32_t v = (sym & 1) ? (layers_[1].decodeSymbol(s.diff[0]) + s.last) & 0xFF : s.last & 0xFF;
-        v |= (sym & 2) ? ((layers_[1].decodeSymbol(s.diff[1]) + (s.last >> 8)) & 0xFF) << 8 : s.last & 0xFF00;
-        s.last = v;
+        ArithmeticDecoder& d = layers_[1];
+        const std::uint32_t sym = d.decodeSymbol(m->nirUsed);
+        const std::uint32_t prev = s.last[3];
+        std::uint32_t v = (sym & 1) ? (d.decodeSymbol(lazy(m->nirDiff[0], 256)) + prev) & 0xFF : prev & 0xFF;
+        v |= (sym & 2) ? ((d.decodeSymbol(lazy(m->nirDiff[1], 256)) + (prev >> 8)) & 0xFF) << 8 : prev & 0xFF00;
+        s.last[3] = v;
       }
-      storeU16(out + 6, s.last);
+      storeU16(out + 6, s.last[3]);
     }
-    current_ = rgbCurrent;
   }
 
  private:
   bool nir_;
   unsigned current_ = 0;
   std::uint32_t rgbSize_ = 0, nirSize_ = 0;
-  std::array<std::unique_ptr<RgbState>, 4> rgb_;
-  std::array<std::unique_ptr<NirState>, 4> nirs_;
+  std::array<std::unique_ptr<RgbNirState>, 4> ch_;
   std::vector<ArithmeticDecoder> layers_;
 };
 
+/// BYTE14: per channel, the models and the last bytes.
 struct BytesState {
   std::vector<unsigned char> last;
   std::vector<std::unique_ptr<SymbolModel>> models;
@@ -324,12 +323,13 @@ class Byte14Item final : public LayeredItem {
   }
 
   void next(unsigned char* out, unsigned& channel) override {
-    BytesState& c = channelState(ch_, current_, channel);
-    if (c.models.empty()) c.models.resize(n_);
+    BytesState* m = nullptr;
+    BytesState& s = switchChannel(ch_, current_, channel, m);
+    if (m->models.empty()) m->models.resize(n_);
     for (std::size_t i = 0; i < n_; ++i) {
       if (sizes_[i])
-        c.last[i] = static_cast<unsigned char>(c.last[i] + layers_[i].decodeSymbol(lazy(c.models[i], 256)));
-      out[i] = c.last[i];
+        s.last[i] = static_cast<unsigned char>(s.last[i] + layers_[i].decodeSymbol(lazy(m->models[i], 256)));
+      out[i] = s.last[i];
     }
   }
 
