@@ -103,6 +103,39 @@ put("las", "truncated.las", las(2, 0, P)[:-7])
 put("las", "count_too_big.las", las(2, 0, P, count=4000000000))
 put("las", "zero_scale.las", las(2, 0, P, scale=0.0))
 
+# ---- LAZ (see laz_fuzz.cpp) -----------------------------------------------------------------
+def tiny_laz(point_format=0, items=((6, 20, 2),), compressor=1, points=((1000, -2000, 3000),)):
+    """A LAZ of point-wise compressor 1 (no chunk table): the first point of its one stream is raw."""
+    vlr_body = struct.pack("<HHBBHII", compressor, 0, 3, 4, 3, 0, 50000) + struct.pack("<qqH", -1, -1, len(items))
+    vlr_body += b"".join(struct.pack("<HHH", *it) for it in items)
+    vlr = b"\0\0" + b"laszip encoded".ljust(16, b"\0") + struct.pack("<HH", 22204, len(vlr_body))
+    vlr += b"\0" * 32 + vlr_body
+    record = sum(it[1] for it in items)
+    f = bytearray(las(2, point_format, [], count=len(points)))
+    struct.pack_into("<IIBH", f, 96, 227 + len(vlr), 1, 0x80 | point_format, record)
+    body = b"".join(struct.pack("<3i", *p) + b"\0" * (record - 12) for p in points)
+    return bytes(f) + vlr + body + b"\0" * 4
+
+
+put("laz", "tiny_point10.laz", tiny_laz())
+put("laz", "tiny_gps_rgb.laz", tiny_laz(3, ((6, 20, 2), (7, 8, 2), (8, 6, 2))))
+put("laz", "bad_version.laz", tiny_laz(items=((6, 20, 1),)))
+lrnd = random.Random(7)
+# Chunk inputs: format index, extra bytes, variant, count (u16), then the chunk (a raw first
+# record, then coded bytes; layered chunks: count and layer sizes after the first record).
+for fmt in range(7):
+    record = [20, 28, 26, 34, 30, 36, 38][fmt] + fmt % 4
+    head = bytes([fmt, fmt % 4, fmt]) + struct.pack("<H", 50 + 10 * fmt)
+    first = bytes(lrnd.randrange(256) for _ in range(record))
+    if fmt >= 4:  # layered: point count, then 9 POINT14 layer sizes (+ RGB, NIR, extra bytes)
+        layers = 9 + (fmt == 5) + 2 * (fmt == 6) + fmt % 4
+        sizes = [40] * layers
+        first += struct.pack("<I", 50 + 10 * fmt) + b"".join(struct.pack("<I", n) for n in sizes)
+        rest = bytes(lrnd.randrange(256) for _ in range(sum(sizes)))
+    else:
+        rest = bytes(lrnd.randrange(256) for _ in range(400))
+    put("laz", "chunk%d.bin" % fmt, head + first + rest)
+
 # ---- XYZ -----------------------------------------------------------------------------------
 put("xyz", "plain.xyz", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1.5 -2.25 300\n")
 put("xyz", "csv_header.csv", "X,Y,Z,Intensity\n0,0,0,1\n1,0,0,2\n0,1,0,3\n0,0,1,4\n")

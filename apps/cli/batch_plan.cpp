@@ -23,7 +23,7 @@ std::string lower(std::string s) {
 }
 
 bool isCloudExtension(const std::string& ext) {
-  static const char* kExt[] = {".las", ".laz", ".ply", ".xyz", ".txt", ".csv", ".pts"};
+  static const char* kExt[] = {".las", ".laz", ".ply", ".xyz", ".txt", ".csv", ".pts", ".asc"};
   return std::find_if(std::begin(kExt), std::end(kExt), [&](const char* e) { return ext == e; }) != std::end(kExt);
 }
 
@@ -98,7 +98,8 @@ BatchPlan planBatch(const fs::path& input) {
   } else {
     throw InputError(input.string() + ": no such folder or manifest");
   }
-  if (plan.trees.empty()) throw InputError(input.string() + ": no point clouds found (.las .ply .xyz .txt .csv .pts)");
+  if (plan.trees.empty())
+    throw InputError(input.string() + ": no point clouds found (.las .laz .ply .xyz .txt .csv .pts .asc)");
   nameTrees(plan.trees);
   return plan;
 }

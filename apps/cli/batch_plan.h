@@ -3,7 +3,7 @@
 // the summary of all trees.
 //
 // Which files of a folder are trees: regular files with a cloud extension (.las .laz .ply .xyz
-// .txt .csv .pts), sorted by name, except text tables whose first line names a `radius` column
+// .txt .csv .pts .asc), sorted by name, except text tables whose first line names a `radius` column
 // (a cylinder table such as a SimpleForest or TreeQSM model, not a cloud); those are listed as
 // skipped. A manifest is a text file with one cloud path per line (blank lines and '#' comments
 // skipped; relative paths are relative to the manifest's folder), taken in its order.

@@ -243,9 +243,10 @@ void registerBatch(CLI::App& app, Action& action) {
                                  "Reconstruct every tree of a folder or manifest (--auto): mesh, cylinder tables, "
                                  "metrics and report per tree, and a summary");
   auto a = std::make_shared<BatchArgs>();
-  sub->add_option("input", a->input,
-                  "A folder of clouds (.las .ply .xyz .txt .csv .pts; cylinder tables skipped) or a manifest (one "
-                  "cloud path per line)")
+  sub->add_option(
+         "input", a->input,
+         "A folder of clouds (.las .laz .ply .xyz .txt .csv .pts .asc; cylinder tables skipped) or a manifest (one "
+         "cloud path per line)")
       ->required();
   sub->add_option("--out", a->out, "Output folder: OUT/<tree>/ per tree, OUT/summary.csv and .json")->required();
   sub->add_option("--jobs", a->jobs, "Trees processed at a time, each in its own process (default 1)");

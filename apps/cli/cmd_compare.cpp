@@ -1,7 +1,7 @@
 // `treesketch compare A B [options]`: Metro/MeshLab-style Hausdorff comparison (thesis §2.5, §4.5).
 // Forward = A sampled against B, backward = B sampled against A (skipped with --one-way), and the
 // symmetric Hausdorff distance. A is a mesh (.obj, .ply); B is a mesh or a point cloud (.xyz
-// .txt .csv .pts .las, or a .ply without faces). Prints a table; optionally writes the report as
+// .txt .csv .pts .asc .las .laz, or a .ply without faces). Prints a table; optionally writes the report as
 // JSON and A's error mesh (binary PLY, per-vertex distance as quality, red = near, blue = far).
 #include <array>
 #include <cmath>
@@ -199,7 +199,8 @@ void registerCompare(CLI::App& app, Action& action) {
       "compare", "Hausdorff comparison of two surfaces as Metro / MeshLab (forward, backward, symmetric)");
   auto args = std::make_shared<CompareArgs>();
   sub->add_option("a", args->a, "Mesh A, e.g. the original (.obj .ply)")->required();
-  sub->add_option("b", args->b, "Mesh or point cloud B, e.g. the reconstruction (.obj .ply .xyz .txt .csv .pts .las)")
+  sub->add_option("b", args->b,
+                  "Mesh or point cloud B, e.g. the reconstruction (.obj .ply .xyz .txt .csv .pts .asc .las .laz)")
       ->required();
   sub->add_option("--samples", args->samples, "Samples per enabled kind (default: the sampled mesh's vertex count)");
   sub->add_flag("--no-vertex", args->noVertex, "Do not sample vertices");

@@ -65,7 +65,7 @@ void registerFitReport(CLI::App& app, Action& action) {
       "How well a cylinder model (treesketch, TreeQSM or SimpleForest table) explains a cloud, and its volume, "
       "length, trunk diameter");
   auto a = std::make_shared<FitReportArgs>();
-  sub->add_option("cloud", a->cloud, "Point cloud (.ply .xyz .txt .csv .pts .las)")->required();
+  sub->add_option("cloud", a->cloud, "Point cloud (.ply .xyz .txt .csv .pts .asc .las .laz)")->required();
   sub->add_option("model", a->model, "Cylinder table: treesketch's --cylinders CSV, TreeQSM or SimpleForest")
       ->required();
   sub->add_option("--units-metres", a->unitMetres, "Metres per cloud unit (default 1: the cloud is in metres)")

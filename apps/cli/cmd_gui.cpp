@@ -61,7 +61,8 @@ void registerGui(CLI::App& app, Action& action) {
   auto args = std::make_shared<GuiArgs>();
   CLI::App* sub = app.add_subcommand(
       "gui", "Open the interactive sketching tool on a cloud or a mesh (scanned first); no input: the demo tree");
-  sub->add_option("input", args->input, "Point cloud (.ply .xyz .txt .csv .pts .las) or mesh (.obj, PLY with faces)")
+  sub->add_option("input", args->input,
+                  "Point cloud (.ply .xyz .txt .csv .pts .asc .las .laz) or mesh (.obj, PLY with faces)")
       ->check(CLI::ExistingFile);
   sub->add_option("--sketch", args->sketch, "Sketch file to open (if it exists) and to save to");
   sub->add_option("--script", args->script, "Run a scripted session (JSON actions) and exit")->check(CLI::ExistingFile);

@@ -52,7 +52,8 @@ void runInfo(const std::string& file) {
 void registerInfo(CLI::App& app, Action& action) {
   auto* sub = app.add_subcommand("info", "Print a point cloud or mesh file's format, counts, bounds and size");
   auto file = std::make_shared<std::string>();
-  sub->add_option("file", *file, "Point cloud (.ply .xyz .txt .csv .pts .las) or mesh (.obj .ply)")->required();
+  sub->add_option("file", *file, "Point cloud (.ply .xyz .txt .csv .pts .asc .las .laz) or mesh (.obj .ply)")
+      ->required();
   sub->callback([file, &action] { action = [file] { runInfo(*file); }; });
 }
 

@@ -181,7 +181,7 @@ void runReconstruct(const ReconstructArgs& a) {
 void registerReconstruct(CLI::App& app, Action& action) {
   auto* sub = app.add_subcommand("reconstruct", "Fit a circle at every sketch node and sweep the tube mesh");
   auto a = std::make_shared<ReconstructArgs>();
-  sub->add_option("cloud", a->cloud, "Point cloud (.ply .xyz .txt .csv .pts .las)")->required();
+  sub->add_option("cloud", a->cloud, "Point cloud (.ply .xyz .txt .csv .pts .asc .las .laz)")->required();
   sub->add_option("--sketch", a->sketch, "Sketch file (.json); with --auto, where to save the automatic sketch");
   sub->add_flag("--auto", a->autoSkeleton, "Sketch automatically from the cloud's branching skeleton");
   sub->add_option("--up", a->up,

@@ -109,7 +109,7 @@ void runRender(const RenderArgs& a) {
 void registerRender(CLI::App& app, Action& action) {
   auto* sub = app.add_subcommand("render", "Draw a cloud, meshes, a sketch and a skeleton into a PNG (no display)");
   auto a = std::make_shared<RenderArgs>();
-  sub->add_option("--cloud", a->cloud, "Point cloud (.ply .xyz .txt .csv .pts .las)");
+  sub->add_option("--cloud", a->cloud, "Point cloud (.ply .xyz .txt .csv .pts .asc .las .laz)");
   sub->add_option("--mesh", a->meshes, "Mesh (.obj .ply); repeat for several, each gets its own colour");
   sub->add_option("--sketch", a->sketch, "Sketch file (.json): nodes as dots, parent links as lines");
   sub->add_option("--skeleton", a->skeleton, "OBJ file with 'v' and 'l' lines (a skeleton), drawn as lines");

@@ -88,7 +88,7 @@ void registerSketch(CLI::App& app, Action& action) {
   auto o = std::make_shared<AutoOptions>();
   std::vector<std::string> names;
   for (const auto& [name, m] : autoSketchMethods()) names.push_back(name);
-  autoCmd->add_option("cloud", o->cloud, "Point cloud (.ply .xyz .txt .csv .pts .las)")->required();
+  autoCmd->add_option("cloud", o->cloud, "Point cloud (.ply .xyz .txt .csv .pts .asc .las .laz)")->required();
   autoCmd->add_option("-n,--nodes", o->nodes, "Number of nodes (default 18, as the thesis's automatic sketches)");
   autoCmd->add_option("--view", o->view, "front, side, top, or a camera JSON file {view, projection, viewport}");
   autoCmd->add_option("--method", o->method, "Automatic method")->check(CLI::IsMember(names));

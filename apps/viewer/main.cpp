@@ -61,7 +61,7 @@ void usage(std::ostream& out) {
   out << "usage: treesketch-gui [CLOUD | MESH] [--sketch SKETCH.json] [--script ACTIONS.json]\n"
          "                      [--up y|z|+x|-x|+y|-y|+z|-z] [--autosave PATH] [--demo PRESET] [--demo-rays N]\n"
          "                      [--width W] [--height H] [--measure-idle SECONDS]\n"
-         "Opens the interactive sketching tool on a point cloud (.ply .xyz .txt .csv .pts .las) or on a\n"
+         "Opens the interactive sketching tool on a point cloud (.ply .xyz .txt .csv .pts .asc .las .laz) or on a\n"
          "mesh (.obj, PLY with faces; scanned first with the sphere scanner's defaults). Without an input\n"
          "it opens the built-in demo tree. --script runs a scripted session and exits (0: every action\n"
          "succeeded, 1: some failed).\n";

@@ -20,7 +20,7 @@ void WindowActions::drawMenuBar() {
   if (forcedMenu_ == "File") ImGui::OpenPopup("File");  // the same id BeginMenu uses
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("Open cloud...", "Ctrl+O")) openCloudDialog();
-    tip("Open another point cloud (.xyz .txt .csv .pts .las .ply) or a mesh (.obj .ply, scanned first)");
+    tip("Open another point cloud (.xyz .txt .csv .pts .asc .las .laz .ply) or a mesh (.obj .ply, scanned first)");
     if (ImGui::MenuItem("Open sketch...")) openSketchDialog();
     tip("Load a sketch file (.json) over this cloud");
     if (ImGui::MenuItem("Save sketch", "Ctrl+S")) save();

@@ -62,11 +62,23 @@ FileInfo inspectFile(const std::filesystem::path& path) {
   } else if (cloudFormatFromPath(path) == CloudFormat::Las) {
     LasHeader h;
     info.cloud = readLas(path, anyCount, &h);
-    info.format = "LAS " + std::to_string(h.versionMajor) + "." + std::to_string(h.versionMinor);
+    info.format = std::string(h.compressed ? "LAZ (compressed LAS) " : "LAS ") + std::to_string(h.versionMajor) + "." +
+                  std::to_string(h.versionMinor);
     info.details.emplace_back("system identifier", h.systemId);
     info.details.emplace_back("generating software", h.generatingSoftware);
     info.details.emplace_back("point data format", std::to_string(h.pointFormat));
     info.details.emplace_back("point record length", std::to_string(h.recordLength) + " bytes");
+    if (h.compressed) {
+      const LazInfo& z = h.laz;
+      info.details.emplace_back(
+          "compressor", "LASzip " + z.compressorName() + " (written by LASzip " + std::to_string(z.versionMajor) + "." +
+                            std::to_string(z.versionMinor) + "r" + std::to_string(z.revision) + ")");
+      info.details.emplace_back("compressed items", z.itemList());
+      info.details.emplace_back("chunk size", z.chunkSize == kLazVariableChunkSize
+                                                  ? std::string("variable")
+                                                  : std::to_string(z.chunkSize) + " points");
+      info.details.emplace_back("chunks", std::to_string(z.chunkCount));
+    }
     info.details.emplace_back("header size", std::to_string(h.headerSize) + " bytes");
     info.details.emplace_back("offset to point data", std::to_string(h.offsetToPointData) + " bytes");
     info.details.emplace_back("variable length records", std::to_string(h.numVlrs));

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "io/io_util.h"
+#include "treesketch/io/laz.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::io {
@@ -28,12 +29,6 @@ std::string fixedString(std::string_view data, std::size_t off, std::size_t n) {
 }
 
 }  // namespace
-
-std::string lazNotSupportedMessage(const std::string& source) {
-  return source +
-         ": compressed LAS (LAZ) is not supported; decompress it first, e.g. 'laszip -i in.laz -o out.las' or "
-         "'pdal translate in.laz out.las', and read the .las file";
-}
 
 std::uint16_t lasMinRecordLength(int pointFormat) {
   static const std::uint16_t kLengths[] = {20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67};
@@ -71,9 +66,9 @@ LasHeader parseLasHeader(std::string_view data, const std::string& source) {
   h.offsetToPointData = detail::loadLE<std::uint32_t>(data.data() + kOffPointDataOffset);
   h.numVlrs = detail::loadLE<std::uint32_t>(data.data() + kOffNumVlrs);
   std::uint8_t fmt = static_cast<std::uint8_t>(data[kOffPointFormat]);
-  if (fmt & 0xC0)
-    throw InputError(lazNotSupportedMessage(source) + " (point format byte " + std::to_string(fmt) +
-                     " has the compression bit set)");
+  // LASzip sets bit 7 (and bit 6 in old writers) of the format byte for compressed points.
+  h.compressed = (fmt & 0xC0) != 0;
+  fmt &= 0x3F;
   if (fmt > 10)
     throw InputError(atOffset(source, kOffPointFormat,
                               "unsupported point data record format " + std::to_string(fmt) + ", expected 0 to 10"));
@@ -109,7 +104,6 @@ LasHeader parseLasHeader(std::string_view data, const std::string& source) {
 }
 
 LasHeader readLasHeader(const std::filesystem::path& path) {
-  if (detail::lowerExtension(path) == ".laz") throw InputError(lazNotSupportedMessage(path.string()));
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path.string() + ": file not found");
   std::ifstream in(path, std::ios::binary);
@@ -179,32 +173,43 @@ void readLasAttributes(const char* records, const LasHeader& h, geom::PointCloud
   if (!anyColor) cloud.color.clear();
 }
 
-geom::PointCloud parseLas(std::string_view data, const std::string& source, const CloudReadOptions& options,
-                          LasHeader* headerOut) {
-  LasHeader h = parseLasHeader(data, source);
+geom::PointCloud parseLas(std::string_view file, const std::string& source, const CloudReadOptions& options,
+                          LasHeader* headerOut, int threads) {
+  LasHeader h = parseLasHeader(file, source);
+  // Compressed points are decompressed into plain records first, then read as any LAS records.
+  std::string decompressed;
+  std::string_view data = file;
+  std::size_t start = h.offsetToPointData;  // where the records start in `data`
+  if (h.compressed) {
+    decompressed = decompressLaz(file, h, source, &h.laz, threads);
+    data = decompressed;
+    start = 0;
+  }
   if (headerOut) *headerOut = h;
-  if (h.offsetToPointData > data.size())
+  if (start > data.size())
     throw InputError(atOffset(source, data.size(),
                               "truncated: point data should start at byte " + std::to_string(h.offsetToPointData)));
-  std::size_t avail = (data.size() - h.offsetToPointData) / h.recordLength;
+  std::size_t avail = (data.size() - start) / h.recordLength;
   if (h.pointCount > avail)
-    throw InputError(atOffset(source, h.offsetToPointData + avail * h.recordLength,
+    throw InputError(atOffset(source, start + avail * h.recordLength,
                               "truncated: the header promises " + std::to_string(h.pointCount) + " points of " +
                                   std::to_string(h.recordLength) + " bytes, but only " + std::to_string(avail) +
                                   " complete records follow"));
   geom::PointCloud cloud;
   auto n = static_cast<std::size_t>(h.pointCount);
   cloud.positions.resize(n);
-  const char* p = data.data() + h.offsetToPointData;
+  const char* p = data.data() + start;
   for (std::size_t i = 0; i < n; ++i, p += h.recordLength) {
     for (int k = 0; k < 3; ++k)
       cloud.positions[i][k] = detail::loadLE<std::int32_t>(p + 4 * k) * h.scale[k] + h.offset[k];
-    if (!cloud.positions[i].allFinite())
-      throw InputError(atOffset(source, static_cast<std::uint64_t>(p - data.data()),
-                                "coordinate overflows to Inf after scale and offset, expected finite"));
+    if (!cloud.positions[i].allFinite()) {
+      const std::string what = "coordinate overflows to Inf after scale and offset, expected finite";
+      if (h.compressed) throw InputError(source + ": point " + std::to_string(i + 1) + ": " + what);
+      throw InputError(atOffset(source, static_cast<std::uint64_t>(p - data.data()), what));
+    }
   }
   checkCloudSize(cloud, source, options.minPoints);
-  readLasAttributes(data.data() + h.offsetToPointData, h, cloud);
+  readLasAttributes(data.data() + start, h, cloud);
   cloud.up = geom::UpAxis::Z;  // LAS coordinates are Z-up by the format's specification
   return cloud;
 }
@@ -213,12 +218,11 @@ geom::PointCloud parseLas(std::string_view data, const std::string& source, cons
 
 geom::PointCloud readLas(std::istream& in, const std::string& source, const CloudReadOptions& options,
                          LasHeader* header) {
-  return parseLas(detail::readAll(in, source), source, options, header);
+  return parseLas(detail::readAll(in, source), source, options, header, 0);
 }
 
 geom::PointCloud readLas(const std::filesystem::path& path, const CloudReadOptions& options, LasHeader* header) {
-  if (detail::lowerExtension(path) == ".laz") throw InputError(lazNotSupportedMessage(path.string()));
-  return parseLas(detail::readFile(path), path.string(), options, header);
+  return parseLas(detail::readFile(path), path.string(), options, header, 0);
 }
 
 }  // namespace treesketch::io

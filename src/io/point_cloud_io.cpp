@@ -15,12 +15,11 @@ namespace treesketch::io {
 CloudFormat cloudFormatFromPath(const std::filesystem::path& path) {
   std::string ext = detail::lowerExtension(path);
   if (ext == ".ply") return CloudFormat::Ply;
-  if (ext == ".xyz" || ext == ".txt" || ext == ".csv" || ext == ".pts") return CloudFormat::Xyz;
-  if (ext == ".las") return CloudFormat::Las;
+  if (ext == ".xyz" || ext == ".txt" || ext == ".csv" || ext == ".pts" || ext == ".asc") return CloudFormat::Xyz;
+  if (ext == ".las" || ext == ".laz") return CloudFormat::Las;
   if (ext == ".obj") return CloudFormat::Obj;
-  if (ext == ".laz") throw InputError(lazNotSupportedMessage(path.string()));
   throw InputError(path.string() + ": unknown point cloud extension '" + ext +
-                   "', expected .ply, .xyz, .txt, .csv, .pts, .las or .obj (its vertices)");
+                   "', expected .ply, .xyz, .txt, .csv, .pts, .asc, .las, .laz or .obj (its vertices)");
 }
 
 geom::PointCloud readPointCloud(std::istream& in, const std::string& source, CloudFormat format,

@@ -33,28 +33,37 @@ int splitFields(const char* b, const char* e, std::string_view* fields, int maxF
   return n;
 }
 
-/// Which columns hold which attribute (-1: none).
+/// Which columns hold the coordinates and which attribute (-1: none).
 struct ColumnMap {
+  int x = 0, y = 1, z = 2;
   int intensity = -1, red = -1, green = -1, blue = -1, classification = -1;
   bool any() const { return intensity >= 0 || red >= 0 || classification >= 0; }
+  bool defaultXyz() const { return x == 0 && y == 1 && z == 2; }
   int needed() const { return std::max({intensity, red, green, blue, classification}) + 1; }
+  int neededXyz() const { return std::max({x, y, z}) + 1; }
 };
 
 constexpr int kMaxFields = 32;
 
-/// Columns named by a header line ("X,Y,Z,Intensity,R,G,B", "//X Y Z Rf Gf Bf Classification"):
-/// names are matched case-insensitively, with CloudCompare's "scalar_" prefix and "f" suffix on
-/// colour names dropped. Returns an empty map when the line names no attribute.
+/// Columns named by a header line ("X,Y,Z,Intensity,R,G,B", "//X Y Z Rf Gf Bf Classification",
+/// CloudCompare's ASCII export '"x" "y" "z"', "id;x;y;z;label"): names are matched
+/// case-insensitively, without quotes, with CloudCompare's "scalar_" prefix and "f" suffix on
+/// colour names dropped. x, y and z stay the first three columns unless the line names all three.
+/// Returns a map with no attribute when the line names none.
 ColumnMap columnsFromHeader(std::string_view header) {
   std::string_view f[kMaxFields];
   int n = splitFields(header.data(), header.data() + header.size(), f, kMaxFields);
   ColumnMap m;
+  int xyz[3] = {-1, -1, -1};
   for (int i = 0; i < n; ++i) {
     std::string name;
     for (char c : f[i])
-      if (c != '/' && c != '#') name += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (c != '/' && c != '#' && c != '"' && c != '\'')
+        name += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (name.rfind("scalar_", 0) == 0) name = name.substr(7);
-    if (name == "intensity" || name == "i" || name == "reflectance")
+    if ((name == "x" || name == "y" || name == "z") && xyz[name[0] - 'x'] < 0)
+      xyz[name[0] - 'x'] = i;
+    else if (name == "intensity" || name == "i" || name == "reflectance")
       m.intensity = i;
     else if (name == "r" || name == "red" || name == "rf")
       m.red = i;
@@ -66,6 +75,7 @@ ColumnMap columnsFromHeader(std::string_view header) {
       m.classification = i;
   }
   if (m.red < 0 || m.green < 0 || m.blue < 0) m.red = m.green = m.blue = -1;  // colour needs all three
+  if (xyz[0] >= 0 && xyz[1] >= 0 && xyz[2] >= 0) m.x = xyz[0], m.y = xyz[1], m.z = xyz[2];
   return m;
 }
 
@@ -87,7 +97,7 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
   std::size_t headerLines = 0;
   std::string_view lastHeader;
   std::string_view f[kMaxFields];
-  ColumnMap columns;
+  ColumnMap columns;        // from the last header line until the first point, then fixed
   bool attributes = false;  // every line so far had the attribute columns as numbers
   std::vector<std::array<double, 3>> colors;
   detail::Lines lines(data);
@@ -99,21 +109,32 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
     int n = splitFields(lineStart, lineEnd, f, kMaxFields);
     if (n == 0) continue;  // blank line
     if (f[0][0] == '#' || (f[0].size() >= 2 && f[0].substr(0, 2) == "//")) {
-      if (cloud.empty()) lastHeader = line;  // "//X Y Z Rf Gf Bf" names columns
-      continue;                              // comment
+      if (cloud.empty()) {  // "//X Y Z Rf Gf Bf" names columns
+        lastHeader = line;
+        columns = columnsFromHeader(lastHeader);
+      }
+      continue;  // comment
     }
     double v[3];
-    bool numeric = n >= 3;
-    for (int i = 0; numeric && i < 3; ++i) numeric = detail::parseDouble(f[i].data(), f[i].data() + f[i].size(), v[i]);
+    const int xyz[3] = {columns.x, columns.y, columns.z};
+    bool numeric = n >= columns.neededXyz();
+    for (int i = 0; numeric && i < 3; ++i)
+      numeric = detail::parseDouble(f[xyz[i]].data(), f[xyz[i]].data() + f[xyz[i]].size(), v[i]);
     if (!numeric) {
       if (cloud.empty() && headerLines < options.maxHeaderLines) {
         ++headerLines;
         lastHeader = line;
+        columns = columnsFromHeader(lastHeader);
         continue;
       }
-      throw InputError(atLine(
-          source, lineNo,
-          "expected 'x y z' (3 numbers separated by spaces, commas or semicolons), got " + detail::quoted(line)));
+      throw InputError(atLine(source, lineNo,
+                              columns.defaultXyz()
+                                  ? "expected 'x y z' (3 numbers separated by spaces, tabs, commas or semicolons), "
+                                    "got " +
+                                        detail::quoted(line)
+                                  : "expected numbers in columns " + std::to_string(columns.x + 1) + ", " +
+                                        std::to_string(columns.y + 1) + " and " + std::to_string(columns.z + 1) +
+                                        " (x y z, as the header names them), got " + detail::quoted(line)));
     }
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
       throw InputError(atLine(source, lineNo, "non-finite coordinate (NaN or Inf), expected finite numbers"));
@@ -122,8 +143,7 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
       if (line.find(';') != std::string_view::npos && line.find(',') != std::string_view::npos)
         throw InputError(
             atLine(source, lineNo, "line mixes ';' and ',' (decimal commas?); expected '.' as the decimal separator"));
-      columns = columnsFromHeader(lastHeader);
-      if (!columns.any()) columns = columnsFromCount(n);
+      if (!columns.any() && columns.defaultXyz()) columns = columnsFromCount(n);
       attributes = columns.any();
     }
     cloud.positions.emplace_back(v[0], v[1], v[2]);

@@ -23,7 +23,7 @@ std::string FileFilter::label() const {
 }
 
 FileFilter cloudFileFilter() {
-  return {"Point clouds and meshes", {".xyz", ".txt", ".csv", ".pts", ".las", ".ply", ".obj"}};
+  return {"Point clouds and meshes", {".xyz", ".txt", ".csv", ".pts", ".asc", ".las", ".laz", ".ply", ".obj"}};
 }
 FileFilter sketchFileFilter() { return {"Sketches", {".json"}}; }
 FileFilter meshFileFilter() { return {"Meshes", {".obj", ".ply"}}; }

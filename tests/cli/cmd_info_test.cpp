@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <string>
 
 #include "cli_support.h"
@@ -34,6 +35,19 @@ TEST(InfoCli, GoodFilePrintsCounts) {
   EXPECT_EQ(test::runCli("info " + test::quoted(dir / "c.xyz"), &out), 0) << out;
   EXPECT_NE(out.find("points: 7\n"), std::string::npos) << out;
   EXPECT_NE(out.find("bbox diagonal: 6.000000"), std::string::npos) << out;
+}
+
+// A LAZ file: the compressor, items, chunk size and point format (../shared/data/real; skipped
+// without it).
+TEST(InfoCli, LazFilePrintsCompressorChunkSizeAndPointFormat) {
+  const auto laz = test::sharedDataDir() / "real" / "spanner_TLS_Clip.laz";
+  if (!std::filesystem::exists(laz)) GTEST_SKIP() << "no shared data at " << laz.parent_path();
+  std::string out;
+  ASSERT_EQ(test::runCli("info " + test::quoted(laz), &out), 0) << out;
+  for (const char* line :
+       {"format: LAZ (compressed LAS) 1.4\n", "point data format: 6\n", "compressor: LASzip layered chunked",
+        "compressed items: POINT14 v3\n", "chunk size: 50000 points\n", "chunks: 9\n", "points: 400754\n"})
+    EXPECT_NE(out.find(line), std::string::npos) << "missing '" << line << "' in\n" << out;
 }
 
 }  // namespace

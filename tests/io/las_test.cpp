@@ -114,8 +114,8 @@ TEST(Las, RejectsBadHeaders) {
   shortRec.recordLength = 28;
   expectError([&] { lasFrom(buildLas(shortRec)); }, {"byte offset 105", "record length 28", "format 3", "at least 34"});
   v = good;
-  v[104] = static_cast<char>(0x83);
-  expectError([&] { lasFrom(v); }, {"compressed", "laszip"});
+  v[104] = static_cast<char>(0x40);  // compressed (the old writers' bit), but no LASzip VLR
+  expectError([&] { lasFrom(v); }, {"byte offset 227", "LASzip VLR"});
   v = good;
   v[104] = 11;
   expectError([&] { lasFrom(v); }, {"byte offset 104", "format 11"});
@@ -145,17 +145,19 @@ TEST(Las, RejectsTruncatedPointsAndHugeCounts) {
   EXPECT_EQ(lasFrom(buildLas(three), nullptr, any).size(), 3u);
 }
 
-TEST(Las, LazIsRefusedWithADecompressionHint) {
+TEST(Las, TheFormatByteNotTheExtensionSaysCompressed) {
   test::TempDir dir;
   LasSpec s;
   s.points = somePoints();
-  test::writeText(dir / "a.laz", buildLas(s));
-  expectError([&] { readLas(dir / "a.laz"); },
-              {"a.laz", "compressed LAS", "laszip -i in.laz -o out.las", "pdal translate"});
-  expectError([&] { readLasHeader(dir / "a.laz"); }, {"a.laz", "laszip"});
-  test::writeText(dir / "a.las", buildLas(s));
-  EXPECT_EQ(readLas(dir / "a.las").size(), 5u);
-  EXPECT_EQ(readLasHeader(dir / "a.las").pointCount, 5u);
+  test::writeText(dir / "a.laz", buildLas(s));  // plain LAS named .laz
+  EXPECT_EQ(readLas(dir / "a.laz").size(), 5u);
+  EXPECT_FALSE(readLasHeader(dir / "a.laz").compressed);
+  std::string flagged = buildLas(s);
+  flagged[104] = static_cast<char>(0x80);  // compression bit, point format 0, and no LASzip VLR
+  test::writeText(dir / "b.las", flagged);
+  EXPECT_TRUE(readLasHeader(dir / "b.las").compressed);
+  EXPECT_EQ(readLasHeader(dir / "b.las").pointFormat, 0);
+  expectError([&] { readLas(dir / "b.las"); }, {"b.las", "byte offset 227", "no LASzip VLR", "expected one"});
 }
 
 TEST(Las, RealArchiTreeMatchesItsHeader) {

@@ -26,11 +26,12 @@ TEST(PointCloudIo, FormatFromExtension) {
   EXPECT_EQ(cloudFormatFromPath("a.txt"), CloudFormat::Xyz);
   EXPECT_EQ(cloudFormatFromPath("a.csv"), CloudFormat::Xyz);
   EXPECT_EQ(cloudFormatFromPath("a.pts"), CloudFormat::Xyz);
+  EXPECT_EQ(cloudFormatFromPath("a.ASC"), CloudFormat::Xyz);
   EXPECT_EQ(cloudFormatFromPath("a.las"), CloudFormat::Las);
   EXPECT_EQ(cloudFormatFromPath("a.obj"), CloudFormat::Obj);
   expectError([] { cloudFormatFromPath("a.e57"); }, {"a.e57", "unknown point cloud extension", ".ply", ".las", ".xyz"});
   expectError([] { cloudFormatFromPath("noext"); }, {"noext"});
-  expectError([] { cloudFormatFromPath("a.laz"); }, {"a.laz", "laszip"});
+  EXPECT_EQ(cloudFormatFromPath("a.LAZ"), CloudFormat::Las);
 }
 
 TEST(PointCloudIo, WriteAndReadBackByExtension) {

@@ -7,6 +7,7 @@
 
 #include "io_test_util.h"
 #include "test_support.h"
+#include "treesketch/io/point_cloud_io.h"
 
 namespace treesketch::io {
 namespace {
@@ -58,6 +59,59 @@ TEST(Xyz, AcceptsSeparatorsHeadersCommentsCrlfAndExtraColumns) {
   EXPECT_EQ(c.positions[2], geom::Vec3(7, 8, 9));
   EXPECT_EQ(c.positions[3], geom::Vec3(10, -0.25, 0.5));
   EXPECT_EQ(c.positions[4], geom::Vec3(11, 12, 13));
+}
+
+TEST(Xyz, QuotedHeaderOfCloudCompareAsciiExport) {
+  geom::PointCloud c = readText("\"x\" \"y\" \"z\" \"Intensity\"\r\n1 2 3 7\r\n4 5 6 8\r\n7 8 9 9\r\n0 0 1 10\r\n");
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c.positions[1], geom::Vec3(4, 5, 6));
+  ASSERT_EQ(c.intensity.size(), 4u);
+  EXPECT_EQ(c.intensity[3], 10.0f);
+}
+
+TEST(Xyz, HeaderPlacesCoordinatesAndAttributesWhereItNamesThem) {
+  // Semicolons, an id before the coordinates, a text label and classification after them.
+  std::string text =
+      "id;Classification;X;Y;Z;label;Red;Green;Blue\n"
+      "1;2;500000.125;5400000.0625;251.5;stem;255;0;0\n"
+      "2;5;500001.25;5400001.5;252.75;leaf;0;255;0\n"
+      "3;5;500002.5;5400002.75;253;leaf;0;0;255\n"
+      "4;2;500003.75;5400003.875;254.25;stem;10;20;30\n";
+  geom::PointCloud c = readText(text);
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c.positions[0], geom::Vec3(500000.125, 5400000.0625, 251.5));
+  EXPECT_EQ(c.positions[3], geom::Vec3(500003.75, 5400003.875, 254.25));
+  ASSERT_EQ(c.classification.size(), 4u);
+  EXPECT_EQ(c.classification[1], 5);
+  ASSERT_EQ(c.color.size(), 4u);
+  EXPECT_EQ(c.color[3], (std::array<std::uint8_t, 3>{10, 20, 30}));
+  EXPECT_TRUE(c.intensity.empty());
+}
+
+TEST(Xyz, TabsAndCrlfWithUnnamedExtraColumnsIgnored) {
+  geom::PointCloud c = readText(
+      "X\tY\tZ\tlabel\tscore\r\n1\t2\t3\tA\t0.5\r\n4\t5\t6\tB\t0.25\r\n"
+      "7\t8\t9\tC\t1\r\n1\t1\t1\tD\t0\r\n");
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c.positions[2], geom::Vec3(7, 8, 9));
+  EXPECT_TRUE(c.intensity.empty());
+  EXPECT_TRUE(c.color.empty());
+}
+
+TEST(Xyz, ManyDigitsFarFromTheOriginKeepDoublePrecision) {
+  geom::PointCloud c = readText(
+      "x y z\n512345.678901234 5412345.987654321 254.123456789\n"
+      "512345.678901235 5412345.987654322 254.123456790\n0 0 0\n1 1 1\n");
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c.positions[0].x(), 512345.678901234);
+  EXPECT_EQ(c.positions[0].y(), 5412345.987654321);
+  EXPECT_NE(c.positions[0].x(), c.positions[1].x());  // 1e-9 apart: a float would merge them
+}
+
+TEST(Xyz, BadLineAfterNamedColumnsSaysWhichColumns) {
+  expectError([] { readText("id x y z\n1 0 0 0\n2 1 1 1\n3 2 2 2\n4 3 oops 3\n"); },
+              {"mem.xyz:5:", "columns 2, 3 and 4"});
+  expectError([] { readText("1 2 3\n4 5 6\n7 8 nine\n"); }, {"mem.xyz:3:", "expected 'x y z'"});
 }
 
 TEST(Xyz, PointCountLineOfPtsFilesIsSkippedAsHeader) {
@@ -130,6 +184,28 @@ TEST(Xyz, RealRTwigCloud) {
   EXPECT_EQ(c.positions[0], geom::Vec3(0.73229748, -16.39104271, 253.89553833));
   EXPECT_GT(c.bounds().min.z(), 253.0);
   EXPECT_LT(c.bounds().max.z(), 259.0);
+}
+
+// The text clouds of ../shared/data/real as they come: CloudCompare's .asc with a quoted header,
+// a header-less .asc, a tab-separated table with an "X Y Z" header.
+TEST(Xyz, RealTextVariantsLoadWithTheirPointCounts) {
+  const auto real = test::sharedDataDir() / "real";
+  if (!std::filesystem::exists(real / "voxr_Tree_t0.asc")) GTEST_SKIP() << "no shared data at " << real;
+  struct Case {
+    const char* name;
+    std::size_t points;
+    geom::Vec3 first;
+  };
+  const Case cases[] = {
+      {"voxr_Tree_t0.asc", 49054, {-0.21034623, -0.25578769, 5.42987073}},
+      {"plantscan3d_A3B4.asc", 20903, {-6.44799995, 3.90499997, 7.92000008}},
+      {"rtls_pc_tree.txt", 75812, {9.149, -1.110, 0.001}},
+  };
+  for (const Case& k : cases) {
+    geom::PointCloud c = readPointCloud(real / k.name);
+    EXPECT_EQ(c.size(), k.points) << k.name;
+    if (!c.empty()) EXPECT_EQ(c.positions[0], k.first) << k.name;
+  }
 }
 
 TEST(Xyz, DamagedFilesGiveInputErrorsOnly) {

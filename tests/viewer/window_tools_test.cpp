@@ -127,7 +127,9 @@ TEST(FileBrowser, TypedPathsAndSaveNames) {
   EXPECT_EQ(pathForSave(cur, "tree", sketchFileFilter()), fs::path("/data/plots/tree.json"));
   EXPECT_EQ(pathForSave(cur, "tree.obj", meshFileFilter()), fs::path("/data/plots/tree.obj"));
   EXPECT_TRUE(cloudFileFilter().matches("X.LAS"));
-  EXPECT_FALSE(cloudFileFilter().matches("x.laz"));
+  EXPECT_TRUE(cloudFileFilter().matches("x.laz"));
+  EXPECT_TRUE(cloudFileFilter().matches("scan.asc"));
+  EXPECT_FALSE(cloudFileFilter().matches("x.e57"));
   EXPECT_EQ(meshFileFilter().label(), "Meshes (*.obj *.ply)");
 }
 

@@ -1,5 +1,6 @@
 // What a cloud or mesh file holds, for `treesketch info`: its format details (PLY format and
-// properties, LAS version / point format / scale / offset / header bounds, OBJ counts) and the
+// properties, LAS version / point format / scale / offset / header bounds, LAZ compressor /
+// items / chunk size, OBJ counts) and the
 // loaded data, from which counts, bounds, diagonal and area follow.
 #pragma once
 
@@ -14,7 +15,7 @@
 namespace treesketch::io {
 
 struct FileInfo {
-  std::string format;  ///< e.g. "PLY binary_little_endian", "LAS 1.2", "OBJ", "XYZ text"
+  std::string format;  ///< e.g. "PLY binary_little_endian", "LAS 1.2", "LAZ (compressed LAS) 1.4", "OBJ", "XYZ text"
   /// Format details in file order, as (key, value) text pairs.
   std::vector<std::pair<std::string, std::string>> details;
   bool isMesh = false;  ///< true: `mesh` is filled; false: `cloud` is filled

@@ -1,8 +1,9 @@
-// ASPRS LAS 1.0–1.4 point clouds, uncompressed, point data record formats 0–10. Read: the
-// coordinates (X, Y, Z int32 at the start of every record, times scale plus offset), intensity,
-// classification and, in the formats that have it, RGB (geom::PointCloud's optional attributes;
-// one that is 0 in every record is dropped as "not recorded"); compressed LAZ is refused with a
-// message saying how to decompress it.
+// ASPRS LAS 1.0–1.4 point clouds, point data record formats 0–10, and LAZ (LASzip-compressed
+// LAS, formats 0–3 and 6–8: see laz.h), told apart by the format byte's compression bit rather
+// than the extension. Read: the coordinates (X, Y, Z int32 at the start of every record, times
+// scale plus offset), intensity, classification and, in the formats that have it, RGB
+// (geom::PointCloud's optional attributes; one that is 0 in every record is dropped as "not
+// recorded").
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,7 @@
 
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/types.h"
+#include "treesketch/io/laz.h"
 #include "treesketch/io/read_options.h"
 
 namespace treesketch::io {
@@ -25,7 +27,8 @@ struct LasHeader {
   std::uint16_t headerSize = 0;
   std::uint32_t offsetToPointData = 0;
   std::uint32_t numVlrs = 0;
-  std::uint8_t pointFormat = 0;  ///< 0..10 (compression bits already rejected)
+  std::uint8_t pointFormat = 0;  ///< 0..10 (the compression bits masked off)
+  bool compressed = false;       ///< LAZ: the format byte had a compression bit set
   std::uint16_t recordLength = 0;
   std::uint32_t legacyPointCount = 0;
   std::uint64_t pointCount = 0;  ///< the 64-bit count for LAS 1.4 when set, else the legacy count
@@ -33,6 +36,7 @@ struct LasHeader {
   geom::Vec3 offset = geom::Vec3::Zero();
   geom::Vec3 min = geom::Vec3::Zero();  ///< header bounds (world units, as stored)
   geom::Vec3 max = geom::Vec3::Zero();
+  LazInfo laz;  ///< compressed files: the LASzip VLR and chunk count (filled by readLas)
 };
 
 /// Smallest record length of each point data record format 0..10, in bytes (LAS 1.4 R15 table).
@@ -40,24 +44,20 @@ std::uint16_t lasMinRecordLength(int pointFormat);
 
 /// Parses the public header block at the start of `data` (the whole file or at least its
 /// header). Throws InputError with the byte offset for: a signature other than "LASF", a version
-/// other than 1.0–1.4, a header size too small for its version, compressed point data (LAZ),
-/// a point format above 10, a record length too short for its format, a zero or non-finite
-/// scale, an offset to point data inside the header.
+/// other than 1.0–1.4, a header size too small for its version, a point format above 10, a record length too short for
+/// its format, a zero or non-finite scale, an offset to point data inside the header.
 LasHeader parseLasHeader(std::string_view data, const std::string& source);
-/// Reads the header of a LAS file (InputError for .laz with the decompression hint).
+/// Reads the header of a LAS or LAZ file (the LASzip VLR is read by readLas only).
 LasHeader readLasHeader(const std::filesystem::path& path);
 
-/// Reads all points: X/Y/Z * scale + offset (world units, usually metres; Z up). Throws
-/// InputError for a bad header (above), data shorter than pointCount records (naming the offset
-/// where it ends), fewer than options.minPoints points. Allocation is capped by the bytes present.
+/// Reads all points: X/Y/Z * scale + offset (world units, usually metres; Z up), decompressing
+/// LAZ on all cores. Throws InputError for a bad header (above), data shorter than pointCount
+/// records (naming the offset where it ends), bad LAZ data (see decompressLaz), fewer than
+/// options.minPoints points. Allocation is capped by the bytes present.
 geom::PointCloud readLas(std::istream& in, const std::string& source, const CloudReadOptions& options = {},
                          LasHeader* header = nullptr);
-/// Same, from a file. A ".laz" path throws InputError explaining that compressed LAS is not
-/// supported and how to decompress it (laszip or pdal).
+/// Same, from a file (.las or .laz).
 geom::PointCloud readLas(const std::filesystem::path& path, const CloudReadOptions& options = {},
                          LasHeader* header = nullptr);
-
-/// The message used for compressed LAS (LAZ) input, naming `source`.
-std::string lazNotSupportedMessage(const std::string& source);
 
 }  // namespace treesketch::io

@@ -1,5 +1,5 @@
-// Reading and writing point clouds by file extension: .ply, .xyz/.txt/.csv/.pts, .las (and .laz,
-// refused with a hint), .obj (its vertices). Writers: .ply (binary) and .xyz/.txt.
+// Reading and writing point clouds by file extension: .ply, .xyz/.txt/.csv/.pts/.asc, .las and
+// .laz (compressed LAS), .obj (its vertices). Writers: .ply (binary) and .xyz/.txt.
 #pragma once
 
 #include <filesystem>
@@ -14,9 +14,8 @@ namespace treesketch::io {
 
 enum class CloudFormat { Ply, Xyz, Las, Obj };
 
-/// The format of a cloud file by its extension (case-insensitive). Throws InputError for ".laz"
-/// (compressed LAS: how to decompress it) and for an unknown extension (listing the supported
-/// ones).
+/// The format of a cloud file by its extension (case-insensitive; .laz is Las). Throws
+/// InputError for an unknown extension (listing the supported ones).
 CloudFormat cloudFormatFromPath(const std::filesystem::path& path);
 
 /// Reads a point cloud in the format its extension names. Decision: a mesh file given where a

@@ -4,7 +4,7 @@
 // 2. Else the file's own declaration (geom::PointCloud::up, set by the readers): LAS is Z-up by
 //    its specification; a PLY says it in a `comment up_axis y|z` line (treesketch writes one for
 //    every cloud that knows its up, such as its synthetic scans of Y-up trees).
-// 3. Else Z: text clouds (.xyz .txt .csv .pts), OBJ vertices and PLY files without the comment
+// 3. Else Z: text clouds (.xyz .txt .csv .pts .asc), OBJ vertices and PLY files without the comment
 //    follow the convention of field scans and forestry tools (TreeQSM, SimpleForest, rTwig,
 //    AdTree), which is Z up.
 #pragma once

@@ -1,10 +1,11 @@
-// Plain-text point clouds: one point a line, "x y z" followed by any extra columns. Intensity,
-// RGB and classification are read into the cloud's attributes when a header line names their
-// columns ("X Y Z Intensity R G B Classification", CloudCompare's "//X Y Z Rf Gf Bf
-// scalar_Intensity"), or, with no such header, by the column count: x y z i; x y z r g b; x y z i
-// r g b (Leica PTS). Other columns are ignored; a line without the attribute columns drops them
-// for the file. Fields are separated by spaces, tabs, commas or semicolons.
-// Header lines at the top ("X,Y,Z", a point count, "# comment") are skipped; CRLF is accepted.
+// Plain-text point clouds (.xyz .txt .csv .pts .asc): one point a line, "x y z" followed by any
+// extra columns. A header line naming the columns, quoted or not ("X Y Z Intensity R G B
+// Classification", CloudCompare's "//X Y Z Rf Gf Bf scalar_Intensity" or '"x" "y" "z"',
+// "id;x;y;z;label") places x, y and z where it names them; intensity, RGB and classification are
+// read into the cloud's attributes where named, other columns (labels, ids) are ignored. With no
+// such header, attributes go by the column count: x y z i; x y z r g b; x y z i r g b (Leica
+// PTS). A line without the attribute columns drops them for the file. Fields are separated by spaces, tabs, commas or
+// semicolons. Header lines at the top ("X,Y,Z", a point count, "# comment") are skipped; CRLF is accepted.
 #pragma once
 
 #include <filesystem>

@@ -22,7 +22,8 @@ struct FileFilter {
 };
 
 /// The dialogs' filters: what `treesketch-gui` opens as a cloud (clouds and meshes, which are
-/// scanned: .xyz .txt .csv .pts .las .ply .obj), sketches (.json) and exported meshes (.obj .ply).
+/// scanned: .xyz .txt .csv .pts .asc .las .laz .ply .obj), sketches (.json) and exported meshes
+/// (.obj .ply).
 FileFilter cloudFileFilter();
 FileFilter sketchFileFilter();
 FileFilter meshFileFilter();
