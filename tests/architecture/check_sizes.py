@@ -24,27 +24,6 @@ ALLOWED_FOR_NOW = {
     "src/skeleton/skeleton_sketch.cpp",  # regularizeRadii
     "src/io/ply_read.cpp",  # readVertices
     "src/io/xyz.cpp",  # parseXyz
-    # Not yet split.
-    "src/edit/correction_tools.cpp",
-    "src/skeleton/fork_split.cpp",
-    "src/skeleton/simplify.cpp",
-    "src/fit/circle_fit.cpp",
-    "src/fit/cloud_index.cpp",
-    "src/fit/node_fit.cpp",
-    "src/viewer/action_script.cpp",
-    "src/recon/reconstruction.cpp",
-    "src/eval/correcting_user.cpp",
-    "src/eval/evaluation.cpp",
-    "src/scan/pattern_cast.cpp",
-    "apps/viewer/check_session.cpp",
-    "apps/viewer/file_dialog.cpp",
-    "apps/viewer/main.cpp",
-    "apps/viewer/menu_bar.cpp",
-    "apps/viewer/panels.cpp",
-    "apps/viewer/renderer.cpp",
-    "apps/viewer/window_actions.cpp",
-    "apps/cli/cmd_compare.cpp",
-    "apps/cli/cmd_evaluate.cpp",
 }
 
 SOURCE_DIRS = ("src", "apps")
