@@ -35,6 +35,7 @@
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/cancel.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 #include "treesketch/viewer/action_script.h"
 #include "treesketch/viewer/demo_scene.h"
 #include "treesketch/viewer/point_lod.h"
@@ -147,6 +148,7 @@ class App {
 
   /// Draws one frame; writes `shot` (if given) from the back buffer before swapping.
   void frame(const fs::path* shot = nullptr) {
+    const Stopwatch timer;
     const auto t0 = std::chrono::steady_clock::now();
     // Level of detail: while the view moves, a subsample within the adaptive budget; the whole
     // cloud when still and in screenshots.
@@ -193,7 +195,7 @@ class App {
       }
     }
     glfwSwapBuffers(window_);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms = timer.ms();
     ++framesDrawn_;
     // Frame times of the 3D view (not the loading screen, not the first frame, which uploads the
     // cloud and compiles the shaders).
@@ -376,9 +378,10 @@ int measureIdle(App& app, GLFWwindow* window, double seconds) {
   loopUntil(Clock::now() + std::chrono::seconds(1));
   const std::uint64_t frames0 = app.framesDrawn();
   const double cpu0 = cpuSeconds();
+  const Stopwatch measure;
   const auto t0 = Clock::now();
   loopUntil(t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)));
-  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double wall = measure.seconds();
   const double cpu = cpuSeconds() - cpu0;
   const std::uint64_t frames = app.framesDrawn() - frames0;
   std::fprintf(stderr,

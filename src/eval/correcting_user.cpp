@@ -2,7 +2,6 @@
 #include "treesketch/eval/correcting_user.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -17,6 +16,7 @@
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 
 namespace treesketch::eval {
 
@@ -24,7 +24,6 @@ namespace fs = std::filesystem;
 using geom::Vec2;
 using geom::Vec3;
 using sketch::NodeId;
-using Clock = std::chrono::steady_clock;
 
 namespace {
 
@@ -148,7 +147,7 @@ class CorrectingSession {
   CorrectingRun run() {
     for (int edit = 1; edit <= o_.maxEdits; ++edit) {
       if (o_.stopAtTarget && run_.editsToTarget >= 0) break;
-      auto t0 = Clock::now();
+      const Stopwatch timer;
       std::vector<Candidate> cands;
       addMissedLimbs(cands);
       addWrongTubes(cands);
@@ -160,7 +159,7 @@ class CorrectingSession {
       const std::string action = applyFirstEdit(cands, deleted);
       if (action.empty()) break;
       rec_.update(sk_);
-      record(edit, action, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+      record(edit, action, timer.ms());
       undoIfWorse(edit, saved, deleted);
     }
     return std::move(run_);
@@ -403,7 +402,7 @@ std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& 
       for (int leafState = 0; leafState < 2; ++leafState) {
         const bool leafOn = leafState == 0;
         if ((leafOn && !(eo.leafOn && c.leafOn)) || (!leafOn && !(eo.leafOff && c.leafOff))) continue;
-        auto t0 = Clock::now();
+        const Stopwatch timer;
         TreeScan scan = scanTree(tree, c, leafOn, eo.seed);
         skeleton::AutoSkeletonOptions so =
             skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, tree.up);
@@ -425,8 +424,7 @@ std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& 
                         "%s %s %s correcting user: RMS back/fwd %.3f/%.3f %% -> %.3f/%.3f %% after %d edits; "
                         "edits to %.2f %%: %d  (%.0f s)",
                         tree.name.c_str(), c.name.c_str(), r.leaf.c_str(), first.backwardRms, first.forwardRms,
-                        last.backwardRms, last.forwardRms, last.edit, o.targetPct, r.editsToTarget,
-                        std::chrono::duration<double>(Clock::now() - t0).count());
+                        last.backwardRms, last.forwardRms, last.edit, o.targetPct, r.editsToTarget, timer.seconds());
           eo.log(buf);
         }
         runs.push_back(std::move(r));

@@ -1,7 +1,6 @@
 #include "treesketch/eval/evaluation.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -18,15 +17,13 @@
 #include "treesketch/sketch/auto_sketch.h"
 #include "treesketch/sketch/polyline_sketch.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 
 namespace treesketch::eval {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 namespace {
-
-double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 const geom::Viewport kViewport{0, 0, 1280, 800};
 
@@ -89,7 +86,7 @@ std::vector<sketch::BranchPolyline> branchesForBudget(const std::vector<sketch::
 /// chooseDepth: a person's screen nodes choose their depth along the view ray; the
 /// thesis's uniform baseline keeps the thesis's fit.
 MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud& cloud, std::uint64_t seed,
-                               Clock::time_point t0, bool chooseDepth = false) {
+                               const Stopwatch& timer, bool chooseDepth = false) {
   recon::ReconstructionOptions ro;
   ro.seed = seed;
   ro.fit.chooseDepth = chooseDepth;
@@ -107,7 +104,7 @@ MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud&
     else if (!sk.node(root).isScreenNode())
       out.root = sk.node(root).point;
   }
-  out.ms = msSince(t0);
+  out.ms = timer.ms();
   return out;
 }
 
@@ -116,9 +113,9 @@ geom::Camera viewCamera(const MethodInput& in) {
 }
 
 MethodOutput methodUniform(const MethodInput& in) {
-  auto t0 = Clock::now();
+  const Stopwatch timer;
   sketch::Sketch sk = sketch::uniformAutoSketch(in.cloud, viewCamera(in), in.nodeCount, in.tree.up);
-  return reconstructSketch(sk, in.cloud, in.options.seed, t0);
+  return reconstructSketch(sk, in.cloud, in.options.seed, timer);
 }
 
 sketch::PolylineSketchOptions userOptions(const MethodInput& in, std::vector<sketch::BranchPolyline>& axes) {
@@ -134,23 +131,23 @@ sketch::PolylineSketchOptions userOptions(const MethodInput& in, std::vector<ske
 }
 
 MethodOutput methodUser(const MethodInput& in) {
-  auto t0 = Clock::now();
+  const Stopwatch timer;
   std::vector<sketch::BranchPolyline> axes;
   auto po = userOptions(in, axes);
   sketch::Sketch sk = sketch::sketchFromPolylines(axes, viewCamera(in), po);
-  return reconstructSketch(sk, in.cloud, in.options.seed, t0, in.options.chooseDepth);
+  return reconstructSketch(sk, in.cloud, in.options.seed, timer, in.options.chooseDepth);
 }
 
 MethodOutput methodIdeal(const MethodInput& in) {
-  auto t0 = Clock::now();
+  const Stopwatch timer;
   std::vector<sketch::BranchPolyline> axes;
   auto po = userOptions(in, axes);
   sketch::Sketch sk = sketch::pointNodesFromPolylines(axes, po);
-  return reconstructSketch(sk, in.cloud, in.options.seed, t0);
+  return reconstructSketch(sk, in.cloud, in.options.seed, timer);
 }
 
 MethodOutput methodSkeleton(const MethodInput& in) {
-  auto t0 = Clock::now();
+  const Stopwatch timer;
   skeleton::AutoSkeletonOptions so =
       skeleton::autoSkeletonPreset(in.leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, in.tree.up);
   so.seed = in.options.seed;
@@ -165,7 +162,7 @@ MethodOutput methodSkeleton(const MethodInput& in) {
     const sketch::Node& node = out.sketch.node(root);
     out.root = node.kept ? node.kept->centre : node.point;  // point nodes: the model's own position
   }
-  out.ms = msSince(t0);
+  out.ms = timer.ms();
   return out;
 }
 

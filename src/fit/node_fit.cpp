@@ -2,12 +2,12 @@
 #include "treesketch/fit/node_fit.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 
 namespace treesketch::fit {
 
@@ -357,14 +357,12 @@ std::string skipReason(const NodeResult& res, const sketch::SamplingParams& p, c
 
 NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const sketch::SamplingParams& p,
                    const NodeFitOptions& options, const FitPrior* prior) {
-  auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   NodeResult res;
   checkInputs(g, p);
   res.normal = g.planeNormal.normalized();
   res.lineEpsilon = p.lineEpsilon;
-  auto finishTiming = [&] {
-    res.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  };
+  auto finishTiming = [&] { res.ms = timer.ms(); };
   if (!p.enabled) {
     res.status = NodeStatus::Disabled;
     res.reason = "disabled";

@@ -5,17 +5,14 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
-#include <chrono>
 #include <map>
 #include <set>
+
+#include "treesketch/util/stopwatch.h"
 
 namespace treesketch::recon {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 bool sameLassos(const std::vector<std::pair<sketch::NotWoodLasso, geom::Camera>>& a, const sketch::Sketch& sk) {
   if (a.size() != sk.notWood().size()) return false;
@@ -35,9 +32,9 @@ bool sameLassos(const std::vector<std::pair<sketch::NotWoodLasso, geom::Camera>>
 
 Reconstruction::Reconstruction(const geom::PointCloud& cloud, const ReconstructionOptions& options)
     : options_(options), sweeper_(options.sweep) {
-  auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   index_ = std::make_unique<fit::CloudIndex>(cloud, options_.index);
-  timings_.indexMs = msSince(t0);
+  timings_.indexMs = timer.ms();
 }
 
 void Reconstruction::reset() {
@@ -183,28 +180,28 @@ void Reconstruction::sweepEntries() {
 }
 
 std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const ProgressFn& progress) {
-  auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   sketch.validate();
   const bool lassosChanged = refreshExclusions(sketch);
   Pending pending = diff(sketch, lassosChanged);
   if (options_.fit.chooseDepth) addPriorDependents(sketch, pending);
-  auto tFit = std::chrono::steady_clock::now();
+  const Stopwatch fitTimer;
   fitPending(sketch, pending, progress);
-  timings_.fitMs = msSince(tFit);
-  auto tSweep = std::chrono::steady_clock::now();
+  timings_.fitMs = fitTimer.ms();
+  const Stopwatch sweepTimer;
   sweepEntries();
-  timings_.sweepMs = msSince(tSweep);
-  timings_.totalMs = msSince(t0);
+  timings_.sweepMs = sweepTimer.ms();
+  timings_.totalMs = timer.ms();
   return std::move(pending.changed);
 }
 
 ReconstructionResult reconstruct(const geom::PointCloud& cloud, const sketch::Sketch& sketch,
                                  const ReconstructionOptions& options) {
-  auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   Reconstruction rec(cloud, options);
   rec.update(sketch);
   ReconstructionResult out = rec.result(sketch);
-  out.timings.totalMs = msSince(t0);
+  out.timings.totalMs = timer.ms();
   return out;
 }
 

@@ -7,12 +7,12 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <numbers>
 
 #include "treesketch/scan/counter_rng.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 
 namespace treesketch::scan {
 
@@ -115,7 +115,7 @@ ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, con
     throw OptionsError("scan: the scene unit must be a finite number of metres > 0, got " +
                        std::to_string(options.unitMetres));
   checkBeamFootprint(options.beam);
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   ScanResult result;
   result.stats.raysCast = rayCount;
   result.stats.hitsPerMesh.assign(scene.meshCount(), 0);
@@ -137,8 +137,7 @@ ScanResult castPattern(const accel::RayScene& scene, std::uint64_t rayCount, con
                     });
 
   joinChunks(chunks, options, result);
-  result.stats.milliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.stats.milliseconds = timer.ms();
   return result;
 }
 
