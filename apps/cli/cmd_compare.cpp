@@ -98,6 +98,65 @@ void printRow(const char* name, const compare::DistanceReport& r) {
               cell(r.rms, r.percent(r.rms)).c_str());
 }
 
+// The comparison's table on stdout.
+void printReport(const CompareArgs& args, const geom::TriMesh& a, const Target& b, const compare::BothReport& both) {
+  std::printf("A: %s (%zu vertices, %zu triangles, bbox diagonal %.6g)\n", args.a.c_str(), a.vertices.size(),
+              a.triangles.size(), a.bounds().diagonal());
+  if (b.isMesh)
+    std::printf("B: %s (%zu vertices, %zu triangles, bbox diagonal %.6g)\n", args.b.c_str(), b.mesh.vertices.size(),
+                b.mesh.triangles.size(), b.mesh.bounds().diagonal());
+  else
+    std::printf("B: %s (point cloud, %zu points, bbox diagonal %.6g)\n", args.b.c_str(), b.cloud.size(),
+                b.cloud.bounds().diagonal());
+  std::printf("distances in the files' units; %% of the sampled surface's bbox diagonal\n");
+  std::printf("%-9s %10s %9s  %-22s %-22s %-22s %-22s\n", "direction", "samples", "dropped", "min", "max", "mean",
+              "RMS");
+  printRow("forward", both.forward);
+  if (!args.oneWay) printRow("backward", both.backward);
+  const auto& f = both.forward;
+  std::printf("forward samples: %llu vertex, %llu edge, %llu face\n", static_cast<unsigned long long>(f.vertexSamples),
+              static_cast<unsigned long long>(f.edgeSamples), static_cast<unsigned long long>(f.faceSamples));
+  if (std::isfinite(f.maxDistance)) std::printf("search distance: %.6g (farther samples dropped)\n", f.maxDistance);
+  if (!args.oneWay) {
+    if (std::isnan(both.hausdorff))
+      std::printf("Hausdorff distance: - (a direction has no sample within the search distance)\n");
+    else if (!std::isfinite(both.hausdorffPercent))
+      std::printf("Hausdorff distance: %.6g\n", both.hausdorff);
+    else
+      std::printf("Hausdorff distance: %.6g (%.4f%% of A's bbox diagonal)\n", both.hausdorff, both.hausdorffPercent);
+  }
+}
+
+// The JSON report and A's error mesh, when asked for.
+void writeOutputs(const CompareArgs& args, const geom::TriMesh& a, const Target& b, const compare::BothReport& both) {
+  const auto& f = both.forward;
+  if (!args.json.empty()) {
+    nlohmann::json j = args.oneWay ? nlohmann::json{{"forward", compare::toJson(both.forward)}} : compare::toJson(both);
+    j["a"] = args.a;
+    j["b"] = args.b;
+    j["seed"] = args.seed;
+    writeFileAtomically(
+        args.json, [&](std::ostream& out) { out << j.dump(2) << "\n"; }, false);
+  }
+  if (!args.errorMesh.empty()) {
+    // A's vertex samples give their distances; the vertices not sampled are measured now.
+    std::vector<double> d = compare::vertexDistancesFromReport(f, a.vertices.size());
+    if (b.isMesh)
+      compare::fillVertexDistances(a, b.mesh, f.maxDistance, d);
+    else
+      compare::fillVertexDistances(a, b.cloud, f.maxDistance, d);
+    compare::ErrorMeshOptions eo;
+    if (args.range.size() == 2) {
+      eo.rangeMin = args.range[0];
+      eo.rangeMax = args.range[1];
+    }
+    const auto range = compare::colorRange(d, eo);
+    io::writeMesh(args.errorMesh, compare::makeErrorMesh(a, d, eo));
+    std::printf("error mesh: %s (quality = distance to B; red %.6g -> blue %.6g)\n", args.errorMesh.c_str(), range[0],
+                range[1]);
+  }
+}
+
 void runCompare(const CompareArgs& args) {
   if (!args.range.empty() && args.range.size() != 2) throw OptionsError("--range takes two values: MIN MAX (metres)");
   if (args.range.size() == 2 && !(args.range[0] <= args.range[1]))
@@ -139,57 +198,8 @@ void runCompare(const CompareArgs& args) {
     compare::finishBoth(both);
   }
 
-  std::printf("A: %s (%zu vertices, %zu triangles, bbox diagonal %.6g)\n", args.a.c_str(), a.vertices.size(),
-              a.triangles.size(), a.bounds().diagonal());
-  if (b.isMesh)
-    std::printf("B: %s (%zu vertices, %zu triangles, bbox diagonal %.6g)\n", args.b.c_str(), b.mesh.vertices.size(),
-                b.mesh.triangles.size(), b.mesh.bounds().diagonal());
-  else
-    std::printf("B: %s (point cloud, %zu points, bbox diagonal %.6g)\n", args.b.c_str(), b.cloud.size(),
-                b.cloud.bounds().diagonal());
-  std::printf("distances in the files' units; %% of the sampled surface's bbox diagonal\n");
-  std::printf("%-9s %10s %9s  %-22s %-22s %-22s %-22s\n", "direction", "samples", "dropped", "min", "max", "mean",
-              "RMS");
-  printRow("forward", both.forward);
-  if (!args.oneWay) printRow("backward", both.backward);
-  const auto& f = both.forward;
-  std::printf("forward samples: %llu vertex, %llu edge, %llu face\n", static_cast<unsigned long long>(f.vertexSamples),
-              static_cast<unsigned long long>(f.edgeSamples), static_cast<unsigned long long>(f.faceSamples));
-  if (std::isfinite(f.maxDistance)) std::printf("search distance: %.6g (farther samples dropped)\n", f.maxDistance);
-  if (!args.oneWay) {
-    if (std::isnan(both.hausdorff))
-      std::printf("Hausdorff distance: - (a direction has no sample within the search distance)\n");
-    else if (!std::isfinite(both.hausdorffPercent))
-      std::printf("Hausdorff distance: %.6g\n", both.hausdorff);
-    else
-      std::printf("Hausdorff distance: %.6g (%.4f%% of A's bbox diagonal)\n", both.hausdorff, both.hausdorffPercent);
-  }
-
-  if (!args.json.empty()) {
-    nlohmann::json j = args.oneWay ? nlohmann::json{{"forward", compare::toJson(both.forward)}} : compare::toJson(both);
-    j["a"] = args.a;
-    j["b"] = args.b;
-    j["seed"] = args.seed;
-    writeFileAtomically(
-        args.json, [&](std::ostream& out) { out << j.dump(2) << "\n"; }, false);
-  }
-  if (!args.errorMesh.empty()) {
-    // A's vertex samples give their distances; the vertices not sampled are measured now.
-    std::vector<double> d = compare::vertexDistancesFromReport(f, a.vertices.size());
-    if (b.isMesh)
-      compare::fillVertexDistances(a, b.mesh, f.maxDistance, d);
-    else
-      compare::fillVertexDistances(a, b.cloud, f.maxDistance, d);
-    compare::ErrorMeshOptions eo;
-    if (args.range.size() == 2) {
-      eo.rangeMin = args.range[0];
-      eo.rangeMax = args.range[1];
-    }
-    const auto range = compare::colorRange(d, eo);
-    io::writeMesh(args.errorMesh, compare::makeErrorMesh(a, d, eo));
-    std::printf("error mesh: %s (quality = distance to B; red %.6g -> blue %.6g)\n", args.errorMesh.c_str(), range[0],
-                range[1]);
-  }
+  printReport(args, a, b, both);
+  writeOutputs(args, a, b, both);
 }
 
 }  // namespace

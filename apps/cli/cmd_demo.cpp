@@ -16,7 +16,6 @@
 //                  as MeshLab/Metro); error mesh of the user's reconstruction (error_user.ply)
 //   8. summary   — counts, wood fraction, bounds, the comparison table, the automatic model's
 //                  forestry figures, timings -> stdout and summary.txt
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -43,6 +42,7 @@
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/progress.h"
+#include "treesketch/util/stopwatch.h"
 
 namespace treesketch::cli {
 
@@ -82,10 +82,9 @@ struct DemoState {
 /// Runs `step`, recording its wall time under `name`.
 template <typename F>
 void timed(DemoState& s, const std::string& name, F&& step) {
-  auto start = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   step();
-  s.timings.emplace_back(name,
-                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  s.timings.emplace_back(name, timer.ms());
 }
 
 std::string formatBox(const geom::BBox& b) {

@@ -31,13 +31,16 @@ void check(bool ok, const std::string& what) {
 const int kMarkers[3][3] = {{60, 220, 90}, {255, 80, 40}, {200, 200, 200}};
 const int kBackground[3] = {28, 31, 36};  // glClearColor(0.11, 0.12, 0.14)
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Args {
   std::string sketchPath, autosavePath, meshPath, pngPath;
   long nodes = -1, minTriangles = -1, cloudPixels = -1;
   std::uint64_t demoRays = 0;
   bool markers = false;
+};
+
+// The command line; exits 2 on a bad option.
+Args parseArgs(int argc, char** argv) {
+  Args r;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -48,101 +51,112 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "--sketch")
-      sketchPath = next();
+      r.sketchPath = next();
     else if (a == "--autosave")
-      autosavePath = next();
+      r.autosavePath = next();
     else if (a == "--mesh")
-      meshPath = next();
+      r.meshPath = next();
     else if (a == "--png")
-      pngPath = next();
+      r.pngPath = next();
     else if (a == "--nodes")
-      nodes = std::stol(next());
+      r.nodes = std::stol(next());
     else if (a == "--min-triangles")
-      minTriangles = std::stol(next());
+      r.minTriangles = std::stol(next());
     else if (a == "--cloud-pixels")
-      cloudPixels = std::stol(next());
+      r.cloudPixels = std::stol(next());
     else if (a == "--demo-rays")
-      demoRays = std::stoull(next());
+      r.demoRays = std::stoull(next());
     else if (a == "--markers")
-      markers = true;
+      r.markers = true;
     else {
       std::cerr << "unknown option " << a << "\n";
-      return 2;
+      std::exit(2);
     }
   }
+  return r;
+}
+
+void checkMesh(const Args& args) {
+  geom::TriMesh mesh = io::readMesh(args.meshPath);
+  if (args.minTriangles >= 0)
+    check(static_cast<long>(mesh.triangles.size()) >= args.minTriangles,
+          "mesh has at least " + std::to_string(args.minTriangles) + " triangles (got " +
+              std::to_string(mesh.triangles.size()) + ")");
+  if (args.demoRays > 0) {
+    viewer::DemoSceneOptions demo;
+    demo.rays = args.demoRays;
+    geom::BBox box = viewer::demoTreeCloud(demo).bounds();
+    geom::BBox mb = mesh.bounds();
+    double slack = 0.05 * box.diagonal();
+    bool inside =
+        (mb.min.array() >= box.min.array() - slack).all() && (mb.max.array() <= box.max.array() + slack).all();
+    check(inside, "mesh lies within the demo cloud's bounding box");
+  }
+}
+
+// The screenshot's checks; false when it does not read as an image.
+bool checkScreenshot(const Args& args, const sketch::Sketch& sk) {
+  int w = 0, h = 0, c = 0;
+  unsigned char* img = stbi_load(args.pngPath.c_str(), &w, &h, &c, 3);
+  check(img != nullptr, "screenshot " + args.pngPath + " reads as an image");
+  if (!img) return false;
+  auto px = [&](int x, int y) { return img + 3 * (static_cast<std::size_t>(y) * w + x); };
+  if (args.cloudPixels >= 0) {
+    // Pixels of the 3D view (right of the 340-pixel panel, above the status bar) that are
+    // neither background nor grey UI: the coloured cloud.
+    long count = 0;
+    for (int y = 0; y < h - 30; ++y)
+      for (int x = 345; x < w; ++x) {
+        const unsigned char* p = px(x, y);
+        int diff = std::abs(p[0] - kBackground[0]) + std::abs(p[1] - kBackground[1]) + std::abs(p[2] - kBackground[2]);
+        int chroma = std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]});
+        count += diff > 40 && chroma > 30;
+      }
+    check(count >= args.cloudPixels, "the cloud covers at least " + std::to_string(args.cloudPixels) + " pixels (got " +
+                                         std::to_string(count) + ")");
+  }
+  if (args.markers && !args.sketchPath.empty()) {
+    for (const auto& [id, n] : sk.nodes()) {
+      int x = static_cast<int>(std::lround(n.screen.x())), y = static_cast<int>(std::lround(n.screen.y()));
+      bool ok = false;
+      std::string got = "outside";
+      if (x >= 0 && y >= 0 && x < w && y < h) {
+        const unsigned char* p = px(x, y);
+        got = std::to_string(p[0]) + "," + std::to_string(p[1]) + "," + std::to_string(p[2]);
+        for (const auto& m : kMarkers) ok |= std::abs(p[0] - m[0]) + std::abs(p[1] - m[1]) + std::abs(p[2] - m[2]) < 30;
+      }
+      check(ok, "node " + std::to_string(id) + "'s marker is drawn at (" + std::to_string(x) + ", " +
+                    std::to_string(y) + ") (pixel " + got + ")");
+    }
+  }
+  stbi_image_free(img);
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Args args = parseArgs(argc, argv);
   try {
     sketch::Sketch sk;
-    if (!sketchPath.empty()) {
-      sk = io::readSketch(sketchPath);
-      if (nodes >= 0)
-        check(static_cast<long>(sk.size()) == nodes,
-              "sketch has " + std::to_string(nodes) + " nodes (got " + std::to_string(sk.size()) + ")");
+    if (!args.sketchPath.empty()) {
+      sk = io::readSketch(args.sketchPath);
+      if (args.nodes >= 0)
+        check(static_cast<long>(sk.size()) == args.nodes,
+              "sketch has " + std::to_string(args.nodes) + " nodes (got " + std::to_string(sk.size()) + ")");
       bool chain = true;
       for (const auto& [id, n] : sk.nodes()) chain &= n.isScreenNode();
       check(chain && sk.root() != sketch::kNoNode, "sketch is one tree of screen nodes");
     }
-    if (!autosavePath.empty() && !sketchPath.empty()) {
-      sketch::Sketch auto_ = io::readSketch(autosavePath);
+    if (!args.autosavePath.empty() && !args.sketchPath.empty()) {
+      sketch::Sketch auto_ = io::readSketch(args.autosavePath);
       std::ostringstream a, b;
       io::writeSketch(a, sk);
       io::writeSketch(b, auto_);
       check(a.str() == b.str(), "autosave equals the saved sketch");
     }
-    if (!meshPath.empty()) {
-      geom::TriMesh mesh = io::readMesh(meshPath);
-      if (minTriangles >= 0)
-        check(static_cast<long>(mesh.triangles.size()) >= minTriangles,
-              "mesh has at least " + std::to_string(minTriangles) + " triangles (got " +
-                  std::to_string(mesh.triangles.size()) + ")");
-      if (demoRays > 0) {
-        viewer::DemoSceneOptions demo;
-        demo.rays = demoRays;
-        geom::BBox box = viewer::demoTreeCloud(demo).bounds();
-        geom::BBox mb = mesh.bounds();
-        double slack = 0.05 * box.diagonal();
-        bool inside =
-            (mb.min.array() >= box.min.array() - slack).all() && (mb.max.array() <= box.max.array() + slack).all();
-        check(inside, "mesh lies within the demo cloud's bounding box");
-      }
-    }
-    if (!pngPath.empty()) {
-      int w = 0, h = 0, c = 0;
-      unsigned char* img = stbi_load(pngPath.c_str(), &w, &h, &c, 3);
-      check(img != nullptr, "screenshot " + pngPath + " reads as an image");
-      if (!img) return 1;
-      auto px = [&](int x, int y) { return img + 3 * (static_cast<std::size_t>(y) * w + x); };
-      if (cloudPixels >= 0) {
-        // Pixels of the 3D view (right of the 340-pixel panel, above the status bar) that are
-        // neither background nor grey UI: the coloured cloud.
-        long count = 0;
-        for (int y = 0; y < h - 30; ++y)
-          for (int x = 345; x < w; ++x) {
-            const unsigned char* p = px(x, y);
-            int diff =
-                std::abs(p[0] - kBackground[0]) + std::abs(p[1] - kBackground[1]) + std::abs(p[2] - kBackground[2]);
-            int chroma = std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]});
-            count += diff > 40 && chroma > 30;
-          }
-        check(count >= cloudPixels, "the cloud covers at least " + std::to_string(cloudPixels) + " pixels (got " +
-                                        std::to_string(count) + ")");
-      }
-      if (markers && !sketchPath.empty()) {
-        for (const auto& [id, n] : sk.nodes()) {
-          int x = static_cast<int>(std::lround(n.screen.x())), y = static_cast<int>(std::lround(n.screen.y()));
-          bool ok = false;
-          std::string got = "outside";
-          if (x >= 0 && y >= 0 && x < w && y < h) {
-            const unsigned char* p = px(x, y);
-            got = std::to_string(p[0]) + "," + std::to_string(p[1]) + "," + std::to_string(p[2]);
-            for (const auto& m : kMarkers)
-              ok |= std::abs(p[0] - m[0]) + std::abs(p[1] - m[1]) + std::abs(p[2] - m[2]) < 30;
-          }
-          check(ok, "node " + std::to_string(id) + "'s marker is drawn at (" + std::to_string(x) + ", " +
-                        std::to_string(y) + ") (pixel " + got + ")");
-        }
-      }
-      stbi_image_free(img);
-    }
+    if (!args.meshPath.empty()) checkMesh(args);
+    if (!args.pngPath.empty() && !checkScreenshot(args, sk)) return 1;
   } catch (const std::exception& e) {
     std::cout << "FAILED: " << e.what() << "\n";
     return 1;

@@ -80,30 +80,9 @@ void FileDialog::accept() {
   }
 }
 
-void FileDialog::draw() {
-  const char* popupId = "##treesketch_file_dialog";
-  if (open_ && !ImGui::IsPopupOpen(popupId)) ImGui::OpenPopup(popupId);
-  ImGuiViewport* vp = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y * 0.5f), ImGuiCond_Always,
-                          ImVec2(0.5f, 0.5f));
-  ImGui::SetNextWindowSize(ImVec2(640, 460), ImGuiCond_Appearing);
-  if (!ImGui::BeginPopupModal(popupId, nullptr, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoTitleBar)) return;
-  if (!open_) {
-    ImGui::CloseCurrentPopup();
-    ImGui::EndPopup();
-    return;
-  }
-  ImGui::TextUnformatted(title_.c_str());
-  ImGui::Separator();
-  if (ImGui::Button("Up")) navigate(listing_.directory.parent_path());
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The parent folder");
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(-1);
-  if (ImGui::InputText("##folder", &folderText_, ImGuiInputTextFlags_EnterReturnsTrue))
-    navigate(viewer::resolveTypedPath(listing_.directory, folderText_));
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The folder shown; type another and press Enter");
-
-  float listHeight = ImGui::GetContentRegionAvail().y - 4 * ImGui::GetFrameHeightWithSpacing();
+// The folder's entries, in a child window `listHeight` pixels high: a click chooses, a double click
+// enters a folder or accepts a file.
+void FileDialog::drawEntries(float listHeight) {
   if (ImGui::BeginChild("##entries", ImVec2(0, listHeight), true)) {
     for (int i = 0; i < static_cast<int>(listing_.entries.size()); ++i) {
       const viewer::FileEntry e = listing_.entries[static_cast<std::size_t>(i)];  // a copy: accept may re-list
@@ -136,6 +115,33 @@ void FileDialog::draw() {
     if (listing_.entries.empty() && listing_.ok()) ImGui::TextDisabled("(no matching files here)");
   }
   ImGui::EndChild();
+}
+
+void FileDialog::draw() {
+  const char* popupId = "##treesketch_file_dialog";
+  if (open_ && !ImGui::IsPopupOpen(popupId)) ImGui::OpenPopup(popupId);
+  ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y * 0.5f), ImGuiCond_Always,
+                          ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowSize(ImVec2(640, 460), ImGuiCond_Appearing);
+  if (!ImGui::BeginPopupModal(popupId, nullptr, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoTitleBar)) return;
+  if (!open_) {
+    ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+    return;
+  }
+  ImGui::TextUnformatted(title_.c_str());
+  ImGui::Separator();
+  if (ImGui::Button("Up")) navigate(listing_.directory.parent_path());
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The parent folder");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::InputText("##folder", &folderText_, ImGuiInputTextFlags_EnterReturnsTrue))
+    navigate(viewer::resolveTypedPath(listing_.directory, folderText_));
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The folder shown; type another and press Enter");
+
+  float listHeight = ImGui::GetContentRegionAvail().y - 4 * ImGui::GetFrameHeightWithSpacing();
+  drawEntries(listHeight);
 
   ImGui::SetNextItemWidth(-200);
   bool enter = ImGui::InputText("##typed", &typed_, ImGuiInputTextFlags_EnterReturnsTrue);

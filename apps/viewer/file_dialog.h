@@ -45,6 +45,7 @@ class FileDialog {
   void draw();
 
  private:
+  void drawEntries(float listHeight);
   void refresh();
 
   bool open_ = false;

@@ -26,6 +26,7 @@
 
 #include "build_info.h"
 #include "dialogs.h"
+#include "gui_args.h"
 #include "panels.h"
 #include "renderer.h"
 #include "screenshot.h"
@@ -34,6 +35,7 @@
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/cancel.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 #include "treesketch/viewer/action_script.h"
 #include "treesketch/viewer/demo_scene.h"
 #include "treesketch/viewer/point_lod.h"
@@ -45,77 +47,13 @@ using namespace treesketch;
 
 namespace {
 
-constexpr int kExitOk = 0, kExitFailed = 1, kExitUsage = 2, kExitInput = 3;
-
-struct Args {
-  std::string input;  ///< empty: the demo tree
-  std::string sketchPath, scriptPath, autosavePath;
-  /// --up as given ("" when not given: the library's rule, io::chooseUpAxis, decides).
-  std::string up;
-  viewer::DemoSceneOptions demo;
-  int width = 1280, height = 800;
-  double measureIdleSeconds = 0;  ///< --measure-idle: measure the idle window's cost and exit
-};
-
-void usage(std::ostream& out) {
-  out << "usage: treesketch-gui [CLOUD | MESH] [--sketch SKETCH.json] [--script ACTIONS.json]\n"
-         "                      [--up y|z|+x|-x|+y|-y|+z|-z] [--autosave PATH] [--demo PRESET] [--demo-rays N]\n"
-         "                      [--width W] [--height H] [--measure-idle SECONDS]\n"
-         "Opens the interactive sketching tool on a point cloud (.ply .xyz .txt .csv .pts .asc .las .laz) or on a\n"
-         "mesh (.obj, PLY with faces; scanned first with the sphere scanner's defaults). Without an input\n"
-         "it opens the built-in demo tree. --script runs a scripted session and exits (0: every action\n"
-         "succeeded, 1: some failed).\n";
-}
-
-Args parseArgs(int argc, char** argv) {
-  Args a;
-  for (int i = 1; i < argc; ++i) {
-    std::string s = argv[i];
-    auto value = [&](const char* name) -> std::string {
-      if (i + 1 >= argc) throw OptionsError(std::string(name) + " needs a value");
-      return argv[++i];
-    };
-    auto integer = [&](const char* name) -> long long {
-      std::string v = value(name);
-      char* end = nullptr;
-      long long n = std::strtoll(v.c_str(), &end, 10);
-      if (v.empty() || *end != '\0' || n <= 0) throw OptionsError(std::string(name) + ": expected a positive integer");
-      return n;
-    };
-    if (s == "-h" || s == "--help") {
-      usage(std::cout);
-      std::exit(kExitOk);
-    } else if (s == "--version") {
-      std::cout << cli::versionString() << "\n";
-      std::exit(kExitOk);
-    } else if (s == "--sketch")
-      a.sketchPath = value("--sketch");
-    else if (s == "--script")
-      a.scriptPath = value("--script");
-    else if (s == "--autosave")
-      a.autosavePath = value("--autosave");
-    else if (s == "--up") {
-      a.up = value("--up");
-      viewer::parseUpDirection(a.up);  // checked now: a bad value is a usage error
-    } else if (s == "--demo")
-      a.demo.preset = value("--demo");
-    else if (s == "--demo-rays")
-      a.demo.rays = static_cast<std::uint64_t>(integer("--demo-rays"));
-    else if (s == "--measure-idle")
-      a.measureIdleSeconds = static_cast<double>(integer("--measure-idle"));
-    else if (s == "--width")
-      a.width = static_cast<int>(integer("--width"));
-    else if (s == "--height")
-      a.height = static_cast<int>(integer("--height"));
-    else if (!s.empty() && s[0] == '-')
-      throw OptionsError("unknown option " + s);
-    else if (a.input.empty())
-      a.input = s;
-    else
-      throw OptionsError("only one input file may be given");
-  }
-  return a;
-}
+using gui::Args;
+using gui::kExitFailed;
+using gui::kExitInput;
+using gui::kExitOk;
+using gui::kExitUsage;
+using gui::parseArgs;
+using gui::usage;
 
 /// Loads the input on a worker thread so the window can show progress.
 struct Loader {
@@ -210,6 +148,7 @@ class App {
 
   /// Draws one frame; writes `shot` (if given) from the back buffer before swapping.
   void frame(const fs::path* shot = nullptr) {
+    const Stopwatch timer;
     const auto t0 = std::chrono::steady_clock::now();
     // Level of detail: while the view moves, a subsample within the adaptive budget; the whole
     // cloud when still and in screenshots.
@@ -256,7 +195,7 @@ class App {
       }
     }
     glfwSwapBuffers(window_);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms = timer.ms();
     ++framesDrawn_;
     // Frame times of the 3D view (not the loading screen, not the first frame, which uploads the
     // cloud and compiles the shaders).
@@ -439,9 +378,10 @@ int measureIdle(App& app, GLFWwindow* window, double seconds) {
   loopUntil(Clock::now() + std::chrono::seconds(1));
   const std::uint64_t frames0 = app.framesDrawn();
   const double cpu0 = cpuSeconds();
+  const Stopwatch measure;
   const auto t0 = Clock::now();
   loopUntil(t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)));
-  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double wall = measure.seconds();
   const double cpu = cpuSeconds() - cpu0;
   const std::uint64_t frames = app.framesDrawn() - frames0;
   std::fprintf(stderr,
@@ -450,17 +390,14 @@ int measureIdle(App& app, GLFWwindow* window, double seconds) {
   return kExitOk;
 }
 
-int run(const Args& args) {
-  viewer::ActionScript script;
-  if (!args.scriptPath.empty()) script = viewer::parseActionScript(fs::path(args.scriptPath));
-  int width = args.scriptPath.empty() ? args.width : script.windowWidth;
-  int height = args.scriptPath.empty() ? args.height : script.windowHeight;
-
+// The GLFW window with an OpenGL 3.3 core context and GLEW loaded; nullptr (after saying why on
+// stderr) when there is none.
+GLFWwindow* openWindow(const Args& args, int width, int height) {
   glfwSetErrorCallback(
       [](int code, const char* text) { std::fprintf(stderr, "treesketch-gui: GLFW %d: %s\n", code, text); });
   if (!glfwInit()) {
     std::cerr << "treesketch-gui: error: cannot open a window (no display? set DISPLAY, or run under xvfb-run)\n";
-    return kExitFailed;
+    return nullptr;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -471,7 +408,7 @@ int run(const Args& args) {
   if (!window) {
     std::cerr << "treesketch-gui: error: cannot create an OpenGL 3.3 core window\n";
     glfwTerminate();
-    return kExitFailed;
+    return nullptr;
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(args.scriptPath.empty() ? 1 : 0);
@@ -483,41 +420,92 @@ int run(const Args& args) {
               << "\n";
     glfwDestroyWindow(window);
     glfwTerminate();
-    return kExitFailed;
+    return nullptr;
   }
+  return window;
+}
+
+// Every event wakes the window for a few frames (redraw only when something changes).
+void installCallbacks(GLFWwindow* window, App& app) {
+  glfwSetWindowUserPointer(window, &app);
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int b, int a, int m) {
+    appOf(w)->wake();
+    appOf(w)->onMouseButton(b, a, m);
+  });
+  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+    appOf(w)->wake();
+    appOf(w)->onCursor(x, y);
+  });
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
+    appOf(w)->wake();
+    appOf(w)->onScroll(dy);
+  });
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int k, int, int a, int m) {
+    appOf(w)->wake();
+    appOf(w)->onKey(k, a, m);
+  });
+  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned int) { appOf(w)->wake(); });
+  glfwSetWindowSizeCallback(window, [](GLFWwindow* w, int, int) { appOf(w)->wake(); });
+  glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { appOf(w)->wake(); });
+  glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int) { appOf(w)->wake(); });
+  glfwSetCursorEnterCallback(window, [](GLFWwindow* w, int) { appOf(w)->wake(); });
+  // The close button asks about unsaved work first (WindowActions::requestQuit closes when done).
+  glfwSetWindowCloseCallback(window, [](GLFWwindow* w) {
+    glfwSetWindowShouldClose(w, GLFW_FALSE);
+    appOf(w)->wake();
+    appOf(w)->actions().requestQuit();
+  });
+}
+
+// Runs the action script against the window; returns the exit code.
+int runScript(App& app, const Args& args, const viewer::ActionScript& script) {
+  viewer::ScriptHooks hooks;
+  hooks.frame = [&] {
+    glfwPollEvents();
+    app.frame();
+  };
+  hooks.screenshot = [&](const fs::path& p) { app.frame(&p); };
+  hooks.sketchPath = args.sketchPath;
+  hooks.window = [&](const viewer::ScriptAction& a) { return app.actions().runScriptVerb(a); };
+  hooks.log = [](const viewer::ScriptAction&, const std::string& what) {
+    std::cerr << "treesketch-gui: " << what << "\n";
+  };
+  viewer::ScriptReport report = viewer::runActionScript(app.state(), script, hooks);
+  for (const std::string& f : report.failures) std::cerr << "treesketch-gui: failed: " << f << "\n";
+  std::cerr << "treesketch-gui: " << report.actionsRun << " actions, " << report.failures.size()
+            << " failed; last rebuild " << app.state().lastRebuildMs() << " ms\n";
+  return report.ok() ? kExitOk : kExitFailed;
+}
+
+// The interactive loop, until the window closes.
+void runInteractive(App& app, GLFWwindow* window) {
+  // Redraw only when something changes: block in glfwWaitEvents until an event, or until the
+  // next thing that changes by itself (App::nextWakeSeconds).
+  while (!glfwWindowShouldClose(window)) {
+    if (app.pendingFrames() > 0) {
+      glfwPollEvents();
+    } else if (double t = app.nextWakeSeconds(); t < 0) {
+      glfwWaitEvents();
+    } else {
+      glfwWaitEventsTimeout(t);
+    }
+    app.frame();
+  }
+}
+
+int run(const Args& args) {
+  viewer::ActionScript script;
+  if (!args.scriptPath.empty()) script = viewer::parseActionScript(fs::path(args.scriptPath));
+  int width = args.scriptPath.empty() ? args.width : script.windowWidth;
+  int height = args.scriptPath.empty() ? args.height : script.windowHeight;
+
+  GLFWwindow* window = openWindow(args, width, height);
+  if (!window) return kExitFailed;
 
   int code = kExitOk;
   {
     App app(args, window);
-    glfwSetWindowUserPointer(window, &app);
-    // Every event wakes the window for a few frames (redraw only when something changes).
-    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int b, int a, int m) {
-      appOf(w)->wake();
-      appOf(w)->onMouseButton(b, a, m);
-    });
-    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
-      appOf(w)->wake();
-      appOf(w)->onCursor(x, y);
-    });
-    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
-      appOf(w)->wake();
-      appOf(w)->onScroll(dy);
-    });
-    glfwSetKeyCallback(window, [](GLFWwindow* w, int k, int, int a, int m) {
-      appOf(w)->wake();
-      appOf(w)->onKey(k, a, m);
-    });
-    glfwSetCharCallback(window, [](GLFWwindow* w, unsigned int) { appOf(w)->wake(); });
-    glfwSetWindowSizeCallback(window, [](GLFWwindow* w, int, int) { appOf(w)->wake(); });
-    glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { appOf(w)->wake(); });
-    glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int) { appOf(w)->wake(); });
-    glfwSetCursorEnterCallback(window, [](GLFWwindow* w, int) { appOf(w)->wake(); });
-    // The close button asks about unsaved work first (WindowActions::requestQuit closes when done).
-    glfwSetWindowCloseCallback(window, [](GLFWwindow* w) {
-      glfwSetWindowShouldClose(w, GLFW_FALSE);
-      appOf(w)->wake();
-      appOf(w)->actions().requestQuit();
-    });
+    installCallbacks(window, app);
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -538,38 +526,12 @@ int run(const Args& args) {
         std::cerr << "treesketch-gui: error: " << app.state().lastMessage().text << "\n";
         code = kExitInput;
       } else {
-        viewer::ScriptHooks hooks;
-        hooks.frame = [&] {
-          glfwPollEvents();
-          app.frame();
-        };
-        hooks.screenshot = [&](const fs::path& p) { app.frame(&p); };
-        hooks.sketchPath = args.sketchPath;
-        hooks.window = [&](const viewer::ScriptAction& a) { return app.actions().runScriptVerb(a); };
-        hooks.log = [](const viewer::ScriptAction&, const std::string& what) {
-          std::cerr << "treesketch-gui: " << what << "\n";
-        };
-        viewer::ScriptReport report = viewer::runActionScript(app.state(), script, hooks);
-        for (const std::string& f : report.failures) std::cerr << "treesketch-gui: failed: " << f << "\n";
-        std::cerr << "treesketch-gui: " << report.actionsRun << " actions, " << report.failures.size()
-                  << " failed; last rebuild " << app.state().lastRebuildMs() << " ms\n";
-        code = report.ok() ? kExitOk : kExitFailed;
+        code = runScript(app, args, script);
       }
     } else if (args.measureIdleSeconds > 0) {
       code = measureIdle(app, window, args.measureIdleSeconds);
     } else {
-      // Redraw only when something changes: block in glfwWaitEvents until an event, or until the
-      // next thing that changes by itself (App::nextWakeSeconds).
-      while (!glfwWindowShouldClose(window)) {
-        if (app.pendingFrames() > 0) {
-          glfwPollEvents();
-        } else if (double t = app.nextWakeSeconds(); t < 0) {
-          glfwWaitEvents();
-        } else {
-          glfwWaitEventsTimeout(t);
-        }
-        app.frame();
-      }
+      runInteractive(app, window);
     }
     if (!args.scriptPath.empty()) std::cerr << "treesketch-gui: " << app.frameStatsLine() << "\n";
     app.state().cancelJob();  // closing the window stops a background job (its result is dropped)

@@ -15,101 +15,107 @@ void tip(const char* text) {
 }
 }  // namespace
 
+// The File menu's items (its BeginMenu is open; ends it).
+void WindowActions::drawFileMenu() {
+  if (ImGui::MenuItem("Open cloud...", "Ctrl+O")) openCloudDialog();
+  tip("Open another point cloud (.xyz .txt .csv .pts .asc .las .laz .ply) or a mesh (.obj .ply, scanned first)");
+  if (ImGui::MenuItem("Open sketch...")) openSketchDialog();
+  tip("Load a sketch file (.json) over this cloud");
+  if (ImGui::MenuItem("Save sketch", "Ctrl+S")) save();
+  tip("Save the sketch to its file (shown in the Files section)");
+  if (ImGui::MenuItem("Save sketch as...", "Ctrl+Shift+S")) saveAsDialog();
+  tip("Save the sketch to another file, which becomes its file");
+  if (ImGui::MenuItem("Export mesh...", "Ctrl+E")) exportMeshDialog();
+  tip("Write the tube mesh as OBJ or PLY");
+  using F = viewer::ViewerState::ModelFile;
+  if (ImGui::MenuItem("Export cylinder table...")) exportModelDialog(F::Cylinders);
+  tip("Write the model's cylinders as treesketch's CSV table (as reconstruct --cylinders)");
+  if (ImGui::MenuItem("Export TreeQSM table...")) exportModelDialog(F::Qsm);
+  tip("Write the cylinders in TreeQSM's text layout (as reconstruct --qsm)");
+  if (ImGui::MenuItem("Export metrics...")) exportModelDialog(F::Metrics);
+  tip("Write height, DBH, volumes by branch order, crown and taper as JSON (as reconstruct --metrics)");
+  if (ImGui::MenuItem("Export fit report...")) exportModelDialog(F::Report);
+  tip("Write how well the model explains the cloud, with its figures, as JSON (as reconstruct --report)");
+  ImGui::Separator();
+  if (ImGui::BeginMenu("Recent files", !recent_.entries().empty())) {
+    for (std::size_t i = 0; i < recent_.entries().size(); ++i) {
+      const viewer::RecentFile& e = recent_.entries()[i];
+      std::string label = std::string(e.kind == viewer::RecentKind::Cloud ? "cloud   " : "sketch  ") +
+                          e.path.filename().string() + "##" + std::to_string(i);
+      if (ImGui::MenuItem(label.c_str())) {
+        openRecent(i);
+        break;
+      }
+      tip(e.path.string().c_str());
+    }
+    ImGui::EndMenu();
+  }
+  tip("Clouds and sketches opened or saved lately (kept in ~/.config/treesketch)");
+  ImGui::Separator();
+  if (ImGui::MenuItem("Quit", "Ctrl+Q")) requestQuit();
+  tip("Close the window (asks first when the sketch has unsaved changes)");
+  ImGui::EndMenu();
+}
+
+// The View menu's items (its BeginMenu is open; ends it).
+void WindowActions::drawViewMenu() {
+  viewer::DisplayOptions& d = state_.display();
+  if (ImGui::BeginMenu("Colour points by")) {
+    for (viewer::ColorMode m : viewer::availableColorModes(state_.cloud()))
+      if (ImGui::MenuItem(viewer::colorModeLabel(m), nullptr, d.colorMode == m)) state_.setColorMode(m);
+    ImGui::EndMenu();
+  }
+  tip("Height, distance to the fitted circles, plain, or the file's intensity / RGB / classification (C cycles)");
+  ImGui::MenuItem("Cloud", nullptr, &d.showCloud);
+  tip("Show the point cloud");
+  ImGui::MenuItem("Node markers", nullptr, &d.showNodes);
+  tip("Show the sketch's nodes and links");
+  ImGui::MenuItem("Circles", nullptr, &d.showCircles);
+  tip("Show the fitted circles");
+  ImGui::MenuItem("Sampling region", nullptr, &d.showSamplingRegion);
+  tip("Show the selected node's slab, line cylinder and slice points");
+  int ms = static_cast<int>(d.meshStyle);
+  if (ImGui::BeginMenu("Tubes")) {
+    if (ImGui::MenuItem("Solid", nullptr, ms == 0)) d.meshStyle = viewer::MeshStyle::Solid;
+    if (ImGui::MenuItem("Wireframe", nullptr, ms == 1)) d.meshStyle = viewer::MeshStyle::Wireframe;
+    if (ImGui::MenuItem("Hidden", nullptr, ms == 2)) d.meshStyle = viewer::MeshStyle::Hidden;
+    ImGui::EndMenu();
+  }
+  tip("How the reconstructed tubes are drawn (W cycles)");
+  ImGui::MenuItem("Legend", nullptr, &showLegend_);
+  tip("The colour scale or classes of the point colouring");
+  ImGui::MenuItem("Axis gizmo", nullptr, &showGizmo_);
+  tip("The X/Y/Z axes as the camera sees them, bottom left");
+  ImGui::MenuItem("Scale bar", nullptr, &showScaleBar_);
+  tip("A round length at the centre of rotation's depth, bottom right");
+  ImGui::Separator();
+  bool ortho = state_.orbit().orthographic();
+  if (ImGui::MenuItem("Orthographic", "O", ortho)) state_.setOrthographic(!ortho);
+  tip("Orthographic or perspective projection");
+  if (ImGui::MenuItem("Front", "1")) state_.presetView(geom::PresetView::Front);
+  if (ImGui::MenuItem("Side", "2")) state_.presetView(geom::PresetView::Side);
+  if (ImGui::MenuItem("Top", "3")) state_.presetView(geom::PresetView::Top);
+  if (ImGui::MenuItem("Reset camera")) state_.presetView(geom::PresetView::Front);
+  tip("Back to the start view: from the front, the whole cloud framed (F frames it keeping the direction)");
+  if (ImGui::BeginMenu("Up axis")) {
+    // The same six directions as the View panel's combo and the lying-down banner.
+    const char* ups[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    for (int i = 0; i < 6; ++i) {
+      const auto d = static_cast<viewer::UpDirection>(i);
+      if (ImGui::MenuItem(ups[i], nullptr, state_.upDirection() == d)) state_.setUpDirection(d);
+    }
+    ImGui::EndMenu();
+  }
+  tip("Which world axis points up");
+  ImGui::EndMenu();
+}
+
 void WindowActions::drawMenuBar() {
   if (!ImGui::BeginMenuBar()) return;
   if (forcedMenu_ == "File") ImGui::OpenPopup("File");  // the same id BeginMenu uses
-  if (ImGui::BeginMenu("File")) {
-    if (ImGui::MenuItem("Open cloud...", "Ctrl+O")) openCloudDialog();
-    tip("Open another point cloud (.xyz .txt .csv .pts .asc .las .laz .ply) or a mesh (.obj .ply, scanned first)");
-    if (ImGui::MenuItem("Open sketch...")) openSketchDialog();
-    tip("Load a sketch file (.json) over this cloud");
-    if (ImGui::MenuItem("Save sketch", "Ctrl+S")) save();
-    tip("Save the sketch to its file (shown in the Files section)");
-    if (ImGui::MenuItem("Save sketch as...", "Ctrl+Shift+S")) saveAsDialog();
-    tip("Save the sketch to another file, which becomes its file");
-    if (ImGui::MenuItem("Export mesh...", "Ctrl+E")) exportMeshDialog();
-    tip("Write the tube mesh as OBJ or PLY");
-    using F = viewer::ViewerState::ModelFile;
-    if (ImGui::MenuItem("Export cylinder table...")) exportModelDialog(F::Cylinders);
-    tip("Write the model's cylinders as treesketch's CSV table (as reconstruct --cylinders)");
-    if (ImGui::MenuItem("Export TreeQSM table...")) exportModelDialog(F::Qsm);
-    tip("Write the cylinders in TreeQSM's text layout (as reconstruct --qsm)");
-    if (ImGui::MenuItem("Export metrics...")) exportModelDialog(F::Metrics);
-    tip("Write height, DBH, volumes by branch order, crown and taper as JSON (as reconstruct --metrics)");
-    if (ImGui::MenuItem("Export fit report...")) exportModelDialog(F::Report);
-    tip("Write how well the model explains the cloud, with its figures, as JSON (as reconstruct --report)");
-    ImGui::Separator();
-    if (ImGui::BeginMenu("Recent files", !recent_.entries().empty())) {
-      for (std::size_t i = 0; i < recent_.entries().size(); ++i) {
-        const viewer::RecentFile& e = recent_.entries()[i];
-        std::string label = std::string(e.kind == viewer::RecentKind::Cloud ? "cloud   " : "sketch  ") +
-                            e.path.filename().string() + "##" + std::to_string(i);
-        if (ImGui::MenuItem(label.c_str())) {
-          openRecent(i);
-          break;
-        }
-        tip(e.path.string().c_str());
-      }
-      ImGui::EndMenu();
-    }
-    tip("Clouds and sketches opened or saved lately (kept in ~/.config/treesketch)");
-    ImGui::Separator();
-    if (ImGui::MenuItem("Quit", "Ctrl+Q")) requestQuit();
-    tip("Close the window (asks first when the sketch has unsaved changes)");
-    ImGui::EndMenu();
-  }
+  if (ImGui::BeginMenu("File")) drawFileMenu();
   if (forcedMenu_ == "View") ImGui::OpenPopup("View");  // the same id BeginMenu uses
-  if (ImGui::BeginMenu("View")) {
-    viewer::DisplayOptions& d = state_.display();
-    if (ImGui::BeginMenu("Colour points by")) {
-      for (viewer::ColorMode m : viewer::availableColorModes(state_.cloud()))
-        if (ImGui::MenuItem(viewer::colorModeLabel(m), nullptr, d.colorMode == m)) state_.setColorMode(m);
-      ImGui::EndMenu();
-    }
-    tip("Height, distance to the fitted circles, plain, or the file's intensity / RGB / classification (C cycles)");
-    ImGui::MenuItem("Cloud", nullptr, &d.showCloud);
-    tip("Show the point cloud");
-    ImGui::MenuItem("Node markers", nullptr, &d.showNodes);
-    tip("Show the sketch's nodes and links");
-    ImGui::MenuItem("Circles", nullptr, &d.showCircles);
-    tip("Show the fitted circles");
-    ImGui::MenuItem("Sampling region", nullptr, &d.showSamplingRegion);
-    tip("Show the selected node's slab, line cylinder and slice points");
-    int ms = static_cast<int>(d.meshStyle);
-    if (ImGui::BeginMenu("Tubes")) {
-      if (ImGui::MenuItem("Solid", nullptr, ms == 0)) d.meshStyle = viewer::MeshStyle::Solid;
-      if (ImGui::MenuItem("Wireframe", nullptr, ms == 1)) d.meshStyle = viewer::MeshStyle::Wireframe;
-      if (ImGui::MenuItem("Hidden", nullptr, ms == 2)) d.meshStyle = viewer::MeshStyle::Hidden;
-      ImGui::EndMenu();
-    }
-    tip("How the reconstructed tubes are drawn (W cycles)");
-    ImGui::MenuItem("Legend", nullptr, &showLegend_);
-    tip("The colour scale or classes of the point colouring");
-    ImGui::MenuItem("Axis gizmo", nullptr, &showGizmo_);
-    tip("The X/Y/Z axes as the camera sees them, bottom left");
-    ImGui::MenuItem("Scale bar", nullptr, &showScaleBar_);
-    tip("A round length at the centre of rotation's depth, bottom right");
-    ImGui::Separator();
-    bool ortho = state_.orbit().orthographic();
-    if (ImGui::MenuItem("Orthographic", "O", ortho)) state_.setOrthographic(!ortho);
-    tip("Orthographic or perspective projection");
-    if (ImGui::MenuItem("Front", "1")) state_.presetView(geom::PresetView::Front);
-    if (ImGui::MenuItem("Side", "2")) state_.presetView(geom::PresetView::Side);
-    if (ImGui::MenuItem("Top", "3")) state_.presetView(geom::PresetView::Top);
-    if (ImGui::MenuItem("Reset camera")) state_.presetView(geom::PresetView::Front);
-    tip("Back to the start view: from the front, the whole cloud framed (F frames it keeping the direction)");
-    if (ImGui::BeginMenu("Up axis")) {
-      // The same six directions as the View panel's combo and the lying-down banner.
-      const char* ups[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
-      for (int i = 0; i < 6; ++i) {
-        const auto d = static_cast<viewer::UpDirection>(i);
-        if (ImGui::MenuItem(ups[i], nullptr, state_.upDirection() == d)) state_.setUpDirection(d);
-      }
-      ImGui::EndMenu();
-    }
-    tip("Which world axis points up");
-    ImGui::EndMenu();
-  }
+  if (ImGui::BeginMenu("View")) drawViewMenu();
   if (forcedMenu_ == "Tools") ImGui::OpenPopup("Tools");  // the same id BeginMenu uses
   if (ImGui::BeginMenu("Tools")) {
     bool pick = pickMode_;

@@ -144,6 +144,32 @@ void messagesSection(const viewer::ViewerState& state) {
   ImGui::PopTextWrapPos();
 }
 
+// The status bar under the panel and the view: counts, timing, projection, the last message.
+void statusBar(viewer::ViewerState& state, int width, int height) {
+  ImGui::SetNextWindowPos(ImVec2(0, height - Layout::kStatusHeight));
+  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(width), Layout::kStatusHeight));
+  ImGui::Begin("status", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
+                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoSavedSettings);
+  std::optional<viewer::StatusMessage> last = state.statusLine();
+  ImGui::Text("%zu points | %zu nodes: %zu fitted (%zu kept circles), %zu skipped | last rebuild %.2f ms | %s |",
+              state.cloud().size(), state.sketch().size(), state.fittedCount(), state.sketch().keptCircleCount(),
+              state.skippedCount(), state.lastRebuildMs(),
+              state.orbit().orthographic() ? "orthographic" : "perspective");
+  // Infos expire (ViewerOptions::statusInfoSeconds); an error stays until dismissed or replaced.
+  if (last) {
+    ImGui::SameLine();
+    if (last->error) {
+      if (ImGui::SmallButton("x##dismissStatus")) state.dismissStatus();
+      ImGui::SameLine();
+      ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", last->text.c_str());
+    } else {
+      ImGui::TextUnformatted(last->text.c_str());
+    }
+  }
+  ImGui::End();
+}
+
 }  // namespace
 
 void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height,
@@ -210,29 +236,7 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   ImGui::PopItemWidth();
   ImGui::End();
 
-  // Status bar.
-  ImGui::SetNextWindowPos(ImVec2(0, height - Layout::kStatusHeight));
-  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(width), Layout::kStatusHeight));
-  ImGui::Begin("status", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
-                   ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoSavedSettings);
-  std::optional<viewer::StatusMessage> last = state.statusLine();
-  ImGui::Text("%zu points | %zu nodes: %zu fitted (%zu kept circles), %zu skipped | last rebuild %.2f ms | %s |",
-              state.cloud().size(), state.sketch().size(), state.fittedCount(), state.sketch().keptCircleCount(),
-              state.skippedCount(), state.lastRebuildMs(),
-              state.orbit().orthographic() ? "orthographic" : "perspective");
-  // Infos expire (ViewerOptions::statusInfoSeconds); an error stays until dismissed or replaced.
-  if (last) {
-    ImGui::SameLine();
-    if (last->error) {
-      if (ImGui::SmallButton("x##dismissStatus")) state.dismissStatus();
-      ImGui::SameLine();
-      ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", last->text.c_str());
-    } else {
-      ImGui::TextUnformatted(last->text.c_str());
-    }
-  }
-  ImGui::End();
+  statusBar(state, width, height);
 }
 
 void drawMarkers(const viewer::ViewerState& state) {

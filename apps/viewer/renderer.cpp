@@ -211,6 +211,31 @@ void Renderer::uploadHighlights(const viewer::ViewerState& state) {
   glBufferData(GL_ARRAY_BUFFER, pos.size() * sizeof(float), pos.data(), GL_DYNAMIC_DRAW);
 }
 
+// Circles, regions and links as coloured lines, drawn over everything.
+void Renderer::drawSceneLines(const std::vector<viewer::Line3>& lines, GLint tint) {
+  if (lines.empty()) return;
+  std::vector<float> pos;
+  std::vector<std::uint8_t> col;
+  pos.reserve(6 * lines.size());
+  col.reserve(6 * lines.size());
+  for (const viewer::Line3& l : lines) {
+    for (const Vec3* p : {&l.a, &l.b}) {
+      for (int k = 0; k < 3; ++k) pos.push_back(static_cast<float>((*p)[k] - origin_[k]));
+      col.insert(col.end(), {l.color.r, l.color.g, l.color.b});
+    }
+  }
+  glUseProgram(pointProgram_);
+  glUniform4f(tint, 0, 0, 0, 0);
+  glBindVertexArray(lineVao_);
+  glBindBuffer(GL_ARRAY_BUFFER, linePos_);
+  glBufferData(GL_ARRAY_BUFFER, pos.size() * sizeof(float), pos.data(), GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, lineCol_);
+  glBufferData(GL_ARRAY_BUFFER, col.size(), col.data(), GL_STREAM_DRAW);
+  glDisable(GL_DEPTH_TEST);  // circles and regions stay visible through the mesh
+  glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(pos.size() / 3));
+  glEnable(GL_DEPTH_TEST);
+}
+
 void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale, std::size_t maxPoints) {
   geom::Camera cam = state.camera();
   const geom::Viewport& vp = cam.viewport;
@@ -268,29 +293,7 @@ void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pi
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   }
 
-  std::vector<viewer::Line3> lines = state.sceneLines();
-  if (!lines.empty()) {
-    std::vector<float> pos;
-    std::vector<std::uint8_t> col;
-    pos.reserve(6 * lines.size());
-    col.reserve(6 * lines.size());
-    for (const viewer::Line3& l : lines) {
-      for (const Vec3* p : {&l.a, &l.b}) {
-        for (int k = 0; k < 3; ++k) pos.push_back(static_cast<float>((*p)[k] - origin_[k]));
-        col.insert(col.end(), {l.color.r, l.color.g, l.color.b});
-      }
-    }
-    glUseProgram(pointProgram_);
-    glUniform4f(tint, 0, 0, 0, 0);
-    glBindVertexArray(lineVao_);
-    glBindBuffer(GL_ARRAY_BUFFER, linePos_);
-    glBufferData(GL_ARRAY_BUFFER, pos.size() * sizeof(float), pos.data(), GL_STREAM_DRAW);
-    glBindBuffer(GL_ARRAY_BUFFER, lineCol_);
-    glBufferData(GL_ARRAY_BUFFER, col.size(), col.data(), GL_STREAM_DRAW);
-    glDisable(GL_DEPTH_TEST);  // circles and regions stay visible through the mesh
-    glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(pos.size() / 3));
-    glEnable(GL_DEPTH_TEST);
-  }
+  drawSceneLines(state.sceneLines(), tint);
   glBindVertexArray(0);
   glUseProgram(0);
 }

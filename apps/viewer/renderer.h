@@ -31,6 +31,7 @@ class Renderer {
   std::size_t cloudPoints() const { return static_cast<std::size_t>(cloudCount_); }
 
  private:
+  void drawSceneLines(const std::vector<viewer::Line3>& lines, GLint tint);
   void uploadCloud(viewer::ViewerState& state);
   void uploadMesh(const viewer::ViewerState& state);
   void uploadHighlights(const viewer::ViewerState& state);

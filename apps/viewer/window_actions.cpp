@@ -287,62 +287,125 @@ bool WindowActions::onKey(int key, int mods) {
   return true;
 }
 
+// What an expectWindow key (other than the distances) reads from the window.
+double WindowActions::windowReading(const std::string& key) {
+  double got = 0.0;
+  if (key == "dialogOpen")
+    got = dialog_.isOpen();
+  else if (key == "dialogEntries")
+    got = static_cast<double>(dialog_.listing().entries.size());
+  else if (key == "promptOpen")
+    got = promptOpen_;
+  else if (key == "picks")
+    got = picks_.count();
+  else if (key == "recent")
+    got = static_cast<double>(recent_.entries().size());
+  else if (key == "quitting")
+    got = hooks_.closing && hooks_.closing();
+  else if (key == "helpOpen")
+    got = showHelp_;
+  else if (key == "legendClasses")
+    got = static_cast<double>(legend().classes.size());
+  else if (key == "dialogError")
+    got = dialog_.isOpen() && !dialog_.error().empty();
+  else if (key == "tooltip")
+    got = tooltipShown();
+  return got;
+}
+
+// {"expectWindow": {...}}: what differs ("" when every key holds).
+std::string WindowActions::expectWindow(const viewer::ScriptAction& a) {
+  std::string failure;
+  for (const auto& [key, want] : a.expect) {
+    double got = 0.0;
+    bool ok;
+    if (key == "distanceMin" || key == "distanceMax") {
+      if (!picks_.hasMeasurement()) {
+        failure += (failure.empty() ? "" : "; ") + key + ": no measurement (two picks needed)";
+        continue;
+      }
+      got = picks_.measurement(state_.up()).distance;
+      ok = key == "distanceMin" ? got >= want : got <= want;
+    } else {
+      got = windowReading(key);
+      ok = got == want;
+    }
+    if (!ok) {
+      std::ostringstream s;
+      s << key << ": expected "
+        << (key == "distanceMin"   ? "at least "
+            : key == "distanceMax" ? "at most "
+                                   : "")
+        << want << ", got " << got;
+      failure += (failure.empty() ? "" : "; ") + s.str();
+    }
+  }
+  return failure;
+}
+
+// {"menu": ...}: the menu item's action; returns what failed ("").
+std::string WindowActions::runMenuVerb(const viewer::ScriptAction& a) {
+  const std::string& m = a.text;
+  if (m == "open-cloud")
+    openCloudDialog();
+  else if (m == "open-sketch")
+    openSketchDialog();
+  else if (m == "save")
+    save();
+  else if (m == "save-as")
+    saveAsDialog();
+  else if (m == "export")
+    exportMeshDialog();
+  else if (m == "export-cylinders")
+    exportModelDialog(viewer::ViewerState::ModelFile::Cylinders);
+  else if (m == "export-qsm")
+    exportModelDialog(viewer::ViewerState::ModelFile::Qsm);
+  else if (m == "export-metrics")
+    exportModelDialog(viewer::ViewerState::ModelFile::Metrics);
+  else if (m == "export-report")
+    exportModelDialog(viewer::ViewerState::ModelFile::Report);
+  else if (m == "quit")
+    requestQuit();
+  else if (m == "help")
+    toggleHelp();
+  else if (m == "about")
+    showAbout_ = !showAbout_;
+  else if (m == "reset-camera")
+    state_.presetView(geom::PresetView::Front);
+  else if (m == "pick-mode")
+    setPickMode(!pickMode_);
+  else if (m == "recent") {
+    if (a.value < 0 || a.value != std::floor(a.value)) return "menu recent: value must be an index 0, 1, ...";
+    openRecent(static_cast<std::size_t>(a.value));
+  }
+  return {};
+}
+
+// A script does not wait for the "opening ..." frame: load now, so the next action sees it.
+void WindowActions::flushPendingOpen() {
+  if (!pendingOpen_.empty()) {
+    pendingFrames_ = 0;
+    beforeFrame();
+  }
+}
+
 std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
   const std::size_t errorsBefore = state_.errorCount();
-  auto flush = [&] {
-    // A script does not wait for the "opening ..." frame: load now, so the next action sees it.
-    if (!pendingOpen_.empty()) {
-      pendingFrames_ = 0;
-      beforeFrame();
-    }
-  };
   if (a.name == "menu") {
-    const std::string& m = a.text;
-    if (m == "open-cloud")
-      openCloudDialog();
-    else if (m == "open-sketch")
-      openSketchDialog();
-    else if (m == "save")
-      save();
-    else if (m == "save-as")
-      saveAsDialog();
-    else if (m == "export")
-      exportMeshDialog();
-    else if (m == "export-cylinders")
-      exportModelDialog(viewer::ViewerState::ModelFile::Cylinders);
-    else if (m == "export-qsm")
-      exportModelDialog(viewer::ViewerState::ModelFile::Qsm);
-    else if (m == "export-metrics")
-      exportModelDialog(viewer::ViewerState::ModelFile::Metrics);
-    else if (m == "export-report")
-      exportModelDialog(viewer::ViewerState::ModelFile::Report);
-    else if (m == "quit")
-      requestQuit();
-    else if (m == "help")
-      toggleHelp();
-    else if (m == "about")
-      showAbout_ = !showAbout_;
-    else if (m == "reset-camera")
-      state_.presetView(geom::PresetView::Front);
-    else if (m == "pick-mode")
-      setPickMode(!pickMode_);
-    else if (m == "recent") {
-      if (a.value < 0 || a.value != std::floor(a.value)) return "menu recent: value must be an index 0, 1, ...";
-      openRecent(static_cast<std::size_t>(a.value));
-    }
-    flush();
+    if (std::string failure = runMenuVerb(a); !failure.empty()) return failure;
+    flushPendingOpen();
   } else if (a.name == "dialog") {
     if (!dialog_.isOpen()) return "dialog " + a.text + ": no dialog is open";
     if (!a.path.empty()) dialog_.setTyped(a.path.string());
     if (a.text == "ok") dialog_.accept();
     if (a.text == "cancel") dialog_.cancel();
-    flush();
+    flushPendingOpen();
     // An error the dialog shows (no such file, a folder that cannot be read) fails the action.
     if (a.text == "ok" && dialog_.isOpen() && !dialog_.error().empty()) return "dialog: " + dialog_.error();
   } else if (a.name == "prompt") {
     if (!promptOpen_) return "prompt " + a.text + ": no prompt is open";
     answerPrompt(a.text);
-    flush();
+    flushPendingOpen();
   } else if (a.name == "pick") {
     if (!pickMode_) setPickMode(true);
     if (!pickAt(a.from)) return state_.lastMessage().text;
@@ -354,51 +417,7 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
   } else if (a.name == "closeWindow") {
     requestQuit();
   } else if (a.name == "expectWindow") {
-    std::string failure;
-    for (const auto& [key, want] : a.expect) {
-      double got = 0.0;
-      bool ok;
-      if (key == "distanceMin" || key == "distanceMax") {
-        if (!picks_.hasMeasurement()) {
-          failure += (failure.empty() ? "" : "; ") + key + ": no measurement (two picks needed)";
-          continue;
-        }
-        got = picks_.measurement(state_.up()).distance;
-        ok = key == "distanceMin" ? got >= want : got <= want;
-      } else {
-        if (key == "dialogOpen")
-          got = dialog_.isOpen();
-        else if (key == "dialogEntries")
-          got = static_cast<double>(dialog_.listing().entries.size());
-        else if (key == "promptOpen")
-          got = promptOpen_;
-        else if (key == "picks")
-          got = picks_.count();
-        else if (key == "recent")
-          got = static_cast<double>(recent_.entries().size());
-        else if (key == "quitting")
-          got = hooks_.closing && hooks_.closing();
-        else if (key == "helpOpen")
-          got = showHelp_;
-        else if (key == "legendClasses")
-          got = static_cast<double>(legend().classes.size());
-        else if (key == "dialogError")
-          got = dialog_.isOpen() && !dialog_.error().empty();
-        else if (key == "tooltip")
-          got = tooltipShown();
-        ok = got == want;
-      }
-      if (!ok) {
-        std::ostringstream s;
-        s << key << ": expected "
-          << (key == "distanceMin"   ? "at least "
-              : key == "distanceMax" ? "at most "
-                                     : "")
-          << want << ", got " << got;
-        failure += (failure.empty() ? "" : "; ") + s.str();
-      }
-    }
-    return failure;
+    return expectWindow(a);
   }
   if (state_.errorCount() > errorsBefore) return state_.lastMessage().text;
   return {};

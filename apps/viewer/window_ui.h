@@ -92,6 +92,12 @@ class WindowActions {
   bool tooltipShown() const;
 
  private:
+  void drawFileMenu();
+  void drawViewMenu();
+  std::string runMenuVerb(const viewer::ScriptAction& a);
+  std::string expectWindow(const viewer::ScriptAction& a);
+  double windowReading(const std::string& key);
+  void flushPendingOpen();
   /// Runs `then` now when nothing would be lost, else after the prompt's Save or Discard.
   void guardUnsaved(const std::string& what, std::function<void()> then);
   void openCloudNow(const std::filesystem::path& path);

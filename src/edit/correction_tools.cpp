@@ -174,46 +174,31 @@ void atArcLength(const std::vector<Vec3>& p, double s, double h, Vec3* point, Ve
 
 }  // namespace
 
-StrokeResult drawLimb(sketch::Sketch& sketch, const ViewPicker& picker, const geom::PointCloud& cloud,
-                      const std::vector<Vec2>& stroke, const std::map<NodeId, NodeAnchor>& anchors,
-                      const StrokeOptions& o) {
-  (void)cloud;
-  if (stroke.size() < 2) throw OptionsError("stroke: draw at least two points");
-  for (const Vec2& p : stroke)
-    if (!p.allFinite()) throw OptionsError("stroke: a point is not finite");
-  StrokeResult res;
-  const geom::Camera& cam = picker.camera();
-  const sketch::SamplingParams& defaults = sketch.defaults;
-  const double gap = o.depthGapFraction * defaults.lineEpsilon;
+namespace {
 
-  // Attach: the node whose anchor projects nearest to the stroke's start (what the person
-  // started the stroke on).
-  double expected = std::numeric_limits<double>::quiet_NaN();
-  double localRadius = 0.0;
+// Attach: the node whose anchor projects nearest to the stroke's start (what the person started
+// the stroke on); sets res.attachedTo and returns its distance in pixels (infinity: none).
+double nearestAnchor(const geom::Camera& cam, const Vec2& start, const std::map<NodeId, NodeAnchor>& anchors,
+                     StrokeResult& res) {
   double bestPx = std::numeric_limits<double>::infinity();
   for (const auto& [id, a] : anchors) {
     const Vec3 s = cam.project(a.centre);
     if (!s.allFinite() || s.z() < 0 || s.z() > 1) continue;
-    const double d = (s.head<2>() - stroke.front()).norm();
+    const double d = (s.head<2>() - start).norm();
     if (d < bestPx) {
       bestPx = d;
       res.attachedTo = id;
     }
   }
-  if (res.attachedTo != kNoNode) {
-    expected = picker.depthOf(anchors.at(res.attachedTo).centre);
-    localRadius = anchors.at(res.attachedTo).radius;
-    if (bestPx > o.attachWarnPx)
-      res.warning = "the stroke starts " + std::to_string(int(bestPx)) + " px from the nearest node (" +
-                    std::to_string(res.attachedTo) + "), attached there";
-  } else if (!sketch.empty()) {
-    res.attachedTo = sketch.root();  // no node has a known place yet: the root, as a click does
-  }
+  return bestPx;
+}
 
-  // Depth along the stroke: among each sample's surfaces, the one nearest the expected depth
-  // (the previous sample's, starting from the attach node); without one, the front-most surface
-  // (what the person sees).
-  std::vector<Vec2> samples = resample(stroke, o.sampleStepPx);
+// Depth along the stroke: among each sample's surfaces, the one nearest the expected depth (the
+// previous sample's, starting from the attach node); without one, the front-most surface (what
+// the person sees). Returns the picked points; counts the samples without points, the depth jumps
+// and the picks behind the front surface in res.
+std::vector<Vec3> followStroke(const ViewPicker& picker, const std::vector<Vec2>& samples, double gap, double expected,
+                               double localRadius, const StrokeOptions& o, StrokeResult& res) {
   std::vector<Vec3> path;
   for (const Vec2& s : samples) {
     std::vector<Surface> surf = surfaces(picker.near(s, o.pickRadiusPx), gap, o.minSurfacePoints);
@@ -232,6 +217,60 @@ StrokeResult drawLimb(sketch::Sketch& sketch, const ViewPicker& picker, const ge
     expected = surf[pick].depth;
     path.push_back(pointAtDepth(picker, s, expected));
   }
+  return path;
+}
+
+// Nodes at the midpoints of equal pieces of `smooth`, as the simulated careful user places them,
+// chained under res.attachedTo.
+void placeStrokeNodes(sketch::Sketch& sketch, const geom::Camera& cam, const std::vector<Vec3>& smooth,
+                      double localRadius, const StrokeOptions& o, StrokeResult& res) {
+  const sketch::SamplingParams& defaults = sketch.defaults;
+  if (!(localRadius > 0)) localRadius = 0.25 * defaults.lineEpsilon;
+  const double spacing =
+      std::clamp(o.spacingRadii * localRadius, 2.5 * defaults.sliceHalfThickness, defaults.lineEpsilon);
+  const double length = pathLength(smooth);
+  const int n = std::max(1, int(std::lround(length / spacing)));
+  sketch::SamplingParams params = defaults;
+  params.lineEpsilon = std::min(defaults.lineEpsilon, std::max(4.0 * localRadius, 2.0 * defaults.sliceHalfThickness));
+  params.maxGrowthSteps = 3;
+  NodeId parent = res.attachedTo;
+  for (int k = 0; k < n; ++k) {
+    Vec3 p, t;
+    atArcLength(smooth, (k + 0.5) * length / n, 0.5 * length / n, &p, &t);
+    if (!(t.norm() > 0) || !t.allFinite()) t = -cam.forward().cross(cam.right());
+    parent = sketch.addPointNode(parent, p, t, params);
+    res.added.push_back(parent);
+  }
+}
+
+}  // namespace
+
+StrokeResult drawLimb(sketch::Sketch& sketch, const ViewPicker& picker, const geom::PointCloud& cloud,
+                      const std::vector<Vec2>& stroke, const std::map<NodeId, NodeAnchor>& anchors,
+                      const StrokeOptions& o) {
+  (void)cloud;
+  if (stroke.size() < 2) throw OptionsError("stroke: draw at least two points");
+  for (const Vec2& p : stroke)
+    if (!p.allFinite()) throw OptionsError("stroke: a point is not finite");
+  StrokeResult res;
+  const geom::Camera& cam = picker.camera();
+  const sketch::SamplingParams& defaults = sketch.defaults;
+  const double gap = o.depthGapFraction * defaults.lineEpsilon;
+
+  double expected = std::numeric_limits<double>::quiet_NaN();
+  double localRadius = 0.0;
+  const double bestPx = nearestAnchor(cam, stroke.front(), anchors, res);
+  if (res.attachedTo != kNoNode) {
+    expected = picker.depthOf(anchors.at(res.attachedTo).centre);
+    localRadius = anchors.at(res.attachedTo).radius;
+    if (bestPx > o.attachWarnPx)
+      res.warning = "the stroke starts " + std::to_string(int(bestPx)) + " px from the nearest node (" +
+                    std::to_string(res.attachedTo) + "), attached there";
+  } else if (!sketch.empty()) {
+    res.attachedTo = sketch.root();  // no node has a known place yet: the root, as a click does
+  }
+
+  std::vector<Vec3> path = followStroke(picker, resample(stroke, o.sampleStepPx), gap, expected, localRadius, o, res);
   // The stroke starts on the parent's tube: the samples over it picked the parent's surface, not
   // the limb's. Drop the leading samples within 1.5 parent radii of the parent's axis.
   if (res.attachedTo != kNoNode && anchors.count(res.attachedTo) && localRadius > 0) {
@@ -252,23 +291,7 @@ StrokeResult drawLimb(sketch::Sketch& sketch, const ViewPicker& picker, const ge
     smooth[i] = (path[i - 2] + path[i - 1] + path[i] + path[i + 1] + path[i + 2]) / 5.0;
   res.path = smooth;
 
-  // Nodes at the midpoints of equal pieces, as the simulated careful user places them.
-  if (!(localRadius > 0)) localRadius = 0.25 * defaults.lineEpsilon;
-  const double spacing =
-      std::clamp(o.spacingRadii * localRadius, 2.5 * defaults.sliceHalfThickness, defaults.lineEpsilon);
-  const double length = pathLength(smooth);
-  const int n = std::max(1, int(std::lround(length / spacing)));
-  sketch::SamplingParams params = defaults;
-  params.lineEpsilon = std::min(defaults.lineEpsilon, std::max(4.0 * localRadius, 2.0 * defaults.sliceHalfThickness));
-  params.maxGrowthSteps = 3;
-  NodeId parent = res.attachedTo;
-  for (int k = 0; k < n; ++k) {
-    Vec3 p, t;
-    atArcLength(smooth, (k + 0.5) * length / n, 0.5 * length / n, &p, &t);
-    if (!(t.norm() > 0) || !t.allFinite()) t = -cam.forward().cross(cam.right());
-    parent = sketch.addPointNode(parent, p, t, params);
-    res.added.push_back(parent);
-  }
+  placeStrokeNodes(sketch, cam, smooth, localRadius, o, res);
   if (res.depthJumps > 0) {
     res.warning += std::string(res.warning.empty() ? "" : "; ") + "the depth jumped at " +
                    std::to_string(res.depthJumps) + " stroke samples (check the new limb from the side)";

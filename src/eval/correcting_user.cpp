@@ -2,7 +2,6 @@
 #include "treesketch/eval/correcting_user.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -17,6 +16,7 @@
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 
 namespace treesketch::eval {
 
@@ -24,7 +24,6 @@ namespace fs = std::filesystem;
 using geom::Vec2;
 using geom::Vec3;
 using sketch::NodeId;
-using Clock = std::chrono::steady_clock;
 
 namespace {
 
@@ -87,242 +86,311 @@ struct Candidate {
   std::size_t subtreeSize = 0;
 };
 
-}  // namespace
+// Per-subtree sums over a sketch (bottom-up): the wrong nodes' summed score, the subtree's tube
+// surface, its wrong share and its node count.
+struct SubtreeSums {
+  std::map<NodeId, double> sumW, areaAll, areaW;
+  std::map<NodeId, std::size_t> count;
+};
 
-CorrectingRun runCorrectingUser(const TreeCase& tree, const geom::PointCloud& cloud, const sketch::Sketch& automatic,
-                                const CorrectingUserOptions& o) {
-  CorrectingRun run;
-  run.tree = tree.name;
-  const double diag = tree.branches.bounds().diagonal();
-  const double tol = o.tolerancePct / 100.0 * diag;
-  auto pct = [&](double v) { return diag > 0 ? 100.0 * v / diag : NAN; };
-  recon::ReconstructionOptions ro;
-  ro.seed = o.seed;
-  ro.fit.chooseDepth = true;  // as the viewer
-  recon::Reconstruction rec(cloud, ro);
-  sketch::Sketch sk = automatic;
-  rec.update(sk);
+SubtreeSums subtreeSums(const sketch::Sketch& sk, const std::vector<NodeId>& order,
+                        const std::map<NodeId, double>& wrong, const std::map<NodeId, double>& area) {
+  SubtreeSums t;
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    const NodeId id = *it;
+    auto w = wrong.find(id);
+    auto ar = area.find(id);
+    const double aId = ar != area.end() ? ar->second : 0.0;
+    t.sumW[id] += w != wrong.end() ? w->second : 0.0;
+    t.areaAll[id] += aId;
+    t.areaW[id] += w != wrong.end() ? aId : 0.0;
+    t.count[id] += 1;
+    const NodeId parent = sk.node(id).parent;
+    if (parent != sketch::kNoNode) {
+      t.sumW[parent] += t.sumW[id];
+      t.areaAll[parent] += t.areaAll[id];
+      t.areaW[parent] += t.areaW[id];
+      t.count[parent] += t.count[id];
+    }
+  }
+  return t;
+}
 
-  auto record = [&](int edit, const std::string& action, double ms) {
+// One simulated person correcting one automatic model: looks for what is visibly wrong, makes the
+// edit that removes the most error, looks at the result and undoes an edit that made it worse.
+class CorrectingSession {
+ public:
+  CorrectingSession(const TreeCase& tree, const geom::PointCloud& cloud, const sketch::Sketch& automatic,
+                    const CorrectingUserOptions& o)
+      : tree_(tree),
+        cloud_(cloud),
+        o_(o),
+        diag_(tree.branches.bounds().diagonal()),
+        tol_(o.tolerancePct / 100.0 * diag_),
+        rec_(cloud, reconOptions(o)),
+        sk_(automatic) {
+    run_.tree = tree.name;
+    rec_.update(sk_);
+    record(0, "start (automatic model)", 0.0);
+    reference_ = std::make_unique<accel::MeshClosestPoint>(tree.branches);
+    const geom::BBox bounds = cloud.bounds();
+    for (double deg : {0.0, 90.0, 180.0, 270.0}) views_.push_back(viewAround(bounds, tree.up, deg));
+    pickers_.resize(views_.size());
+    step_ = 0.004 * diag_;
+    for (std::size_t i = 0; i < tree.axes.size(); ++i)
+      limbs_.push_back(
+          sampleLimb(tree.axes[i], i < tree.axisRadii.size() ? tree.axisRadii[i] : std::vector<double>{}, step_));
+    rng_.seed(o.seed * 7919 + 17);
+    jitter_ = std::normal_distribution<double>(0.0, o.pixelNoise);
+  }
+
+  CorrectingRun run() {
+    for (int edit = 1; edit <= o_.maxEdits; ++edit) {
+      if (o_.stopAtTarget && run_.editsToTarget >= 0) break;
+      const Stopwatch timer;
+      std::vector<Candidate> cands;
+      addMissedLimbs(cands);
+      addWrongTubes(cands);
+      if (cands.empty()) break;  // nothing visibly wrong is left
+      std::sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+
+      const sketch::Sketch saved = sk_;  // for the undo of an edit that made things worse
+      NodeId deleted = sketch::kNoNode;
+      const std::string action = applyFirstEdit(cands, deleted);
+      if (action.empty()) break;
+      rec_.update(sk_);
+      record(edit, action, timer.ms());
+      undoIfWorse(edit, saved, deleted);
+    }
+    return std::move(run_);
+  }
+
+ private:
+  static recon::ReconstructionOptions reconOptions(const CorrectingUserOptions& o) {
+    recon::ReconstructionOptions ro;
+    ro.seed = o.seed;
+    ro.fit.chooseDepth = true;  // as the viewer
+    return ro;
+  }
+
+  double pct(double v) const { return diag_ > 0 ? 100.0 * v / diag_ : NAN; }
+
+  void record(int edit, const std::string& action, double ms) {
     CorrectingStep s;
     s.edit = edit;
     s.action = action;
-    s.nodes = static_cast<int>(sk.size());
-    DirectionStats b = oneWayDistance(rec.mesh(), tree.branches, o.distance);
-    DirectionStats f = oneWayDistance(tree.branches, rec.mesh(), o.distance);
+    s.nodes = static_cast<int>(sk_.size());
+    DirectionStats b = oneWayDistance(rec_.mesh(), tree_.branches, o_.distance);
+    DirectionStats f = oneWayDistance(tree_.branches, rec_.mesh(), o_.distance);
     s.backwardRms = pct(b.rms);
     s.forwardRms = pct(f.rms);
     s.ms = ms;
-    run.steps.push_back(s);
-    if (run.editsToTarget < 0 && s.backwardRms <= o.targetPct && s.forwardRms <= o.targetPct) run.editsToTarget = edit;
-  };
-  record(0, "start (automatic model)", 0.0);
+    run_.steps.push_back(s);
+    if (run_.editsToTarget < 0 && s.backwardRms <= o_.targetPct && s.forwardRms <= o_.targetPct)
+      run_.editsToTarget = edit;
+  }
 
-  const accel::MeshClosestPoint reference(tree.branches);
-  const geom::BBox bounds = cloud.bounds();
-  std::vector<geom::Camera> views;
-  for (double deg : {0.0, 90.0, 180.0, 270.0}) views.push_back(viewAround(bounds, tree.up, deg));
-  std::vector<std::unique_ptr<edit::ViewPicker>> pickers(views.size());
-  auto picker = [&](std::size_t v) -> const edit::ViewPicker& {
-    if (!pickers[v]) pickers[v] = std::make_unique<edit::ViewPicker>(cloud, views[v]);
-    return *pickers[v];
-  };
-  const double step = 0.004 * diag;
-  std::vector<LimbSamples> limbs;
-  for (std::size_t i = 0; i < tree.axes.size(); ++i)
-    limbs.push_back(
-        sampleLimb(tree.axes[i], i < tree.axisRadii.size() ? tree.axisRadii[i] : std::vector<double>{}, step));
-  std::mt19937_64 rng(o.seed * 7919 + 17);
-  std::normal_distribution<double> jitter(0.0, o.pixelNoise);
-  std::set<std::size_t> failedLimbs;
-  std::set<NodeId> failedNodes;
+  const edit::ViewPicker& picker(std::size_t v) {
+    if (!pickers_[v]) pickers_[v] = std::make_unique<edit::ViewPicker>(cloud_, views_[v]);
+    return *pickers_[v];
+  }
 
-  for (int edit = 1; edit <= o.maxEdits; ++edit) {
-    if (o.stopAtTarget && run.editsToTarget >= 0) break;
-    auto t0 = Clock::now();
-    std::vector<Candidate> cands;
-    // Missed limbs: axis samples farther than the tolerance outside the model's surface.
-    {
-      const accel::MeshClosestPoint model(rec.mesh());
-      for (std::size_t l = 0; l < limbs.size(); ++l) {
-        if (failedLimbs.count(l) || limbs[l].points.size() < 2) continue;
-        const auto hits = model.queryAll(limbs[l].points);
-        Candidate c;
-        c.kind = Candidate::Kind::Stroke;
-        c.limb = l;
-        bool any = false;
-        for (std::size_t k = 0; k < hits.size(); ++k) {
-          const double d = std::min(hits[k].distance, diag);
-          const double excess = d - limbs[l].radii[k];
-          if (excess <= tol) continue;
-          if (!any) c.from = k;
-          any = true;
-          c.to = k;
-          c.score += excess * excess * std::max(limbs[l].radii[k], 1e-3 * diag) * step;
-        }
-        if (any && c.to > c.from) cands.push_back(c);
+  // Missed limbs: axis samples farther than the tolerance outside the model's surface.
+  void addMissedLimbs(std::vector<Candidate>& cands) const {
+    const accel::MeshClosestPoint model(rec_.mesh());
+    for (std::size_t l = 0; l < limbs_.size(); ++l) {
+      if (failedLimbs_.count(l) || limbs_[l].points.size() < 2) continue;
+      const auto hits = model.queryAll(limbs_[l].points);
+      Candidate c;
+      c.kind = Candidate::Kind::Stroke;
+      c.limb = l;
+      bool any = false;
+      for (std::size_t k = 0; k < hits.size(); ++k) {
+        const double d = std::min(hits[k].distance, diag_);
+        const double excess = d - limbs_[l].radii[k];
+        if (excess <= tol_) continue;
+        if (!any) c.from = k;
+        any = true;
+        c.to = k;
+        c.score += excess * excess * std::max(limbs_[l].radii[k], 1e-3 * diag_) * step_;
       }
+      if (any && c.to > c.from) cands.push_back(c);
     }
-    // Wrong tubes: nodes whose circle lies farther than the tolerance outside the reference.
-    {
-      const auto anchors = edit::nodeAnchors(sk, &rec);
-      std::map<NodeId, double> wrong;  // node -> its score
-      std::map<NodeId, double> area;   // node -> its tube's surface, radius x spacing (a proxy)
-      for (const auto& [id, a] : anchors) {
-        if (!(a.radius > 0)) continue;
-        const NodeId parent = sk.node(id).parent;
-        double spacing = 2.0 * a.radius;
-        if (auto it = anchors.find(parent); it != anchors.end()) spacing = (a.centre - it->second.centre).norm();
-        area[id] = a.radius * std::max(spacing, step);
-        const double excess = reference.query(a.centre).distance - a.radius;
-        if (excess <= tol) continue;
-        wrong[id] = excess * excess * area[id];
-      }
-      // Per subtree (bottom-up): the wrong nodes' summed score, and the share of the subtree's
-      // tube surface that is wrong. A person deletes a subtree whose surface is mostly wrong
-      // (subtreeWrongShare) — the one that removes the most error — or a lone wrong node.
-      const std::vector<NodeId> order = sk.topologicalOrder();
-      std::map<NodeId, double> sumW, areaAll, areaW;
-      std::map<NodeId, std::size_t> count;
-      for (auto it = order.rbegin(); it != order.rend(); ++it) {
-        const NodeId id = *it;
-        auto w = wrong.find(id);
-        auto ar = area.find(id);
-        const double aId = ar != area.end() ? ar->second : 0.0;
-        sumW[id] += w != wrong.end() ? w->second : 0.0;
-        areaAll[id] += aId;
-        areaW[id] += w != wrong.end() ? aId : 0.0;
-        count[id] += 1;
-        const NodeId parent = sk.node(id).parent;
-        if (parent != sketch::kNoNode) {
-          sumW[parent] += sumW[id];
-          areaAll[parent] += areaAll[id];
-          areaW[parent] += areaW[id];
-          count[parent] += count[id];
-        }
-      }
-      std::set<NodeId> covered;  // nodes inside a candidate subtree (parents come first in `order`)
-      for (NodeId id : order) {
-        const NodeId parent = sk.node(id).parent;
-        if (parent != sketch::kNoNode && covered.count(parent)) covered.insert(id);
-        if (id == sk.root() || failedNodes.count(id) || !(sumW[id] > 0)) continue;
-        if (!(areaW[id] >= o.subtreeWrongShare * areaAll[id]) || count[id] < 2) continue;
-        covered.insert(id);
-        Candidate c;
-        c.kind = Candidate::Kind::DeleteSubtree;
-        c.node = id;
-        c.score = sumW[id];
-        c.subtreeSize = count[id];
-        cands.push_back(c);
-      }
-      for (const auto& [id, score] : wrong) {
-        if (covered.count(id) || failedNodes.count(id)) continue;
-        Candidate c;
-        c.kind = Candidate::Kind::DeleteNode;
-        c.node = id;
-        c.score = score;
-        c.subtreeSize = 1;
-        cands.push_back(c);
-      }
-    }
-    if (cands.empty()) break;  // nothing visibly wrong is left
-    std::sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+  }
 
-    std::string action;
-    const sketch::Sketch saved = sk;  // for the undo of an edit that made things worse
-    NodeId deleted = sketch::kNoNode;
+  // Wrong tubes: nodes whose circle lies farther than the tolerance outside the reference.
+  void addWrongTubes(std::vector<Candidate>& cands) const {
+    const auto anchors = edit::nodeAnchors(sk_, &rec_);
+    std::map<NodeId, double> wrong;  // node -> its score
+    std::map<NodeId, double> area;   // node -> its tube's surface, radius x spacing (a proxy)
+    for (const auto& [id, a] : anchors) {
+      if (!(a.radius > 0)) continue;
+      const NodeId parent = sk_.node(id).parent;
+      double spacing = 2.0 * a.radius;
+      if (auto it = anchors.find(parent); it != anchors.end()) spacing = (a.centre - it->second.centre).norm();
+      area[id] = a.radius * std::max(spacing, step_);
+      const double excess = reference_->query(a.centre).distance - a.radius;
+      if (excess <= tol_) continue;
+      wrong[id] = excess * excess * area[id];
+    }
+    // Per subtree (bottom-up): the wrong nodes' summed score, and the share of the subtree's
+    // tube surface that is wrong. A person deletes a subtree whose surface is mostly wrong
+    // (subtreeWrongShare) — the one that removes the most error — or a lone wrong node.
+    const std::vector<NodeId> order = sk_.topologicalOrder();
+    SubtreeSums t = subtreeSums(sk_, order, wrong, area);
+    std::set<NodeId> covered;  // nodes inside a candidate subtree (parents come first in `order`)
+    for (NodeId id : order) {
+      const NodeId parent = sk_.node(id).parent;
+      if (parent != sketch::kNoNode && covered.count(parent)) covered.insert(id);
+      if (id == sk_.root() || failedNodes_.count(id) || !(t.sumW[id] > 0)) continue;
+      if (!(t.areaW[id] >= o_.subtreeWrongShare * t.areaAll[id]) || t.count[id] < 2) continue;
+      covered.insert(id);
+      Candidate c;
+      c.kind = Candidate::Kind::DeleteSubtree;
+      c.node = id;
+      c.score = t.sumW[id];
+      c.subtreeSize = t.count[id];
+      cands.push_back(c);
+    }
+    for (const auto& [id, score] : wrong) {
+      if (covered.count(id) || failedNodes_.count(id)) continue;
+      Candidate c;
+      c.kind = Candidate::Kind::DeleteNode;
+      c.node = id;
+      c.score = score;
+      c.subtreeSize = 1;
+      cands.push_back(c);
+    }
+  }
+
+  // Makes the first candidate edit that can be made; returns what it did (empty: none could).
+  std::string applyFirstEdit(const std::vector<Candidate>& cands, NodeId& deleted) {
     for (const Candidate& c : cands) {
       if (c.kind != Candidate::Kind::Stroke) {
         deleted = c.node;
         if (c.kind == Candidate::Kind::DeleteSubtree) {
-          sketch::deleteSubtree(sk, c.node);
-          action = "delete subtree " + std::to_string(c.node) + " (" + std::to_string(c.subtreeSize) + " nodes)";
-        } else {
-          try {
-            sk.removeNode(c.node, false);
-          } catch (const OptionsError&) {
-            failedNodes.insert(c.node);
-            continue;
-          }
-          action = "delete node " + std::to_string(c.node);
+          sketch::deleteSubtree(sk_, c.node);
+          return "delete subtree " + std::to_string(c.node) + " (" + std::to_string(c.subtreeSize) + " nodes)";
         }
-        break;
-      }
-      // The stroke: from the last covered sample before the miss (where the person starts, on
-      // the model) to the miss's end, in the view where it is longest on screen and least hidden.
-      const LimbSamples& limb = limbs[c.limb];
-      const std::size_t a = c.from > 0 ? c.from - 1 : 0, b = c.to;
-      int bestView = -1;
-      double bestScore = 0;
-      for (std::size_t v = 0; v < views.size(); ++v) {
-        const edit::ViewPicker& pk = picker(v);
-        double len = 0, visible = 0;
-        Vec2 prev = Vec2::Zero();
-        int n = 0;
-        for (std::size_t k = a; k <= b; ++k) {
-          const Vec3 s = views[v].project(limb.points[k]);
-          if (!s.allFinite()) continue;
-          if (n > 0) len += (s.head<2>() - prev).norm();
-          prev = s.head<2>();
-          ++n;
-          const double depth = pk.depthOf(limb.points[k]);
-          int inFront = 0;
-          for (const auto& cand : pk.near(s.head<2>(), 3.0))
-            if (cand.depth < depth - limb.radii[k] - tol) ++inFront;
-          visible += inFront < 3;
+        try {
+          sk_.removeNode(c.node, false);
+        } catch (const OptionsError&) {
+          failedNodes_.insert(c.node);
+          continue;
         }
-        const double score = n > 0 ? len * visible / n : 0;
-        if (score > bestScore) {
-          bestScore = score;
-          bestView = int(v);
-        }
+        return "delete node " + std::to_string(c.node);
       }
-      if (bestView < 0 || bestScore < 4.0) {  // under 4 visible pixels: nobody sees it
-        failedLimbs.insert(c.limb);
-        continue;
-      }
-      std::vector<Vec2> stroke;
-      Vec2 last(NAN, NAN);
-      for (std::size_t k = a; k <= b; ++k) {
-        const Vec2 s = views[bestView].project(limb.points[k]).head<2>();
-        if (k != a && k != b && (s - last).norm() < 5.0) continue;  // a hand's polyline: ~5 px apart
-        stroke.push_back(s + Vec2(jitter(rng), jitter(rng)));
-        last = s;
-      }
-      try {
-        const edit::StrokeResult r = edit::drawLimb(sk, picker(bestView), cloud, stroke, edit::nodeAnchors(sk, &rec));
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "stroke limb %zu (%s view, %zu nodes under node %d%s)", c.limb,
-                      viewName(bestView), r.added.size(), r.attachedTo, r.depthJumps ? ", depth jumps" : "");
-        action = buf;
-        failedLimbs.insert(c.limb);  // one stroke per limb: a person does not redraw the same limb
-      } catch (const OptionsError&) {
-        failedLimbs.insert(c.limb);
-        continue;
-      }
-      break;
+      std::string action = strokeLimb(c);
+      if (!action.empty()) return action;
     }
-    if (action.empty()) break;
-    rec.update(sk);
-    record(edit, action, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-    // The person looks at the result: an edit that made the model worse (the two RMS distances'
-    // sum grew) is undone. It still counts as an edit (the effort was spent); the curve shows
-    // the undone state.
-    const CorrectingStep& now = run.steps.back();
-    const CorrectingStep& before = run.steps[run.steps.size() - 2];
+    return {};
+  }
+
+  // The view where samples a..b of the limb are longest on screen and least hidden (-1: none).
+  int bestStrokeView(const LimbSamples& limb, std::size_t a, std::size_t b, double& bestScore) {
+    int bestView = -1;
+    bestScore = 0;
+    for (std::size_t v = 0; v < views_.size(); ++v) {
+      const edit::ViewPicker& pk = picker(v);
+      double len = 0, visible = 0;
+      Vec2 prev = Vec2::Zero();
+      int n = 0;
+      for (std::size_t k = a; k <= b; ++k) {
+        const Vec3 s = views_[v].project(limb.points[k]);
+        if (!s.allFinite()) continue;
+        if (n > 0) len += (s.head<2>() - prev).norm();
+        prev = s.head<2>();
+        ++n;
+        const double depth = pk.depthOf(limb.points[k]);
+        int inFront = 0;
+        for (const auto& cand : pk.near(s.head<2>(), 3.0))
+          if (cand.depth < depth - limb.radii[k] - tol_) ++inFront;
+        visible += inFront < 3;
+      }
+      const double score = n > 0 ? len * visible / n : 0;
+      if (score > bestScore) {
+        bestScore = score;
+        bestView = int(v);
+      }
+    }
+    return bestView;
+  }
+
+  // The stroke: from the last covered sample before the miss (where the person starts, on the
+  // model) to the miss's end, in the view where it is longest on screen and least hidden. Returns
+  // what was drawn (empty: the limb cannot be drawn; it is not tried again).
+  std::string strokeLimb(const Candidate& c) {
+    const LimbSamples& limb = limbs_[c.limb];
+    const std::size_t a = c.from > 0 ? c.from - 1 : 0, b = c.to;
+    double bestScore = 0;
+    const int bestView = bestStrokeView(limb, a, b, bestScore);
+    if (bestView < 0 || bestScore < 4.0) {  // under 4 visible pixels: nobody sees it
+      failedLimbs_.insert(c.limb);
+      return {};
+    }
+    std::vector<Vec2> stroke;
+    Vec2 last(NAN, NAN);
+    for (std::size_t k = a; k <= b; ++k) {
+      const Vec2 s = views_[bestView].project(limb.points[k]).head<2>();
+      if (k != a && k != b && (s - last).norm() < 5.0) continue;  // a hand's polyline: ~5 px apart
+      stroke.push_back(s + Vec2(jitter_(rng_), jitter_(rng_)));
+      last = s;
+    }
+    failedLimbs_.insert(c.limb);  // one stroke per limb: a person does not redraw the same limb
+    try {
+      const edit::StrokeResult r = edit::drawLimb(sk_, picker(bestView), cloud_, stroke, edit::nodeAnchors(sk_, &rec_));
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "stroke limb %zu (%s view, %zu nodes under node %d%s)", c.limb, viewName(bestView),
+                    r.added.size(), r.attachedTo, r.depthJumps ? ", depth jumps" : "");
+      return buf;
+    } catch (const OptionsError&) {
+      return {};
+    }
+  }
+
+  // The person looks at the result: an edit that made the model worse (the two RMS distances' sum
+  // grew) is undone. It still counts as an edit (the effort was spent); the curve shows the undone
+  // state.
+  void undoIfWorse(int edit, const sketch::Sketch& saved, NodeId deleted) {
+    const CorrectingStep& now = run_.steps.back();
+    const CorrectingStep& before = run_.steps[run_.steps.size() - 2];
     if (now.backwardRms + now.forwardRms > before.backwardRms + before.forwardRms) {
-      sk = saved;
-      rec.update(sk);
-      if (deleted != sketch::kNoNode) failedNodes.insert(deleted);
+      sk_ = saved;
+      rec_.update(sk_);
+      if (deleted != sketch::kNoNode) failedNodes_.insert(deleted);
       CorrectingStep undone = before;
       undone.edit = now.edit;
       undone.action = now.action + " — worse, undone";
       undone.ms = now.ms;
-      run.steps.back() = undone;
-      if (run.editsToTarget == edit) run.editsToTarget = -1;
+      run_.steps.back() = undone;
+      if (run_.editsToTarget == edit) run_.editsToTarget = -1;
     }
   }
-  return run;
+
+  const TreeCase& tree_;
+  const geom::PointCloud& cloud_;
+  const CorrectingUserOptions& o_;
+  const double diag_;
+  const double tol_;
+  recon::Reconstruction rec_;
+  sketch::Sketch sk_;
+  CorrectingRun run_;
+  std::unique_ptr<accel::MeshClosestPoint> reference_;
+  std::vector<geom::Camera> views_;
+  std::vector<std::unique_ptr<edit::ViewPicker>> pickers_;
+  double step_ = 0;
+  std::vector<LimbSamples> limbs_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> jitter_;
+  std::set<std::size_t> failedLimbs_;
+  std::set<NodeId> failedNodes_;
+};
+
+}  // namespace
+
+CorrectingRun runCorrectingUser(const TreeCase& tree, const geom::PointCloud& cloud, const sketch::Sketch& automatic,
+                                const CorrectingUserOptions& o) {
+  return CorrectingSession(tree, cloud, automatic, o).run();
 }
 
 std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& trees, const EvalOptions& eo,
@@ -334,7 +402,7 @@ std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& 
       for (int leafState = 0; leafState < 2; ++leafState) {
         const bool leafOn = leafState == 0;
         if ((leafOn && !(eo.leafOn && c.leafOn)) || (!leafOn && !(eo.leafOff && c.leafOff))) continue;
-        auto t0 = Clock::now();
+        const Stopwatch timer;
         TreeScan scan = scanTree(tree, c, leafOn, eo.seed);
         skeleton::AutoSkeletonOptions so =
             skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, tree.up);
@@ -356,8 +424,7 @@ std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& 
                         "%s %s %s correcting user: RMS back/fwd %.3f/%.3f %% -> %.3f/%.3f %% after %d edits; "
                         "edits to %.2f %%: %d  (%.0f s)",
                         tree.name.c_str(), c.name.c_str(), r.leaf.c_str(), first.backwardRms, first.forwardRms,
-                        last.backwardRms, last.forwardRms, last.edit, o.targetPct, r.editsToTarget,
-                        std::chrono::duration<double>(Clock::now() - t0).count());
+                        last.backwardRms, last.forwardRms, last.edit, o.targetPct, r.editsToTarget, timer.seconds());
           eo.log(buf);
         }
         runs.push_back(std::move(r));

@@ -248,64 +248,43 @@ struct Scorer {
   }
 };
 
-}  // namespace
-
-CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFitOptions& options) {
-  checkOptions(options);
-  CircleFitResult res;
+// True when every point is finite: in the common case one vectorizable test (x·0 + y·0 is NaN
+// exactly when x or y is NaN or infinite).
+bool allPointsFinite(const std::vector<Vec2>& points) {
   const std::size_t n = points.size();
-  // Per-thread index buffers, reused by every fit on the thread.
-  thread_local std::vector<std::uint32_t> finite, sample, strided, inl, inl2;
-  thread_local std::vector<std::uint64_t> taken;
-  struct Release {  // ...but not the memory of a huge input
-    ~Release() {
-      for (auto* v : {&finite, &sample, &strided, &inl, &inl2})
-        if (v->capacity() > (std::size_t(1) << 20)) *v = {};
-      if (taken.capacity() > (std::size_t(1) << 16)) taken = {};
-    }
-  } release;
-  // The finite points: in the common case all of them (one vectorizable test: x·0 + y·0 is NaN
-  // exactly when x or y is NaN or infinite), else a compacted list.
   bool allFinite = true;
-  if (!options.inputFinite) {
-    std::size_t i = 0;
+  std::size_t i = 0;
 #if defined(__SSE2__)
-    // Sums of p · 0 stay 0 unless some coordinate is NaN or infinite; four independent sums.
-    const __m128d zero = _mm_setzero_pd();
-    __m128d acc[4] = {zero, zero, zero, zero};
-    for (; i + 4 <= n; i += 4)
-      for (int q = 0; q < 4; ++q) acc[q] = _mm_add_pd(acc[q], _mm_mul_pd(_mm_loadu_pd(points[i + q].data()), zero));
-    const __m128d all = _mm_add_pd(_mm_add_pd(acc[0], acc[1]), _mm_add_pd(acc[2], acc[3]));
-    allFinite = _mm_movemask_pd(_mm_cmpeq_pd(all, all)) == 3;
+  // Sums of p · 0 stay 0 unless some coordinate is NaN or infinite; four independent sums.
+  const __m128d zero = _mm_setzero_pd();
+  __m128d acc[4] = {zero, zero, zero, zero};
+  for (; i + 4 <= n; i += 4)
+    for (int q = 0; q < 4; ++q) acc[q] = _mm_add_pd(acc[q], _mm_mul_pd(_mm_loadu_pd(points[i + q].data()), zero));
+  const __m128d all = _mm_add_pd(_mm_add_pd(acc[0], acc[1]), _mm_add_pd(acc[2], acc[3]));
+  allFinite = _mm_movemask_pd(_mm_cmpeq_pd(all, all)) == 3;
 #endif
-    for (; i < n; ++i) allFinite &= points[i].allFinite();
-  }
-  std::size_t nFinite = n;
-  if (!allFinite) {
-    finite.resize(n);
-    nFinite = 0;
-    for (std::size_t i = 0; i < n; ++i) {  // branch-free compaction
-      finite[nFinite] = std::uint32_t(i);
-      nFinite += points[i].allFinite() ? 1 : 0;
-    }
-    finite.resize(nFinite);
-  }
-  if (nFinite < 3) {
-    res.reason = "fewer than 3 points (" + std::to_string(nFinite) + ")";
-    return res;
-  }
-  const std::size_t needed =
-      std::max<std::size_t>(std::size_t(options.minInliers), std::size_t(std::ceil(options.minInlierFraction * n)));
-  if (nFinite < needed) {
-    res.reason =
-        "too few points for the minimum support (" + std::to_string(nFinite) + " < " + std::to_string(needed) + ")";
-    return res;
-  }
+  for (; i < n; ++i) allFinite &= points[i].allFinite();
+  return allFinite;
+}
 
-  SplitMix64 rng(options.seed);
-  // The scoring subset: a deterministic random subset of the finite points (all of them when
-  // there are few).
-  const std::size_t m = options.maxScoringPoints > 0 ? std::size_t(options.maxScoringPoints) : nFinite;
+// The indices of the finite points, into `finite`; returns their number.
+std::size_t compactFinite(const std::vector<Vec2>& points, std::vector<std::uint32_t>& finite) {
+  const std::size_t n = points.size();
+  finite.resize(n);
+  std::size_t nFinite = 0;
+  for (std::size_t i = 0; i < n; ++i) {  // branch-free compaction
+    finite[nFinite] = std::uint32_t(i);
+    nFinite += points[i].allFinite() ? 1 : 0;
+  }
+  finite.resize(nFinite);
+  return nFinite;
+}
+
+// The scoring subset, into `sample`: a deterministic random subset of m of the finite points (all
+// of them when there are few).
+void drawScoringSubset(SplitMix64& rng, std::size_t n, std::size_t nFinite, std::size_t m, bool allFinite,
+                       const std::vector<std::uint32_t>& finite, std::vector<std::uint32_t>& sample,
+                       std::vector<std::uint64_t>& taken) {
   if (nFinite <= m) {
     if (allFinite) {
       sample.resize(n);
@@ -331,22 +310,21 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
     }
     sample.resize(m);
   }
-  const std::size_t ns = sample.size();
-  Scorer scorer{points, options};
-  // The scoring subset's coordinates, contiguous (structure of arrays) and in float: scoring only
-  // ranks hypotheses (the final inliers are classified in double), and float's relative error of
-  // ~1e-7 on plane coordinates is far below any inlier threshold; four points per SSE2 step.
-  thread_local std::vector<float> sampleX, sampleY;
-  sampleX.resize(ns);
-  sampleY.resize(ns);
-  for (std::size_t k = 0; k < ns; ++k) {
-    sampleX[k] = float(points[sample[k]].x());
-    sampleY[k] = float(points[sample[k]].y());
-  }
+}
+
+// The scoring subset's coordinates, contiguous (structure of arrays) and in float: scoring only
+// ranks hypotheses (the final inliers are classified in double), and float's relative error of
+// ~1e-7 on plane coordinates is far below any inlier threshold; four points per SSE2 step.
+struct SampleScorer {
+  const Scorer& scorer;
+  const std::vector<float>& sampleX;
+  const std::vector<float>& sampleY;
+  std::size_t ns;
+
   // Inlier count and residual sum of a hypothesis over the subset. The residual |d − r| is taken
   // as |d² − r²| / 2r (first order; only a tie-break between equal counts), which keeps the loop
   // free of square roots and branches.
-  auto scoreSample = [&](const Vec2& centre, double r) {
+  std::pair<std::size_t, double> operator()(const Vec2& centre, double r) const {
     const auto b = scorer.band(r);
     const float cx = float(centre.x()), cy = float(centre.y()), r2 = float(r * r);
     const float lo2 = float(b.lo2), hi2 = float(b.hi2);
@@ -383,12 +361,23 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
       sum += in ? std::abs(d2 - r2) : 0.0f;
     }
     return std::pair<std::size_t, double>(count, double(sum) / (2.0 * r));
-  };
+  }
+};
 
-  std::size_t bestCount = 0;
-  double bestSum = 0.0;
-  Vec2 bestC = Vec2::Zero();
-  double bestR = 0.0;
+struct BestCircle {
+  std::size_t count = 0;
+  double sum = 0.0;
+  Vec2 centre = Vec2::Zero();
+  double radius = 0.0;
+};
+
+// RANSAC over 3-point circles of the scoring subset, with the adaptive sample count; returns the
+// best circle and sets `iterations`.
+BestCircle searchCircles(SplitMix64& rng, const std::vector<Vec2>& points, const std::vector<std::uint32_t>& sample,
+                         const Scorer& scorer, const SampleScorer& scoreSample, const CircleFitOptions& options,
+                         int& iterations) {
+  const std::size_t ns = sample.size();
+  BestCircle best;
   double maxIter = options.maxIterations;
   int it = 0;
   const double logFail = std::log(1.0 - options.probability);
@@ -401,12 +390,12 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
     if (!circleFrom3(points[sample[a]], points[sample[b]], points[sample[c]], &centre, &r)) continue;
     if (!scorer.admissible(centre, r)) continue;
     auto [count, sum] = scoreSample(centre, r);
-    if ((count > bestCount || (count == bestCount && count > 0 && sum < bestSum)) &&
+    if ((count > best.count || (count == best.count && count > 0 && sum < best.sum)) &&
         scorer.enoughArc(sample, centre, r)) {
-      bestCount = count;
-      bestSum = sum;
-      bestC = centre;
-      bestR = r;
+      best.count = count;
+      best.sum = sum;
+      best.centre = centre;
+      best.radius = r;
       // Adaptive sample count N = log(1 − p) / log(1 − w³) from the best inlier ratio w.
       double w = double(count) / double(ns);
       double w3 = w * w * w;
@@ -416,19 +405,19 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
         maxIter = std::min<double>(options.maxIterations, std::ceil(logFail / std::log1p(-w3)));
     }
   }
-  res.iterations = it;
-  if (bestCount < 3) {
-    res.reason = "no admissible 3-point circle (collinear points, or outside the radius bounds or the minimum "
-                 "arc)";
-    return res;
-  }
+  iterations = it;
+  return best;
+}
 
-  // Refinement: least-squares fit to the inliers, classify all points, repeat. The first fit
-  // takes the best circle's inliers within the scoring subset (a random sample of the points
-  // already at hand) rather than classifying all points first: one pass over them less.
-  Vec2 c = bestC;
-  double r = bestR;
-  bool full = ns == n;  // inl holds the inliers among all points (not only the subset's)
+// Refinement: least-squares fit to the inliers, classify all points, repeat. The first fit takes
+// the best circle's inliers within the scoring subset (a random sample of the points already at
+// hand) rather than classifying all points first: one pass over them less. On return `inl` holds
+// the inliers of (c, r) among all points.
+void refineCircle(const std::vector<Vec2>& points, const std::vector<std::uint32_t>& sample, const Scorer& scorer,
+                  const CircleFitOptions& options, Vec2& c, double& r, std::vector<std::uint32_t>& inl,
+                  std::vector<std::uint32_t>& inl2, std::vector<std::uint32_t>& strided) {
+  const std::size_t n = points.size();
+  bool full = sample.size() == n;  // inl holds the inliers among all points (not only the subset's)
   if (full) {
     scorer.inliers(n, c, r, inl);
   } else {
@@ -460,6 +449,62 @@ CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFit
     if (same) break;
   }
   if (!full) scorer.inliers(n, c, r, inl);
+}
+
+}  // namespace
+
+CircleFitResult fitCircleRansac(const std::vector<Vec2>& points, const CircleFitOptions& options) {
+  checkOptions(options);
+  CircleFitResult res;
+  const std::size_t n = points.size();
+  // Per-thread index buffers, reused by every fit on the thread.
+  thread_local std::vector<std::uint32_t> finite, sample, strided, inl, inl2;
+  thread_local std::vector<std::uint64_t> taken;
+  struct Release {  // ...but not the memory of a huge input
+    ~Release() {
+      for (auto* v : {&finite, &sample, &strided, &inl, &inl2})
+        if (v->capacity() > (std::size_t(1) << 20)) *v = {};
+      if (taken.capacity() > (std::size_t(1) << 16)) taken = {};
+    }
+  } release;
+  // The finite points: in the common case all of them, else a compacted list.
+  const bool allFinite = options.inputFinite || allPointsFinite(points);
+  const std::size_t nFinite = allFinite ? n : compactFinite(points, finite);
+  if (nFinite < 3) {
+    res.reason = "fewer than 3 points (" + std::to_string(nFinite) + ")";
+    return res;
+  }
+  const std::size_t needed =
+      std::max<std::size_t>(std::size_t(options.minInliers), std::size_t(std::ceil(options.minInlierFraction * n)));
+  if (nFinite < needed) {
+    res.reason =
+        "too few points for the minimum support (" + std::to_string(nFinite) + " < " + std::to_string(needed) + ")";
+    return res;
+  }
+
+  SplitMix64 rng(options.seed);
+  const std::size_t m = options.maxScoringPoints > 0 ? std::size_t(options.maxScoringPoints) : nFinite;
+  drawScoringSubset(rng, n, nFinite, m, allFinite, finite, sample, taken);
+  const std::size_t ns = sample.size();
+  Scorer scorer{points, options};
+  thread_local std::vector<float> sampleX, sampleY;
+  sampleX.resize(ns);
+  sampleY.resize(ns);
+  for (std::size_t k = 0; k < ns; ++k) {
+    sampleX[k] = float(points[sample[k]].x());
+    sampleY[k] = float(points[sample[k]].y());
+  }
+  const SampleScorer scoreSample{scorer, sampleX, sampleY, ns};
+  const BestCircle best = searchCircles(rng, points, sample, scorer, scoreSample, options, res.iterations);
+  if (best.count < 3) {
+    res.reason =
+        "no admissible 3-point circle (collinear points, or outside the radius bounds or the minimum "
+        "arc)";
+    return res;
+  }
+  Vec2 c = best.centre;
+  double r = best.radius;
+  refineCircle(points, sample, scorer, options, c, r, inl, inl2, strided);
   if (inl.size() < needed) {
     res.reason = "best circle has too few inliers (" + std::to_string(inl.size()) + " < " + std::to_string(needed) +
                  " of " + std::to_string(n) + ")";

@@ -7,15 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "fit/slice_pretest.h"
 #include "treesketch/util/error.h"
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#include <immintrin.h>
-#define TREESKETCH_AVX2_DISPATCH 1
-#endif
 
 namespace treesketch::fit {
 
@@ -50,6 +43,69 @@ std::vector<std::uint32_t> sliceBruteForce(const geom::PointCloud& cloud, const 
   return out;
 }
 
+namespace {
+
+// Grows `cell` by 10 % steps until the grid over `ext` has at most cellCap cells; sets dims.
+void fitGridDims(const Vec3& ext, double cellCap, double& cell, int (&dims)[3]) {
+  for (;;) {
+    double total = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      dims[a] = std::max(1, int(std::ceil(ext[a] / cell)));
+      total *= dims[a];
+    }
+    if (total <= cellCap) break;
+    cell *= 1.1;
+  }
+}
+
+// Refine: occupied cells of a surface scan hold ~cell² points; shrink cells until they hold about
+// pointsPerOccupiedCell (at most 3 passes over the points, within maxCells).
+void refineGridCell(const std::vector<Vec3>& pts, const geom::BBox& bounds, std::size_t nFinite,
+                    const CloudIndexOptions& options, const Vec3& ext, double cellCap, double& cell, int (&dims)[3]) {
+  for (int pass = 0; pass < 3 && options.pointsPerOccupiedCell > 0.0; ++pass) {
+    const std::size_t cells = std::size_t(dims[0]) * dims[1] * dims[2];
+    // Occupancy as a point sees it (Σ count² / n): what a query pays per hit. The plain mean over
+    // occupied cells is dragged down by sparse clutter (one point a cell) while the surface cells
+    // that queries hit hold hundreds.
+    std::vector<std::uint32_t> counts(cells, 0);
+    double sumSq = 0.0;
+    for (const auto& p : pts) {
+      if (!p.allFinite()) continue;
+      std::size_t lin = 0;
+      for (int a = 2; a >= 0; --a)
+        lin = lin * dims[a] + std::clamp(int(std::floor((p[a] - bounds.min[a]) / cell)), 0, dims[a] - 1);
+      sumSq += 2.0 * counts[lin] + 1.0;  // (c + 1)² − c²
+      ++counts[lin];
+    }
+    const double perCell = sumSq / double(nFinite);
+    if (perCell < 2.0 * options.pointsPerOccupiedCell) break;
+    const double before = cell;
+    cell *= std::max(0.25, std::sqrt(options.pointsPerOccupiedCell / perCell));
+    fitGridDims(ext, cellCap, cell, dims);
+    if (cell >= 0.95 * before) break;  // held back by the cell cap
+  }
+}
+
+// Each point's grid cell (linear index; -1 for a non-finite point), and the cells' counts into
+// cellStart[c + 1].
+std::vector<std::uint32_t> cellsOfPoints(const std::vector<Vec3>& pts, const geom::BBox& bounds, double cell,
+                                         const int (&dims)[3], std::vector<std::uint32_t>& cellStart) {
+  std::vector<std::uint32_t> cellOf(pts.size(), std::uint32_t(-1));
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (!pts[i].allFinite()) continue;
+    std::size_t lin = 0;
+    for (int a = 2; a >= 0; --a) {
+      int c = std::clamp(int(std::floor((pts[i][a] - bounds.min[a]) / cell)), 0, dims[a] - 1);
+      lin = lin * dims[a] + c;
+    }
+    cellOf[i] = std::uint32_t(lin);
+    ++cellStart[lin + 1];
+  }
+  return cellOf;
+}
+
+}  // namespace
+
 CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& options) {
   if (!(options.pointsPerCell > 0.0) || options.maxCells < 1 || !(options.maxCellsPerPoint >= 0.0))
     throw OptionsError("cloud index: pointsPerCell and maxCells must be positive, maxCellsPerPoint >= 0");
@@ -78,55 +134,11 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
   Vec3 thick = ext.cwiseMax(Vec3::Constant(1e-3 * diag));
   double targetCells = std::clamp(double(nFinite) / options.pointsPerCell, 1.0, cellCap);
   cell_ = std::cbrt(thick.prod() / targetCells);
-  auto fitDims = [&] {
-    for (;;) {
-      double total = 1.0;
-      for (int a = 0; a < 3; ++a) {
-        dims_[a] = std::max(1, int(std::ceil(ext[a] / cell_)));
-        total *= dims_[a];
-      }
-      if (total <= cellCap) break;
-      cell_ *= 1.1;
-    }
-  };
-  fitDims();
-  // Refine: occupied cells of a surface scan hold ~cell² points; shrink cells until they hold about
-  // pointsPerOccupiedCell (at most 3 passes over the points, within maxCells).
-  for (int pass = 0; pass < 3 && options.pointsPerOccupiedCell > 0.0; ++pass) {
-    const std::size_t cells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
-    // Occupancy as a point sees it (Σ count² / n): what a query pays per hit. The plain mean over
-    // occupied cells is dragged down by sparse clutter (one point a cell) while the surface cells
-    // that queries hit hold hundreds.
-    std::vector<std::uint32_t> counts(cells, 0);
-    double sumSq = 0.0;
-    for (const auto& p : pts) {
-      if (!p.allFinite()) continue;
-      std::size_t lin = 0;
-      for (int a = 2; a >= 0; --a)
-        lin = lin * dims_[a] + std::clamp(int(std::floor((p[a] - bounds_.min[a]) / cell_)), 0, dims_[a] - 1);
-      sumSq += 2.0 * counts[lin] + 1.0;  // (c + 1)² − c²
-      ++counts[lin];
-    }
-    const double perCell = sumSq / double(nFinite);
-    if (perCell < 2.0 * options.pointsPerOccupiedCell) break;
-    const double before = cell_;
-    cell_ *= std::max(0.25, std::sqrt(options.pointsPerOccupiedCell / perCell));
-    fitDims();
-    if (cell_ >= 0.95 * before) break;  // held back by the cell cap
-  }
+  fitGridDims(ext, cellCap, cell_, dims_);
+  refineGridCell(pts, bounds_, nFinite, options, ext, cellCap, cell_, dims_);
   const std::size_t nCells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
-  std::vector<std::uint32_t> cellOf(pts.size(), std::uint32_t(-1));
   cellStart_.assign(nCells + 1, 0);
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    if (!pts[i].allFinite()) continue;
-    std::size_t lin = 0;
-    for (int a = 2; a >= 0; --a) {
-      int c = std::clamp(int(std::floor((pts[i][a] - bounds_.min[a]) / cell_)), 0, dims_[a] - 1);
-      lin = lin * dims_[a] + c;
-    }
-    cellOf[i] = std::uint32_t(lin);
-    ++cellStart_[lin + 1];
-  }
+  const std::vector<std::uint32_t> cellOf = cellsOfPoints(pts, bounds_, cell_, dims_, cellStart_);
   occupied_.assign((nCells + 63) / 64, 0);
   for (std::size_t c = 0; c < nCells; ++c) {
     if (cellStart_[c + 1] != 0) occupied_[c >> 6] |= std::uint64_t(1) << (c & 63);
@@ -193,11 +205,14 @@ int floorClamped(double v) {
 
 }  // namespace
 
-template <class Visit>
-void CloudIndex::forEachCandidateCell(const SliceRegion& region, Visit&& visit) const {
-  if (sorted_.empty()) return;
-  const double margin = 1e-6 * cell_;
-  Vec3 lo = bounds_.min, hi = bounds_.min + Vec3(dims_[0], dims_[1], dims_[2]) * cell_;
+namespace {
+
+// The range of grid cells [clo, chi] (per axis) whose box the region may reach: the grid clipped
+// to a ball's box, or to a cylinder's axis segment inside the grid grown by its radius. False when
+// no cell can be reached.
+bool candidateCellBox(const SliceRegion& region, const geom::BBox& bounds, const int (&dims)[3], double cell,
+                      double margin, int (&clo)[3], int (&chi)[3]) {
+  Vec3 lo = bounds.min, hi = bounds.min + Vec3(dims[0], dims[1], dims[2]) * cell;
   const double r = region.radius;
   if (region.kind == SliceRegion::Kind::Ball) {
     lo = lo.cwiseMax(region.linePoint - Vec3::Constant(r + margin));
@@ -209,24 +224,35 @@ void CloudIndex::forEachCandidateCell(const SliceRegion& region, Visit&& visit) 
     for (int a = 0; a < 3; ++a) {
       double o = region.linePoint[a], d = region.lineDir[a];
       if (std::abs(d) < 1e-300) {
-        if (o < blo[a] || o > bhi[a]) return;
+        if (o < blo[a] || o > bhi[a]) return false;
         continue;
       }
       double ta = (blo[a] - o) / d, tb = (bhi[a] - o) / d;
       t0 = std::max(t0, std::min(ta, tb));
       t1 = std::min(t1, std::max(ta, tb));
     }
-    if (t0 > t1) return;
+    if (t0 > t1) return false;
     Vec3 p0 = region.linePoint + t0 * region.lineDir, p1 = region.linePoint + t1 * region.lineDir;
     lo = lo.cwiseMax(p0.cwiseMin(p1) - Vec3::Constant(r + margin));
     hi = hi.cwiseMin(p0.cwiseMax(p1) + Vec3::Constant(r + margin));
   }
-  int clo[3], chi[3];
   for (int a = 0; a < 3; ++a) {
-    if (lo[a] > hi[a]) return;
-    clo[a] = int(std::clamp(std::floor((lo[a] - bounds_.min[a]) / cell_), 0.0, double(dims_[a] - 1)));
-    chi[a] = int(std::clamp(std::floor((hi[a] - bounds_.min[a]) / cell_), 0.0, double(dims_[a] - 1)));
+    if (lo[a] > hi[a]) return false;
+    clo[a] = int(std::clamp(std::floor((lo[a] - bounds.min[a]) / cell), 0.0, double(dims[a] - 1)));
+    chi[a] = int(std::clamp(std::floor((hi[a] - bounds.min[a]) / cell), 0.0, double(dims[a] - 1)));
   }
+  return true;
+}
+
+}  // namespace
+
+template <class Visit>
+void CloudIndex::forEachCandidateCell(const SliceRegion& region, Visit&& visit) const {
+  if (sorted_.empty()) return;
+  const double margin = 1e-6 * cell_;
+  const double r = region.radius;
+  int clo[3], chi[3];
+  if (!candidateCellBox(region, bounds_, dims_, cell_, margin, clo, chi)) return;
   const Vec3& n = region.planeNormal;
   int k = 0;
   for (int a = 1; a < 3; ++a)
@@ -286,108 +312,18 @@ void CloudIndex::forEachCandidateCell(const SliceRegion& region, Visit&& visit) 
 
 namespace {
 
-// The float pre-test of forEachHit, on blocks of up to 64 consecutive stored points. A slab has
-// no radial term (radialOff), a ball has a zero axis (no projection). Reads up to 3 floats past
-// the block (fpos_ is padded); those lanes are masked off.
-struct FloatTest {
-  std::array<float, 3> n{}, l{}, a{};
-  float pd = 0, hs = 0, hsIn = 0, r2 = 0, r2In = 0;
-  bool radialOff = true;     ///< no radial test: the slab decides alone
-  bool sureNoRadial = true;  ///< without a radial test, "inside the slab" is "surely inside"
-
-  // Bit q of *in: point b0 + q may be inside (exact test needed unless bit q of *sure is set:
-  // inside by more than the float tolerance).
-  void block(const float* const f[3], std::uint32_t b0, std::uint32_t len, std::uint64_t* in,
-             std::uint64_t* sure) const {
-    std::uint64_t mi = 0, ms = 0;
-#if defined(__SSE2__)
-    const __m128 nx = _mm_set1_ps(n[0]), ny = _mm_set1_ps(n[1]), nz = _mm_set1_ps(n[2]);
-    const __m128 lx = _mm_set1_ps(l[0]), ly = _mm_set1_ps(l[1]), lz = _mm_set1_ps(l[2]);
-    const __m128 ax = _mm_set1_ps(a[0]), ay = _mm_set1_ps(a[1]), az = _mm_set1_ps(a[2]);
-    const __m128 vpd = _mm_set1_ps(pd), vhs = _mm_set1_ps(hs), vhsIn = _mm_set1_ps(hsIn);
-    const __m128 vr2 = _mm_set1_ps(r2), vr2In = _mm_set1_ps(r2In);
-    const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
-    const __m128 off = _mm_castsi128_ps(_mm_set1_epi32(radialOff ? -1 : 0));
-    const __m128 sureOff = _mm_castsi128_ps(_mm_set1_epi32(sureNoRadial ? -1 : 0));
-    for (std::uint32_t q = 0; q < len; q += 4) {
-      const __m128 x = _mm_loadu_ps(f[0] + b0 + q), y = _mm_loadu_ps(f[1] + b0 + q), z = _mm_loadu_ps(f[2] + b0 + q);
-      const __m128 ds = _mm_and_ps(
-          absMask, _mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, x), _mm_mul_ps(ny, y)), _mm_mul_ps(nz, z)), vpd));
-      __m128 dx = _mm_sub_ps(x, lx), dy = _mm_sub_ps(y, ly), dz = _mm_sub_ps(z, lz);
-      const __m128 t = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, ax), _mm_mul_ps(dy, ay)), _mm_mul_ps(dz, az));
-      dx = _mm_sub_ps(dx, _mm_mul_ps(t, ax));
-      dy = _mm_sub_ps(dy, _mm_mul_ps(t, ay));
-      dz = _mm_sub_ps(dz, _mm_mul_ps(t, az));
-      const __m128 rq = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
-      const __m128 inside = _mm_and_ps(_mm_cmplt_ps(ds, vhs), _mm_or_ps(_mm_cmplt_ps(rq, vr2), off));
-      const __m128 surely = _mm_and_ps(_mm_cmplt_ps(ds, vhsIn), _mm_or_ps(_mm_cmplt_ps(rq, vr2In), sureOff));
-      mi |= std::uint64_t(_mm_movemask_ps(inside)) << q;
-      ms |= std::uint64_t(_mm_movemask_ps(surely)) << q;
-    }
-#else
-    for (std::uint32_t q = 0; q < len; ++q) {
-      const float x = f[0][b0 + q], y = f[1][b0 + q], z = f[2][b0 + q];
-      const float ds = std::abs(n[0] * x + n[1] * y + n[2] * z - pd);
-      float dx = x - l[0], dy = y - l[1], dz = z - l[2];
-      const float t = dx * a[0] + dy * a[1] + dz * a[2];
-      dx -= t * a[0];
-      dy -= t * a[1];
-      dz -= t * a[2];
-      const float rq = dx * dx + dy * dy + dz * dz;
-      mi |= std::uint64_t((ds < hs) & ((rq < r2) | radialOff)) << q;
-      ms |= std::uint64_t((ds < hsIn) & ((rq < r2In) | sureNoRadial)) << q;
-    }
-#endif
-    const std::uint64_t valid = len >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << len) - 1;
-    *in = mi & valid;
-    *sure = ms & valid;
+// Sorts disjoint slot ranges and merges the touching ones.
+void sortAndMerge(std::vector<std::pair<std::uint32_t, std::uint32_t>>& ranges) {
+  std::sort(ranges.begin(), ranges.end());
+  std::size_t merged = 0;
+  for (std::size_t i = 1; i < ranges.size(); ++i) {
+    if (ranges[merged].second == ranges[i].first)
+      ranges[merged].second = ranges[i].second;
+    else
+      ranges[++merged] = ranges[i];
   }
-
-#if defined(TREESKETCH_AVX2_DISPATCH)
-  // block() eight points at a time, for processors with AVX2 (chosen at run time: the build
-  // targets baseline x86-64). The same operations in the same order on each lane, and no fused
-  // multiply-add (the target is "avx2" alone), so the masks are bit-identical to block()'s. Reads
-  // up to 7 floats past the block: fpos_ is padded by 8.
-  __attribute__((target("avx2"))) void block8(const float* const f[3], std::uint32_t b0, std::uint32_t len,
-                                              std::uint64_t* in, std::uint64_t* sure) const {
-    std::uint64_t mi = 0, ms = 0;
-    const __m256 nx = _mm256_set1_ps(n[0]), ny = _mm256_set1_ps(n[1]), nz = _mm256_set1_ps(n[2]);
-    const __m256 lx = _mm256_set1_ps(l[0]), ly = _mm256_set1_ps(l[1]), lz = _mm256_set1_ps(l[2]);
-    const __m256 ax = _mm256_set1_ps(a[0]), ay = _mm256_set1_ps(a[1]), az = _mm256_set1_ps(a[2]);
-    const __m256 vpd = _mm256_set1_ps(pd), vhs = _mm256_set1_ps(hs), vhsIn = _mm256_set1_ps(hsIn);
-    const __m256 vr2 = _mm256_set1_ps(r2), vr2In = _mm256_set1_ps(r2In);
-    const __m256 absMask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
-    const __m256 off = _mm256_castsi256_ps(_mm256_set1_epi32(radialOff ? -1 : 0));
-    const __m256 sureOff = _mm256_castsi256_ps(_mm256_set1_epi32(sureNoRadial ? -1 : 0));
-    for (std::uint32_t q = 0; q < len; q += 8) {
-      const __m256 x = _mm256_loadu_ps(f[0] + b0 + q), y = _mm256_loadu_ps(f[1] + b0 + q),
-                   z = _mm256_loadu_ps(f[2] + b0 + q);
-      const __m256 ds = _mm256_and_ps(
-          absMask, _mm256_sub_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(nx, x), _mm256_mul_ps(ny, y)),
-                                               _mm256_mul_ps(nz, z)),
-                                 vpd));
-      __m256 dx = _mm256_sub_ps(x, lx), dy = _mm256_sub_ps(y, ly), dz = _mm256_sub_ps(z, lz);
-      const __m256 t =
-          _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, ax), _mm256_mul_ps(dy, ay)), _mm256_mul_ps(dz, az));
-      dx = _mm256_sub_ps(dx, _mm256_mul_ps(t, ax));
-      dy = _mm256_sub_ps(dy, _mm256_mul_ps(t, ay));
-      dz = _mm256_sub_ps(dz, _mm256_mul_ps(t, az));
-      const __m256 rq =
-          _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)), _mm256_mul_ps(dz, dz));
-      const __m256 inside = _mm256_and_ps(_mm256_cmp_ps(ds, vhs, _CMP_LT_OQ),
-                                          _mm256_or_ps(_mm256_cmp_ps(rq, vr2, _CMP_LT_OQ), off));
-      const __m256 surely = _mm256_and_ps(_mm256_cmp_ps(ds, vhsIn, _CMP_LT_OQ),
-                                          _mm256_or_ps(_mm256_cmp_ps(rq, vr2In, _CMP_LT_OQ), sureOff));
-      mi |= std::uint64_t(unsigned(_mm256_movemask_ps(inside))) << q;
-      ms |= std::uint64_t(unsigned(_mm256_movemask_ps(surely))) << q;
-    }
-    const std::uint64_t valid = len >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << len) - 1;
-    *in = mi & valid;
-    *sure = ms & valid;
-  }
-#endif
-};
-
+  if (!ranges.empty()) ranges.resize(merged + 1);
+}
 
 // Per-thread buffers reused across queries: a node fit runs a few queries of a few thousand
 // hits, where heap allocation was a visible share of the cost.
@@ -421,33 +357,11 @@ template <class Hit>
 void CloudIndex::forEachHit(const SliceRegion& region, Hit&& hit) const {
   const double mag = 0.5 * bounds_.diagonal();
   const Vec3 pp = region.planePoint - centre_, lp = region.linePoint - centre_;
-  const Vec3& n = region.planeNormal;
-  const double slabTol = 1e-5 * (mag + pp.norm()) + 1e-30;
   const bool radial = region.kind != SliceRegion::Kind::Slab &&
                       region.radius + 1e-5 * (mag + lp.norm() + region.radius) < 1e15;
   // Coordinates beyond float range: every candidate gets the exact test.
   const bool useFloat = mag < 1e30 && pp.norm() < 1e30 && lp.norm() < 1e30;
-  // Without a usable radial pre-test (radius too large for float) a cylinder or ball is never
-  // "surely inside".
-  FloatTest ft;
-  ft.n = {float(n.x()), float(n.y()), float(n.z())};
-  ft.pd = float(n.dot(pp));
-  ft.hs = float(region.halfThickness + slabTol);
-  ft.hsIn = float(std::max(0.0, region.halfThickness - slabTol));
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  ft.r2 = kInf;
-  ft.r2In = -kInf;
-  ft.radialOff = !radial;
-  ft.sureNoRadial = !radial && region.kind == SliceRegion::Kind::Slab;
-  if (radial) {
-    const double rad = 1e-5 * (mag + lp.norm() + region.radius);
-    const double rOut = region.radius + rad + 1e-30, rIn = std::max(0.0, region.radius - rad);
-    ft.r2 = float(rOut * rOut);
-    ft.r2In = float(rIn * rIn);
-    ft.l = {float(lp.x()), float(lp.y()), float(lp.z())};
-    if (region.kind == SliceRegion::Kind::Cylinder)
-      ft.a = {float(region.lineDir.x()), float(region.lineDir.y()), float(region.lineDir.z())};
-  }
+  const FloatTest ft = floatTest(region, pp, lp, mag, radial);
   // The candidate cells are scattered over large arrays, so a query is bound by memory latency:
   // collect the cells first, then read their bounds and their points with prefetches a few cells
   // ahead (many misses in flight instead of one at a time). Consecutive cells are stored
@@ -472,15 +386,7 @@ void CloudIndex::forEachHit(const SliceRegion& region, Hit&& hit) const {
   // brute-force scan of the same index visits them, with no sort of the hits (sorting a node's
   // few hundred ranges is several times cheaper than sorting its thousands of hits). Sorting also
   // merges runs that the column-wise cell walk visited apart.
-  std::sort(ranges.begin(), ranges.end());
-  std::size_t merged = 0;
-  for (std::size_t i = 1; i < ranges.size(); ++i) {
-    if (ranges[merged].second == ranges[i].first)
-      ranges[merged].second = ranges[i].second;
-    else
-      ranges[++merged] = ranges[i];
-  }
-  if (!ranges.empty()) ranges.resize(merged + 1);
+  sortAndMerge(ranges);
   const float* f[3] = {fpos_[0].data(), fpos_[1].data(), fpos_[2].data()};
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     if (i + kAhead < ranges.size()) {

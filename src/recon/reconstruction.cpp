@@ -5,17 +5,14 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
-#include <chrono>
 #include <map>
 #include <set>
+
+#include "treesketch/util/stopwatch.h"
 
 namespace treesketch::recon {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 bool sameLassos(const std::vector<std::pair<sketch::NotWoodLasso, geom::Camera>>& a, const sketch::Sketch& sk) {
   if (a.size() != sk.notWood().size()) return false;
@@ -35,9 +32,9 @@ bool sameLassos(const std::vector<std::pair<sketch::NotWoodLasso, geom::Camera>>
 
 Reconstruction::Reconstruction(const geom::PointCloud& cloud, const ReconstructionOptions& options)
     : options_(options), sweeper_(options.sweep) {
-  auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   index_ = std::make_unique<fit::CloudIndex>(cloud, options_.index);
-  timings_.indexMs = msSince(t0);
+  timings_.indexMs = timer.ms();
 }
 
 void Reconstruction::reset() {
@@ -56,23 +53,21 @@ std::map<NodeId, const fit::NodeResult*> Reconstruction::results() const {
   return out;
 }
 
-std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const ProgressFn& progress) {
-  auto t0 = std::chrono::steady_clock::now();
-  sketch.validate();
-  // 0. Not-wood lassos: recompute the index's exclusions when they changed; every fit may change.
-  bool lassosChanged = false;
-  if (!sameLassos(notWood_, sketch)) {
-    lassosChanged = true;
-    notWood_.clear();
-    for (const auto& l : sketch.notWood()) notWood_.emplace_back(l, sketch.cameras()[l.camera]);
-    if (sketch.notWood().empty())
-      index_->setExcluded({});
-    else
-      index_->setExcluded([&](const geom::Vec3& p) { return sketch.isNotWood(p); });
-  }
-  // 1. Diff: which nodes have new inputs (geometry or params); drop removed nodes.
-  std::vector<NodeId> changed;
-  std::vector<Entry> fresh;
+// 0. Not-wood lassos: recompute the index's exclusions when they changed; every fit may change.
+bool Reconstruction::refreshExclusions(const sketch::Sketch& sketch) {
+  if (sameLassos(notWood_, sketch)) return false;
+  notWood_.clear();
+  for (const auto& l : sketch.notWood()) notWood_.emplace_back(l, sketch.cameras()[l.camera]);
+  if (sketch.notWood().empty())
+    index_->setExcluded({});
+  else
+    index_->setExcluded([&](const geom::Vec3& p) { return sketch.isNotWood(p); });
+  return true;
+}
+
+// 1. Diff: which nodes have new inputs (geometry or params); drop removed nodes.
+Reconstruction::Pending Reconstruction::diff(const sketch::Sketch& sketch, bool lassosChanged) {
+  Pending p;
   std::set<NodeId> present;
   for (NodeId id : sketch.topologicalOrder()) {
     present.insert(id);
@@ -84,55 +79,55 @@ std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const P
       it->second.parent = node.parent;
       continue;
     }
-    changed.push_back(id);
-    fresh.push_back(Entry{g, node.params, node.kept, node.parent, {}});
+    p.changed.push_back(id);
+    p.fresh.push_back(Entry{g, node.params, node.kept, node.parent, {}});
   }
   for (auto it = entries_.begin(); it != entries_.end();)
     it = present.count(it->first) ? std::next(it) : entries_.erase(it);
-  // With the depth choice, a screen node's fit depends on its parent's circle (fit::FitPrior):
-  // a screen node under a re-fitted node is re-fitted too, after it (waves, parents first).
-  const bool priors = options_.fit.chooseDepth;
-  std::map<NodeId, std::size_t> slot;  // changed id -> index in `changed`
-  for (std::size_t i = 0; i < changed.size(); ++i) slot[changed[i]] = i;
-  if (priors) {
-    for (NodeId id : sketch.topologicalOrder()) {
-      const sketch::Node& node = sketch.node(id);
-      if (slot.count(id) || !node.isScreenNode() || node.kept || !slot.count(node.parent)) continue;
-      slot[id] = changed.size();
-      changed.push_back(id);
-      const auto& e = entries_.at(id);
-      fresh.push_back(Entry{e.geometry, e.params, e.kept, node.parent, {}});
-    }
+  for (std::size_t i = 0; i < p.changed.size(); ++i) p.slot[p.changed[i]] = i;
+  p.wave.assign(p.changed.size(), 0);
+  return p;
+}
+
+// With the depth choice, a screen node's fit depends on its parent's circle (fit::FitPrior): a
+// screen node under a re-fitted node is re-fitted too, after it (waves, parents first).
+void Reconstruction::addPriorDependents(const sketch::Sketch& sketch, Pending& p) const {
+  for (NodeId id : sketch.topologicalOrder()) {
+    const sketch::Node& node = sketch.node(id);
+    if (p.slot.count(id) || !node.isScreenNode() || node.kept || !p.slot.count(node.parent)) continue;
+    p.slot[id] = p.changed.size();
+    p.changed.push_back(id);
+    const auto& e = entries_.at(id);
+    p.fresh.push_back(Entry{e.geometry, e.params, e.kept, node.parent, {}});
   }
-  std::vector<int> wave(changed.size(), 0);
-  int waves = 1;
-  if (priors) {
-    // `changed` holds parents before children within each pass; levels by parent chains.
-    for (bool again = true; again;) {
-      again = false;
-      for (std::size_t i = 0; i < changed.size(); ++i) {
-        auto it = slot.find(fresh[i].parent);
-        const int w = it == slot.end() ? 0 : wave[it->second] + 1;
-        if (w != wave[i]) {
-          wave[i] = w;
-          again = true;
-        }
+  p.wave.assign(p.changed.size(), 0);
+  // `changed` holds parents before children within each pass; levels by parent chains.
+  for (bool again = true; again;) {
+    again = false;
+    for (std::size_t i = 0; i < p.changed.size(); ++i) {
+      auto it = p.slot.find(p.fresh[i].parent);
+      const int w = it == p.slot.end() ? 0 : p.wave[it->second] + 1;
+      if (w != p.wave[i]) {
+        p.wave[i] = w;
+        again = true;
       }
     }
-    for (int w : wave) waves = std::max(waves, w + 1);
   }
+  for (int w : p.wave) p.waves = std::max(p.waves, w + 1);
+}
 
-  // 2. Fit the changed nodes (independent: parallel when several); kept circles need no fit.
-  auto tFit = std::chrono::steady_clock::now();
+// 2. Fit the changed nodes (independent: parallel when several); kept circles need no fit.
+void Reconstruction::fitPending(const sketch::Sketch& sketch, Pending& p, const ProgressFn& progress) {
+  const bool priors = options_.fit.chooseDepth;
   std::atomic<std::uint64_t> done{0};
-  const std::uint64_t total = changed.size();
+  const std::uint64_t total = p.changed.size();
   // The prior is the nearest fitted ancestor's circle (a skipped parent passes its own parent's
   // on: without one, a node would take the front-most circle anywhere along its ray).
   auto priorOf = [&](NodeId parent, fit::FitPrior* out) {
     for (NodeId a = parent; priors && a != sketch::kNoNode; a = sketch.node(a).parent) {
       const fit::NodeResult* r = nullptr;
-      if (auto it = slot.find(a); it != slot.end())
-        r = &fresh[it->second].result;
+      if (auto it = p.slot.find(a); it != p.slot.end())
+        r = &p.fresh[it->second].result;
       else if (auto e = entries_.find(a); e != entries_.end())
         r = &e->second.result;
       if (r && r->status == fit::NodeStatus::Fitted && r->radius > 0) {
@@ -143,12 +138,12 @@ std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const P
     return false;
   };
   auto fitOne = [&](std::size_t i) {
-    Entry& e = fresh[i];
+    Entry& e = p.fresh[i];
     if (e.kept) {
       e.result = fit::keptCircleResult(e.geometry, e.params, *e.kept);
     } else {
       fit::NodeFitOptions fo = options_.fit;
-      fo.circle.seed = options_.seed + std::uint64_t(std::int64_t(changed[i]));
+      fo.circle.seed = options_.seed + std::uint64_t(std::int64_t(p.changed[i]));
       fit::FitPrior prior;
       const bool hasPrior = e.geometry.hasLine && priorOf(e.parent, &prior);
       e.result = fit::fitNode(*index_, e.geometry, e.params, fo, hasPrior ? &prior : nullptr);
@@ -156,21 +151,21 @@ std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const P
     const std::uint64_t d = ++done;
     if (progress && (d % 64 == 0 || d == total)) progress(d, total);
   };
-  for (int w = 0; w < waves; ++w) {
+  for (int w = 0; w < p.waves; ++w) {
     std::vector<std::size_t> now;
-    for (std::size_t i = 0; i < changed.size(); ++i)
-      if (wave[i] == w) now.push_back(i);
+    for (std::size_t i = 0; i < p.changed.size(); ++i)
+      if (p.wave[i] == w) now.push_back(i);
     if (options_.parallel && now.size() > 1)
       tbb::parallel_for(std::size_t(0), now.size(), [&](std::size_t k) { fitOne(now[k]); });
     else
       for (std::size_t i : now) fitOne(i);
   }
-  for (std::size_t i = 0; i < changed.size(); ++i) entries_[changed[i]] = std::move(fresh[i]);
-  fitCount_ += changed.size();
-  timings_.fitMs = msSince(tFit);
+  for (std::size_t i = 0; i < p.changed.size(); ++i) entries_[p.changed[i]] = std::move(p.fresh[i]);
+  fitCount_ += p.changed.size();
+}
 
-  // 3. Sweep.
-  auto tSweep = std::chrono::steady_clock::now();
+// 3. Sweep.
+void Reconstruction::sweepEntries() {
   std::vector<sweep::SweepNode> nodes;
   nodes.reserve(entries_.size());
   for (const auto& [id, e] : entries_) {
@@ -182,18 +177,31 @@ std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const P
     nodes.push_back(n);
   }
   sweeper_.update(nodes);
-  timings_.sweepMs = msSince(tSweep);
-  timings_.totalMs = msSince(t0);
-  return changed;
+}
+
+std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const ProgressFn& progress) {
+  const Stopwatch timer;
+  sketch.validate();
+  const bool lassosChanged = refreshExclusions(sketch);
+  Pending pending = diff(sketch, lassosChanged);
+  if (options_.fit.chooseDepth) addPriorDependents(sketch, pending);
+  const Stopwatch fitTimer;
+  fitPending(sketch, pending, progress);
+  timings_.fitMs = fitTimer.ms();
+  const Stopwatch sweepTimer;
+  sweepEntries();
+  timings_.sweepMs = sweepTimer.ms();
+  timings_.totalMs = timer.ms();
+  return std::move(pending.changed);
 }
 
 ReconstructionResult reconstruct(const geom::PointCloud& cloud, const sketch::Sketch& sketch,
                                  const ReconstructionOptions& options) {
-  auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   Reconstruction rec(cloud, options);
   rec.update(sketch);
   ReconstructionResult out = rec.result(sketch);
-  out.timings.totalMs = msSince(t0);
+  out.timings.totalMs = timer.ms();
   return out;
 }
 

@@ -138,6 +138,58 @@ void setPiece(const VoxelGraph& g, const GeodesicLevels& lv, const std::vector<V
   node.linearity = static_cast<float>(lin / std::max(node.support, 1));
 }
 
+// Each voxel of node `cur`'s piece (as first cut) to the nearest line.
+void groupByNearestLine(const Pieces& pieces, const GeodesicLevels& lv, const std::vector<Vec3>& at,
+                        const std::vector<Line>& lines, std::int32_t cur,
+                        std::vector<std::vector<std::uint32_t>>& groups) {
+  groups.assign(lines.size(), {});
+  for (std::uint32_t i = pieces.offsets[cur]; i < pieces.offsets[cur + 1]; ++i) {
+    const std::uint32_t v = pieces.voxels[i];
+    if (lv.vertexNode[v] != cur) continue;
+    std::size_t best = 0;
+    double nearest = lines[0].distance(at[v]);
+    for (std::size_t l = 1; l < lines.size(); ++l)
+      if (const double d = lines[l].distance(at[v]); d < nearest) {
+        nearest = d;
+        best = l;
+      }
+    groups[best].push_back(v);
+  }
+}
+
+// Whether every line's group holds enough of the line's support to stand as a piece.
+bool wholeGroups(const VoxelGraph& g, const std::vector<Line>& lines,
+                 const std::vector<std::vector<std::uint32_t>>& groups) {
+  bool whole = true;
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    std::int64_t support = 0;
+    for (std::uint32_t v : groups[l]) support += g.pointCount[v];
+    whole = whole && !groups[l].empty() && support >= kMinGroupSupport * lines[l].support;
+  }
+  return whole;
+}
+
+// Back to level order (parents first), indices remapped (nodes, counts and the voxels' nodes).
+void sortByLevel(std::vector<SkeletonNode>& nodes, std::vector<std::uint32_t>& count, GeodesicLevels& lv) {
+  std::vector<std::int32_t> order(nodes.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::int32_t a, std::int32_t b) { return nodes[a].level < nodes[b].level; });
+  std::vector<std::int32_t> newIndex(nodes.size());
+  for (std::size_t i = 0; i < order.size(); ++i) newIndex[order[i]] = static_cast<std::int32_t>(i);
+  std::vector<SkeletonNode> sorted(nodes.size());
+  std::vector<std::uint32_t> sortedCount(nodes.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    sorted[i] = nodes[order[i]];
+    sortedCount[i] = count[order[i]];
+    if (sorted[i].parent >= 0) sorted[i].parent = newIndex[sorted[i].parent];
+  }
+  for (auto& id : lv.vertexNode)
+    if (id >= 0) id = newIndex[id];
+  nodes = std::move(sorted);
+  count = std::move(sortedCount);
+}
+
 }  // namespace
 
 void splitMergedForks(const VoxelGraph& g, GeodesicLevels& lv, const std::vector<Vec3>& at,
@@ -180,26 +232,8 @@ void splitMergedForks(const VoxelGraph& g, GeodesicLevels& lv, const std::vector
       if (cur != static_cast<std::int32_t>(f) && nodes[cur].children.size() != 1) break;  // another fork
       if (!separate(nodes[cur].position, lines, binWidth)) break;
       // Each voxel to the nearest line (over the voxels of the piece as first cut).
-      groups.assign(lines.size(), {});
-      for (std::uint32_t i = pieces.offsets[cur]; i < pieces.offsets[cur + 1]; ++i) {
-        const std::uint32_t v = pieces.voxels[i];
-        if (lv.vertexNode[v] != cur) continue;
-        std::size_t best = 0;
-        double nearest = lines[0].distance(at[v]);
-        for (std::size_t l = 1; l < lines.size(); ++l)
-          if (const double d = lines[l].distance(at[v]); d < nearest) {
-            nearest = d;
-            best = l;
-          }
-        groups[best].push_back(v);
-      }
-      bool whole = true;
-      for (std::size_t l = 0; l < lines.size(); ++l) {
-        std::int64_t support = 0;
-        for (std::uint32_t v : groups[l]) support += g.pointCount[v];
-        whole = whole && !groups[l].empty() && support >= kMinGroupSupport * lines[l].support;
-      }
-      if (!whole) break;
+      groupByNearestLine(pieces, lv, at, lines, cur, groups);
+      if (!wholeGroups(g, lines, groups)) break;
       groupNode.assign(lines.size(), cur);
       const SkeletonNode base = nodes[cur];
       for (std::size_t l = 0; l < lines.size(); ++l) {
@@ -231,24 +265,7 @@ void splitMergedForks(const VoxelGraph& g, GeodesicLevels& lv, const std::vector
   }
   if (nodes.size() == original) return;
 
-  // Back to level order (parents first), indices remapped.
-  std::vector<std::int32_t> order(nodes.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::int32_t a, std::int32_t b) { return nodes[a].level < nodes[b].level; });
-  std::vector<std::int32_t> newIndex(nodes.size());
-  for (std::size_t i = 0; i < order.size(); ++i) newIndex[order[i]] = static_cast<std::int32_t>(i);
-  std::vector<SkeletonNode> sorted(nodes.size());
-  std::vector<std::uint32_t> sortedCount(nodes.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    sorted[i] = nodes[order[i]];
-    sortedCount[i] = count[order[i]];
-    if (sorted[i].parent >= 0) sorted[i].parent = newIndex[sorted[i].parent];
-  }
-  for (auto& id : lv.vertexNode)
-    if (id >= 0) id = newIndex[id];
-  nodes = std::move(sorted);
-  count = std::move(sortedCount);
+  sortByLevel(nodes, count, lv);
   linkChildren(nodes);
 }
 

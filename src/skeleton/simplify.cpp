@@ -180,6 +180,63 @@ std::vector<Vec3> straightenForks(const RawTree& t, const std::vector<char>& kep
   return position;
 }
 
+// The child going on most nearly along the parent's axis from the fork at `fork`.
+std::int32_t straightOnChild(const std::vector<std::int32_t>& children, const std::vector<Vec3>& position,
+                             const Vec3& fork, const Vec3& parentAxis) {
+  std::int32_t straightOn = -1;
+  double bestCos = -2;
+  for (std::int32_t c : children) {
+    const double cosine = detail::safeNormalized(position[c] - fork, parentAxis).dot(parentAxis);
+    if (cosine > bestCos) {
+      bestCos = cosine;
+      straightOn = c;
+    }
+  }
+  return straightOn;
+}
+
+// The line of a side branch's first nodes from `c`, up to its next fork or end within `reach` of
+// it: its mean and its unit direction (away from the fork). False with too few nodes for a line.
+template <class RawNodes>
+bool sideBranchLine(const RawNodes& raw, const std::vector<std::vector<std::int32_t>>& keptChildren,
+                    const std::vector<Vec3>& position, std::int32_t c, double reach, std::vector<std::int32_t>& chain,
+                    Vec3& mean, Vec3& u) {
+  chain.clear();
+  for (std::int32_t cur = c; cur >= 0 && raw[cur].distance - raw[c].distance <= reach;) {
+    chain.push_back(cur);
+    if (keptChildren[cur].size() != 1) break;
+    cur = keptChildren[cur].front();
+  }
+  if (chain.size() < static_cast<std::size_t>(kMinForkLineNodes)) return false;
+  mean = Vec3::Zero();
+  for (std::int32_t id : chain) mean += position[id];
+  mean /= static_cast<double>(chain.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (std::int32_t id : chain) cov += (position[id] - mean) * (position[id] - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(cov);
+  u = eig.eigenvectors().col(2).normalized();
+  if (u.dot(position[chain.back()] - position[chain.front()]) < 0) u = -u;
+  return true;
+}
+
+// The ancestor nearest the line (mean, u) behind the branch's first node (at `start` along it);
+// -1 when none is behind. Sets bestGap to its distance from the line.
+std::int32_t nearestBehind(const std::vector<std::int32_t>& ancestors, const std::vector<Vec3>& position,
+                           const Vec3& mean, const Vec3& u, double start, double& bestGap) {
+  std::int32_t best = -1;
+  for (std::int32_t a : ancestors) {
+    const double s = (position[a] - mean).dot(u);
+    if (s > start) continue;  // only behind the branch's first node
+    const double gap = (position[a] - (mean + s * u)).norm();
+    if (gap < bestGap) {
+      bestGap = gap;
+      best = a;
+    }
+  }
+  return best;
+}
+
 // A side branch's line, followed backwards from its first nodes, meets its parent's axis at the
 // junction; the level sets separate the branch from the parent only higher up, where the two no
 // longer touch, and link it there with a near-horizontal segment (a "shelf" under every acute
@@ -208,49 +265,18 @@ std::vector<std::int32_t> reanchorSideBranches(const RawTree& t, const std::vect
     std::int32_t highest = -1;  // the highest new junction
     // The child going on most nearly along the parent's axis continues it (not the longest
     // path: a twig near a branch's end can reach further than the branch's own remainder).
-    std::int32_t straightOn = -1;
-    double bestCos = -2;
-    for (std::int32_t c : children) {
-      const double cosine = detail::safeNormalized(position[c] - position[f], parentAxis).dot(parentAxis);
-      if (cosine > bestCos) {
-        bestCos = cosine;
-        straightOn = c;
-      }
-    }
+    const std::int32_t straightOn = straightOnChild(children, position, position[f], parentAxis);
     for (std::int32_t c : children) {
       if (c == straightOn) continue;
       // The side branch's first nodes, up to its next fork or end, within the fork-line depth.
       const double reachC = kForkLineDepths * (o.forkZoneRadii * t.radius[c] + binWidth);
-      chain.clear();
-      for (std::int32_t cur = c; cur >= 0 && raw[cur].distance - raw[c].distance <= reachC;) {
-        chain.push_back(cur);
-        if (keptChildren[cur].size() != 1) break;
-        cur = keptChildren[cur].front();
-      }
-      if (chain.size() < static_cast<std::size_t>(kMinForkLineNodes)) continue;
-      Vec3 mean = Vec3::Zero();
-      for (std::int32_t id : chain) mean += position[id];
-      mean /= static_cast<double>(chain.size());
-      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-      for (std::int32_t id : chain) cov += (position[id] - mean) * (position[id] - mean).transpose();
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect(cov);
-      Vec3 u = eig.eigenvectors().col(2).normalized();
-      if (u.dot(position[chain.back()] - position[chain.front()]) < 0) u = -u;
+      Vec3 mean, u;
+      if (!sideBranchLine(raw, keptChildren, position, c, reachC, chain, mean, u)) continue;
       // Nearly parallel to the parent, the backward line follows the parent: no junction to find.
       if (std::abs(u.dot(parentAxis)) > kReanchorMaxCosine) continue;
       const double start = (position[c] - mean).dot(u);
-      std::int32_t best = -1;
       double bestGap = std::numeric_limits<double>::infinity();
-      for (std::int32_t a : ancestors) {
-        const double s = (position[a] - mean).dot(u);
-        if (s > start) continue;  // only behind the branch's first node
-        const double gap = (position[a] - (mean + s * u)).norm();
-        if (gap < bestGap) {
-          bestGap = gap;
-          best = a;
-        }
-      }
+      const std::int32_t best = nearestBehind(ancestors, position, mean, u, start, bestGap);
       if (best < 0 || best == static_cast<std::int32_t>(f) || bestGap > t.radius[best] + t.radius[c]) continue;
       auto& list = keptChildren[f];
       list.erase(std::find(list.begin(), list.end(), c));

@@ -15,6 +15,7 @@
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/cancel.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 #include "treesketch/viewer/viewer_state.h"
 
 namespace treesketch::viewer {
@@ -28,7 +29,7 @@ struct ViewerState::Job {
   std::optional<sketch::Sketch> result;
   std::string error;
   bool cancelled = false;
-  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  Stopwatch timer;  // started with the job
   std::thread thread;
 
   ~Job() {
@@ -122,7 +123,7 @@ bool ViewerState::pollJob() {
   if (!job_ || !job_->finished) return false;
   std::shared_ptr<Job> job = std::move(job_);  // busy() is false from here on
   if (job->thread.joinable()) job->thread.join();
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - job->start).count();
+  const double seconds = job->timer.seconds();
   std::lock_guard<std::mutex> lock(job->mutex);
   // A cancel that came after the last progress report still wins: the person asked for the
   // sketch as it was, so a result finished meanwhile is dropped.

@@ -18,6 +18,7 @@
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/sketch/auto_sketch.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 
 namespace treesketch::viewer {
 
@@ -149,9 +150,9 @@ void ViewerState::fixSelection() {
 }
 
 void ViewerState::rebuild() {
-  auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   runAction("rebuild", [&] { recon_->update(sketch_); });
-  lastRebuildMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  lastRebuildMs_ = timer.ms();
   ++sceneVersion_;
   if (display_.colorMode == ColorMode::CircleDistance) colorsStale_ = true;
 }

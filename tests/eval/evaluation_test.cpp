@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "test_support.h"
+#include "treesketch/eval/evaluation_report.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::eval {

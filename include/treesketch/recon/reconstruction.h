@@ -86,6 +86,20 @@ class Reconstruction {
     NodeId parent = sketch::kNoNode;
     fit::NodeResult result;
   };
+  /// One update's work: the nodes to fit, their new entries, and the waves they are fitted in.
+  struct Pending {
+    std::vector<NodeId> changed;
+    std::vector<Entry> fresh;
+    std::map<NodeId, std::size_t> slot;  ///< changed id -> index in `changed`
+    std::vector<int> wave;               ///< per changed node: its wave (parents first)
+    int waves = 1;
+  };
+  bool refreshExclusions(const sketch::Sketch& sketch);
+  Pending diff(const sketch::Sketch& sketch, bool lassosChanged);
+  void addPriorDependents(const sketch::Sketch& sketch, Pending& p) const;
+  void fitPending(const sketch::Sketch& sketch, Pending& p, const ProgressFn& progress);
+  void sweepEntries();
+
   ReconstructionOptions options_;
   std::unique_ptr<fit::CloudIndex> index_;
   std::map<NodeId, Entry> entries_;
