@@ -32,10 +32,20 @@ def main():
     print(f"{args.cloud}: {len(cloud)} points, {len(model.cylinders['id'])} cylinders ({model.up_reason})")
     print(model.metrics_table(), end="")
 
+    # The stem's pieces (branch order 0): the diameter at each piece's upper end, against its
+    # height above the model's base; and the metrics' taper table (every metre).
+    cyl = model.cylinders
+    up = {"y": 1, "z": 2}[model.up]
+    base = min(cyl["start"][:, up].min(), cyl["end"][:, up].min())
+    stem = cyl["branch_order"] == 0
+    order = np.argsort(cyl["end"][stem, up])
+    stem_heights = cyl["end"][stem, up][order] - base
+    stem_diameters = 2 * cyl["radius"][stem][order]
     heights, diameters = model.taper
     metrics = model.metrics()
     fig, ax = plt.subplots(figsize=(4, 6))
-    ax.plot(diameters * 100, heights, "o-", label="model stem")
+    ax.plot(stem_diameters * 100, stem_heights, "-", color="0.6", label="stem pieces")
+    ax.plot(diameters * 100, heights, "o", label="taper table (every metre)")
     dbh = metrics["cloud"]["dbh"]
     if dbh["ok"]:
         ax.plot([dbh["diameterM"] * 100], [dbh["sliceHeightM"]], "rs", label="DBH: circle fit to the cloud")
