@@ -9,9 +9,18 @@ copy of the array) + reconstruct + the model's cylinder columns, mesh and metric
 objects, and takes from the same call the library's own wall time measured in C++ around the
 work (Model.summary["library_ms"]: up axis, automatic skeleton sketch, cylinder model, metrics
 with the cloud, what `reconstruct --auto` computes). Prints each repetition and the medians.
+
+--cli build/treesketch also compares the module's C++ call with the CLI's on the same cloud (written
+to a temporary PLY): skeleton + fit + sweep + metrics times of Model.summary against those of
+`treesketch reconstruct --auto --report` (its "timings"), run alternately: whether the library
+built for the module (position-independent code) is slower than the command's.
 """
 import argparse
+import json
+import os
 import statistics
+import subprocess
+import tempfile
 import time
 
 import numpy as np
@@ -58,6 +67,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--points", type=int, default=1_000_000)
     ap.add_argument("--repetitions", type=int, default=5)
+    ap.add_argument("--cli", help="the treesketch command: compare the C++ call with the CLI's")
     args = ap.parse_args()
     xyz = bench_cloud(args.points)
     print(f"cloud: {len(xyz)} points")
@@ -82,6 +92,28 @@ def main():
     print(f"median: Python {statistics.median(r[0] for r in rows):.1f} ms, C++ call "
           f"{statistics.median(r[1] for r in rows):.1f} ms, from_numpy {statistics.median(r[2] for r in rows):.1f} ms;"
           f" ratio median {statistics.median(ratios):.4f} (min {min(ratios):.4f}, max {max(ratios):.4f})")
+    if args.cli:
+        compare_with_cli(args.cli, xyz, args.repetitions)
+
+
+def compare_with_cli(cli, xyz, repetitions):
+    keys = ("skeleton", "fit", "sweep", "metrics")
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "cloud.ply")
+        treesketch.Cloud.from_numpy(xyz, up="y").write(path)
+        cloud = treesketch.read_cloud(path)
+        ratios = []
+        for i in range(repetitions):
+            s = treesketch.reconstruct(cloud).summary
+            module_ms = sum(s[k + "_ms"] for k in keys)
+            subprocess.run([cli, "reconstruct", path, "--auto", "-o", os.path.join(tmp, "m.obj"), "--report",
+                            os.path.join(tmp, "r.json")], check=True, capture_output=True)
+            with open(os.path.join(tmp, "r.json")) as f:
+                t = json.load(f)["timings"]
+            cli_ms = sum(t[k + "Ms"] for k in keys)
+            ratios.append(module_ms / cli_ms)
+            print(f"  {i}: module's C++ {module_ms:8.1f} ms   CLI {cli_ms:8.1f} ms   ratio {ratios[-1]:.3f}")
+        print(f"module's C++ call / CLI's: median {statistics.median(ratios):.3f}")
 
 
 if __name__ == "__main__":
