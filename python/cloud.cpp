@@ -114,10 +114,10 @@ void bindCloud(py::module_& m) {
             py::gil_scoped_release release;
             io::writePointCloud(path, c);
           },
-          py::arg("path"), "Writes the cloud as binary PLY (.ply, with its attributes) or text (.xyz, .txt), atomically.")
-      .def("__repr__", [](const geom::PointCloud& c) {
-        return "<treesketch.Cloud of " + std::to_string(c.size()) + " points>";
-      });
+          py::arg("path"),
+          "Writes the cloud as binary PLY (.ply, with its attributes) or text (.xyz, .txt), atomically.")
+      .def("__repr__",
+           [](const geom::PointCloud& c) { return "<treesketch.Cloud of " + std::to_string(c.size()) + " points>"; });
 
   m.def(
       "read_cloud",

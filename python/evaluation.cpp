@@ -45,8 +45,9 @@ CloudPtr scanMeshes(const py::handle& meshesObj, const std::string& pattern, std
   double area = 0;
   for (const auto& m : meshes) area += m.area();
   if (!(area > 0))
-    throw DegenerateInputError("scan: the meshes have zero area (every triangle has repeated or collinear corners); "
-                               "nothing a ray can hit");
+    throw DegenerateInputError(
+        "scan: the meshes have zero area (every triangle has repeated or collinear corners); "
+        "nothing a ray can hit");
   const geom::UpAxis upAxis = geom::parseUpAxis(up);
   Progress progress(progressFn);
   auto cloud = std::make_shared<geom::PointCloud>();

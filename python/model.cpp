@@ -296,8 +296,8 @@ void bindModel(py::module_& m) {
       });
 
   m.def("reconstruct", &reconstruct, py::arg("cloud"), py::kw_only(), py::arg("leaf_on") = false,
-        py::arg("up") = py::none(), py::arg("seed") = 1, py::arg("ring") = 16,
-        py::arg("inlier_threshold") = py::none(), py::arg("unit_metres") = 1.0, py::arg("progress") = py::none(),
+        py::arg("up") = py::none(), py::arg("seed") = 1, py::arg("ring") = 16, py::arg("inlier_threshold") = py::none(),
+        py::arg("unit_metres") = 1.0, py::arg("progress") = py::none(),
         "The automatic model of a tree cloud, as `treesketch reconstruct CLOUD --auto` makes it: skeleton, a "
         "circle fit per node, regularised radii, tube mesh, metrics. up: 'y' or 'z' (None: what the file "
         "declares, else z); leaf_on: the tree was scanned in leaf; ring: vertices per ring; inlier_threshold: "

@@ -13,8 +13,8 @@ py::array_t<double> vec3View(const std::vector<geom::Vec3>& points, py::handle o
   const auto n = static_cast<py::ssize_t>(points.size());
   static const double kEmpty[3] = {0, 0, 0};  // a valid pointer for an empty view
   const double* data = points.empty() ? kEmpty : points.data()->data();
-  return py::array_t<double>({n, py::ssize_t{3}}, {py::ssize_t{sizeof(geom::Vec3)}, py::ssize_t{sizeof(double)}},
-                             data, owner);
+  return py::array_t<double>({n, py::ssize_t{3}}, {py::ssize_t{sizeof(geom::Vec3)}, py::ssize_t{sizeof(double)}}, data,
+                             owner);
 }
 
 py::array_t<double> vec3Copy(const std::vector<geom::Vec3>& points) {
@@ -47,8 +47,8 @@ geom::TriMesh meshFromArrays(const py::handle& mesh, const std::string& what) {
   }
   if (t.size() != 2) throw OptionsError(what + ": expected a (vertices, faces) pair of arrays");
   geom::TriMesh m;
-  m.vertices = vec3FromArray(t[0].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(),
-                             what + " vertices");
+  m.vertices =
+      vec3FromArray(t[0].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), what + " vertices");
   const auto f = t[1].cast<py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>>();
   if (f.ndim() != 2 || f.shape(1) != 3) throw OptionsError(what + " faces: expected an M x 3 integer array");
   const std::int64_t* p = f.data();

@@ -1,11 +1,12 @@
 // The sketch path from Python: a Sketch (read, edited, written) and a Reconstruction that fits it
 // to a cloud and, after an edit, re-fits only the nodes the edit touched (recon/reconstruction.h).
+#include "treesketch/sketch/sketch.h"
+
 #include <optional>
 
 #include "bindings.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/recon/reconstruction.h"
-#include "treesketch/sketch/sketch.h"
 #include "treesketch/util/cancel.h"
 #include "treesketch/util/error.h"
 
@@ -184,9 +185,8 @@ void bindSketch(py::module_& m) {
           "Sets the circle a node keeps instead of a fit (centre None: drop it, so the node is fitted).")
       .def("clear_kept_circles", &sketch::Sketch::clearKeptCircles,
            "Drops every kept circle (every node is fitted, as `reconstruct --refit`); returns how many.")
-      .def("__repr__", [](const sketch::Sketch& s) {
-        return "<treesketch.Sketch of " + std::to_string(s.size()) + " nodes>";
-      });
+      .def("__repr__",
+           [](const sketch::Sketch& s) { return "<treesketch.Sketch of " + std::to_string(s.size()) + " nodes>"; });
 
   m.def(
       "read_sketch",
