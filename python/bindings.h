@@ -47,11 +47,11 @@ py::object fromJson(const nlohmann::json& j);
 
 /// A Python progress callback, callable from the library's worker threads while the GIL is
 /// released. An exception the callback raises stops the work (as treesketch::Cancelled does) and is
-/// raised again by rethrowIfFailed().
+/// raised again by rethrowIfFailed(). Without a callback, the reports that come on the main thread
+/// check for Ctrl-C (Python's signal handlers), so a KeyboardInterrupt stops the work too.
 class Progress {
  public:
   explicit Progress(py::object callback) : callback_(std::move(callback)) {}
-  /// Empty when there is no callback (the library then reports nothing).
   ProgressFn function();
   /// Raises the callback's exception, if it raised one. Call with the GIL held.
   void rethrowIfFailed();

@@ -100,8 +100,23 @@ py::object fromJson(const nlohmann::json& j) {
   }
 }
 
+namespace {
+
+unsigned long mainThread = 0;  // Python's main thread (the only one that runs signal handlers)
+
+}  // namespace
+
 ProgressFn Progress::function() {
-  if (callback_.is_none()) return {};
+  if (callback_.is_none()) {
+    return [this](std::uint64_t, std::uint64_t) {
+      if (PyThread_get_thread_ident() != mainThread) return;
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() == 0) return;
+      std::lock_guard<std::mutex> lock(mutex_);
+      error_ = std::make_exception_ptr(py::error_already_set());
+      throw Cancelled();
+    };
+  }
   return [this](std::uint64_t done, std::uint64_t total) {
     py::gil_scoped_acquire gil;
     {
@@ -185,6 +200,7 @@ PYBIND11_MODULE(treesketch, m) {
       "treesketch: tree models from LIDAR point clouds. Clouds, cylinder models and meshes as NumPy arrays; "
       "the same library as the treesketch command.";
   m.attr("__version__") = TREESKETCH_VERSION;
+  mainThread = py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
   bindErrors(m);
   bindCloud(m);
   bindModel(m);

@@ -140,3 +140,24 @@ def test_the_gil_is_released_during_reconstruct(tree_cloud):
     during = [x for x in ticks if start < x < start + elapsed]
     # With the GIL held for the whole call the other thread could not tick during it.
     assert len(during) >= 5
+
+
+def test_ctrl_c_stops_the_work(tree_mesh):
+    import _thread
+    import threading
+    import time
+
+    cloud = treesketch.scan(tree_mesh, subdivisions=8, up="z", seed=4)  # long enough to be interrupted
+    start = time.perf_counter()
+    treesketch.reconstruct(cloud)
+    full = time.perf_counter() - start
+    timer = threading.Timer(full / 10, _thread.interrupt_main)
+    timer.start()
+    start = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        treesketch.reconstruct(cloud)
+    interrupted = time.perf_counter() - start
+    timer.join()
+    # Python raises a pending KeyboardInterrupt after a call that ignored it too: the call must
+    # have stopped early (at the next report after the interrupt), not run to its end.
+    assert interrupted < 0.6 * full, f"interrupted after {interrupted:.3f} s of {full:.3f} s"
