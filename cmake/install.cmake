@@ -47,11 +47,14 @@ set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME treesketch-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS
     "libeigen3-dev, libtbb-dev, nlohmann-json3-dev, libembree-dev, libnanoflann-dev, cmake")
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
-# The module is built for one Python minor version (its file name says cpython-3XY).
-set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-treesketch)
-set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
-set(CPACK_DEBIAN_PYTHON_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS
-    "python3 (>= ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}), python3 (<< ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}.999), python3-numpy")
-set(CPACK_COMPONENT_PYTHON_DESCRIPTION "treesketch from Python: clouds, tree models and meshes as NumPy arrays")
+if(TS_PYTHON)
+  # The module is built for one Python minor version (its file name says cpython-3XY).
+  set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-treesketch)
+  set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
+  set(CPACK_DEBIAN_PYTHON_PACKAGE_SHLIBDEPS ON)
+  math(EXPR ts_py_next_minor "${Python3_VERSION_MINOR} + 1")
+  set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS "python3 (>= ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}), \
+python3 (<< ${Python3_VERSION_MAJOR}.${ts_py_next_minor}), python3-numpy")
+  set(CPACK_COMPONENT_PYTHON_DESCRIPTION "treesketch from Python: clouds, tree models and meshes as NumPy arrays")
+endif()
 include(CPack)
