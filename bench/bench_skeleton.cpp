@@ -69,7 +69,7 @@ const geom::PointCloud& cloud1M() {
   return cloud;
 }
 
-/// Session 9's leaf-off skeleton (no sparse links, bridges within 8 voxels along a piece's axis,
+/// An earlier leaf-off skeleton (no sparse links, bridges within 8 voxels along a piece's axis,
 /// the cross-section rule 0.6 / 0.3): the reference path for same-run ratios.
 void session9Skeleton(skeleton::SkeletonOptions& o) {
   o.graph.sparseLinkNeighbours = 0;
@@ -84,7 +84,7 @@ void BM_ExtractSkeleton1M(benchmark::State& state) {
   const auto& cloud = cloud1M();
   std::size_t nodes = 0;
   double voxel = 0;
-  // Arg 0: defaults. Arg 1: session 9's leaf-off skeleton.
+  // Arg 0: defaults. Arg 1: the earlier leaf-off skeleton (session9Skeleton).
   skeleton::SkeletonOptions o;
   if (state.range(0) == 1) session9Skeleton(o);
   for (auto _ : state) {
@@ -103,9 +103,9 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   const auto& cloud = cloud1M();
   double skel = 0, fit = 0, sweep = 0, completion = 0;
   std::size_t nodes = 0, forks = 0;
-  // Arg 0: defaults. Arg 1: the fits' inlier band 15 % of the hypothesis's radius (sessions 2-6).
-  // Arg 2: session 9's leaf-off model (its skeleton, no allometric radius bound). Arg 3: no
-  // completion (session 15's model). For same-run ratios.
+  // Arg 0: defaults. Arg 1: the fits' inlier band 15 % of the hypothesis's radius (the earliest fits).
+  // Arg 2: the earlier leaf-off model (session9Skeleton, no allometric radius bound). Arg 3: no
+  // completion (the model before it). For same-run ratios.
   skeleton::AutoSkeletonOptions o;
   if (state.range(0) == 3) o.completion.enabled = false;
   if (state.range(0) == 1) o.fit.circle.inlierThresholdRelative = 0.15;
@@ -150,8 +150,8 @@ void BM_AutoSkeletonSketchLeafOn1M(benchmark::State& state) {
   const auto& cloud = leafyCloud1M();
   skeleton::AutoSkeletonOptions o = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOn);
   // Arg 0: the leaf-on defaults. Arg 1: every node fitted (leaf pieces too). Arg 2: every node
-  // fitted and the plane test on all points (session 5's path). Arg 3: the defaults with the fits'
-  // inlier band 15 % of the hypothesis's radius (session 6's path). For same-run ratios.
+  // fitted and the plane test on all points (the first leaf-on path). Arg 3: the defaults with the fits'
+  // inlier band 15 % of the hypothesis's radius (the earlier fits). For same-run ratios.
   if (state.range(0) == 1 || state.range(0) == 2) o.maxFitFlatFraction = 1.0;
   if (state.range(0) == 2) o.skeleton.leafPlaneMaxPointsPerVoxel = 0;
   if (state.range(0) == 2 || state.range(0) == 3) o.fit.circle.inlierThresholdRelative = 0.15;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scale benchmark (issue 19): a ~20-million-point cloud through `info`, `reconstruct --auto` and
+# Scale benchmark: a ~20-million-point cloud through `info`, `reconstruct --auto` and
 # `compare`, each timed with its peak memory (GNU time: wall clock and maximum resident set size of
 # the child process). Not part of `make test`; figures go to bench/README.md.
 #

@@ -1,7 +1,9 @@
 // treesketch.reconstruct and treesketch.Model: the automatic pipeline exactly as the CLI's
-// `reconstruct --auto` runs it (apps/cli/tree_job.cpp: up axis, skeleton sketch, cylinder model,
-// metrics with the cloud), its cylinders and mesh as NumPy arrays and its outputs written by the
-// same library writers.
+// `reconstruct --auto` runs it (apps/cli/tree_job.cpp: up axis, skeleton sketch, the library's
+// tree model and its measures), its cylinders and mesh as NumPy arrays, and its outputs written by
+// the library's one writer (model/tree_model.h). A fitted sketch (sketch.cpp) gives the same Model.
+#include "model.h"
+
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -9,15 +11,9 @@
 #include <filesystem>
 
 #include "bindings.h"
-#include "treesketch/compare/model_fit.h"
-#include "treesketch/compare/tree_metrics.h"
-#include "treesketch/io/cylinder_table.h"
-#include "treesketch/io/mesh_io.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/io/up_axis.h"
-#include "treesketch/skeleton/skeleton_export.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
-#include "treesketch/util/atomic_file.h"
 #include "treesketch/util/cancel.h"
 #include "treesketch/util/error.h"
 
@@ -28,21 +24,6 @@ namespace {
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
-
-/// A tree model from the automatic pipeline, with what it was made from.
-struct TreeModel {
-  skeleton::AutoSkeletonResult result;
-  geom::CylinderModel cylinders;  ///< cylinderModelFromSkeleton(result.model)
-  geom::UpAxis up = geom::UpAxis::Z;
-  std::string upReason;
-  compare::TreeMetrics metrics;  ///< with the cloud, as the CLI's metrics and report
-  std::string source;
-  std::size_t points = 0;
-  bool leafOn = false;
-  std::uint64_t seed = 1;
-  std::size_t forks = 0, fitsAccepted = 0, leafPieces = 0;
-  double metricsMs = 0, libraryMs = 0;
-};
 
 /// The CLI's checks of an automatic model (tree_job.cpp), with the same messages.
 void checkAutoModel(const std::string& source, const geom::PointCloud& cloud, const skeleton::AutoSkeletonResult& r) {
@@ -61,64 +42,78 @@ void checkAutoModel(const std::string& source, const geom::PointCloud& cloud, co
     throw DegenerateInputError(std::string(what) + ": the model has zero area; no mesh written");
 }
 
-std::string cloudSource(const py::object& cloud) {
-  return py::hasattr(cloud, "source") ? cloud.attr("source").cast<std::string>() : std::string("cloud");
-}
-
-std::shared_ptr<TreeModel> reconstruct(const py::object& cloudObj, bool leafOn, const py::object& up,
-                                       std::uint64_t seed, int ring, const py::object& inlierThreshold,
-                                       double unitMetres, const py::object& progressFn) {
+std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, const py::object& up, std::uint64_t seed,
+                                     int ring, const py::object& inlierThreshold, double unitMetres,
+                                     const py::object& progressFn) {
   const CloudPtr cloud = cloudObj.cast<CloudPtr>();
   if (!cloud) throw OptionsError("reconstruct: cloud is None");
   const std::string upOption = up.is_none() ? std::string() : up.cast<std::string>();
   const double threshold = inlierThreshold.is_none() ? -1.0 : inlierThreshold.cast<double>();
-  auto model = std::make_shared<TreeModel>();
-  model->source = cloudSource(cloudObj);
-  model->leafOn = leafOn;
-  model->seed = seed;
+  auto result = std::make_shared<PyModel>();
+  result->source = cloudSource(cloudObj);
+  result->unitMetres = unitMetres;
   Progress progress(progressFn);
   {
     py::gil_scoped_release release;
     const auto t0 = std::chrono::steady_clock::now();
-    TreeModel& t = *model;
+    PyModel& t = *result;
     t.points = cloud->size();
     const io::UpAxisChoice choice = io::chooseUpAxis(upOption, *cloud);
-    t.up = choice.up;
     t.upReason = choice.reason;
     skeleton::AutoSkeletonOptions opt =
-        skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, t.up);
+        skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, choice.up);
     opt.seed = seed;
     opt.ringVertices = ring;
     if (threshold >= 0.0) opt.fit.circle.inlierThreshold = threshold;
+    skeleton::AutoSkeletonResult s;
     try {
-      t.result = skeleton::autoSkeletonSketch(*cloud, opt, progress.function());
+      s = skeleton::autoSkeletonSketch(*cloud, opt, progress.function());
     } catch (const Cancelled&) {
       py::gil_scoped_acquire gil;
       progress.rethrowIfFailed();
       throw;
     }
-    checkAutoModel(t.source, *cloud, t.result);
-    t.forks = skeleton::countBranchPoints(t.result.model);
-    for (char c : t.result.fitAccepted) t.fitsAccepted += c != 0;
-    for (const auto& n : t.result.model) t.leafPieces += skeleton::isLeafPiece(n, opt);
+    checkAutoModel(t.source, *cloud, s);
+    std::size_t accepted = 0, leafPieces = 0;
+    for (char c : s.fitAccepted) accepted += c != 0;
+    for (const auto& n : s.model) leafPieces += skeleton::isLeafPiece(n, opt);
+    t.counts = {{"points", t.points},
+                {"skeleton_nodes", s.model.size()},
+                {"forks", skeleton::countBranchPoints(s.model)},
+                {"fits_accepted", accepted},
+                {"leaf_pieces", leafPieces},
+                {"vertices", s.mesh.vertices.size()},
+                {"triangles", s.mesh.triangles.size()}};
+    t.reportHeader = {{"cloud", t.source},
+                      {"auto", true},
+                      {"leafOn", leafOn},
+                      {"up", geom::toString(choice.up)},
+                      {"upReason", t.upReason},
+                      {"points", t.points},
+                      {"seed", seed},
+                      {"skeletonNodes", t.counts["skeleton_nodes"]},
+                      {"forks", t.counts["forks"]},
+                      {"vertices", t.counts["vertices"]},
+                      {"triangles", t.counts["triangles"]}};
+    t.timings = {
+        {"skeleton_ms", s.skeletonMs}, {"fit_ms", s.fitMs}, {"sweep_ms", s.sweepMs}, {"completion_ms", s.completionMs}};
     const auto tm = std::chrono::steady_clock::now();
-    t.cylinders = skeleton::cylinderModelFromSkeleton(t.result.model);
-    compare::TreeMetricsOptions mo;
+    t.tree = model::fromAutoSkeleton(s, choice.up);
+    model::MeasureOptions mo;
     mo.unitMetres = unitMetres;
-    t.metrics = compare::treeMetrics(t.cylinders, t.up, mo, cloud.get());
-    t.metricsMs = msSince(tm);
-    t.libraryMs = msSince(t0);
+    mo.fit = false;  // the fit against the cloud is fit_report's (the CLI measures it for --report)
+    t.measures = model::measure(t.tree, *cloud, mo);
+    t.timings["metrics_ms"] = msSince(tm);
+    t.timings["library_ms"] = msSince(t0);
+    t.sketch = std::move(s.sketch);
   }
-  return model;
+  return result;
 }
 
-/// The cylinder table as columns, the rows and values of skeleton::writeCylinderCsv.
-py::dict cylinderColumns(const TreeModel& t) {
-  const auto& nodes = t.result.model;
-  std::vector<std::size_t> rows;
-  for (std::size_t i = 0; i < nodes.size(); ++i)
-    if (nodes[i].parent >= 0) rows.push_back(i);
-  const auto n = static_cast<py::ssize_t>(rows.size());
+/// The cylinder table as columns: the rows and values io::writeCylinderCsv writes.
+py::dict cylinderColumns(const PyModel& t) {
+  const auto& pieces = t.tree.cylinders.cylinders;
+  const auto n = static_cast<py::ssize_t>(pieces.size());
   py::array_t<std::int64_t> id(n), parent(n);
   py::array_t<double> start({n, py::ssize_t{3}}), end({n, py::ssize_t{3}}), radius(n), startRadius(n), length(n);
   py::array_t<std::int32_t> order(n);
@@ -132,21 +127,23 @@ py::dict cylinderColumns(const TreeModel& t) {
   auto lengthW = length.mutable_unchecked<1>();
   auto orderW = order.mutable_unchecked<1>();
   auto measuredW = measured.mutable_unchecked<1>();
+  const auto idOf = [&](std::int64_t piece) {
+    return static_cast<std::size_t>(piece) < t.tree.ids.size() ? t.tree.ids[static_cast<std::size_t>(piece)] : piece;
+  };
   for (py::ssize_t r = 0; r < n; ++r) {
-    const std::size_t i = rows[static_cast<std::size_t>(r)];
-    const auto& c = nodes[i];
-    const auto& p = nodes[static_cast<std::size_t>(c.parent)];
-    idW(r) = static_cast<std::int64_t>(i);
-    parentW(r) = p.parent < 0 ? -1 : c.parent;
+    const auto i = static_cast<std::size_t>(r);
+    const geom::ModelCylinder& c = pieces[i];
+    idW(r) = idOf(r);
+    parentW(r) = c.parent < 0 ? -1 : idOf(c.parent);
     for (int k = 0; k < 3; ++k) {
-      startW(r, k) = p.position[k];
-      endW(r, k) = c.position[k];
+      startW(r, k) = c.start[k];
+      endW(r, k) = c.end[k];
     }
-    radiusW(r) = c.radius;
-    startRadiusW(r) = t.cylinders.cylinders[static_cast<std::size_t>(r)].startRadius;
-    lengthW(r) = (c.position - p.position).norm();
+    radiusW(r) = c.endRadius;
+    startRadiusW(r) = c.startRadius;
+    lengthW(r) = c.length();
     orderW(r) = c.branchOrder;
-    measuredW(r) = i < t.result.fitAccepted.size() && t.result.fitAccepted[i] != 0;
+    measuredW(r) = i < t.tree.measured.size() && t.tree.measured[i] != 0;
   }
   py::dict d;
   d["id"] = id;
@@ -161,19 +158,21 @@ py::dict cylinderColumns(const TreeModel& t) {
   return d;
 }
 
-void writeJsonFile(const std::string& path, const nlohmann::json& j) {
-  const std::string text = j.dump(2) + "\n";
-  writeFileAtomically(
-      path, [&](std::ostream& os) { os << text; }, false);
-}
-
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 
-/// Writes one output of the model; `kind` "" = by the extension.
-void writeOutput(const TreeModel& t, const std::string& path, std::string kind) {
+/// The fit against `cloud` (what a report holds), measured on demand.
+model::ModelMeasures measuredWithFit(const PyModel& t, const geom::PointCloud& cloud, double unitMetres) {
+  model::MeasureOptions mo;
+  mo.unitMetres = unitMetres;
+  mo.fit = true;
+  return model::measure(t.tree, cloud, mo);
+}
+
+/// Writes one output through the library's writer; `kind` "" = by the extension.
+void writeOutput(const PyModel& t, const std::string& path, std::string kind, const CloudPtr& cloud) {
   if (kind.empty()) {
     const std::string ext = lower(std::filesystem::path(path).extension().string());
     if (ext == ".obj" || ext == ".ply")
@@ -189,50 +188,65 @@ void writeOutput(const TreeModel& t, const std::string& path, std::string kind) 
                          "', expected .obj or .ply (mesh), .csv (cylinder table), .txt (TreeQSM table), .json "
                          "(sketch); or give kind=");
   }
-  py::gil_scoped_release release;
+  model::OutputPaths paths;
   if (kind == "mesh")
-    io::writeMesh(path, t.result.mesh);
+    paths.mesh = path;
   else if (kind == "cylinders")
-    skeleton::writeCylinderCsv(path, t.result.model);
+    paths.cylinders = path;
   else if (kind == "qsm")
-    io::writeTreeQsmCylinders(path, t.cylinders, t.up);
-  else if (kind == "sketch")
-    io::writeSketch(std::filesystem::path(path), t.result.sketch);
+    paths.qsm = path;
   else if (kind == "metrics")
-    writeJsonFile(path, compare::toJson(t.metrics));
-  else
-    throw OptionsError("write: kind '" + kind + "' unknown, expected mesh, cylinders, qsm, sketch or metrics");
+    paths.metrics = path;
+  else if (kind == "report")
+    paths.report = path;
+  else if (kind != "sketch")
+    throw OptionsError("write: kind '" + kind + "' unknown, expected mesh, cylinders, qsm, sketch, metrics or report");
+  if (kind == "report" && !cloud) throw OptionsError("write: a report needs the cloud (cloud=)");
+  py::gil_scoped_release release;
+  if (kind == "sketch") return io::writeSketch(std::filesystem::path(path), t.sketch);
+  model::checkOutputs(paths, {});
+  if (kind == "report") {
+    return model::writeOutputs(t.tree, measuredWithFit(t, *cloud, t.unitMetres), paths, t.reportHeader);
+  }
+  model::writeOutputs(t.tree, t.measures, paths);
 }
 
 }  // namespace
 
+std::string cloudSource(const py::object& cloud) {
+  return py::hasattr(cloud, "source") ? cloud.attr("source").cast<std::string>() : std::string("cloud");
+}
+
 void bindModel(py::module_& m) {
-  py::class_<TreeModel, std::shared_ptr<TreeModel>>(
-      m, "Model", "A tree model made by reconstruct(): cylinders, mesh, editable sketch, metrics.")
+  py::class_<PyModel, std::shared_ptr<PyModel>>(
+      m, "Model",
+      "A tree model (the library's model::TreeModel): cylinders, mesh, editable sketch, metrics. Made by "
+      "reconstruct() or Reconstruction.model().")
       .def_property_readonly("cylinders", &cylinderColumns,
                              "The cylinder table as NumPy columns, the rows and values of the CLI's --cylinders CSV "
-                             "(one per non-root skeleton node): id, parent (the parent row's id, -1 at the root), "
+                             "(one per piece, parents first): id, parent (the parent piece's id, -1 for none), "
                              "start and end (M x 3), radius (at the end), start_radius, length, branch_order (0 = "
-                             "stem), measured (True where a circle fit was accepted at the node, False where the "
-                             "radius was inferred along the branch).")
+                             "stem), measured (True where the piece's end rests on a fitted circle, False where its "
+                             "radius was inferred).")
       .def(
-          "mesh", [](const TreeModel& t) { return meshToArrays(t.result.mesh); },
+          "mesh", [](const PyModel& t) { return meshToArrays(t.tree.mesh); },
           "The swept tube mesh: (vertices N x 3 float64, faces M x 3 uint32).")
       .def(
-          "metrics", [](const TreeModel& t) { return fromJson(compare::toJson(t.metrics)); },
+          "metrics", [](const PyModel& t) { return fromJson(compare::toJson(t.measures.metrics)); },
           "The forestry metrics (height, DBH from the model and from the cloud, crown, volumes by order, taper) "
-          "as the CLI's metrics JSON: metres, m², m³, None for NaN.")
+          "as the CLI's --metrics JSON: metres, m², m³, None for NaN.")
       .def(
-          "metrics_table", [](const TreeModel& t) { return compare::metricsTable(t.metrics); },
+          "metrics_table", [](const PyModel& t) { return compare::metricsTable(t.measures.metrics); },
           "The metrics as the CLI prints them.")
       .def_property_readonly(
           "taper",
-          [](const TreeModel& t) {
-            const auto n = static_cast<py::ssize_t>(t.metrics.taper.size());
+          [](const PyModel& t) {
+            const auto& taper = t.measures.metrics.taper;
+            const auto n = static_cast<py::ssize_t>(taper.size());
             py::array_t<double> h(n), d(n);
             for (py::ssize_t i = 0; i < n; ++i) {
-              h.mutable_at(i) = t.metrics.taper[static_cast<std::size_t>(i)].height;
-              d.mutable_at(i) = t.metrics.taper[static_cast<std::size_t>(i)].diameter;
+              h.mutable_at(i) = taper[static_cast<std::size_t>(i)].height;
+              d.mutable_at(i) = taper[static_cast<std::size_t>(i)].diameter;
             }
             return py::make_tuple(h, d);
           },
@@ -240,59 +254,45 @@ void bindModel(py::module_& m) {
           "crosses that height.")
       .def(
           "fit_report",
-          [](const TreeModel& t, const CloudPtr& cloud, double unitMetres) {
+          [](const PyModel& t, const CloudPtr& cloud, const py::object& unitMetres) {
             if (!cloud) throw OptionsError("fit_report: cloud is None");
+            const double u = unitMetres.is_none() ? t.unitMetres : unitMetres.cast<double>();
             nlohmann::json j;
             {
               py::gil_scoped_release release;
-              compare::ModelFitOptions fo;
-              fo.unitMetres = unitMetres;
-              const compare::ModelFitReport fit = compare::measureModelFit(*cloud, t.cylinders, fo);
-              const compare::ModelFigures fig = compare::modelFigures(t.cylinders, t.up, unitMetres);
-              j = {{"fit", compare::toJson(fit)},
-                   {"figures", compare::toJson(fig)},
-                   {"summary", compare::summaryLine(fit) + "; " + compare::summaryLine(fig)}};
+              const model::ModelMeasures mm = measuredWithFit(t, *cloud, u);
+              j = model::reportJson(mm, nlohmann::json::object())["model"];
+              j["summary"] = mm.summary();
             }
             return fromJson(j);
           },
-          py::arg("cloud"), py::arg("unit_metres") = 1.0,
-          "How well the model explains `cloud` (points within 1/2/5 cm, missed, median signed distance) and its "
-          "figures (volume, length, trunk diameter): the 'model' part of the CLI's --report, and its summary line.")
-      .def("write", &writeOutput, py::arg("path"), py::arg("kind") = "",
-           "Writes one output, atomically, with the CLI's writers: by extension .obj/.ply the mesh, .csv the "
-           "cylinder table, .txt the TreeQSM table, .json the editable sketch; kind= 'mesh', 'cylinders', 'qsm', "
-           "'sketch' or 'metrics' (the metrics JSON) overrides the extension.")
+          py::arg("cloud"), py::arg("unit_metres") = py::none(),
+          "How well the model explains `cloud` (points within 1/2/5 cm, missed, median signed distance), its "
+          "figures (volume, length, trunk diameter) and the measured share of its volume: the 'model' part of "
+          "the CLI's --report, and its summary line. unit_metres: None = the model's.")
+      .def("write", &writeOutput, py::arg("path"), py::arg("kind") = "", py::arg("cloud") = nullptr,
+           "Writes one output, atomically, with the library's writer (the CLI's): by extension .obj/.ply the "
+           "mesh, .csv the cylinder table, .txt the TreeQSM table, .json the editable sketch; kind= 'mesh', "
+           "'cylinders', 'qsm', 'sketch', 'metrics' (the --metrics JSON) or 'report' (the --report JSON, with "
+           "cloud=) overrides the extension.")
       .def_property_readonly(
-          "sketch", [](const TreeModel& t) { return t.result.sketch; },
-          "The model as an editable Sketch (a copy): every node keeps its model circle; fit it again with "
-          "Reconstruction.")
+          "sketch", [](const PyModel& t) { return t.sketch; },
+          "The model's sketch (a copy): the automatic model's keeps every node's model circle; edit it and fit "
+          "it again with Reconstruction.")
       .def_property_readonly(
-          "up", [](const TreeModel& t) { return std::string(geom::toString(t.up)); }, "The up axis used.")
+          "up", [](const PyModel& t) { return std::string(geom::toString(t.tree.up)); }, "The up axis used.")
       .def_property_readonly(
-          "up_reason", [](const TreeModel& t) { return t.upReason; }, "Why that up axis (as the CLI prints it).")
+          "up_reason", [](const PyModel& t) { return t.upReason; }, "Why that up axis (as the CLI prints it).")
       .def_property_readonly(
           "summary",
-          [](const TreeModel& t) {
-            const auto& r = t.result;
-            py::dict d;
-            d["points"] = t.points;
-            d["skeleton_nodes"] = r.model.size();
-            d["forks"] = t.forks;
-            d["fits_accepted"] = t.fitsAccepted;
-            d["leaf_pieces"] = t.leafPieces;
-            d["vertices"] = r.mesh.vertices.size();
-            d["triangles"] = r.mesh.triangles.size();
-            d["skeleton_ms"] = r.skeletonMs;
-            d["fit_ms"] = r.fitMs;
-            d["sweep_ms"] = r.sweepMs;
-            d["completion_ms"] = r.completionMs;
-            d["metrics_ms"] = t.metricsMs;
-            d["library_ms"] = t.libraryMs;
-            return d;
+          [](const PyModel& t) {
+            nlohmann::json j = t.counts;
+            for (const auto& [k, v] : t.timings.items()) j[k] = v;
+            return fromJson(j);
           },
           "Counts and wall times (ms) of the run; library_ms is the whole library call, measured in C++.")
-      .def("__repr__", [](const TreeModel& t) {
-        return "<treesketch.Model of " + t.source + ": " + std::to_string(t.cylinders.size()) + " cylinders>";
+      .def("__repr__", [](const PyModel& t) {
+        return "<treesketch.Model of " + t.source + ": " + std::to_string(t.tree.cylinders.size()) + " cylinders>";
       });
 
   m.def("reconstruct", &reconstruct, py::arg("cloud"), py::kw_only(), py::arg("leaf_on") = false,

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "bindings.h"
+#include "model.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/util/cancel.h"
@@ -52,23 +53,31 @@ py::dict nodeDict(const sketch::Node& n) {
 }
 
 recon::ReconstructionOptions reconstructionOptions(std::uint64_t seed, int ring, const py::object& inlierThreshold) {
-  recon::ReconstructionOptions o;  // as `treesketch reconstruct --sketch`
+  recon::ReconstructionOptions o = recon::sketchReconstructionOptions();  // as `reconstruct --sketch`
   o.seed = seed;
   o.sweep.ringVertices = ring;
   if (!inlierThreshold.is_none()) o.fit.circle.inlierThreshold = inlierThreshold.cast<double>();
   return o;
 }
 
-/// A Reconstruction bound to Python: the library's, plus the options it was made with.
+/// A Reconstruction bound to Python: the library's, the cloud (for the model's measures) and the
+/// sketch last given to update.
 struct PyReconstruction {
   std::unique_ptr<recon::Reconstruction> recon;
+  CloudPtr cloud;
+  std::string source;
+  sketch::Sketch sketch;
+  bool updated = false;
 };
 
-std::unique_ptr<PyReconstruction> makeReconstruction(const CloudPtr& cloud, std::uint64_t seed, int ring,
+std::unique_ptr<PyReconstruction> makeReconstruction(const py::object& cloudObj, std::uint64_t seed, int ring,
                                                      const py::object& inlierThreshold) {
+  const CloudPtr cloud = cloudObj.cast<CloudPtr>();
   if (!cloud) throw OptionsError("Reconstruction: cloud is None");
   const recon::ReconstructionOptions o = reconstructionOptions(seed, ring, inlierThreshold);
   auto r = std::make_unique<PyReconstruction>();
+  r->cloud = cloud;
+  r->source = cloudSource(cloudObj);
   py::gil_scoped_release release;
   r->recon = std::make_unique<recon::Reconstruction>(*cloud, o);
   return r;
@@ -78,11 +87,55 @@ std::vector<sketch::NodeId> update(PyReconstruction& r, const sketch::Sketch& sk
   Progress progress(progressFn);
   try {
     py::gil_scoped_release release;
-    return r.recon->update(sk, progress.function());
+    std::vector<sketch::NodeId> changed = r.recon->update(sk, progress.function());
+    r.sketch = sk;
+    r.updated = true;
+    return changed;
   } catch (const Cancelled&) {
     progress.rethrowIfFailed();
     throw;
   }
+}
+
+/// The fitted sketch as a Model, as `reconstruct --sketch` makes it (model::fromReconstruction,
+/// measured with the cloud).
+std::shared_ptr<PyModel> sketchModel(const PyReconstruction& r, double unitMetres) {
+  if (!r.updated) throw OptionsError("Reconstruction.model: no sketch yet (call update first)");
+  auto m = std::make_shared<PyModel>();
+  py::gil_scoped_release release;
+  const recon::ReconstructionResult res = r.recon->result(r.sketch);
+  std::size_t fitted = 0, skipped = 0, disabled = 0;
+  for (const auto& [id, n] : res.results) {
+    fitted += n.status == fit::NodeStatus::Fitted;
+    skipped += n.status == fit::NodeStatus::Skipped;
+    disabled += n.status == fit::NodeStatus::Disabled;
+  }
+  if (fitted == 0)
+    throw DegenerateInputError("the sketch: no node could be fitted in " + r.source + " (" + std::to_string(skipped) +
+                               " skipped, " + std::to_string(disabled) + " disabled); no model");
+  m->tree = model::fromReconstruction(res, r.sketch.up);  // the sketch's up axis
+  model::MeasureOptions mo;
+  mo.unitMetres = unitMetres;
+  mo.fit = false;
+  m->measures = model::measure(m->tree, *r.cloud, mo);
+  m->sketch = r.sketch;
+  m->source = r.source;
+  m->upReason = std::string("the sketch's up axis, ") + geom::toString(r.sketch.up);
+  m->points = r.cloud->size();
+  m->unitMetres = unitMetres;
+  m->counts = {{"points", m->points},
+               {"nodes", res.results.size()},
+               {"fitted", fitted},
+               {"skipped", skipped},
+               {"disabled", disabled},
+               {"vertices", res.mesh.vertices.size()},
+               {"triangles", res.mesh.triangles.size()}};
+  m->reportHeader = {{"cloud", r.source},
+                     {"points", m->points},
+                     {"nodes", res.results.size()},
+                     {"vertices", res.mesh.vertices.size()},
+                     {"triangles", res.mesh.triangles.size()}};
+  return m;
 }
 
 /// Every node's fit as columns, by increasing id.
@@ -201,14 +254,18 @@ void bindSketch(py::module_& m) {
                                "the nodes whose inputs changed and re-sweeps the bands they touch.")
       .def(py::init(&makeReconstruction), py::arg("cloud"), py::kw_only(), py::arg("seed") = 1, py::arg("ring") = 16,
            py::arg("inlier_threshold") = py::none(),
-           "Builds the cloud's slice index (the cloud is not referenced afterwards). Options as `treesketch "
-           "reconstruct --sketch`.")
+           "Builds the cloud's slice index (the Reconstruction keeps the cloud for its model's measures). Options "
+           "as `treesketch reconstruct --sketch` (and the desktop tool).")
       .def("update", &update, py::arg("sketch"), py::arg("progress") = py::none(),
            "Brings the fits and the mesh up to date with `sketch`; returns the ids re-fitted. progress(done, "
            "total) is told as the fits finish. OptionsError for an invalid sketch.")
       .def(
           "mesh", [](const PyReconstruction& r) { return meshToArrays(r.recon->mesh()); },
           "The tube mesh: (vertices N x 3 float64, faces M x 3 uint32).")
+      .def("model", &sketchModel, py::arg("unit_metres") = 1.0,
+           "The fitted sketch as a Model (cylinders, mesh, metrics, writers), as `treesketch reconstruct --sketch` "
+           "makes it: each node with a circle joined to its nearest ancestor with one. DegenerateInputError when "
+           "no node could be fitted.")
       .def_property_readonly("fits", &fitColumns,
                              "Every node's fit as columns by increasing id: id, centre, normal (N x 3), radius, "
                              "rms, fitted, kept (bool), status and reason (lists of str).")
@@ -230,7 +287,7 @@ void bindSketch(py::module_& m) {
 
   m.def(
       "fit",
-      [](const CloudPtr& cloud, const sketch::Sketch& sk, std::uint64_t seed, int ring,
+      [](const py::object& cloud, const sketch::Sketch& sk, std::uint64_t seed, int ring,
          const py::object& inlierThreshold) {
         auto r = makeReconstruction(cloud, seed, ring, inlierThreshold);
         update(*r, sk, py::none());

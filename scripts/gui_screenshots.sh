@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Redraws the README's pictures of the desktop tool (docs/gui_*.png) under a virtual X server:
+# Redraws the pictures of the desktop tool in docs/gui.md (docs/gui_*.png) under a virtual X server:
 # - docs/gui_menu.png, gui_dialog.png, gui_classes.png, gui_intensity.png, gui_measure.png,
 #   gui_help.png: the menu bar, the open dialog, colour by classification and by intensity with
 #   their legends, the axis gizmo and scale bar, picking and measuring, the keys overlay
@@ -9,8 +9,8 @@
 #   (the leaves), 64 (user defined: the wood); intensity simulated as a reflectance per class
 #   (ground 0.25, leaves 0.35, wood 0.6) times 65535 with ±15 % noise. The attributes are made up
 #   to show the feature; the geometry is the demo tree's.
-# (docs/gui_sketch.png and gui_mesh.png come from apps/viewer/docs_screenshots.json, run by hand as
-# the README says.)
+# (docs/gui_sketch.png and gui_mesh.png come from apps/viewer/docs_screenshots.json, run by hand
+# with `treesketch gui --script`.)
 # Usage: scripts/gui_screenshots.sh [BUILD_DIR]   (default build; needs xvfb-run and Mesa)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"

@@ -81,7 +81,7 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
   job.unitMetres = a.unitMetres;
   try {
     const TreeJobResult r = runTreeJob(job);
-    const compare::TreeMetrics& m = r.metrics;
+    const compare::TreeMetrics& m = r.measures.metrics;
     writeMarker(dir / kDoneMarker, {{"tree", t.name},
                                     {"cloud", t.cloud.string()},
                                     {"status", "ok"},

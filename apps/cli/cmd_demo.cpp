@@ -8,10 +8,14 @@
 //   5. sketch, reconstruct — a simulated user's sketch on the true skeleton (front view, pixel
 //                  jitter) and the thesis's uniform automatic sketch; both reconstructed
 //                  (sketch_*.json, recon_*.obj)
-//   6. compare   — each reconstruction against the branch mesh, both directions (Hausdorff,
+//   6. automatic — treesketch's automatic model, on the scan's wood points (a leaf-off scan of
+//                  the same tree) and with the leaf-on settings on every point; the first one's
+//                  outputs as a user gets them (recon_auto.obj, cylinders_auto.csv, qsm_auto.txt,
+//                  metrics_auto.json, report_auto.json) and a picture over the cloud (auto.png)
+//   7. compare   — each reconstruction against the branch mesh, both directions (Hausdorff,
 //                  as MeshLab/Metro); error mesh of the user's reconstruction (error_user.ply)
-//   7. summary   — counts, wood fraction, bounds, the comparison table, timings -> stdout and
-//                  summary.txt
+//   8. summary   — counts, wood fraction, bounds, the comparison table, the automatic model's
+//                  forestry figures, timings -> stdout and summary.txt
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -31,6 +35,10 @@
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
+#include "treesketch/model/tree_model.h"
+#include "treesketch/render/color_map.h"
+#include "treesketch/render/png_writer.h"
+#include "treesketch/render/scene_render.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
@@ -160,6 +168,62 @@ void stepReconstruct(DemoState& s) {
   }
 }
 
+/// The scan's points that hit wood: what a leaf-off scan of the same tree would see.
+geom::PointCloud woodPoints(const geom::PointCloud& cloud) {
+  geom::PointCloud wood;
+  wood.up = cloud.up;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (i < cloud.meshId.size() && cloud.meshId[i] == 0) wood.positions.push_back(cloud.positions[i]);
+  return wood;
+}
+
+/// The automatic model as a user gets it: its files, and a picture of it over the cloud.
+void writeAutoOutputs(DemoState& s, const model::TreeModel& tree, const geom::PointCloud& cloud) {
+  model::OutputPaths out;
+  out.mesh = (s.dir / "recon_auto.obj").string();
+  out.cylinders = (s.dir / "cylinders_auto.csv").string();
+  out.qsm = (s.dir / "qsm_auto.txt").string();
+  out.metrics = (s.dir / "metrics_auto.json").string();
+  out.report = (s.dir / "report_auto.json").string();
+  const model::ModelMeasures m = model::measure(tree, cloud);
+  model::writeOutputs(tree, m, out, {{"cloud", "cloud.ply (wood points)"}, {"auto", true}});
+  s.summary << "automatic model (wood points): " << tree.cylinders.size() << " cylinders; " << m.summary() << "\n";
+  char line[240];
+  std::snprintf(line, sizeof line,
+                "  height %.2f m, DBH %.1f cm, volume %.4f m^3 (the tree's true wood volume %.4f), stem %.4f, "
+                "branches %.4f m^3 in %zu branches\n",
+                m.metrics.height, 100.0 * m.metrics.figures.trunkDiameter, m.metrics.figures.volume,
+                gen::woodVolume(s.tree.skeleton), m.metrics.stemVolume, m.metrics.branchVolume, m.metrics.branches);
+  s.summary << line;
+
+  render::RenderScene scene;
+  scene.cloud = s.scan.cloud.positions;
+  scene.cloudColors = render::heightColors(scene.cloud, tree.up);
+  for (auto& c : scene.cloudColors) c = render::blend(c, {255, 255, 255}, 0.65);
+  scene.cloudBehindMeshes = true;
+  scene.meshes.push_back(tree.mesh);
+  const int size = 900;
+  geom::Camera camera = render::fitCamera(scene.bounds(), render::parseRenderView("front"), tree.up, size, size);
+  camera = render::tightenCamera(camera, scene.cloud);
+  render::writePng(s.dir / "auto.png", render::renderScene(scene, camera, size, size));
+}
+
+void stepAutomatic(DemoState& s) {
+  eval::TreeCase tc = eval::treeCaseFromGenerated("demo", s.tree);
+  eval::EvalOptions eo;
+  eo.seed = s.args.seed;
+  const geom::PointCloud wood = woodPoints(s.scan.cloud);
+  DemoMethod leafOff;
+  leafOff.name = "auto";
+  leafOff.output = eval::runMethod("skeleton", eval::MethodInput{tc, wood, eo, 0, false});
+  DemoMethod leafOn;
+  leafOn.name = "auto-leaf";
+  leafOn.output = eval::runMethod("skeleton", eval::MethodInput{tc, s.scan.cloud, eo, 0, true});
+  if (!leafOff.output.model.empty()) writeAutoOutputs(s, leafOff.output.model, wood);
+  s.methods.push_back(std::move(leafOff));
+  s.methods.push_back(std::move(leafOn));
+}
+
 void stepCompare(DemoState& s) {
   compare::CompareOptions co;
   co.sampling.seed = s.args.seed;
@@ -169,7 +233,7 @@ void stepCompare(DemoState& s) {
   char line[256];
   s.summary << "reconstruction and comparison with the branch mesh (Hausdorff, % of its bbox diagonal " << diag
             << " m):\n";
-  std::snprintf(line, sizeof line, "  %-8s %6s %6s %9s | %-25s | %-25s\n", "sketch", "nodes", "fitted", "ms",
+  std::snprintf(line, sizeof line, "  %-9s %6s %6s %9s | %-25s | %-25s\n", "sketch", "nodes", "fitted", "ms",
                 "backward max/mean/RMS %", "forward max/mean/RMS %");
   s.summary << line;
   for (auto& m : s.methods) {
@@ -181,7 +245,7 @@ void stepCompare(DemoState& s) {
     auto pct = [&](double v) { return 100.0 * v / diag; };
     const auto& b = m.report.backward;
     const auto& f = m.report.forward;
-    std::snprintf(line, sizeof line, "  %-8s %6d %6d %9.1f | %7.3f %7.3f %7.3f       | %7.3f %7.3f %7.3f\n",
+    std::snprintf(line, sizeof line, "  %-9s %6d %6d %9.1f | %7.3f %7.3f %7.3f       | %7.3f %7.3f %7.3f\n",
                   m.name.c_str(), m.output.nodes, m.output.fitted, m.output.ms, pct(b.max), pct(b.mean), pct(b.rms),
                   pct(f.max), pct(f.mean), pct(f.rms));
     s.summary << line;
@@ -192,7 +256,8 @@ void stepCompare(DemoState& s) {
     }
   }
   s.summary << "  (backward: reconstruction sampled against the original; forward: the original against the "
-               "reconstruction)\n";
+               "reconstruction; user and uniform: the thesis's sketches; auto: treesketch's automatic model on the "
+               "wood points, auto-leaf: with --leaf-on on every point)\n";
 }
 
 void stepSummary(DemoState& s) {
@@ -209,7 +274,8 @@ void stepSummary(DemoState& s) {
   std::snprintf(line, sizeof line, "  %-10s %10.1f ms\n", "total", total);
   text << line;
   text << "files: tree_branches.obj tree_leaves.obj tree_skeleton.json cloud.ply sketch_user.json sketch_uniform.json "
-          "recon_user.obj recon_uniform.obj error_user.ply summary.txt\n";
+          "recon_user.obj recon_uniform.obj recon_auto.obj cylinders_auto.csv qsm_auto.txt metrics_auto.json "
+          "report_auto.json auto.png error_user.ply summary.txt\n";
   const std::string str = text.str();
   writeFileAtomically(
       s.dir / "summary.txt", [&](std::ostream& out) { out << str; }, false);
@@ -226,6 +292,7 @@ void runDemo(const DemoArgs& args) {
   timed(s, "scan", [&] { stepScan(s); });
   timed(s, "cloud", [&] { stepWriteCloud(s); });
   timed(s, "sketch+fit", [&] { stepReconstruct(s); });
+  timed(s, "automatic", [&] { stepAutomatic(s); });
   timed(s, "compare", [&] { stepCompare(s); });
   stepSummary(s);
 }

@@ -1,5 +1,5 @@
 // treesketch evaluate: the thesis's experiment (chapter 5) in one command, and the robustness
-// matrix of scan conditions (issue 16).
+// matrix of scan conditions.
 #include <filesystem>
 #include <iostream>
 
@@ -45,7 +45,7 @@ void registerEvaluate(CLI::App& app, Action& action) {
       ->check(CLI::Range(1, 30));
   cmd->add_option("--out", o->out, "Output folder")->capture_default_str();
   cmd->add_option("--matrix", o->matrix,
-                  "Scan-condition matrix: quick (a small subset, runs in the tests) or full (see the README); "
+                  "Scan-condition matrix: quick (a small subset, runs in the tests) or full (see docs/evaluation/README.md); "
                   "replaces --pattern and the point and TLS options")
       ->check(CLI::IsMember({"quick", "full"}));
   cmd->add_option("--conditions", o->conditions, "With --matrix: run only these rows (names as --list shows)");
@@ -88,7 +88,7 @@ void registerEvaluate(CLI::App& app, Action& action) {
                 "The simulated user's screen nodes choose their depth along the view ray from the parent's circle "
                 "(as the viewer does) instead of the thesis's fit (the best-supported circle along the whole ray)");
   cmd->add_flag("--correcting-user", o->correcting,
-                "Run only the simulated correcting user (issue 20): from the automatic skeleton, one edit at a time "
+                "Run only the simulated correcting user: from the automatic skeleton, one edit at a time "
                 "on the worst visible error; writes correcting_user.{csv,md} and correcting_user_*.svg");
   cmd->add_option("--edits", o->c.maxEdits, "--correcting-user: edits per case")
       ->capture_default_str()

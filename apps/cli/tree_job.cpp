@@ -4,13 +4,10 @@
 #include <chrono>
 #include <cstdio>
 
-#include "treesketch/compare/model_fit.h"
-#include "treesketch/io/cylinder_table.h"
-#include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/io/up_axis.h"
-#include "treesketch/skeleton/skeleton_export.h"
+#include "treesketch/model/tree_model.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
@@ -21,12 +18,6 @@ namespace {
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-void writeJson(const std::string& path, const nlohmann::json& j) {
-  const std::string text = j.dump(2) + "\n";
-  writeFileAtomically(
-      path, [&](std::ostream& os) { os << text; }, false);
 }
 
 /// A model is made only from a fitted circle: a cloud whose points are all equal, on one line or
@@ -51,14 +42,16 @@ void checkAutoModel(const TreeJob& a, const geom::PointCloud& cloud, const skele
 
 TreeJobResult runTreeJob(const TreeJob& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  for (const std::string* out : {&a.mesh, &a.sketch, &a.cylinders, &a.qsm, &a.metrics, &a.report})
-    if (!out->empty()) checkNotAnInput(*out, {a.cloud});
-  for (const std::string* out : {&a.mesh, &a.sketch, &a.cylinders, &a.qsm, &a.metrics, &a.report})
-    if (!out->empty()) checkOutputWritable(*out);
-  try {
-    io::meshFormatFromPath(a.mesh);
-  } catch (const InputError& e) {
-    throw OptionsError(std::string("-o: ") + e.what());
+  model::OutputPaths outputs;
+  outputs.mesh = a.mesh;
+  outputs.cylinders = a.cylinders;
+  outputs.qsm = a.qsm;
+  outputs.metrics = a.metrics;
+  outputs.report = a.report;
+  model::checkOutputs(outputs, {a.cloud});
+  if (!a.sketch.empty()) {
+    checkNotAnInput(a.sketch, {a.cloud});
+    checkOutputWritable(a.sketch);
   }
   TreeJobResult r;
   const geom::PointCloud cloud = io::readPointCloud(a.cloud);
@@ -86,49 +79,44 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   r.triangles = s.mesh.triangles.size();
 
   const auto tm = std::chrono::steady_clock::now();
-  const geom::CylinderModel model = skeleton::cylinderModelFromSkeleton(s.model);
-  compare::TreeMetricsOptions mo;
+  const model::TreeModel tree = model::fromAutoSkeleton(s, up.up);
+  model::MeasureOptions mo;
   mo.unitMetres = a.unitMetres;
-  r.metrics = compare::treeMetrics(model, up.up, mo, &cloud);
+  mo.fit = !a.report.empty();
+  const model::ModelMeasures measures = model::measure(tree, cloud, mo);
   r.metricsMs = msSince(tm);
 
-  // The mesh is written last of the model files, the report last of all: a batch's done marker
-  // comes after them, so their presence says the tree is complete.
+  nlohmann::json header;
+  header["cloud"] = a.cloud;
+  header["mesh"] = a.mesh;
+  header["auto"] = true;
+  header["leafOn"] = a.leafOn;
+  header["up"] = r.up;
+  header["upReason"] = r.upReason;
+  header["points"] = r.points;
+  header["seed"] = a.seed;
+  header["skeletonNodes"] = r.skeletonNodes;
+  header["forks"] = r.forks;
+  header["vertices"] = r.vertices;
+  header["triangles"] = r.triangles;
+  header["timings"] = {{"readMs", r.readMs},
+                       {"skeletonMs", r.skeletonMs},
+                       {"fitMs", r.fitMs},
+                       {"sweepMs", r.sweepMs},
+                       {"metricsMs", r.metricsMs}};
+  // The sketch first; the model's outputs end with the report, after which a batch writes its
+  // done marker, so their presence says the tree is complete.
   if (!a.sketch.empty()) io::writeSketch(std::filesystem::path(a.sketch), s.sketch);
-  if (!a.cylinders.empty()) skeleton::writeCylinderCsv(a.cylinders, s.model);
-  if (!a.qsm.empty()) io::writeTreeQsmCylinders(a.qsm, model, up.up);
-  io::writeMesh(a.mesh, s.mesh);
-  if (!a.metrics.empty()) writeJson(a.metrics, compare::toJson(r.metrics));
-  if (!a.report.empty()) {
-    compare::ModelFitOptions fo;
-    fo.unitMetres = a.unitMetres;
-    const compare::ModelFitReport fit = compare::measureModelFit(cloud, model, fo);
-    const compare::ModelFigures fig = compare::modelFigures(model, up.up, a.unitMetres);
-    r.fitSummary = compare::summaryLine(fit) + "; " + compare::summaryLine(fig);
-    nlohmann::json j;
-    j["cloud"] = a.cloud;
-    j["mesh"] = a.mesh;
-    j["auto"] = true;
-    j["leafOn"] = a.leafOn;
-    j["up"] = r.up;
-    j["upReason"] = r.upReason;
-    j["points"] = r.points;
-    j["seed"] = a.seed;
-    j["skeletonNodes"] = r.skeletonNodes;
-    j["forks"] = r.forks;
-    j["vertices"] = r.vertices;
-    j["triangles"] = r.triangles;
-    j["timings"] = {{"readMs", r.readMs},
-                    {"skeletonMs", r.skeletonMs},
-                    {"fitMs", r.fitMs},
-                    {"sweepMs", r.sweepMs},
-                    {"metricsMs", r.metricsMs}};
-    j["model"] = {{"fit", compare::toJson(fit)}, {"figures", compare::toJson(fig)}};
-    j["metrics"] = compare::toJson(r.metrics);
-    writeJson(a.report, j);
-  }
+  model::writeOutputs(tree, measures, outputs, header);
+  r.measures = measures;
   r.totalMs = msSince(t0);
   return r;
+}
+
+void printModelSummary(const model::ModelMeasures& m, const model::OutputPaths& outputs) {
+  if (m.hasFit) std::printf("model fit: %s -> %s\n", m.summary().c_str(), outputs.report.c_str());
+  if (!outputs.report.empty() || !outputs.metrics.empty())
+    std::printf("tree metrics:\n%s", compare::metricsTable(m.metrics).c_str());
 }
 
 }  // namespace treesketch::cli

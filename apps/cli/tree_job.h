@@ -1,14 +1,13 @@
 // One tree through the automatic pipeline, as `reconstruct --auto` and `batch` run it: read the
 // cloud, choose the up axis (io/up_axis.h), skeleton → sketch → fits → mesh, then write the
-// requested outputs (mesh, sketch, cylinder tables in treesketch's and TreeQSM's layouts, the
-// metrics JSON and the report), each atomically.
+// requested outputs through the one model writer (model/tree_model.h), each atomically.
 #pragma once
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "treesketch/compare/tree_metrics.h"
+#include "treesketch/model/tree_model.h"
 
 namespace treesketch::cli {
 
@@ -31,11 +30,14 @@ struct TreeJobResult {
   std::string up, upReason;
   std::size_t skeletonNodes = 0, forks = 0, fitsAccepted = 0, leafPieces = 0, vertices = 0, triangles = 0;
   double readMs = 0, skeletonMs = 0, fitMs = 0, sweepMs = 0, metricsMs = 0, totalMs = 0;
-  compare::TreeMetrics metrics;
-  std::string fitSummary;  ///< compare::summaryLine of the model fit (only with a report)
+  model::ModelMeasures measures;  ///< metrics; the fit against the cloud only with a report
 };
 
 /// Runs the job. Throws InputError (unreadable cloud, no skeleton), OptionsError, OutputError.
 TreeJobResult runTreeJob(const TreeJob& job);
+
+/// The lines every command that makes a model prints after it: the fit summary (when measured,
+/// with the report's path) and the metrics table (when a report or metrics file was written).
+void printModelSummary(const model::ModelMeasures& measures, const model::OutputPaths& outputs);
 
 }  // namespace treesketch::cli

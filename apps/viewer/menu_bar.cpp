@@ -29,6 +29,15 @@ void WindowActions::drawMenuBar() {
     tip("Save the sketch to another file, which becomes its file");
     if (ImGui::MenuItem("Export mesh...", "Ctrl+E")) exportMeshDialog();
     tip("Write the tube mesh as OBJ or PLY");
+    using F = viewer::ViewerState::ModelFile;
+    if (ImGui::MenuItem("Export cylinder table...")) exportModelDialog(F::Cylinders);
+    tip("Write the model's cylinders as treesketch's CSV table (as reconstruct --cylinders)");
+    if (ImGui::MenuItem("Export TreeQSM table...")) exportModelDialog(F::Qsm);
+    tip("Write the cylinders in TreeQSM's text layout (as reconstruct --qsm)");
+    if (ImGui::MenuItem("Export metrics...")) exportModelDialog(F::Metrics);
+    tip("Write height, DBH, volumes by branch order, crown and taper as JSON (as reconstruct --metrics)");
+    if (ImGui::MenuItem("Export fit report...")) exportModelDialog(F::Report);
+    tip("Write how well the model explains the cloud, with its figures, as JSON (as reconstruct --report)");
     ImGui::Separator();
     if (ImGui::BeginMenu("Recent files", !recent_.entries().empty())) {
       for (std::size_t i = 0; i < recent_.entries().size(); ++i) {

@@ -1,4 +1,4 @@
-// The "Correction tools" section of the side panel (issue 20): the tool buttons (same as the
+// The "Correction tools" section of the side panel: the tool buttons (same as the
 // keys G, X, R, P, H), the not-wood lassos, and the selected node's depth along the view ray.
 // Kept in its own file so the panel layout (panels.cpp) only calls it.
 #include <imgui.h>

@@ -86,6 +86,23 @@ void WindowActions::exportMeshDialog() {
                });
 }
 
+void WindowActions::exportModelDialog(viewer::ViewerState::ModelFile what) {
+  using F = viewer::ViewerState::ModelFile;
+  struct Kind {
+    const char* title;
+    viewer::FileFilter filter;
+    const char* suffix;
+  };
+  const Kind kind = what == F::Cylinders ? Kind{"Export the cylinder table (CSV)", {"CSV", {".csv"}}, "_cylinders.csv"}
+                    : what == F::Qsm     ? Kind{"Export the cylinders in TreeQSM's layout", {"Text", {".txt"}}, "_qsm.txt"}
+                    : what == F::Metrics ? Kind{"Export the tree metrics (JSON)", {"JSON", {".json"}}, "_metrics.json"}
+                                         : Kind{"Export the fit report (JSON)", {"JSON", {".json"}}, "_report.json"};
+  const fs::path source = state_.sketchPath().empty() ? fs::path(panel_.meshPath) : state_.sketchPath();
+  const std::string name = (source.empty() ? std::string("tree") : source.stem().string()) + kind.suffix;
+  dialog_.open(FileDialog::Mode::Save, kind.title, kind.filter, dialogFolder(), name,
+               [this, what](const fs::path& p) { return state_.exportModel(what, p) ? std::string() : state_.lastMessage().text; });
+}
+
 void WindowActions::requestOpenCloud(const fs::path& path) {
   guardUnsaved("opening " + path.filename().string(), [this, path] {
     pendingOpen_ = path;
@@ -291,6 +308,14 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
       saveAsDialog();
     else if (m == "export")
       exportMeshDialog();
+    else if (m == "export-cylinders")
+      exportModelDialog(viewer::ViewerState::ModelFile::Cylinders);
+    else if (m == "export-qsm")
+      exportModelDialog(viewer::ViewerState::ModelFile::Qsm);
+    else if (m == "export-metrics")
+      exportModelDialog(viewer::ViewerState::ModelFile::Metrics);
+    else if (m == "export-report")
+      exportModelDialog(viewer::ViewerState::ModelFile::Report);
     else if (m == "quit")
       requestQuit();
     else if (m == "help")

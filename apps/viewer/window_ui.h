@@ -40,6 +40,9 @@ class WindowActions {
   bool save();
   void saveAsDialog();
   void exportMeshDialog();
+  /// The Save dialog for one of the model's other outputs (cylinder table, TreeQSM table, metrics,
+  /// report), written as the command line writes them.
+  void exportModelDialog(viewer::ViewerState::ModelFile what);
   /// Opens another cloud (asking about unsaved work first); the load happens at the start of the
   /// next frame, after a frame that says so. "" or a message.
   void requestOpenCloud(const std::filesystem::path& path);

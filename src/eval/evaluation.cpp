@@ -90,7 +90,7 @@ std::vector<sketch::BranchPolyline> branchesForBudget(const std::vector<sketch::
   return out;
 }
 
-/// chooseDepth: a person's screen nodes choose their depth along the view ray (issue 20); the
+/// chooseDepth: a person's screen nodes choose their depth along the view ray; the
 /// thesis's uniform baseline keeps the thesis's fit.
 MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud& cloud, std::uint64_t seed,
                                Clock::time_point t0, bool chooseDepth = false) {
@@ -160,6 +160,7 @@ MethodOutput methodSkeleton(const MethodInput& in) {
   so.seed = in.options.seed;
   skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, so);
   MethodOutput out;
+  out.model = model::fromAutoSkeleton(r, in.tree.up);
   out.mesh = std::move(r.mesh);
   out.sketch = std::move(r.sketch);
   out.nodes = static_cast<int>(out.sketch.size());

@@ -379,6 +379,44 @@ CylinderTable readCylinderTable(const std::filesystem::path& path) {
 
 namespace treesketch::io {
 
+namespace {
+
+void checkIds(const geom::CylinderModel& model, const std::vector<std::int64_t>& ids) {
+  if (!ids.empty() && ids.size() != model.size())
+    throw OptionsError("cylinder table: " + std::to_string(ids.size()) + " ids for " + std::to_string(model.size()) +
+                       " pieces");
+  for (const geom::ModelCylinder& c : model.cylinders)
+    if (c.parent >= static_cast<std::int64_t>(model.size()))
+      throw OptionsError("cylinder table: parent index " + std::to_string(c.parent) + " out of range (" +
+                         std::to_string(model.size()) + " pieces)");
+}
+
+}  // namespace
+
+void writeCylinderCsv(std::ostream& out, const geom::CylinderModel& model, const std::vector<std::int64_t>& ids) {
+  checkIds(model, ids);
+  const auto id = [&](std::int64_t i) { return ids.empty() ? i : ids[static_cast<std::size_t>(i)]; };
+  std::string buf = std::string(kCylinderCsvHeader) + "\n";
+  char line[512];
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    const geom::ModelCylinder& c = model.cylinders[i];
+    std::snprintf(line, sizeof line, "%lld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g\n",
+                  static_cast<long long>(id(static_cast<std::int64_t>(i))),
+                  static_cast<long long>(c.parent < 0 ? -1 : id(c.parent)), c.start.x(), c.start.y(), c.start.z(),
+                  c.end.x(), c.end.y(), c.end.z(), c.endRadius, c.length(), c.branchOrder, c.startRadius);
+    buf += line;
+  }
+  out << buf;
+  if (!out) throw OutputError("cylinder table: write failed");
+}
+
+void writeCylinderCsv(const std::filesystem::path& path, const geom::CylinderModel& model,
+                      const std::vector<std::int64_t>& ids) {
+  checkIds(model, ids);  // bad input fails before the file
+  writeFileAtomically(
+      path, [&](std::ostream& out) { writeCylinderCsv(out, model, ids); }, false);
+}
+
 void writeTreeQsmCylinders(std::ostream& out, const geom::CylinderModel& model, geom::UpAxis up) {
   const geom::BranchStructure b = geom::branchStructure(model, up);
   std::string buf = std::string(kTreeQsmCylinderHeader) + "\n";

@@ -228,7 +228,7 @@ sketch::Sketch sketchFromJson(const json& root, const std::string& source) {
   for (std::size_t i = 0; i < cams.size(); ++i)
     sk.insertRawCamera(cameraFromJson(cams[i], Ctx{source, "camera " + std::to_string(i)}));
   if (auto it = root.find("notWood"); it != root.end()) {
-    // Added within version 1 (issue 20): older files have none; older readers ignore it.
+    // Added within version 1 (with the not-wood lasso): older files have none; older readers ignore it.
     if (!it->is_array()) top.fail("\"notWood\": expected an array, got " + typeName(*it));
     for (std::size_t i = 0; i < it->size(); ++i) {
       Ctx lctx{source, "not-wood lasso " + std::to_string(i)};

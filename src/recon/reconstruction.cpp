@@ -192,13 +192,24 @@ ReconstructionResult reconstruct(const geom::PointCloud& cloud, const sketch::Sk
   auto t0 = std::chrono::steady_clock::now();
   Reconstruction rec(cloud, options);
   rec.update(sketch);
+  ReconstructionResult out = rec.result(sketch);
+  out.timings.totalMs = msSince(t0);
+  return out;
+}
+
+ReconstructionOptions sketchReconstructionOptions() {
+  ReconstructionOptions o;
+  o.fit.chooseDepth = true;
+  return o;
+}
+
+ReconstructionResult Reconstruction::result(const sketch::Sketch& sketch) const {
   ReconstructionResult out;
-  for (const auto& [id, r] : rec.results()) out.results[id] = *r;
+  for (const auto& [id, r] : results()) out.results[id] = *r;
   out.order = sketch.topologicalOrder();
   for (NodeId id : out.order) out.parents[id] = sketch.node(id).parent;
-  out.mesh = rec.mesh();
-  out.timings = rec.timings();
-  out.timings.totalMs = msSince(t0);
+  out.mesh = mesh();
+  out.timings = timings();
   return out;
 }
 

@@ -3,8 +3,8 @@
 // A level set cuts two limbs of a narrow fork (a V, two stems from one trunk) as one connected
 // piece for as long as their surfaces lie within a voxel or two of each other: the graph joins
 // them. Each such piece became one node, its centroid between the two limbs, off the wood, and
-// the fork was put where the pieces finally separate, well above the real junction (the issue's
-// real scans lost 2–5 cm of fit on every V; rtwig's two stems ran as one tube between them).
+// the fork was put where the pieces finally separate, well above the real junction (the three
+// real leaf-off scans lost 2–5 cm of fit on every V; rtwig's two stems ran as one tube between them).
 // Seen from above the fork, though, each limb is a line: its first level-set nodes. Going down
 // from the fork, every piece whose voxels fall to the limbs' lines in separate groups, while
 // those lines are still more than the two radii apart (the tubes do not overlap), is split into

@@ -44,7 +44,7 @@ constexpr double kMinPlaneCellVoxels = 2;
 constexpr std::size_t kLeafLengthPercentile = 90;
 
 // Ball queries answered in the order of fit::CloudIndex's cells, the index that answered them
-// until issue 17: the plane test draws its RANSAC samples by position in the answer and both
+// before accel::PointIndex did: the plane test draws its RANSAC samples by position in the answer and both
 // stages sum in that order, so keeping the order keeps their results bit for bit. The points are
 // kept in that order too, so that reading the hits' positions walks memory forwards.
 class BallQuery {

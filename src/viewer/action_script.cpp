@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -124,6 +125,28 @@ const Expectation kExpectations[] = {
     {"points", [](const ViewerState& s) { return double(s.cloud().size()); }, false},
 };
 
+/// The model file an export verb writes: "export" the mesh, "export-cylinders", "export-qsm",
+/// "export-metrics", "export-report" the others; nothing for any other word.
+std::optional<ViewerState::ModelFile> exportedFile(const std::string& verb) {
+  using F = ViewerState::ModelFile;
+  static const std::pair<const char*, F> kVerbs[] = {{"export", F::Mesh},
+                                                     {"export-cylinders", F::Cylinders},
+                                                     {"export-qsm", F::Qsm},
+                                                     {"export-metrics", F::Metrics},
+                                                     {"export-report", F::Report}};
+  for (const auto& [name, file] : kVerbs)
+    if (verb == name) return file;
+  return std::nullopt;
+}
+
+/// The verb of a JSON action that takes a path ("save", "load", an export verb, "screenshot"), or "".
+std::string pathVerb(const nlohmann::json& j) {
+  for (const char* verb : {"save", "load", "export", "export-cylinders", "export-qsm", "export-metrics",
+                           "export-report", "screenshot"})
+    if (j.contains(verb)) return verb;
+  return {};
+}
+
 /// Window verbs and the values each takes (checked here so a typo fails at parse time; what they do
 /// is apps/viewer's, through ScriptHooks::window).
 struct WindowVerb {
@@ -132,7 +155,8 @@ struct WindowVerb {
 };
 const WindowVerb kWindowVerbs[] = {
     {"menu",
-     {"open-cloud", "open-sketch", "save", "save-as", "export", "quit", "help", "about", "reset-camera", "pick-mode",
+     {"open-cloud", "open-sketch", "save", "save-as", "export", "export-cylinders", "export-qsm", "export-metrics",
+      "export-report", "quit", "help", "about", "reset-camera", "pick-mode",
       "recent"}},
     {"dialog", {"ok", "cancel", "type"}},
     {"prompt", {"save", "discard", "cancel"}},
@@ -211,11 +235,13 @@ class Parser {
       verb = s.substr(0, sp);
       arg = s.substr(s.find_first_not_of(' ', sp) == std::string::npos ? s.size() : s.find_first_not_of(' ', sp));
     }
-    if (verb == "save" || verb == "load" || verb == "export" || verb == "screenshot") {
-      a.kind = verb == "save"     ? Kind::Save
-               : verb == "load"   ? Kind::Load
-               : verb == "export" ? Kind::Export
-                                  : Kind::Screenshot;
+    const bool exportVerb = exportedFile(verb).has_value();
+    if (verb == "save" || verb == "load" || exportVerb || verb == "screenshot") {
+      a.kind = verb == "save"   ? Kind::Save
+               : verb == "load" ? Kind::Load
+               : exportVerb     ? Kind::Export
+                                : Kind::Screenshot;
+      a.name = verb;
       a.path = arg;
       if (arg.empty() && (a.kind == Kind::Export || a.kind == Kind::Screenshot)) fail(index, verb + " needs a PATH");
     } else if (verb == "key") {
@@ -353,11 +379,7 @@ class Parser {
       ScriptAction b = fromString(j["button"].get<std::string>(), index);
       if (b.kind != Kind::Button) fail(index, "unknown button '" + j["button"].get<std::string>() + "'");
       return b;
-    } else if (j.contains("save") || j.contains("load") || j.contains("export") || j.contains("screenshot")) {
-      std::string verb = j.contains("save")     ? "save"
-                         : j.contains("load")   ? "load"
-                         : j.contains("export") ? "export"
-                                                : "screenshot";
+    } else if (const std::string verb = pathVerb(j); !verb.empty()) {
       const json& p = j[verb];
       std::string path = p.is_null() ? std::string() : string(p, index, verb);
       return fromString(path.empty() ? verb : verb + " " + path, index);
@@ -530,7 +552,7 @@ std::string describe(const ScriptAction& a) {
     case Kind::Load:
       return "load " + a.path.string();
     case Kind::Export:
-      return "export " + a.path.string();
+      return a.name + " " + a.path.string();
     case Kind::Screenshot:
       return "screenshot " + a.path.string();
     case Kind::Wait:
@@ -623,7 +645,7 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
           break;
         }
         case Kind::Export:
-          state.exportMesh(a.path);
+          state.exportModel(*exportedFile(a.name), a.path);
           break;
         case Kind::Screenshot:
           if (!hooks.screenshot) throw OptionsError("screenshots need a window");

@@ -13,14 +13,11 @@ namespace {
 
 class DefaultReconstruction : public ViewerReconstruction {
  public:
-  explicit DefaultReconstruction(const geom::PointCloud& cloud) : recon_(cloud, options()) {}
+  /// A person's screen nodes choose their depth along the view ray, as `reconstruct --sketch` does.
+  explicit DefaultReconstruction(const geom::PointCloud& cloud)
+      : recon_(cloud, recon::sketchReconstructionOptions()) {}
 
-  /// A person's screen nodes choose their depth along the view ray (fit::NodeFitOptions::chooseDepth).
-  static recon::ReconstructionOptions options() {
-    recon::ReconstructionOptions o;
-    o.fit.chooseDepth = true;
-    return o;
-  }
+  recon::ReconstructionResult result() const override { return recon_.result(sketch_); }
 
   void update(const sketch::Sketch& sketch) override {
     sketch_ = sketch;

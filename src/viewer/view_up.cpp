@@ -76,7 +76,7 @@ ViewUpChoice chooseViewUp(const std::string& option, const geom::PointCloud& clo
 // Height / widest horizontal extent below which a cloud is said to lie down. Design choice: a
 // standing tree is rarely less than 0.7 times as tall as its crown is wide (the demo tree lying on
 // its side measures 0.55-0.6); a broad open-grown crown may be warned about, which costs one
-// Dismiss, while a missed warning shows the tree from above with no hint, as issue 20 found.
+// Dismiss, while a missed warning shows the tree from above with no hint.
 constexpr double kLyingDownRatio = 0.7;
 
 std::string lyingDownWarning(const geom::BBox& bounds, UpDirection up) {

@@ -220,7 +220,7 @@ const std::vector<Rgb>& ViewerState::pointColors() {
         if (colors_.size() != cloud_.size()) colors_ = plainColors(cloud_, options_.plainColor);
         break;
     }
-    // Not-wood points (the sketch's lassos, issue 20) are drawn dark, whatever the colour mode.
+    // Not-wood points (the sketch's lassos) are drawn dark, whatever the colour mode.
     if (!sketch_.notWood().empty())
       for (std::size_t i = 0; i < cloud_.size(); ++i)
         if (sketch_.isNotWood(cloud_.positions[i])) colors_[i] = Rgb{60, 50, 70};

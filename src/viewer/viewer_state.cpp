@@ -12,6 +12,7 @@
 #include "treesketch/io/file_info.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/sketch_file.h"
+#include "treesketch/model/tree_model.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/skeleton/skeleton.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
@@ -217,7 +218,7 @@ bool ViewerState::addNodeAt(const Vec2& screen) {
     info(parent == kNoNode ? "added node " + std::to_string(added) + " (the root)"
                            : "added node " + std::to_string(added) + " under node " + std::to_string(parent) + how);
   }
-  // Never a silent jump in depth (issue 20): say where the circle went when it is not where the
+  // Never a silent jump in depth: say where the circle went when it is not where the
   // parent (or the front-most surface) said it would be.
   if (ok && recon_->nodeFit(added).depthJump)
     info("warning: node " + std::to_string(added) + ": " + recon_->nodeFit(added).warning);
@@ -504,12 +505,35 @@ bool ViewerState::loadSketch(const std::filesystem::path& path) {
   return ok;
 }
 
-bool ViewerState::exportMesh(const std::filesystem::path& path) {
-  return runAction("export mesh", [&] {
-    const geom::TriMesh& m = recon_->mesh();
-    if (m.empty()) throw OptionsError("no mesh to export: no node has been fitted yet");
-    io::writeMesh(path, m);
-    info("exported mesh to " + path.string() + " (" + std::to_string(m.triangles.size()) + " triangles)");
+bool ViewerState::exportMesh(const std::filesystem::path& path) { return exportModel(ModelFile::Mesh, path); }
+
+bool ViewerState::exportModel(ModelFile what, const std::filesystem::path& path, double unitMetres) {
+  static constexpr const char* kNames[] = {"mesh", "cylinder table", "TreeQSM table", "metrics", "report"};
+  const char* name = kNames[static_cast<int>(what)];
+  return runAction(std::string("export ") + name, [&] {
+    if (!recon_) throw OptionsError("no cloud is open");
+    if (what == ModelFile::Mesh ? recon_->mesh().empty() : false)
+      throw OptionsError("no mesh to export: no node has been fitted yet");
+    const model::TreeModel tree = model::fromReconstruction(recon_->result(), sketch_.up);
+    if (what != ModelFile::Mesh && tree.empty())
+      throw OptionsError(std::string("no ") + name + " to export: no two linked nodes are fitted yet");
+    model::OutputPaths out;
+    std::string* target[] = {&out.mesh, &out.cylinders, &out.qsm, &out.metrics, &out.report};
+    *target[static_cast<int>(what)] = path.string();
+    model::checkOutputs(out, {sourcePath_.string()});
+    model::MeasureOptions mo;
+    mo.unitMetres = unitMetres;
+    mo.fit = what == ModelFile::Report;
+    const bool measured = what == ModelFile::Metrics || what == ModelFile::Report;
+    const model::ModelMeasures m = measured ? model::measure(tree, cloud_, mo) : model::ModelMeasures{};
+    nlohmann::json header;
+    header["cloud"] = sourcePath_.string();
+    header["sketch"] = sketchPath_.string();
+    header["nodes"] = sketch_.size();
+    model::writeOutputs(tree, m, out, header);
+    info("exported " + std::string(name) + " to " + path.string() +
+         (what == ModelFile::Mesh ? " (" + std::to_string(tree.mesh.triangles.size()) + " triangles)"
+                                  : " (" + std::to_string(tree.cylinders.size()) + " cylinders)"));
   });
 }
 

@@ -1,4 +1,4 @@
-// ViewerState, the correction tools (issue 20): stroke, lasso, region, re-attach, delete subtree,
+// ViewerState, the correction tools: stroke, lasso, region, re-attach, delete subtree,
 // automatic below a node — each an undoable edit over edit/correction_tools.h, and their share of
 // the mouse and keys. Kept apart from viewer_input.cpp, which only forwards to toolMouseDown /
 // toolMouseUp / toolKey.

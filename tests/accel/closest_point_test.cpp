@@ -156,8 +156,8 @@ TEST(MeshClosestPoint, MaxDistanceIsInclusiveAndDropsFartherQueries) {
   EXPECT_FALSE(hits[2].found());
 }
 
-// Queries so far away that squared distances overflow float (issue 19: `compare` with points at
-// 1e30 never returned): the empty lanes of the 4-wide nodes lead back to the root and were skipped
+// Queries so far away that squared distances overflow float (`compare` with points at
+// 1e30 once never returned): the empty lanes of the 4-wide nodes lead back to the root and were skipped
 // only by their infinite distance, which an infinite limit let through. Both ways round, one
 // triangle (three empty lanes) and a mesh of several leaves; answers as the exact test gives them.
 TEST(MeshClosestPoint, QueriesFarBeyondFloatRangeReturn) {

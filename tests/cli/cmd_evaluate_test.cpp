@@ -185,7 +185,7 @@ TEST(EvaluateMatrix, SplitRunsOneHalf) {
 namespace treesketch {
 namespace {
 
-// The simulated correcting user (issue 20): its report files, one CSV row per step.
+// The simulated correcting user: its report files, one CSV row per step.
 TEST(EvaluateCorrectingUser, WritesTheCurveAndRejectsBadOptions) {
   test::TempDir dir;
   std::string out;

@@ -184,9 +184,9 @@ TEST_F(FitReportCli, ReconstructAutoReportMatchesItsCylinderTable) {
 
 // The automatic model on the three real leaf-off scans (../shared/data/real; skipped without
 // it), as the README's real-scan table reports it: a floor under each figure, a little below
-// the session-16 measurement (rtwig 95.3 %, archi_Tree_2 95.1 %, adtree_tree7 81.5 % of the
-// points within ±2 cm; 0.1 / 0.1 / 3.2 % deeper than 2 cm inside), so that a change that loses
-// what the fork split (session 15: 93.6 / 90.6 / 67.2 %) and the completion gained fails here
+// the measured figures (rtwig 95.3 %, archi_Tree_2 95.0 %, adtree_tree7 81.6 % of the
+// points within ±2 cm; 0.0 / 0.1 / 2.7 % deeper than 2 cm inside), so that a change that loses
+// what the fork split (93.6 / 90.6 / 67.2 % without the completion) and the completion gained fails here
 // before the evaluation is re-run.
 TEST(RealScans, TheAutomaticModelExplainsEachCloudAsReported) {
   const auto real = test::sharedDataDir() / "real";

@@ -8,7 +8,10 @@
 #include "test_support.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
+#include "treesketch/io/cylinder_table.h"
 #include "treesketch/io/sketch_file.h"
+#include "treesketch/model/tree_model.h"
+#include "treesketch/recon/reconstruction.h"
 
 namespace treesketch {
 namespace {
@@ -76,6 +79,77 @@ TEST(CmdReconstruct, BadInputs) {
   EXPECT_EQ(test::runCli("reconstruct " + f.cloud + " --sketch " + f.sketch + " -o " + mesh + " --ring 2", &out), 2);
   EXPECT_EQ(test::runCli("reconstruct " + f.cloud + " --sketch " + f.sketch + " -o " + f.cloud, &out), 4) << out;
   EXPECT_FALSE(std::filesystem::exists(mesh));
+}
+
+// A person's sketch gives every output the automatic model gives, and the files are exactly what
+// the library's one model writer makes of the same reconstruction.
+TEST(CmdReconstruct, ASketchWritesEveryModelOutputAsTheLibraryDoes) {
+  Files f;
+  std::string out;
+  const auto p = [&](const char* name) { return (f.dir / name).string(); };
+  ASSERT_EQ(test::runCli("reconstruct " + f.cloud + " --sketch " + f.sketch + " -o " + p("m.obj") + " --cylinders " +
+                             p("c.csv") + " --qsm " + p("q.txt") + " --metrics " + p("metrics.json") + " --report " +
+                             p("r.json") + " --ring 8 --seed 3",
+                         &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("tree metrics:"), std::string::npos) << out;
+  EXPECT_NE(out.find("model fit:"), std::string::npos) << out;
+
+  recon::ReconstructionOptions opt = recon::sketchReconstructionOptions();
+  opt.seed = 3;
+  opt.sweep.ringVertices = 8;
+  const geom::PointCloud cloud = io::readPointCloud(f.cloud);
+  const sketch::Sketch sk = io::readSketch(f.sketch);
+  const model::TreeModel tree = model::fromReconstruction(recon::reconstruct(cloud, sk, opt), sk.up);
+  ASSERT_EQ(tree.cylinders.size(), 1u);  // two fitted nodes, one skipped
+  const model::ModelMeasures measures = model::measure(tree, cloud);
+  model::OutputPaths lib;
+  lib.cylinders = p("lib.csv");
+  lib.qsm = p("lib.txt");
+  lib.metrics = p("lib_metrics.json");
+  model::writeOutputs(tree, measures, lib);
+  EXPECT_EQ(test::readText(p("c.csv")), test::readText(lib.cylinders));
+  EXPECT_EQ(test::readText(p("q.txt")), test::readText(lib.qsm));
+  EXPECT_EQ(test::readText(p("metrics.json")), test::readText(lib.metrics));
+  const auto report = nlohmann::json::parse(test::readText(p("r.json")));
+  EXPECT_EQ(report["metrics"], nlohmann::json::parse(test::readText(lib.metrics)));
+  EXPECT_EQ(report["model"], model::reportJson(measures, nlohmann::json::object())["model"]);
+  EXPECT_EQ(report["nodes"].size(), 3u);
+  const io::CylinderTable table = io::readCylinderTable(p("c.csv"));
+  ASSERT_EQ(table.model.size(), 1u);
+  EXPECT_NEAR(table.model.cylinders[0].endRadius, 0.2, 0.004);
+}
+
+TEST(CmdReconstruct, AModelOutputWithNoCylinderIsRefusedNotSkipped) {
+  Files f;
+  sketch::Sketch s;
+  sketch::SamplingParams sp;
+  sp.lineEpsilon = 0.4;
+  s.addPointNode(sketch::kNoNode, Vec3(0, 0.5, 0), Vec3::UnitY(), sp);  // one node: a disc, no cylinder
+  const std::string one = (f.dir / "one.json").string();
+  io::writeSketch(one, s);
+  std::string out;
+  const std::string csv = (f.dir / "c.csv").string();
+  EXPECT_EQ(test::runCli("reconstruct " + f.cloud + " --sketch " + one + " -o " + (f.dir / "m.obj").string() +
+                             " --cylinders " + csv,
+                         &out),
+            5)
+      << out;
+  EXPECT_NE(out.find("no cylinder"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(csv));
+}
+
+TEST(Cli, AMistypedCommandIsNamedWithTheNearestOne) {
+  std::string out;
+  EXPECT_EQ(test::runCli("reconstrcut cloud.xyz", &out), 2) << out;
+  EXPECT_NE(out.find("unknown command 'reconstrcut'"), std::string::npos) << out;
+  EXPECT_NE(out.find("did you mean 'reconstruct'"), std::string::npos) << out;
+  EXPECT_EQ(test::runCli("reconstrcut --help", &out), 2) << out;
+  EXPECT_NE(out.find("did you mean 'reconstruct'"), std::string::npos) << out;
+  EXPECT_EQ(test::runCli("zzzzzzzzzzzz", &out), 2) << out;
+  EXPECT_EQ(out.find("did you mean"), std::string::npos) << out;
+  EXPECT_EQ(test::runCli("--help", &out), 0) << out;
 }
 
 }  // namespace

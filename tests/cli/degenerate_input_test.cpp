@@ -1,4 +1,4 @@
-// Degenerate inputs through the CLI (issue 19): files that read correctly but from which nothing
+// Degenerate inputs through the CLI: files that read correctly but from which nothing
 // can be made — a zero-area mesh, a scan that hits nothing, clouds of equal, collinear, far or too
 // few points — get a clear error and exit code 5 (kExitNoResult), never `nan` and never a
 // "successful" empty or fit-less model. No output file is written.

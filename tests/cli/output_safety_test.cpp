@@ -1,4 +1,4 @@
-// Outputs through the CLI (issue 19): every command checks its outputs can be written before it
+// Outputs through the CLI: every command checks its outputs can be written before it
 // reads or computes anything (exit 4 even when the inputs are missing), creates missing output
 // folders, removes the temporary files a killed run left, and leaves none itself when it is
 // stopped by SIGTERM, SIGINT or SIGHUP in the middle of a write.

@@ -1,4 +1,4 @@
-// The correction tools (issue 20) on synthetic clouds with a known answer: a trunk with a branch
+// The correction tools on synthetic clouds with a known answer: a trunk with a branch
 // in front and a second branch right behind it in the front view.
 #include "treesketch/edit/correction_tools.h"
 

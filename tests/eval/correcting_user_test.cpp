@@ -1,4 +1,4 @@
-// The simulated correcting user (issue 20): from a model that misses a limb, it draws that limb
+// The simulated correcting user: from a model that misses a limb, it draws that limb
 // with the correction tools' stroke and the forward distance drops; no recorded edit leaves the
 // model worse than before it.
 #include "treesketch/eval/correcting_user.h"

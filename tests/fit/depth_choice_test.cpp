@@ -1,4 +1,4 @@
-// The depth choice of screen-node fits (issue 20): a view ray that crosses a thin branch in front
+// The depth choice of screen-node fits: a view ray that crosses a thin branch in front
 // of a thicker one takes the front branch (what the person sees) or the one continuing the
 // parent, never the best-supported circle silently.
 #include <gtest/gtest.h>

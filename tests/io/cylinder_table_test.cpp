@@ -9,7 +9,7 @@
 
 #include "io_test_util.h"
 #include "test_support.h"
-#include "treesketch/skeleton/skeleton_export.h"
+#include "treesketch/model/tree_model.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::io {
@@ -37,7 +37,8 @@ TEST(CylinderTable, TreesketchCsvWithStartRadius) {
   nodes[4].parent = 2;
   nodes[4].branchOrder = 1;
   std::ostringstream out;
-  skeleton::writeCylinderCsv(out, nodes);
+  const model::TreeModel m = model::fromSkeletonNodes(nodes, {}, geom::UpAxis::Z);
+  io::writeCylinderCsv(out, m.cylinders, m.ids);
   const CylinderTable t = parse(out.str());
   EXPECT_EQ(t.format, CylinderTableFormat::Treesketch);
   ASSERT_EQ(t.model.size(), 3u);

@@ -273,7 +273,7 @@ TEST(SketchFile, NotWoodLassosRoundTripAndOldFilesStillRead) {
   ASSERT_EQ(back.notWood().size(), 2u);
   EXPECT_EQ(back.notWood(), sk.notWood());
   // A sketch without lassos writes no "notWood" key (files as before), and a file without one
-  // (every file written before issue 20) reads with none.
+  // (every file written before lassos existed) reads with none.
   std::stringstream plain;
   writeSketch(plain, awkwardSketch());
   EXPECT_EQ(plain.str().find("notWood"), std::string::npos);

@@ -40,7 +40,7 @@ def test_python_gives_the_cli_model(name, leaf_on, cli, tmp_path):
         pytest.skip(f"not readable today: {e}")
 
     args = ["reconstruct", path, "--auto", "-o", tmp_path / "m.obj", "--cylinders", tmp_path / "c.csv",
-            "--qsm", tmp_path / "q.txt", "--report", tmp_path / "r.json"]
+            "--qsm", tmp_path / "q.txt", "--metrics", tmp_path / "metrics.json", "--report", tmp_path / "r.json"]
     code, out, message = run_cli(cli, *args, *(["--leaf-on"] if leaf_on else []))
     model = None
     try:
@@ -69,11 +69,16 @@ def test_python_gives_the_cli_model(name, leaf_on, cli, tmp_path):
     # The mesh, the metrics and the model fit of the report.
     model.write(str(tmp_path / "py.obj"))
     assert (tmp_path / "py.obj").read_bytes() == (tmp_path / "m.obj").read_bytes()
+    model.write(str(tmp_path / "py_metrics.json"), kind="metrics")
+    assert (tmp_path / "py_metrics.json").read_bytes() == (tmp_path / "metrics.json").read_bytes()
     report = json.loads((tmp_path / "r.json").read_text())
     assert model.metrics() == report["metrics"]
     fit = model.fit_report(cloud)
-    assert fit["fit"] == report["model"]["fit"]
-    assert fit["figures"] == report["model"]["figures"]
+    for key in ("fit", "figures", "measuredVolumeShare"):
+        assert fit[key] == report["model"][key], key
+    model.write(str(tmp_path / "py_r.json"), kind="report", cloud=cloud)
+    py_report = json.loads((tmp_path / "py_r.json").read_text())
+    assert py_report["model"] == report["model"] and py_report["metrics"] == report["metrics"]
     assert model.up == report["up"] and model.up_reason == report["upReason"]
     s = model.summary
     assert (s["skeleton_nodes"], s["forks"], s["vertices"]) == (report["skeletonNodes"], report["forks"],

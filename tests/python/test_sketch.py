@@ -17,19 +17,35 @@ def test_the_model_sketch_rebuilds_the_model_mesh(tree_cloud, tree_model):
     assert np.array_equal(rec.fits["id"], sk.ids) and np.array_equal(rec.fits["kept"], kept)
 
 
-def test_sketch_file_gives_the_cli_mesh(tree_cloud_path, tree_cloud, tree_model, cli, tmp_path):
+def test_sketch_file_gives_the_cli_model(tree_cloud_path, tree_cloud, tree_model, cli, tmp_path):
     sketch_path = tmp_path / "s.json"
     tree_model.write(str(sketch_path))
+    outputs = {"mesh": "cli.obj", "cylinders": "cli.csv", "qsm": "cli.txt", "metrics": "cli_metrics.json"}
     code, _, message = run_cli(cli, "reconstruct", tree_cloud_path, "--sketch", sketch_path, "--refit", "-o",
-                               tmp_path / "cli.obj")
+                               tmp_path / outputs["mesh"], "--cylinders", tmp_path / outputs["cylinders"], "--qsm",
+                               tmp_path / outputs["qsm"], "--metrics", tmp_path / outputs["metrics"])
     assert code == 0, message
     sk = treesketch.read_sketch(str(sketch_path))
     kept = sum(sk.node(i)["kept_radius"] is not None for i in sk.ids)
     assert 0 < kept <= len(sk)
     assert sk.clear_kept_circles() == kept
+    model = treesketch.fit(tree_cloud, sk).model()
+    for kind, name in outputs.items():
+        model.write(str(tmp_path / ("py_" + name)), kind=kind)
+        assert (tmp_path / ("py_" + name)).read_bytes() == (tmp_path / name).read_bytes(), kind
+    c = model.cylinders
+    assert len(c["id"]) > 10 and c["measured"].any()
+
+
+def test_a_sketch_with_no_fit_raises(tree_cloud):
+    sk = treesketch.Sketch()
+    root = sk.add_point_node(-1, [50, 50, 50], [0, 0, 1])  # far from every point
+    sk.add_point_node(root, [50, 50, 51], [0, 0, 1])
     rec = treesketch.fit(tree_cloud, sk)
-    treesketch.write_mesh(str(tmp_path / "py.obj"), rec.mesh())
-    assert (tmp_path / "py.obj").read_bytes() == (tmp_path / "cli.obj").read_bytes()
+    with pytest.raises(treesketch.DegenerateInputError, match="no node could be fitted"):
+        rec.model()
+    with pytest.raises(treesketch.OptionsError, match="update"):
+        treesketch.Reconstruction(tree_cloud).model()
 
 
 def test_an_edit_refits_only_what_it_touches(tree_cloud, tree_model):

@@ -114,7 +114,7 @@ TEST(GeneratedTree, LeafyLimbsAreFollowed) {
 }
 
 // A sparse scan's level sets are several times a thin limb's radius: kept nodes a few level sets
-// apart drew chords that left curved limbs (session 13: 0.5 m chords 3 radii off their limbs on a
+// apart drew chords that left curved limbs (measured: 0.5 m chords 3 radii off their limbs on a
 // 4-station TLS oak). With a node per level set on thin branches (maxSegmentBins 1) the model's
 // segments, sampled along their length, lie closer to the true axes than with four.
 TEST(GeneratedTree, ASparseScansSegmentsFollowCurvedLimbs) {

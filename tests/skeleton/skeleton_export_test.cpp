@@ -9,6 +9,8 @@
 
 #include "synthetic_tree.h"
 #include "test_support.h"
+#include "treesketch/io/cylinder_table.h"
+#include "treesketch/model/tree_model.h"
 #include "treesketch/util/error.h"
 
 using namespace treesketch;
@@ -18,13 +20,14 @@ TEST(SkeletonExport, CsvAndObjParseBack) {
   const auto s = skeleton::extractSkeleton(cloud);
   ASSERT_GT(s.nodes.size(), 5u);
   test::TempDir dir;
-  skeleton::writeCylinderCsv(dir / "cyl.csv", s.nodes);
+  const model::TreeModel m = model::fromSkeletonNodes(s.nodes, {}, geom::UpAxis::Y);
+  io::writeCylinderCsv(dir / "cyl.csv", m.cylinders, m.ids);
   skeleton::writeSkeletonObj(dir / "skel.obj", s.nodes);
 
   std::istringstream csv(test::readText(dir / "cyl.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, skeleton::kCylinderCsvHeader);
+  EXPECT_EQ(line, io::kCylinderCsvHeader);
   std::size_t rows = 0;
   while (std::getline(csv, line)) {
     std::istringstream row(line);
@@ -73,12 +76,12 @@ TEST(SkeletonExport, CsvAndObjParseBack) {
 TEST(SkeletonExport, UnwritablePathThrowsAndLeavesNothing) {
   test::TempDir dir;
   const auto bad = dir / "missing_dir" / "cyl.csv";
-  EXPECT_THROW(skeleton::writeCylinderCsv(bad, {}), OutputError);
+  EXPECT_THROW(io::writeCylinderCsv(bad, geom::CylinderModel{}), OutputError);
   EXPECT_THROW(skeleton::writeSkeletonObj(dir / "missing_dir" / "s.obj", {}), OutputError);
   EXPECT_FALSE(std::filesystem::exists(bad));
   // Empty skeleton: header only.
-  skeleton::writeCylinderCsv(dir / "empty.csv", {});
-  EXPECT_EQ(test::readText(dir / "empty.csv"), std::string(skeleton::kCylinderCsvHeader) + "\n");
+  io::writeCylinderCsv(dir / "empty.csv", geom::CylinderModel{});
+  EXPECT_EQ(test::readText(dir / "empty.csv"), std::string(io::kCylinderCsvHeader) + "\n");
 }
 TEST(SkeletonExport, SkeletonModelIsFrustumsBetweenNodes) {
   std::vector<skeleton::SkeletonNode> nodes(4);

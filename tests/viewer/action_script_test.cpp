@@ -2,11 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cli/cli_support.h"
 #include "test_support.h"
 #include "treesketch/gen/random.h"
+#include "treesketch/io/point_cloud_io.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::viewer {
@@ -129,6 +133,51 @@ TEST(ActionScript, RunsASessionAndReportsFailures) {
   EXPECT_EQ(shots[0], (dir / "s.png").string());
   EXPECT_GE(frames, static_cast<int>(script.actions.size()));
   EXPECT_EQ(state.sketch().size(), 1u);
+}
+
+// A sketch drawn in the desktop tool gives the same model files as the command line makes of the
+// saved sketch: one model, one writer.
+TEST(ActionScript, TheModelsOutputsAreTheCommandLines) {
+  test::TempDir dir;
+  const auto p = [&](const char* name) { return (dir / name).string(); };
+  io::writePointCloud(dir / "trunk.xyz", trunk());
+  ViewerState state;
+  state.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(state.setCloud(io::readPointCloud(dir / "trunk.xyz"), geom::UpAxis::Y));
+  std::ostringstream text;
+  text << "[";
+  for (double y : {0.5, 1.5, 2.5, 3.5}) {
+    const Vec2 at = state.camera().project(Vec3(0, y, 0)).head<2>();
+    text << "{\"click\": [" << at.x() << ", " << at.y() << "]}, ";
+  }
+  text << R"({"expect": {"nodes": 4, "fitted": 4}}, "save", )"
+       << "\"export-cylinders " << p("gui.csv") << "\", \"export-qsm " << p("gui.txt") << "\", \"export-metrics "
+       << p("gui_metrics.json") << "\", \"export-report " << p("gui_report.json") << "\"]";
+  ScriptHooks hooks;
+  hooks.sketchPath = dir / "s.json";
+  const ScriptReport report = runActionScript(state, parse(text.str()), hooks);
+  ASSERT_TRUE(report.failures.empty()) << report.failures.front();
+  std::string out;
+  ASSERT_EQ(test::runCommand(test::quoted(TS_CLI_PATH) + " reconstruct " + test::quoted(dir / "trunk.xyz") +
+                                 " --sketch " + test::quoted(dir / "s.json") + " -o " + test::quoted(dir / "m.obj") +
+                                 " --cylinders " + p("cli.csv") + " --qsm " + p("cli.txt") + " --metrics " +
+                                 p("cli_metrics.json") + " --report " + p("cli_report.json"),
+                             &out),
+            0)
+      << out;
+  const std::string table = test::readText(dir / "gui.csv");
+  EXPECT_EQ(table, test::readText(dir / "cli.csv"));
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 4);  // the header and three cylinders
+  EXPECT_EQ(test::readText(dir / "gui.txt"), test::readText(dir / "cli.txt"));
+  EXPECT_EQ(test::readText(dir / "gui_metrics.json"), test::readText(dir / "cli_metrics.json"));
+  const auto gui = nlohmann::json::parse(test::readText(dir / "gui_report.json"));
+  const auto cli = nlohmann::json::parse(test::readText(dir / "cli_report.json"));
+  EXPECT_EQ(gui["model"], cli["model"]);
+  EXPECT_EQ(gui["metrics"], cli["metrics"]);
+  // Nothing to export before a node is fitted: an error, no file.
+  ViewerState empty;
+  EXPECT_FALSE(empty.exportModel(ViewerState::ModelFile::Cylinders, dir / "none.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "none.csv"));
 }
 
 TEST(ActionScript, RefitButtonsDropKeptCircles) {

@@ -1,5 +1,5 @@
 // The one table of keys (viewer::keyBindings) is what ViewerState::keyPress binds and what the
-// README's GUI section lists, row for row.
+// README's key table lists, row for row.
 #include "treesketch/viewer/key_bindings.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// Where a click that misses every marker attaches its node (issue 20: in a dense automatic
-// skeleton a near miss added a node under the root, far from where the person clicked).
+// Where a click that misses every marker attaches its node (in a dense automatic
+// skeleton a near miss once added a node under the root, far from where the person clicked).
 #include <gtest/gtest.h>
 
 #include <cmath>

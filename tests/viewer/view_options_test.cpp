@@ -1,5 +1,5 @@
 // Status messages that expire, optional node labels, the colour legend and the up direction
-// (issue 20's GUI bugs, at the library level; the window runs apps/viewer/tests/view_options.json).
+// (at the library level; the window runs apps/viewer/tests/view_options.json).
 #include <gtest/gtest.h>
 
 #include <cmath>

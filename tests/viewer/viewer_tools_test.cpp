@@ -1,4 +1,4 @@
-// The correction tools in the viewer (issue 20): driven by `--script` verbs and by the mouse and
+// The correction tools in the viewer: driven by `--script` verbs and by the mouse and
 // keys, each one undoable.
 #include <gtest/gtest.h>
 

@@ -113,7 +113,7 @@ TreeMetrics treeMetrics(const geom::CylinderModel& model, geom::UpAxis up, const
 /// Fewer than 3 distinct points: area 0 (the width of two points is their distance).
 void convexHullFigures(std::vector<geom::Vec2> points, double* area, double* spread);
 
-/// JSON: metres, m², m³; NaN as null. Keys documented in README "Forestry outputs".
+/// JSON: metres, m², m³; NaN as null. Keys documented in docs/formats.md, "Forestry figures".
 nlohmann::json toJson(const TreeMetrics& metrics);
 /// A readable table (several lines, units in each row), for the terminal.
 std::string metricsTable(const TreeMetrics& metrics);

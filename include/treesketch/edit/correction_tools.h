@@ -1,4 +1,4 @@
-// The correction tools of issue 20 — what a person does to fix an automatic model, as library
+// The correction tools — what a person does to fix an automatic model, as library
 // calls on a sketch and its cloud, shared by the viewer (each one an undoable edit, a key and a
 // `--script` verb) and the evaluation's simulated correcting user (eval/correcting_user.h), so
 // that the evaluation measures the operations the GUI offers:

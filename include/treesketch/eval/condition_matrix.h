@@ -1,4 +1,4 @@
-// The evaluation's scan conditions (issue 16): one named row per scan setting, varied one factor
+// The evaluation's scan conditions: one named row per scan setting, varied one factor
 // at a time around a realistic terrestrial scan, plus the evaluation's former favourable setting
 // ("reference"); and the split of the test trees into a tuning half and a held-out half.
 //
@@ -35,7 +35,7 @@ namespace treesketch::eval {
 /// Metres per scene unit of the ez-tree trees (taken as decimetres, see above).
 inline constexpr double kEzTreeMetresPerUnit = 0.1;
 /// A case with fewer wood points than this is reported but flagged "sparse" and left out of
-/// the means and worst cases (issue 16: targets hold for cases with >= 5k wood points).
+/// the means and worst cases (the accuracy targets are stated for cases with >= 5k wood points).
 inline constexpr std::size_t kSparseWoodPoints = 5000;
 /// Root check: the method's sketch root lies at the trunk base when it is within this distance
 /// of the reference trunk base (the first centre of the reference skeleton's root limb), as % of
@@ -43,7 +43,7 @@ inline constexpr std::size_t kSparseWoodPoints = 5000;
 /// two trunk diameters; a root put on the lowest branch tips or half a metre up a sparse trunk
 /// fails it).
 inline constexpr double kRootAtBasePct = 2.0;
-/// Tips vs limbs: the band the issue asks for (tips of the sketch / limbs of the reference).
+/// Tips vs limbs: the target band (tips of the sketch / limbs of the reference).
 inline constexpr double kTipsRatioMin = 0.8;
 inline constexpr double kTipsRatioMax = 1.3;
 
@@ -51,7 +51,7 @@ inline constexpr double kTipsRatioMax = 1.3;
 struct ScanCondition {
   std::string name;
   /// The factor this row varies from its base: "reference", "base", "stations", "step",
-  /// "noise", "sphere rays" or "wood points" (plots and the README group by it).
+  /// "noise", "sphere rays" or "wood points" (plots and the evaluation report group by it).
   std::string factor;
   /// "sphere" (thesis, origins on a sphere aimed at the centre) or "tls" (stations on a ring).
   std::string pattern = "tls";
@@ -121,7 +121,7 @@ std::string conditionTable(const std::vector<ScanCondition>& matrix);
 /// One-line summary of a row's settings ("tls, 4 stations, 0.2°, 1.5 m high, 5 mm noise").
 std::string describeCondition(const ScanCondition& condition);
 
-// -- the tuning / held-out split (issue 16, part 5) ----------------------------------------------
+// -- the tuning / held-out split -------------------------------------------------------------------
 
 /// The half of the test trees a tree belongs to. Methods are tuned on "tune" only; "held-out"
 /// reports how they do on trees they were not tuned on.

@@ -1,4 +1,4 @@
-// A simulated correcting user (issue 20): starting from the automatic sketch, at each step the
+// A simulated correcting user: starting from the automatic sketch, at each step the
 // person looks at the worst visible error and makes the one edit a person would, with the
 // correction tools the viewer offers (edit/correction_tools.h):
 //  - a reference limb the model misses (its axis samples lie farther than the tolerance outside

@@ -1,5 +1,5 @@
 // The thesis's evaluation (Leavenworth 2012, §3.6 and chapter 5, Tables 5.1/5.2, Figures
-// 5.12-5.14) as one library call, extended into a robustness evaluation (issue 16): scan each
+// 5.12-5.14) as one library call, extended into a robustness evaluation: scan each
 // test tree under each scan condition (condition_matrix.h: the former favourable setting and a
 // matrix of realistic ones), leaf-on and leaf-off, reconstruct it with several sketch methods,
 // compare each result with the branch mesh both ways, and write a Markdown table, a summary per
@@ -31,6 +31,7 @@
 #include "treesketch/eval/tree_suite.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/tri_mesh.h"
+#include "treesketch/model/tree_model.h"
 #include "treesketch/sketch/sketch.h"
 
 namespace treesketch::eval {
@@ -77,9 +78,9 @@ struct EvalOptions {
   /// Hand jitter of the simulated user, pixels (1280 × 800 viewport).
   double pixelNoise = 1.5;
   /// The simulated user's screen nodes choose their depth along the view ray from the parent's
-  /// circle (fit::NodeFitOptions::chooseDepth, as in the viewer; issue 20). Off by default: the
-  /// thesis's experiment keeps the thesis's fit. Measured on the 4 dev trees leaf-on (README,
-  /// "Simulated correcting user"): more nodes fit (8-23 of 30 against 2-10) and the forward RMS
+  /// circle (fit::NodeFitOptions::chooseDepth, as in the viewer). Off by default: the
+  /// thesis's experiment keeps the thesis's fit. Measured on the 4 dev trees leaf-on (docs/evaluation/README.md,
+  /// "A person's help"): more nodes fit (8-23 of 30 against 2-10) and the forward RMS
   /// drops, but the backward RMS grows (circles on clutter near the parent's depth are taken).
   bool chooseDepth = false;
   /// Comparison samples per direction; 0 = MeshLab's default (as many as the sampled mesh has
@@ -141,6 +142,9 @@ struct MethodOutput {
   /// Where the sketch's root is in 3D (world): its circle's centre when it has one (fitted or
   /// kept), else a point node's point; empty when unknown (an unfitted screen node has no depth).
   std::optional<geom::Vec3> root;
+  /// The cylinder model behind the mesh, for the outputs a user gets (the skeleton method's;
+  /// empty for the others).
+  model::TreeModel model;
 };
 
 struct MethodInput {

@@ -118,7 +118,7 @@ class CloudIndex {
   bool regionCoversCloud(const SliceRegion& region) const;
 
   /// Leaves out of every later query the stored points for which `excluded(position)` is true
-  /// (issue 20: points a not-wood lasso marks), and brings back every point an earlier call left
+  /// (e.g. the points a not-wood lasso marks), and brings back every point an earlier call left
   /// out. Returns how many points are now left out. The points keep their cells and slots (their
   /// positions are set to NaN, which no region test accepts, on both query paths), so results
   /// stay in the same storage order. Not safe while other threads query this index.

@@ -19,7 +19,7 @@ enum class NodeStatus { Fitted, Skipped, Disabled };
 /// "fitted", "skipped", "disabled".
 const char* toString(NodeStatus status);
 
-/// What the sketch knows about a node's parent (issue 20: fits that survive clutter): its circle.
+/// What the sketch knows about a node's parent (so that fits survive clutter): its circle.
 /// A screen node's line L crosses every surface along its view ray; with a prior the fit chooses
 /// among the depth hypotheses the one continuing the parent, and refuses circles much wider than
 /// the parent's.
@@ -45,7 +45,7 @@ struct DepthChoiceOptions {
   /// parent's sideways distance from L (plus jumpRadii parent radii and the gap) are refused: the
   /// branch would have to turn more than atan(maxTurn) towards or away from the viewer, and a
   /// person draws such a branch from another view. Design choice: 1.0 (45°); measured on the
-  /// dev trees leaf-on (README, "A person's help, measured").
+  /// dev trees leaf-on (docs/evaluation/README.md, "A person's help").
   double maxTurn = 1.0;
 };
 
@@ -61,7 +61,7 @@ struct NodeFitOptions {
   bool keepSlice = false;
   /// Thesis reference path: every slice by a scan of all points (for benchmarks and tests).
   bool bruteForce = false;
-  /// Screen nodes: choose among the depth hypotheses along L (issue 20) instead of accepting the
+  /// Screen nodes: choose among the depth hypotheses along L instead of accepting the
   /// best-supported circle of all the test points. Off by default: the thesis's procedure, which
   /// the automatic skeleton's internal fits (point nodes, unaffected anyway) and the benchmarks
   /// keep; the viewer and the evaluation's sketches turn it on (recon::ReconstructionOptions).
@@ -122,7 +122,7 @@ std::vector<std::uint32_t> nodeSlice(const CloudIndex& index, const sketch::Node
 /// region is not the branch the user pointed at (or is, but seen through a sliver: growing then
 /// takes in more of it). The radius is NOT limited by lineEpsilon: a line through a trunk's centre with a
 /// small tolerance sees the near and far arcs of a wider circle, which is a valid fit.
-/// Depth choice (options.chooseDepth, screen nodes; issue 20): at each lineEpsilon the test points
+/// Depth choice (options.chooseDepth, screen nodes): at each lineEpsilon the test points
 /// are split into surfaces along L (gaps wider than DepthChoiceOptions::gap), a circle is fitted
 /// to each surface as well as to all of them, and among the circles found the fit takes the one
 /// nearest the parent's depth (`prior`: the projection of its centre on L) — without a prior the

@@ -25,6 +25,7 @@
 #include <istream>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "treesketch/geom/cylinder_model.h"
 
@@ -47,6 +48,20 @@ struct CylinderTable {
 CylinderTable readCylinderTable(const std::filesystem::path& path);
 CylinderTable readCylinderTable(std::istream& in, const std::string& source);
 CylinderTable parseCylinderTable(std::string_view text, const std::string& source);
+
+/// Header line of treesketch's cylinder table (CSV).
+inline constexpr const char* kCylinderCsvHeader =
+    "id,parent,start_x,start_y,start_z,end_x,end_y,end_z,radius,length,branch_order,start_radius";
+
+/// Writes `model` as treesketch's cylinder table: one row per piece, in model order: its id, its
+/// parent's id (-1 for none), start and end points, radius (the end's), length, branch order and
+/// start radius. `ids` gives each piece's id (an automatic model uses the node each piece ends at);
+/// empty = the piece's index. Numbers with 9 significant digits; readCylinderTable reads it back to
+/// the same frustums. Throws OptionsError when `ids` has the wrong size or a parent index is out of
+/// range; the path form writes atomically (OutputError).
+void writeCylinderCsv(std::ostream& out, const geom::CylinderModel& model, const std::vector<std::int64_t>& ids = {});
+void writeCylinderCsv(const std::filesystem::path& path, const geom::CylinderModel& model,
+                      const std::vector<std::int64_t>& ids = {});
 
 /// Header of TreeQSM's cylinder text export (tab separated; start_point and axis_direction are
 /// three columns each, so a row has 17 numbers).

@@ -38,6 +38,8 @@ struct Timings {
   double totalMs = 0.0;  ///< the last update, fit + sweep + diff
 };
 
+struct ReconstructionResult;
+
 class Reconstruction {
  public:
   /// Builds the slice index of `cloud` (the cloud is not referenced afterwards). Throws
@@ -72,6 +74,9 @@ class Reconstruction {
   const fit::CloudIndex& index() const { return *index_; }
   const sweep::TubeSweeper& sweeper() const { return sweeper_; }
   const ReconstructionOptions& options() const { return options_; }
+  /// The current fits, the sketch's order and parents, and the mesh, as one result (what
+  /// reconstruct returns); `sketch` is the one last given to update.
+  ReconstructionResult result(const sketch::Sketch& sketch) const;
 
  private:
   struct Entry {
@@ -98,6 +103,11 @@ struct ReconstructionResult {
   geom::TriMesh mesh;
   Timings timings;
 };
+
+/// The options a person's sketch is fitted with, in the desktop tool and by `reconstruct --sketch`
+/// alike (so one sketch gives one model): the defaults, with screen nodes choosing their depth along
+/// the view ray (fit::NodeFitOptions::chooseDepth).
+ReconstructionOptions sketchReconstructionOptions();
 
 /// One-shot reconstruction (index, fit every node, sweep). Empty sketch → empty mesh.
 ReconstructionResult reconstruct(const geom::PointCloud& cloud, const sketch::Sketch& sketch,

@@ -72,7 +72,7 @@ struct SkeletonOptions {
   /// the forward error of every condition (tls-base 0.356 → 0.322 %) and raised the real scans'
   /// share of points within ±2 cm by 1.5–2.6 points, backward within ±0.006; 0.5 raised the
   /// spurious tips at 73k rays to 2.5 per limb, 1.5–2 gained half as much
-  /// (docs/notes/skeleton_options.md, session 14).
+  /// (docs/notes/skeleton_options.md, "twigOutBins").
   double twigOutBins = 1.0;
   /// Foliage: a side sub-tree whose tubular share (by points) is below this is dropped as leaves.
   /// 0 (off) for leaf-off scans: there are no leaves, and the rule dropped sparsely or noisily
@@ -102,8 +102,8 @@ struct SkeletonOptions {
   /// branch keeps a node per level set. In a sparse scan a level set is several times a thin
   /// limb's radius (and so is the collinear tolerance, through the voxel), and 4 level sets drew
   /// chords up to 0.7 m long and 3 radii off their limbs (oak_medium_s1290, 4-station TLS); 1
-  /// lowered the backward error on every condition of the matrix, held-out as tuning (session 13,
-  /// docs/notes/skeleton_options.md), for 1.9× the nodes.
+  /// lowered the backward error on every condition of the matrix, held-out as tuning
+  /// (docs/notes/skeleton_options.md), for 1.9× the nodes.
   double maxSegmentRadii = 6.0;
   double maxSegmentBins = 1.0;
   /// Running median of the raw nodes' radii along a chain, nodes (odd; 1 = none): one noisy piece

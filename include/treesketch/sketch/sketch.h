@@ -63,7 +63,7 @@ struct KeptCircle {
   bool operator==(const KeptCircle&) const = default;
 };
 
-/// A not-wood lasso (issue 20): a closed screen polygon drawn under one of the sketch's cameras.
+/// A not-wood lasso: a closed screen polygon drawn under one of the sketch's cameras.
 /// Every cloud point whose projection under that camera falls inside the polygon (at any depth
 /// in front of the camera, as CloudCompare's segmentation tool cuts through the whole view) is
 /// not wood: the fits and the automatic skeleton leave it out. Stored as the polygon, not as point

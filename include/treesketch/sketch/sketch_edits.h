@@ -1,4 +1,4 @@
-// Structural sketch edits of the correction tools (issue 20) that need nothing but the sketch:
+// Structural sketch edits of the correction tools that need nothing but the sketch:
 // delete a subtree, re-attach a node to another parent, graft one sketch into another. The tools
 // that need the cloud (a stroke's depth, a lasso's points, the automatic skeleton on a region)
 // are in edit/correction_tools.h and call these.

@@ -19,7 +19,7 @@
 //              "refit"|"refitAll"}
 //   {"save": PATH}, {"load": PATH}, {"export": PATH}, {"screenshot": PATH}   ("save"/"load"
 //                                          without a path use the session's sketch path)
-//   Correction tools (issue 20; each one undoable edit under the current view):
+//   Correction tools (each one undoable edit under the current view):
 //   {"stroke": [[x, y], ...]}              draw a limb as one stroke (>= 2 points, base first)
 //   {"lasso": [[x, y], ...]}               mark the points inside the polygon as not-wood
 //   {"region": [[x, y], ...]}              automatic skeleton inside the polygon, merged

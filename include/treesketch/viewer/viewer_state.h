@@ -26,6 +26,7 @@
 #include "treesketch/geom/camera.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/tri_mesh.h"
+#include "treesketch/recon/reconstruction.h"
 #include "treesketch/sketch/sketch.h"
 #include "treesketch/util/progress.h"
 #include "treesketch/viewer/orbit_camera.h"
@@ -162,6 +163,13 @@ class ViewerReconstruction {
   virtual std::vector<std::uint32_t> slicePoints(sketch::NodeId id) const = 0;
   virtual std::vector<std::uint32_t> inlierPoints(sketch::NodeId id) const = 0;
   virtual const geom::TriMesh& mesh() const = 0;
+  /// Every node's fit, the sketch's order and parents, and the mesh (what the model's outputs are
+  /// made from: model::fromReconstruction). Default: no fits, the mesh only.
+  virtual recon::ReconstructionResult result() const {
+    recon::ReconstructionResult r;
+    r.mesh = mesh();
+    return r;
+  }
 };
 
 /// The default reconstruction (recon::Reconstruction over `cloud`, which must outlive it).
@@ -359,7 +367,7 @@ class ViewerState {
   /// Undoable; an error message when there is nothing to refit.
   bool refitSelected();
   bool refitAll();
-  // ---- correction tools (issue 20; src/viewer/viewer_tools.cpp over edit/correction_tools.h) ----
+  // ---- correction tools (src/viewer/viewer_tools.cpp over edit/correction_tools.h) ----
   /// What a left-button drag in the view does: Sketch (add / pick / drag nodes, the default),
   /// Stroke (draw a limb as one stroke), Lasso (mark points as not-wood), Region (automatic
   /// skeleton inside the drawn region, merged), Reattach (a click on a node makes it the selected
@@ -389,6 +397,12 @@ class ViewerState {
   bool loadSketch(const std::filesystem::path& path);
   /// Writes the current tube mesh (.obj or .ply, atomically).
   bool exportMesh(const std::filesystem::path& path);
+  /// The model's outputs, as every command writes them (model/tree_model.h): the tube mesh, the
+  /// cylinder table, TreeQSM's text layout, the tree metrics, the fit report.
+  enum class ModelFile { Mesh, Cylinders, Qsm, Metrics, Report };
+  /// Writes one output of the current model (atomically), measured against the open cloud with
+  /// `unitMetres` metres per cloud unit. False (error status) when no piece is fitted yet.
+  bool exportModel(ModelFile what, const std::filesystem::path& path, double unitMetres = 1.0);
 
   sketch::NodeId selected() const { return selected_; }
   sketch::NodeId active() const { return active_; }

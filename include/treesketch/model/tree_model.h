@@ -1,0 +1,98 @@
+// The tree model at the end of every path: a person's sketch fitted by recon, the automatic model
+// of the skeleton module, a sketch corrected in the desktop tool, a batch job. Each becomes one
+// TreeModel (frustums, which of them rest on a fitted circle, the swept mesh, the up axis), and
+// every output — mesh, cylinder table, TreeQSM text, metrics JSON, fit report — is measured and
+// written from it here, by one code path, so the same model gives the same files whichever
+// command or window made it.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "treesketch/compare/model_fit.h"
+#include "treesketch/compare/tree_metrics.h"
+#include "treesketch/geom/cylinder_model.h"
+#include "treesketch/geom/point_cloud.h"
+#include "treesketch/geom/tri_mesh.h"
+#include "treesketch/recon/reconstruction.h"
+#include "treesketch/skeleton/skeleton.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
+
+namespace treesketch::model {
+
+struct TreeModel {
+  geom::CylinderModel cylinders;  ///< one frustum per parent→child link, parents first
+  /// Per piece: its id in the cylinder table (the node it ends at).
+  std::vector<std::int64_t> ids;
+  /// Per piece: its end radius rests on a circle fitted to the points (1), or was inferred from
+  /// the tree's allometry and its neighbours (0).
+  std::vector<char> measured;
+  geom::TriMesh mesh;  ///< the swept tubes
+  geom::UpAxis up = geom::UpAxis::Z;
+  bool empty() const { return cylinders.empty(); }
+};
+
+/// A fitted sketch's model: each node with a circle (fitted, or kept by the sketch) joined to its
+/// nearest ancestor with one (skipped and disabled nodes are bridged, as the sweep bridges them).
+/// Branch orders follow the tree's shape (at a node the child with the largest radius continues
+/// the branch, every other child starts one of the next order), so a branch's first piece starts
+/// with the branch's own radius, as the automatic model's do. The mesh is the reconstruction's.
+TreeModel fromReconstruction(const recon::ReconstructionResult& result, geom::UpAxis up);
+
+/// A skeleton model's frustums (parents first; ids = node indices; measured = `accepted`, or all
+/// when it is empty). The mesh is left empty.
+TreeModel fromSkeletonNodes(const std::vector<skeleton::SkeletonNode>& nodes, const std::vector<char>& accepted,
+                            geom::UpAxis up);
+
+/// The automatic model (AutoSkeletonResult::model, its accepted fits and its mesh).
+TreeModel fromAutoSkeleton(const skeleton::AutoSkeletonResult& result, geom::UpAxis up);
+
+/// Share of the model's volume whose pieces rest on a fitted circle, in [0, 1] (0 for no volume).
+double measuredVolumeShare(const TreeModel& model);
+
+struct MeasureOptions {
+  double unitMetres = 1.0;  ///< metres per cloud unit (> 0)
+  bool fit = true;          ///< measure the cloud's points against the model (the report needs it)
+};
+
+/// What is known of a model against its cloud.
+struct ModelMeasures {
+  compare::TreeMetrics metrics;  ///< height, DBH, volumes, orders, crown, taper
+  bool hasFit = false;
+  compare::ModelFitReport fit;    ///< shares of the points by signed distance (when hasFit)
+  compare::ModelFigures figures;  ///< volume, length, trunk diameter
+  double measuredVolumeShare = 0;
+  /// One line: the fit's shares (when measured) and the model's figures.
+  std::string summary() const;
+};
+
+ModelMeasures measure(const TreeModel& model, const geom::PointCloud& cloud, const MeasureOptions& options = {});
+
+/// Where to write a model's outputs ("" = not wanted).
+struct OutputPaths {
+  std::string mesh;       ///< .obj or .ply
+  std::string cylinders;  ///< treesketch's cylinder table (.csv)
+  std::string qsm;        ///< TreeQSM's cylinder text layout (.txt)
+  std::string metrics;    ///< tree metrics (.json)
+  std::string report;     ///< fit report (.json)
+  std::vector<const std::string*> all() const { return {&mesh, &cylinders, &qsm, &metrics, &report}; }
+};
+
+/// Refuses outputs before any work: an output that is one of `inputs`, or two outputs on one
+/// path, or a folder that cannot be written, or a mesh path with an extension other than .obj or
+/// .ply (OptionsError / OutputError naming the path).
+void checkOutputs(const OutputPaths& paths, const std::vector<std::string>& inputs);
+
+/// The report: `header` (what the path knows: its nodes' fits, or the automatic model's counts
+/// and timings) with "model" ({"fit", "figures", "measuredVolumeShare"}) and "metrics" added.
+nlohmann::json reportJson(const ModelMeasures& measures, nlohmann::json header);
+
+/// Writes every wanted output, each atomically, in this order: cylinder table, TreeQSM text, mesh,
+/// metrics, report (a batch's done marker follows the report, so a complete set says a complete
+/// tree). The report needs `measures.hasFit`. Throws OutputError (nothing partial is left).
+void writeOutputs(const TreeModel& model, const ModelMeasures& measures, const OutputPaths& paths,
+                  const nlohmann::json& reportHeader = nlohmann::json::object());
+
+}  // namespace treesketch::model
