@@ -41,7 +41,7 @@ def tree_mesh():
 
 @pytest.fixture(scope="session")
 def tree_cloud_path(tmp_path_factory, tree_mesh):
-    """A sphere scan of the sparse tree (about 10k points), written as .xyz."""
+    """A sphere scan of the sparse tree (about 4k points), written as .xyz."""
     cloud = treesketch.scan(tree_mesh, subdivisions=5, up="z", seed=3)
     path = tmp_path_factory.mktemp("cloud") / "tree.xyz"
     cloud.write(str(path))
@@ -51,6 +51,12 @@ def tree_cloud_path(tmp_path_factory, tree_mesh):
 @pytest.fixture(scope="session")
 def tree_cloud(tree_cloud_path):
     return treesketch.read_cloud(str(tree_cloud_path))
+
+
+@pytest.fixture(scope="session")
+def big_cloud(tree_mesh):
+    """A denser scan of the same tree (about 250k points): a reconstruction of about half a second."""
+    return treesketch.scan(tree_mesh, subdivisions=8, up="z", seed=4)
 
 
 @pytest.fixture(scope="session")

@@ -59,6 +59,15 @@ def test_every_output_reads_back(tree_model, tmp_path):
     assert json.loads((tmp_path / "metrics.out").read_text()) == tree_model.metrics()
 
 
+def test_a_report_needs_the_cloud(tree_model, tree_cloud, tmp_path):
+    with pytest.raises(treesketch.OptionsError, match="cloud"):
+        tree_model.write(str(tmp_path / "r.json"), kind="report")
+    tree_model.write(str(tmp_path / "r.json"), kind="report", cloud=tree_cloud)
+    report = json.loads((tmp_path / "r.json").read_text())
+    assert report["model"]["fit"] == tree_model.fit_report(tree_cloud)["fit"]
+    assert report["skeletonNodes"] == tree_model.summary["skeleton_nodes"] and report["auto"] is True
+
+
 def test_write_rejects_unknown_formats(tree_model, tmp_path):
     with pytest.raises(treesketch.OptionsError, match="unknown output extension"):
         tree_model.write(str(tmp_path / "m.stl"))
@@ -118,7 +127,7 @@ def test_an_exception_in_the_callback_stops_the_work_and_is_raised(tree_cloud):
     assert len(calls) == 2  # no report after the exception
 
 
-def test_the_gil_is_released_during_reconstruct(tree_cloud):
+def test_the_gil_is_released_during_reconstruct(big_cloud):
     import threading
     import time
 
@@ -133,7 +142,7 @@ def test_the_gil_is_released_during_reconstruct(tree_cloud):
     t = threading.Thread(target=tick)
     t.start()
     start = time.perf_counter()
-    treesketch.reconstruct(tree_cloud)
+    treesketch.reconstruct(big_cloud)
     elapsed = time.perf_counter() - start
     done.set()
     t.join()
@@ -142,12 +151,12 @@ def test_the_gil_is_released_during_reconstruct(tree_cloud):
     assert len(during) >= 5
 
 
-def test_ctrl_c_stops_the_work(tree_mesh):
+def test_ctrl_c_stops_the_work(big_cloud):
     import _thread
     import threading
     import time
 
-    cloud = treesketch.scan(tree_mesh, subdivisions=8, up="z", seed=4)  # long enough to be interrupted
+    cloud = big_cloud  # long enough to be interrupted
     start = time.perf_counter()
     treesketch.reconstruct(cloud)
     full = time.perf_counter() - start
