@@ -1,7 +1,8 @@
 # treesketch — the two commands of the quick start, and a few more.
 #   make demo    install what is missing, build, run the main job on the built-in tree -> out/demo/
 #   make test    install what is missing, build, run every test (release build, then ASan+UBSan build)
-#   make package build the Debian packages treesketch_*.deb and treesketch-dev_*.deb in $(BUILD)/
+#   make package build the Debian packages treesketch_*.deb, treesketch-dev_*.deb and python3-treesketch_*.deb
+#                (when the Python module is built) in $(BUILD)/
 #   make fuzz    libFuzzer + ASan/UBSan harnesses of fuzz/ (clang), FUZZ_SECONDS / FUZZ_RUNS each
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD ?= build

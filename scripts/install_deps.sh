@@ -2,12 +2,16 @@
 # Installs the Debian packages treesketch needs, only those that are missing, and laz-perf from
 # npm (the independent LAZ decoder the LAZ tests compare with) into .deps/laz-perf. Idempotent.
 # Usage: scripts/install_deps.sh [--gui] [--fuzz]   (--gui adds the windowing/OpenGL packages and
-# xvfb; --fuzz adds clang and its libFuzzer runtime, for `make fuzz` only)
+# xvfb; --fuzz adds clang and its libFuzzer runtime, for `make fuzz` only). The Python module's
+# packages (pybind11, NumPy, pytest, Matplotlib for the example) are added unless
+# TREESKETCH_PYTHON=0.
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libeigen3-dev libembree-dev libtbb-dev libnanoflann-dev
       libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev)
 gui=(libglfw3-dev libglew-dev libimgui-dev libstb-dev xvfb xauth libgl1-mesa-dri)
 if [[ "${1:-}" == "--gui" || "${TREESKETCH_GUI:-1}" == "1" ]]; then pkgs+=("${gui[@]}"); fi
+python=(python3-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib)
+if [[ "${TREESKETCH_PYTHON:-1}" == "1" ]]; then pkgs+=("${python[@]}"); fi
 fuzz=(clang libclang-rt-14-dev)
 if [[ " $* " == *" --fuzz "* ]]; then pkgs+=("${fuzz[@]}"); fi
 # node and npm for the LAZ oracle tests (Debian's packages, unless a node with its own npm is there)

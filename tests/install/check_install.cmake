@@ -1,7 +1,8 @@
 # CTest install.consumer: installs this build into a prefix inside the build folder, configures and
 # builds tests/install/consumer against it (find_package(treesketch), treesketch::treesketch),
-# runs it, and runs the installed CLI's --version. Run as
-#   cmake -DBUILD_DIR=.. -DSOURCE_DIR=.. -DCXX=.. -DLAUNCHER=.. -DVERSION=.. -P check_install.cmake
+# runs it, and runs the installed CLI's --version; with -DPYTHON=<interpreter> (when the build has the
+# Python module) also imports the installed module. Run as
+#   cmake -DBUILD_DIR=.. -DSOURCE_DIR=.. -DCXX=.. -DLAUNCHER=.. -DVERSION=.. [-DPYTHON=..] -P check_install.cmake
 set(root ${BUILD_DIR}/install_test)
 set(prefix ${root}/prefix)
 file(REMOVE_RECURSE ${root})
@@ -37,3 +38,17 @@ if(NOT last_output MATCHES "^treesketch ${VERSION} \\(git [^)]+\\)")
   message(FATAL_ERROR "installed treesketch --version printed '${last_output}', expected 'treesketch ${VERSION} (git ...)'")
 endif()
 message(STATUS "installed: ${last_output}")
+
+if(PYTHON)
+  # The rule of python/CMakeLists.txt for a prefix other than /usr: lib/python3.X/dist-packages.
+  # (Python one-liners without ';', which would split the command's arguments.)
+  run("python version" ${PYTHON} -c "print('%d.%d' % __import__('sys').version_info[:2])")
+  string(STRIP "${last_output}" pyver)
+  set(site ${prefix}/lib/python${pyver}/dist-packages)
+  run("import the installed module" ${CMAKE_COMMAND} -E env PYTHONPATH=${site} ${PYTHON} -c
+      "print(len(__import__('treesketch').Cloud.from_numpy(__import__('numpy').eye(4, 3))), __import__('treesketch').__file__)")
+  if(NOT last_output MATCHES "^4 ${site}/treesketch[.]")
+    message(FATAL_ERROR "the installed module printed '${last_output}', expected it from ${site}")
+  endif()
+  message(STATUS "installed Python module: ${last_output}")
+endif()
