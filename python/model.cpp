@@ -25,23 +25,6 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// The CLI's checks of an automatic model (tree_job.cpp), with the same messages.
-void checkAutoModel(const std::string& source, const geom::PointCloud& cloud, const skeleton::AutoSkeletonResult& r) {
-  std::size_t accepted = 0;
-  for (char c : r.fitAccepted) accepted += c != 0;
-  char what[512];
-  std::snprintf(what, sizeof what, "%s (%zu points, bounding-box diagonal %.6g)", source.c_str(), cloud.size(),
-                cloud.bounds().diagonal());
-  if (r.mesh.empty() || r.model.empty())
-    throw DegenerateInputError(std::string(what) + ": no skeleton found; no mesh written");
-  if (accepted == 0)
-    throw DegenerateInputError(std::string(what) + ": no circle could be fitted at any of the " +
-                               std::to_string(r.model.size()) +
-                               " skeleton nodes (points all equal, on a line, or too few?); no mesh written");
-  if (!(r.mesh.area() > 0))
-    throw DegenerateInputError(std::string(what) + ": the model has zero area; no mesh written");
-}
-
 std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, const py::object& up, std::uint64_t seed,
                                      int ring, const py::object& inlierThreshold, double unitMetres,
                                      const py::object& progressFn) {
@@ -73,7 +56,7 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
       progress.rethrowIfFailed();
       throw;
     }
-    checkAutoModel(t.source, *cloud, s);
+    model::checkAutoModel(t.source, *cloud, s);
     std::size_t accepted = 0, leafPieces = 0;
     for (char c : s.fitAccepted) accepted += c != 0;
     for (const auto& n : s.model) leafPieces += skeleton::isLeafPiece(n, opt);
@@ -101,7 +84,8 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
     t.tree = model::fromAutoSkeleton(s, choice.up);
     model::MeasureOptions mo;
     mo.unitMetres = unitMetres;
-    mo.fit = false;  // the fit against the cloud is fit_report's (the CLI measures it for --report)
+    mo.leafOn = leafOn;  // as the CLI measures it: the fit, the volume's range and the verdict
+    mo.leafPieceShare = s.model.empty() ? 0.0 : static_cast<double>(leafPieces) / static_cast<double>(s.model.size());
     t.measures = model::measure(t.tree, *cloud, mo);
     t.timings["metrics_ms"] = msSince(tm);
     t.timings["library_ms"] = msSince(t0);

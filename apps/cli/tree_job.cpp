@@ -21,26 +21,6 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// A model needs a skeleton and a tube of some area. A cloud too sparse for any circle fit (an
-/// airborne scan) still gets one, with every radius inferred (and its verdict says so); a cloud
-/// whose points are all equal or on one line gives none.
-void checkAutoModel(const TreeJob& a, const geom::PointCloud& cloud, const skeleton::AutoSkeletonResult& r) {
-  char what[512];
-  std::snprintf(what, sizeof what, "%s (%zu points, bounding-box diagonal %.6g)", a.cloud.c_str(), cloud.size(),
-                cloud.bounds().diagonal());
-  if (r.mesh.empty() || r.model.size() < 2)
-    throw DegenerateInputError(std::string(what) + ": no skeleton found (points all equal, on a line, or too few?); no mesh written");
-  const bool fitted = std::any_of(r.fitAccepted.begin(), r.fitAccepted.end(), [](char c) { return c != 0; }) ||
-                      std::any_of(r.model.begin(), r.model.end(), [](const skeleton::SkeletonNode& n) { return n.stem; });
-  if (!fitted && !r.radiiFromCrown)
-    throw DegenerateInputError(std::string(what) + ": no circle could be fitted at any of the " +
-                               std::to_string(r.model.size()) +
-                               " skeleton nodes and no crown to infer a stem from (points all equal, on a line, or "
-                               "too few?); no mesh written");
-  if (!(r.mesh.area() > 0))
-    throw DegenerateInputError(std::string(what) + ": the model has zero area (points on a line?); no mesh written");
-}
-
 }  // namespace
 
 TreeJobResult runTreeJob(const TreeJob& a) {
@@ -70,7 +50,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   opt.ringVertices = a.ring;
   if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;
   const skeleton::AutoSkeletonResult s = skeleton::autoSkeletonSketch(cloud, opt);
-  checkAutoModel(a, cloud, s);
+  model::checkAutoModel(a.cloud, cloud, s);
   r.skeletonMs = s.skeletonMs;
   r.fitMs = s.fitMs;
   r.sweepMs = s.sweepMs;

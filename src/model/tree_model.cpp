@@ -90,6 +90,25 @@ TreeModel fromReconstruction(const recon::ReconstructionResult& r, geom::UpAxis 
   return model;
 }
 
+void checkAutoModel(const std::string& source, const geom::PointCloud& cloud, const skeleton::AutoSkeletonResult& r) {
+  char what[512];
+  std::snprintf(what, sizeof what, "%s (%zu points, bounding-box diagonal %.6g)", source.c_str(), cloud.size(),
+                cloud.bounds().diagonal());
+  if (r.mesh.empty() || r.model.size() < 2)
+    throw DegenerateInputError(std::string(what) +
+                               ": no skeleton found (points all equal, on a line, or too few?); no mesh written");
+  const bool measured =
+      std::any_of(r.fitAccepted.begin(), r.fitAccepted.end(), [](char c) { return c != 0; }) ||
+      std::any_of(r.model.begin(), r.model.end(), [](const skeleton::SkeletonNode& n) { return n.stem; });
+  if (!measured && !r.radiiFromCrown)
+    throw DegenerateInputError(std::string(what) + ": no circle could be fitted at any of the " +
+                               std::to_string(r.model.size()) +
+                               " skeleton nodes and no crown to infer a stem from (points all equal, on a line, or "
+                               "too few?); no mesh written");
+  if (!(r.mesh.area() > 0))
+    throw DegenerateInputError(std::string(what) + ": the model has zero area (points on a line?); no mesh written");
+}
+
 TreeModel fromSkeletonNodes(const std::vector<skeleton::SkeletonNode>& nodes, const std::vector<char>& accepted,
                             geom::UpAxis up) {
   TreeModel model;

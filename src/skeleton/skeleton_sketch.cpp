@@ -66,39 +66,12 @@ sketch::Sketch skeletonToSketch(const Skeleton& skeleton, const SkeletonSketchOp
   return s;
 }
 
-std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, const std::vector<double>& fitted,
-                                    const std::vector<char>& valid, const RadiusRules& rules) {
-  checkRules(rules);
-  if (fitted.size() != nodes.size() || valid.size() != nodes.size())
-    throw OptionsError("skeleton radii: one fitted radius and one validity flag per node expected");
-  const std::size_t n = nodes.size();
-  std::vector<double> r(n);
-  std::vector<char> ok(n);
-  // A node on the tracked stem has a measured radius even without a fit of its own (the stem's
-  // circle fits over whole slabs), and no rule below raises it: the pipe model and the allometry
-  // stand in for radii the data cannot give. (Leaf-on, the allometry, fitted mostly to leaf
-  // clusters that carry thousands of leaf pieces, gave an oak's 0.14 m trunk a 0.57 m radius.)
-  std::vector<char> measured(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    ok[i] = valid[i] && std::isfinite(fitted[i]) && fitted[i] > 0;
-    r[i] = ok[i] ? fitted[i] : nodes[i].radius;
-    measured[i] = nodes[i].stem && nodes[i].radius > 0;
-    ok[i] = ok[i] || measured[i];
-  }
-  // 0. Fits much thicker than the pipe model anchored at the stem (radius against the length a
-  // node carries) are rejected; no radius ends above that bound (step 5).
-  detail::Allometry allometry;
-  if (rules.allometryMaxRatio > 0) {
-    allometry = detail::fitAllometry(nodes, r, ok, measured);
-    if (allometry.valid)
-      for (std::size_t i = 0; i < n; ++i) {
-        const double p = allometry.predict(i);
-        if (ok[i] && !measured[i] && r[i] > p * rules.allometryMaxRatio) ok[i] = 0;
-      }
-  }
-  const auto chains = detail::branchChains(nodes);
-  // 1. Interpolate rejected fits along each branch by arc length (the fork at a side branch's
-  // start is the parent's node: it is read, not written).
+namespace {
+
+/// Step 1 of regularizeRadii: rejected fits interpolated along each branch by arc length (the
+/// fork at a side branch's start is the parent's node: it is read, not written).
+void interpolateRejected(const std::vector<SkeletonNode>& nodes, const std::vector<std::vector<std::int32_t>>& chains,
+                         const std::vector<char>& ok, const detail::Allometry& allometry, std::vector<double>& r) {
   std::vector<double> arc;
   for (const auto& chain : chains) {
     arc.assign(chain.size(), 0.0);
@@ -137,10 +110,13 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
       r[chain[k]] = allometry.valid ? v * allometry.predict(chain[k]) : v;
     }
   }
-  // 2. Running median along each branch.
-  if (rules.medianWindow > 1) {
+}
+
+/// Step 2: a running median of `size` nodes along each branch.
+void medianAlongBranches(const std::vector<std::vector<std::int32_t>>& chains, int size, std::vector<double>& r) {
+  {
     std::vector<double> smoothed = r, window;
-    const int half = rules.medianWindow / 2;
+    const int half = size / 2;
     for (const auto& chain : chains) {
       const int m = static_cast<int>(chain.size());
       for (int k = 0; k < m; ++k) {
@@ -152,31 +128,75 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
     }
     r = smoothed;
   }
-  // 3. Pipe model at forks, bottom-up (nodes are parent-first).
-  if (rules.pipeModel) {
-    for (std::size_t i = n; i-- > 0;) {
-      if (nodes[i].children.size() < 2 || measured[i]) continue;
-      double sum = 0;
-      for (std::int32_t c : nodes[i].children) sum += r[c] * r[c];
-      r[i] = std::max(r[i], std::sqrt(sum));
-    }
+}
+
+/// Step 3: the pipe model at forks, bottom-up (nodes are parent-first); measured nodes keep theirs.
+void pipeAtForks(const std::vector<SkeletonNode>& nodes, const std::vector<char>& measured, std::vector<double>& r) {
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    if (nodes[i].children.size() < 2 || measured[i]) continue;
+    double sum = 0;
+    for (std::int32_t c : nodes[i].children) sum += r[c] * r[c];
+    r[i] = std::max(r[i], std::sqrt(sum));
   }
-  // 4. No child thicker than its parent: along each branch the least-squares non-increasing
-  // radii (isotonic regression, trusted fits weighing most), so one thin fit lowers its
-  // neighbours a little instead of capping the whole branch above it; then a branch is capped
-  // by the node it forks from (chains are parent-first, so that node is final).
-  if (rules.childNotThicker)
-    for (const auto& chain : chains) {
-      std::vector<double> values(chain.size()), weights(chain.size());
-      for (std::size_t k = 0; k < chain.size(); ++k) {
-        values[k] = r[chain[k]];
-        weights[k] = ok[chain[k]] ? 1.0 : kInterpolatedRadiusWeight;
-      }
-      detail::nonIncreasingFit(values, weights);
-      const std::int32_t parent = nodes[chain.front()].parent;
-      const double cap = parent >= 0 ? r[parent] : std::numeric_limits<double>::infinity();
-      for (std::size_t k = 0; k < chain.size(); ++k) r[chain[k]] = std::min(values[k], cap);
+}
+
+/// Step 4: no child thicker than its parent (see RadiusRules::childNotThicker).
+void taperAlongBranches(const std::vector<SkeletonNode>& nodes, const std::vector<std::vector<std::int32_t>>& chains,
+                        const std::vector<char>& ok, std::vector<double>& r) {
+  // Along each branch the least-squares non-increasing radii (isotonic regression, trusted fits
+  // weighing most), so one thin fit lowers its neighbours a little instead of capping the whole
+  // branch above it; then a branch is capped by the node it forks from (chains are parent-first,
+  // so that node is final).
+  for (const auto& chain : chains) {
+    std::vector<double> values(chain.size()), weights(chain.size());
+    for (std::size_t k = 0; k < chain.size(); ++k) {
+      values[k] = r[chain[k]];
+      weights[k] = ok[chain[k]] ? 1.0 : kInterpolatedRadiusWeight;
     }
+    detail::nonIncreasingFit(values, weights);
+    const std::int32_t parent = nodes[chain.front()].parent;
+    const double cap = parent >= 0 ? r[parent] : std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < chain.size(); ++k) r[chain[k]] = std::min(values[k], cap);
+  }
+}
+
+}  // namespace
+
+std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, const std::vector<double>& fitted,
+                                    const std::vector<char>& valid, const RadiusRules& rules) {
+  checkRules(rules);
+  if (fitted.size() != nodes.size() || valid.size() != nodes.size())
+    throw OptionsError("skeleton radii: one fitted radius and one validity flag per node expected");
+  const std::size_t n = nodes.size();
+  std::vector<double> r(n);
+  std::vector<char> ok(n);
+  // A node on the tracked stem has a measured radius even without a fit of its own (the stem's
+  // circle fits over whole slabs), and no rule below raises it: the pipe model and the allometry
+  // stand in for radii the data cannot give. (Leaf-on, the allometry, fitted mostly to leaf
+  // clusters that carry thousands of leaf pieces, gave an oak's 0.14 m trunk a 0.57 m radius.)
+  std::vector<char> measured(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    ok[i] = valid[i] && std::isfinite(fitted[i]) && fitted[i] > 0;
+    r[i] = ok[i] ? fitted[i] : nodes[i].radius;
+    measured[i] = nodes[i].stem && nodes[i].radius > 0;
+    ok[i] = ok[i] || measured[i];
+  }
+  // 0. Fits much thicker than the pipe model anchored at the stem (radius against the length a
+  // node carries) are rejected; no radius ends above that bound (step 5).
+  detail::Allometry allometry;
+  if (rules.allometryMaxRatio > 0) {
+    allometry = detail::fitAllometry(nodes, r, ok, measured);
+    if (allometry.valid)
+      for (std::size_t i = 0; i < n; ++i) {
+        const double p = allometry.predict(i);
+        if (ok[i] && !measured[i] && r[i] > p * rules.allometryMaxRatio) ok[i] = 0;
+      }
+  }
+  const auto chains = detail::branchChains(nodes);
+  interpolateRejected(nodes, chains, ok, allometry, r);
+  if (rules.medianWindow > 1) medianAlongBranches(chains, rules.medianWindow, r);
+  if (rules.pipeModel) pipeAtForks(nodes, measured, r);
+  if (rules.childNotThicker) taperAlongBranches(nodes, chains, ok, r);
   // 5. Not above the pipe law's bound.
   if (allometry.valid)
     for (std::size_t i = 0; i < n; ++i) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include "cli_support.h"
 #include "test_support.h"
@@ -48,6 +49,26 @@ TEST(InfoCli, LazFilePrintsCompressorChunkSizeAndPointFormat) {
        {"format: LAZ (compressed LAS) 1.4\n", "point data format: 6\n", "compressor: LASzip layered chunked",
         "compressed items: POINT14 v3\n", "chunk size: 50000 points\n", "chunks: 9\n", "points: 400754\n"})
     EXPECT_NE(out.find(line), std::string::npos) << "missing '" << line << "' in\n" << out;
+}
+
+// The automatic model of a LAZ file is the model of the same points as text: the spruce decoded
+// and written out with every digit (the shared text copy is rounded to 4 decimals, which moves
+// every z by up to 4e-5 and the skeleton by a node) gives the same cylinder table.
+TEST(InfoCli, ALazCloudGivesTheModelOfItsPointsAsText) {
+  const auto laz = test::sharedDataDir() / "real" / "treels_spruce.laz";
+  if (!std::filesystem::exists(laz)) GTEST_SKIP() << "no shared data at " << laz.parent_path();
+  test::TempDir dir;
+  io::writePointCloud(dir / "spruce.xyz", io::readPointCloud(laz));
+  std::string out;
+  for (const auto& [in, csv] : {std::pair{laz, dir / "laz.csv"}, std::pair{dir / "spruce.xyz", dir / "xyz.csv"}})
+    ASSERT_EQ(test::runCli("reconstruct " + test::quoted(in) + " --auto --leaf-on --up z -o " +
+                               test::quoted(dir / "m.obj") + " --cylinders " + test::quoted(csv),
+                           &out),
+              0)
+        << out;
+  const std::string fromLaz = test::readText(dir / "laz.csv");
+  EXPECT_GT(std::count(fromLaz.begin(), fromLaz.end(), '\n'), 100);
+  EXPECT_EQ(fromLaz, test::readText(dir / "xyz.csv"));
 }
 
 }  // namespace

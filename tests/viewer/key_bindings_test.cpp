@@ -1,5 +1,5 @@
 // The one table of keys (viewer::keyBindings) is what ViewerState::keyPress binds and what the
-// README's key table lists, row for row.
+// key table of docs/gui.md lists, row for row.
 #include "treesketch/viewer/key_bindings.h"
 
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 namespace treesketch::viewer {
 namespace {
 
-/// The README row for a binding (what the README's key table must contain).
+/// The docs/gui.md row for a binding (what its key table must contain).
 std::string readmeRow(const KeyBinding& k) { return "| " + k.keys + " | " + k.action + " |"; }
 
 TEST(KeyBindings, EveryKeyInTheTableIsBound) {
@@ -34,16 +34,16 @@ TEST(KeyBindings, EveryKeyInTheTableIsBound) {
 }
 
 TEST(KeyBindings, TheReadmeListsEveryRowOfTheTable) {
-  // TS_TEST_DATA_DIR is <source>/tests/data (the folder may not exist): the README is two up.
+  // TS_TEST_DATA_DIR is <source>/tests/data (the folder may not exist): the docs are two up.
   std::string data = TS_TEST_DATA_DIR;
   const std::string suffix = "/tests/data";
   ASSERT_EQ(data.compare(data.size() - suffix.size(), suffix.size(), suffix), 0) << data;
-  std::ifstream in(data.substr(0, data.size() - suffix.size()) + "/README.md");
-  ASSERT_TRUE(in) << "README.md not found";
+  std::ifstream in(data.substr(0, data.size() - suffix.size()) + "/docs/gui.md");
+  ASSERT_TRUE(in) << "docs/gui.md not found";
   std::stringstream text;
   text << in.rdbuf();
   for (const KeyBinding& k : keyBindings())
-    EXPECT_NE(text.str().find(readmeRow(k)), std::string::npos) << "README.md lacks the row\n" << readmeRow(k);
+    EXPECT_NE(text.str().find(readmeRow(k)), std::string::npos) << "docs/gui.md lacks the row\n" << readmeRow(k);
 }
 
 }  // namespace

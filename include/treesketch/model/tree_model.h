@@ -41,6 +41,13 @@ struct TreeModel {
 /// with the branch's own radius, as the automatic model's do. The mesh is the reconstruction's.
 TreeModel fromReconstruction(const recon::ReconstructionResult& result, geom::UpAxis up);
 
+/// Refuses an automatic result that is no model, with DegenerateInputError naming `source` (the
+/// cloud's path), its point count and its diagonal: no skeleton, no radius measured or inferred
+/// (no fit, no measured stem, no crown to infer a stem from: points all equal or on a line), or a
+/// tube of zero area. A model whose radii were all inferred from the crown passes (its verdict
+/// says so).
+void checkAutoModel(const std::string& source, const geom::PointCloud& cloud, const skeleton::AutoSkeletonResult& result);
+
 /// A skeleton model's frustums (parents first; ids = node indices; measured = `accepted`, or all
 /// when it is empty). The mesh is left empty.
 TreeModel fromSkeletonNodes(const std::vector<skeleton::SkeletonNode>& nodes, const std::vector<char>& accepted,
