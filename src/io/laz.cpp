@@ -123,21 +123,10 @@ struct Chunk {
   std::uint64_t firstPoint = 0, count = 0;
 };
 
-/// Reads the chunk table; checks that the chunks lie inside the point data and hold exactly the
-/// header's point count.
-std::vector<Chunk> readChunkTable(std::string_view file, const LasHeader& h, const LazInfo& info,
-                                  const std::string& source) {
-  const std::uint64_t pointData = h.offsetToPointData;
+/// The byte offset of the chunk table, read from the 8 bytes at the start of the point data (or
+/// from the file's last 8 bytes when those say -1); checks that it lies inside the file after them.
+std::uint64_t chunkTableOffset(std::string_view file, std::uint64_t pointData, const std::string& source) {
   const std::uint64_t size = file.size();
-  std::vector<Chunk> chunks;
-  if (info.compressor == 1) {  // one stream, no table
-    if (size < pointData)
-      throw InputError(
-          atOffset(source, size, "truncated: point data should start at byte " + std::to_string(pointData)));
-    checkPlausible(h.pointCount, size - pointData, pointData, source);
-    if (h.pointCount) chunks.push_back({pointData, size, 0, h.pointCount});
-    return chunks;
-  }
   if (size < pointData + 8)
     throw InputError(atOffset(
         source, size, "truncated: expected the 8-byte chunk table offset at byte " + std::to_string(pointData)));
@@ -154,7 +143,25 @@ std::vector<Chunk> readChunkTable(std::string_view file, const LasHeader& h, con
                                   "expected " +
                                   std::to_string(pointData + 8) + " to " + std::to_string(size >= 8 ? size - 8 : 0) +
                                   " (truncated file?)"));
-  const auto table = static_cast<std::uint64_t>(tableAt);
+  return static_cast<std::uint64_t>(tableAt);
+}
+
+/// Reads the chunk table; checks that the chunks lie inside the point data and hold exactly the
+/// header's point count.
+std::vector<Chunk> readChunkTable(std::string_view file, const LasHeader& h, const LazInfo& info,
+                                  const std::string& source) {
+  const std::uint64_t pointData = h.offsetToPointData;
+  const std::uint64_t size = file.size();
+  std::vector<Chunk> chunks;
+  if (info.compressor == 1) {  // one stream, no table
+    if (size < pointData)
+      throw InputError(
+          atOffset(source, size, "truncated: point data should start at byte " + std::to_string(pointData)));
+    checkPlausible(h.pointCount, size - pointData, pointData, source);
+    if (h.pointCount) chunks.push_back({pointData, size, 0, h.pointCount});
+    return chunks;
+  }
+  const std::uint64_t table = chunkTableOffset(file, pointData, source);
   const auto version = detail::loadLE<std::uint32_t>(file.data() + table);
   const auto count = detail::loadLE<std::uint32_t>(file.data() + table + 4);
   if (version != 0)

@@ -157,6 +157,18 @@ class Point14Item final : public LayeredItem {
     storeU32(l + 4, loadU32(l + 4) + static_cast<std::uint32_t>(dy));
     c.yMedian[ctx].add(dy);
 
+    decodeLayers(c, changed, n, r, sc);
+    c.gpsChanged = gpsChanged;
+    std::memcpy(out, l, kPoint14Size);
+  }
+
+ private:
+  /// The fields after X and Y, each from its own layer (skipped when that layer is empty or
+  /// `changed` says the field kept its value): Z, classification, flags, intensity, scan angle,
+  /// user data, point source and GPS time.
+  void decodeLayers(Point14Channel& c, std::uint32_t changed, unsigned n, unsigned r, unsigned sc) {
+    unsigned char* l = c.last;
+    const bool gpsChanged = changed & 16;
     if (sizes_[kZ]) {
       const std::uint32_t kz = std::min((c.dx.k() + c.dy.k()) / 2, 18u) & ~1u;
       const unsigned lvl = returnLevel8(n, r);
@@ -192,11 +204,8 @@ class Point14Item final : public LayeredItem {
       c.gpsState.decode(layers_[kGps], c.gpsMulti, c.gpsZeroDiff, c.gps, true);
       storeU64(l + 22, c.gpsState.last[c.gpsState.cur]);
     }
-    c.gpsChanged = gpsChanged;
-    std::memcpy(out, l, kPoint14Size);
   }
 
- private:
   enum Layer { kXy, kZ, kClass, kFlags, kIntensity, kScanAngle, kUserData, kPointSource, kGps, kLayers };
   std::array<std::unique_ptr<Point14Channel>, 4> ch_;
   unsigned current_ = 0;

@@ -234,6 +234,100 @@ std::uint8_t toColor(double v, PlyType t) {
   return static_cast<std::uint8_t>(std::lround(v));
 }
 
+/// What a scalar vertex property holds, by its name (kNone: read and ignored). Station, mesh,
+/// scanner position, intensity and classification count only with `cloudAttributes`, quality
+/// only with `meshAttributes`.
+Role roleOf(const PlyProperty& p, bool cloudAttributes, bool meshAttributes) {
+  Role r = kNone;
+  if (p.name == "x")
+    r = kX;
+  else if (p.name == "y")
+    r = kY;
+  else if (p.name == "z")
+    r = kZ;
+  else if (cloudAttributes && p.name == "station")
+    r = kStation;
+  else if (cloudAttributes && p.name == "mesh")
+    r = kMesh;
+  else if (cloudAttributes && p.name == "scanner_x")
+    r = kScannerX;
+  else if (cloudAttributes && p.name == "scanner_y")
+    r = kScannerY;
+  else if (cloudAttributes && p.name == "scanner_z")
+    r = kScannerZ;
+  else if (p.name == "red" || p.name == "r" || p.name == "diffuse_red")
+    r = kRed;  // clouds (CloudCompare, PDAL) and meshes (MeshLab) alike
+  else if (p.name == "green" || p.name == "g" || p.name == "diffuse_green")
+    r = kGreen;
+  else if (p.name == "blue" || p.name == "b" || p.name == "diffuse_blue")
+    r = kBlue;
+  else if (cloudAttributes && (p.name == "intensity" || p.name == "scalar_intensity" || p.name == "scalar_Intensity"))
+    r = kIntensity;
+  else if (cloudAttributes &&
+           (p.name == "classification" || p.name == "scalar_classification" || p.name == "scalar_Classification"))
+    r = kClass;
+  else if (meshAttributes && p.name == "quality")
+    r = kQuality;
+  return r;
+}
+
+/// Puts the value `v` of property `p`, which has role `role`, in place: in the point, the scanner
+/// position or the colour of the record being read, or appended to its column of `out`.
+void storeValue(Cursor& c, Role role, const PlyProperty& p, double v, VertexData& out, geom::Vec3& pt, geom::Vec3& sc,
+                std::array<std::uint8_t, 3>& rgb) {
+  switch (role) {
+    case kX:
+      pt.x() = v;
+      break;
+    case kY:
+      pt.y() = v;
+      break;
+    case kZ:
+      pt.z() = v;
+      break;
+    case kStation:
+      out.station.push_back(toInt32(c, v, "station"));
+      break;
+    case kMesh:
+      out.meshId.push_back(toInt32(c, v, "mesh"));
+      break;
+    case kScannerX:
+      sc.x() = v;
+      break;
+    case kScannerY:
+      sc.y() = v;
+      break;
+    case kScannerZ:
+      sc.z() = v;
+      break;
+    case kRed:
+      rgb[0] = toColor(v, p.type);
+      break;
+    case kGreen:
+      rgb[1] = toColor(v, p.type);
+      break;
+    case kBlue:
+      rgb[2] = toColor(v, p.type);
+      break;
+    case kQuality:
+      out.quality.push_back(v);
+      break;
+    case kIntensity:
+      if (!(std::abs(v) <= std::numeric_limits<float>::max()))
+        c.failAtRecord("intensity " + std::to_string(v) + " is not a finite single-precision number");
+      out.intensity.push_back(static_cast<float>(v));
+      break;
+    case kClass:
+      if (!(v >= 0 && v <= 255 && v == std::floor(v)))
+        c.failAtRecord("classification must be an integer 0 to 255, got " + std::to_string(v));
+      out.classification.push_back(static_cast<std::uint8_t>(v));
+      break;
+    case kNone:
+    case kRoles:
+      break;
+  }
+}
+
 VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bool meshAttributes) {
   c.beginElement(e);
   std::vector<Role> roles(e.properties.size(), kNone);
@@ -241,36 +335,7 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
   for (std::size_t i = 0; i < e.properties.size(); ++i) {
     const PlyProperty& p = e.properties[i];
     if (p.isList) continue;
-    Role r = kNone;
-    if (p.name == "x")
-      r = kX;
-    else if (p.name == "y")
-      r = kY;
-    else if (p.name == "z")
-      r = kZ;
-    else if (cloudAttributes && p.name == "station")
-      r = kStation;
-    else if (cloudAttributes && p.name == "mesh")
-      r = kMesh;
-    else if (cloudAttributes && p.name == "scanner_x")
-      r = kScannerX;
-    else if (cloudAttributes && p.name == "scanner_y")
-      r = kScannerY;
-    else if (cloudAttributes && p.name == "scanner_z")
-      r = kScannerZ;
-    else if (p.name == "red" || p.name == "r" || p.name == "diffuse_red")
-      r = kRed;  // clouds (CloudCompare, PDAL) and meshes (MeshLab) alike
-    else if (p.name == "green" || p.name == "g" || p.name == "diffuse_green")
-      r = kGreen;
-    else if (p.name == "blue" || p.name == "b" || p.name == "diffuse_blue")
-      r = kBlue;
-    else if (cloudAttributes && (p.name == "intensity" || p.name == "scalar_intensity" || p.name == "scalar_Intensity"))
-      r = kIntensity;
-    else if (cloudAttributes &&
-             (p.name == "classification" || p.name == "scalar_classification" || p.name == "scalar_Classification"))
-      r = kClass;
-    else if (meshAttributes && p.name == "quality")
-      r = kQuality;
+    Role r = roleOf(p, cloudAttributes, meshAttributes);
     if (r != kNone && has[r]) r = kNone;  // a repeated name: the first one counts
     roles[i] = r;
     has[r] = true;
@@ -301,57 +366,7 @@ VertexData readVertices(Cursor& c, const PlyElement& e, bool cloudAttributes, bo
         continue;
       }
       double v = c.scalar(p.type);
-      switch (roles[k]) {
-        case kX:
-          pt.x() = v;
-          break;
-        case kY:
-          pt.y() = v;
-          break;
-        case kZ:
-          pt.z() = v;
-          break;
-        case kStation:
-          out.station.push_back(toInt32(c, v, "station"));
-          break;
-        case kMesh:
-          out.meshId.push_back(toInt32(c, v, "mesh"));
-          break;
-        case kScannerX:
-          sc.x() = v;
-          break;
-        case kScannerY:
-          sc.y() = v;
-          break;
-        case kScannerZ:
-          sc.z() = v;
-          break;
-        case kRed:
-          rgb[0] = toColor(v, p.type);
-          break;
-        case kGreen:
-          rgb[1] = toColor(v, p.type);
-          break;
-        case kBlue:
-          rgb[2] = toColor(v, p.type);
-          break;
-        case kQuality:
-          out.quality.push_back(v);
-          break;
-        case kIntensity:
-          if (!(std::abs(v) <= std::numeric_limits<float>::max()))
-            c.failAtRecord("intensity " + std::to_string(v) + " is not a finite single-precision number");
-          out.intensity.push_back(static_cast<float>(v));
-          break;
-        case kClass:
-          if (!(v >= 0 && v <= 255 && v == std::floor(v)))
-            c.failAtRecord("classification must be an integer 0 to 255, got " + std::to_string(v));
-          out.classification.push_back(static_cast<std::uint8_t>(v));
-          break;
-        case kNone:
-        case kRoles:
-          break;
-      }
+      storeValue(c, roles[k], p, v, out, pt, sc, rgb);
     }
     if (!pt.allFinite()) c.failAtRecord("non-finite vertex coordinate (NaN or Inf), expected finite x, y, z");
     out.positions.push_back(pt);

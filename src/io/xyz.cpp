@@ -89,6 +89,47 @@ ColumnMap columnsFromCount(int n) {
   return m;
 }
 
+/// Appends the attributes of one point line (its `n` fields in `f`) to `cloud` and `colors`.
+/// Extra columns are optional: a line without them (or with text there) drops the attributes of
+/// the whole file rather than failing, as before they were read. Returns false when it dropped them.
+bool appendAttributes(const std::string_view* f, int n, const ColumnMap& columns, geom::PointCloud& cloud,
+                      std::vector<std::array<double, 3>>& colors) {
+  double a[kMaxFields];
+  auto number = [&](int col) {
+    return col < n && detail::parseDouble(f[col].data(), f[col].data() + f[col].size(), a[col]) &&
+           std::isfinite(a[col]);
+  };
+  bool ok = n >= columns.needed();
+  if (ok && columns.intensity >= 0)
+    ok = number(columns.intensity) && std::abs(a[columns.intensity]) <= std::numeric_limits<float>::max();
+  if (ok && columns.red >= 0) ok = number(columns.red) && number(columns.green) && number(columns.blue);
+  if (ok && columns.classification >= 0)
+    ok = number(columns.classification) && a[columns.classification] >= 0 && a[columns.classification] <= 255;
+  if (!ok) {
+    cloud.intensity.clear();
+    cloud.classification.clear();
+    colors.clear();
+    return false;
+  }
+  if (columns.intensity >= 0) cloud.intensity.push_back(static_cast<float>(a[columns.intensity]));
+  if (columns.red >= 0) colors.push_back({a[columns.red], a[columns.green], a[columns.blue]});
+  if (columns.classification >= 0)
+    cloud.classification.push_back(static_cast<std::uint8_t>(std::lround(a[columns.classification])));
+  return true;
+}
+
+/// Sets the cloud's colours from the columns read: colours in [0, 1] (CloudCompare's "Rf Gf Bf")
+/// are scaled to bytes; others are clamped to 0–255.
+void setColors(geom::PointCloud& cloud, const std::vector<std::array<double, 3>>& colors) {
+  double top = 0.0;
+  for (const auto& c : colors) top = std::max({top, c[0], c[1], c[2]});
+  const double scale = top <= 1.0 ? 255.0 : 1.0;
+  cloud.color.resize(colors.size());
+  for (std::size_t i = 0; i < colors.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      cloud.color[i][k] = static_cast<std::uint8_t>(std::lround(std::clamp(colors[i][k] * scale, 0.0, 255.0)));
+}
+
 geom::PointCloud parseXyz(std::string_view data, const std::string& source, const CloudReadOptions& options) {
   geom::PointCloud cloud;
   // One point a line, and a point line takes at least 6 bytes ("0 0 0\n").
@@ -147,32 +188,7 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
       attributes = columns.any();
     }
     cloud.positions.emplace_back(v[0], v[1], v[2]);
-    if (attributes) {
-      // Extra columns are optional: a line without them (or with text there) drops the attributes
-      // of the whole file rather than failing, as before they were read.
-      double a[kMaxFields];
-      auto number = [&](int col) {
-        return col < n && detail::parseDouble(f[col].data(), f[col].data() + f[col].size(), a[col]) &&
-               std::isfinite(a[col]);
-      };
-      bool ok = n >= columns.needed();
-      if (ok && columns.intensity >= 0)
-        ok = number(columns.intensity) && std::abs(a[columns.intensity]) <= std::numeric_limits<float>::max();
-      if (ok && columns.red >= 0) ok = number(columns.red) && number(columns.green) && number(columns.blue);
-      if (ok && columns.classification >= 0)
-        ok = number(columns.classification) && a[columns.classification] >= 0 && a[columns.classification] <= 255;
-      if (!ok) {
-        attributes = false;
-        cloud.intensity.clear();
-        cloud.classification.clear();
-        colors.clear();
-      } else {
-        if (columns.intensity >= 0) cloud.intensity.push_back(static_cast<float>(a[columns.intensity]));
-        if (columns.red >= 0) colors.push_back({a[columns.red], a[columns.green], a[columns.blue]});
-        if (columns.classification >= 0)
-          cloud.classification.push_back(static_cast<std::uint8_t>(std::lround(a[columns.classification])));
-      }
-    }
+    if (attributes) attributes = appendAttributes(f, n, columns, cloud, colors);
   }
   if (cloud.empty()) {
     if (data.empty()) throw InputError(source + ": file is empty, expected lines of 'x y z' numbers");
@@ -180,16 +196,7 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
                      " lines, expected lines of 'x y z' numbers");
   }
   checkCloudSize(cloud, source, options.minPoints);
-  if (!colors.empty()) {
-    // Colours in [0, 1] (CloudCompare's "Rf Gf Bf") are scaled to bytes; others are clamped to 0–255.
-    double top = 0.0;
-    for (const auto& c : colors) top = std::max({top, c[0], c[1], c[2]});
-    const double scale = top <= 1.0 ? 255.0 : 1.0;
-    cloud.color.resize(colors.size());
-    for (std::size_t i = 0; i < colors.size(); ++i)
-      for (int k = 0; k < 3; ++k)
-        cloud.color[i][k] = static_cast<std::uint8_t>(std::lround(std::clamp(colors[i][k] * scale, 0.0, 255.0)));
-  }
+  if (!colors.empty()) setColors(cloud, colors);
   return cloud;
 }
 
