@@ -77,11 +77,11 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
   fs::remove(dir / kFailedMarker, ec);
   TreeJob job;
   job.cloud = t.cloud.string();
-  job.mesh = (dir / "mesh.ply").string();
-  job.cylinders = (dir / "cylinders.csv").string();
-  job.qsm = (dir / "qsm.txt").string();
-  job.metrics = (dir / "metrics.json").string();
-  job.report = (dir / "report.json").string();
+  job.out.mesh = (dir / "mesh.ply").string();
+  job.out.cylinders = (dir / "cylinders.csv").string();
+  job.out.qsm = (dir / "qsm.txt").string();
+  job.out.metrics = (dir / "metrics.json").string();
+  job.out.report = (dir / "report.json").string();
   job.up = a.up;
   job.leafOn = a.leafOn;
   job.seed = a.seed;

@@ -23,7 +23,8 @@ namespace treesketch::cli {
 namespace {
 
 struct ReconstructArgs {
-  std::string cloud, sketch, output, report;
+  std::string cloud, sketch;
+  model::OutputPaths out;  // -o, --cylinders, --qsm, --metrics, --report
   int ring = 16;
   double inlierThreshold = -1.0;  // < 0: library default
   std::uint64_t seed = 1;
@@ -31,7 +32,6 @@ struct ReconstructArgs {
   bool leafOn = false;              // --leaf-on (with --auto): settings for trees in leaf
   bool refit = false;               // --refit: drop the sketch's kept circles, fit every node
   std::string up;                   // --up ("" = the rule of io/up_axis.h; with --auto)
-  std::string cylinders, qsm, metrics;  // --cylinders, --qsm, --metrics: the model's other outputs
   double unitMetres = 0.0;          // --units-metres (with --report; 0 = not given: metres)
 };
 
@@ -67,7 +67,7 @@ nlohmann::json reportHeader(const ReconstructArgs& a, const recon::Reconstructio
   nlohmann::json root;
   root["cloud"] = a.cloud;
   root["sketch"] = a.sketch;
-  root["mesh"] = a.output;
+  root["mesh"] = a.out.mesh;
   root["points"] = cloudSize;
   root["seed"] = a.seed;
   root["ringVertices"] = a.ring;
@@ -87,12 +87,8 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   if (a.refit) throw OptionsError("--refit applies to a sketch file (--sketch without --auto)");
   TreeJob job;
   job.cloud = a.cloud;
-  job.mesh = a.output;
+  job.out = a.out;
   job.sketch = a.sketch;
-  job.cylinders = a.cylinders;
-  job.qsm = a.qsm;
-  job.report = a.report;
-  job.metrics = a.metrics;
   job.up = a.up;
   job.leafOn = a.leafOn;
   job.seed = a.seed;
@@ -105,26 +101,18 @@ void runAutoReconstruct(const ReconstructArgs& a) {
       "reconstruct --auto: %zu skeleton nodes (%zu forks), %zu fits accepted, %zu leaf pieces not fitted; "
       "%zu vertices, %zu triangles; skeleton %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
       r.skeletonNodes, r.forks, r.fitsAccepted, r.leafPieces, r.vertices, r.triangles, r.skeletonMs, r.fitMs, r.sweepMs,
-      a.output.c_str());
-  model::OutputPaths outputs;
-  outputs.report = a.report;
-  outputs.metrics = a.metrics;
-  printModelSummary(r.measures, outputs);
+      a.out.mesh.c_str());
+  printModelSummary(r.measures, a.out);
 }
 
 void runReconstruct(const ReconstructArgs& a) {
-  if (a.unitMetres != 0.0 && a.report.empty() && a.metrics.empty())
+  if (a.unitMetres != 0.0 && a.out.report.empty() && a.out.metrics.empty())
     throw OptionsError("--units-metres applies to the report's and the metrics' figures: it needs --report or --metrics");
   if (a.autoSkeleton) return runAutoReconstruct(a);
   if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
   if (!a.up.empty()) throw OptionsError("--up needs --auto (a sketch file carries its own up axis)");
   if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");
-  model::OutputPaths outputs;
-  outputs.mesh = a.output;
-  outputs.cylinders = a.cylinders;
-  outputs.qsm = a.qsm;
-  outputs.metrics = a.metrics;
-  outputs.report = a.report;
+  const model::OutputPaths& outputs = a.out;
   model::checkOutputs(outputs, {a.cloud, a.sketch});
   recon::ReconstructionOptions opt = recon::sketchReconstructionOptions();  // as the desktop tool fits it
   opt.seed = a.seed;
@@ -148,20 +136,20 @@ void runReconstruct(const ReconstructArgs& a) {
   model::MeasureOptions mo;
   mo.unitMetres = a.unitMetres == 0.0 ? 1.0 : a.unitMetres;
   const model::ModelMeasures measures = model::measure(tree, cloud, mo);
-  const bool wantsModel = !a.cylinders.empty() || !a.qsm.empty() || !a.metrics.empty();
+  const bool wantsModel = !a.out.cylinders.empty() || !a.out.qsm.empty() || !a.out.metrics.empty();
   if (fitted + kept > 0 && !(r.mesh.area() > 0))
     throw DegenerateInputError(a.sketch + ": the model made in " + a.cloud + " has zero area (" +
                                std::to_string(fitted + kept) + " circles, all of radius 0?); no mesh written");
   if (fitted + kept == 0) {
     // The report still says why each node failed; no model file is written.
-    if (!a.report.empty()) {
+    if (!a.out.report.empty()) {
       model::OutputPaths reportOnly;
-      reportOnly.report = a.report;
+      reportOnly.report = a.out.report;
       model::writeOutputs(tree, measures, reportOnly, reportHeader(a, r, cloud.size()));
     }
     throw DegenerateInputError(a.sketch + ": no node could be fitted in " + a.cloud + " (" + std::to_string(skipped) +
                                " skipped, " + std::to_string(disabled) + " disabled); no mesh written" +
-                               (a.report.empty() ? "" : ", see " + a.report));
+                               (a.out.report.empty() ? "" : ", see " + a.out.report));
   }
   if (wantsModel && tree.cylinders.empty())
     throw DegenerateInputError(a.sketch + ": only " + std::to_string(fitted + kept) +
@@ -172,7 +160,7 @@ void runReconstruct(const ReconstructArgs& a) {
       "reconstruct: %zu nodes: %zu fitted, %zu skipped, %zu disabled, %zu kept circles; %zu vertices, %zu "
       "triangles; index %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
       r.results.size(), fitted, skipped, disabled, kept, r.mesh.vertices.size(), r.mesh.triangles.size(),
-      r.timings.indexMs, r.timings.fitMs, r.timings.sweepMs, a.output.c_str());
+      r.timings.indexMs, r.timings.fitMs, r.timings.sweepMs, a.out.mesh.c_str());
   printModelSummary(measures, outputs);
 }
 
@@ -190,12 +178,12 @@ void registerReconstruct(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"y", "z", "Y", "Z"}));
   sub->add_flag("--leaf-on", a->leafOn,
                 "With --auto: the tree was scanned in leaf (finer voxels, weaker foliage rule)");
-  sub->add_option("--cylinders", a->cylinders, "Also write the model's cylinder table (.csv)");
-  sub->add_option("--qsm", a->qsm, "Also write the model's cylinders in TreeQSM's text layout (.txt)");
-  sub->add_option("--metrics", a->metrics,
+  sub->add_option("--cylinders", a->out.cylinders, "Also write the model's cylinder table (.csv)");
+  sub->add_option("--qsm", a->out.qsm, "Also write the model's cylinders in TreeQSM's text layout (.txt)");
+  sub->add_option("--metrics", a->out.metrics,
                   "Also write the tree metrics (.json: height, DBH, volumes by order, crown, taper)");
-  sub->add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
-  sub->add_option("--report", a->report,
+  sub->add_option("-o,--output", a->out.mesh, "Output mesh (.obj or .ply)")->required();
+  sub->add_option("--report", a->out.report,
                   "Write a JSON report: every node's fit (or the automatic model's counts), and how well the model "
                   "explains the cloud (points within 1/2/5 cm, missed, median signed distance, volume, length, "
                   "trunk diameter at 1.3 m)");

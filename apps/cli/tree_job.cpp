@@ -25,13 +25,7 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 TreeJobResult runTreeJob(const TreeJob& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  model::OutputPaths outputs;
-  outputs.mesh = a.mesh;
-  outputs.cylinders = a.cylinders;
-  outputs.qsm = a.qsm;
-  outputs.metrics = a.metrics;
-  outputs.report = a.report;
-  model::checkOutputs(outputs, {a.cloud});
+  model::checkOutputs(a.out, {a.cloud});
   if (!a.sketch.empty()) {
     checkNotAnInput(a.sketch, {a.cloud});
     checkOutputWritable(a.sketch);
@@ -72,7 +66,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
 
   nlohmann::json header;
   header["cloud"] = a.cloud;
-  header["mesh"] = a.mesh;
+  header["mesh"] = a.out.mesh;
   header["auto"] = true;
   header["leafOn"] = a.leafOn;
   header["up"] = r.up;
@@ -91,7 +85,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   // The sketch first; the model's outputs end with the report, after which a batch writes its
   // done marker, so their presence says the tree is complete.
   if (!a.sketch.empty()) io::writeSketch(std::filesystem::path(a.sketch), s.sketch);
-  model::writeOutputs(tree, measures, outputs, header);
+  model::writeOutputs(tree, measures, a.out, header);
   r.measures = measures;
   r.totalMs = msSince(t0);
   return r;

@@ -13,10 +13,8 @@ namespace treesketch::cli {
 
 struct TreeJob {
   std::string cloud;
-  std::string mesh;               ///< required (.obj or .ply)
-  std::string sketch, cylinders;  ///< optional outputs ("" = none)
-  std::string qsm;                ///< TreeQSM-layout cylinder table (optional)
-  std::string metrics, report;    ///< JSON outputs (optional)
+  model::OutputPaths out;  ///< the model's files: the mesh is required, the others optional ("" = none)
+  std::string sketch;      ///< the automatic sketch (optional)
   std::string up;                 ///< --up ("" = the rule of io/up_axis.h)
   bool leafOn = false;
   std::uint64_t seed = 1;

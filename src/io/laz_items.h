@@ -16,6 +16,19 @@
 
 namespace treesketch::io::laz {
 
+/// Little-endian fields of a LAS record, read and written in place.
+inline std::uint16_t loadU16(const unsigned char* p) { return static_cast<std::uint16_t>(p[0] | p[1] << 8); }
+inline std::uint32_t loadU32(const unsigned char* p) {
+  return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+}
+inline void storeU16(unsigned char* p, std::uint32_t v) {
+  p[0] = static_cast<unsigned char>(v);
+  p[1] = static_cast<unsigned char>(v >> 8);
+}
+inline void storeU32(unsigned char* p, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));
+}
+
 /// LASzip item types (the "type" field of the LASzip VLR's item list).
 enum ItemType : std::uint16_t {
   kByte = 0,

@@ -12,17 +12,22 @@ namespace treesketch::io::laz {
 
 namespace {
 
-std::uint16_t loadU16(const unsigned char* p) { return static_cast<std::uint16_t>(p[0] | p[1] << 8); }
-std::uint32_t loadU32(const unsigned char* p) {
-  return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+/// A layered item's byte count per layer, as the chunk lists them.
+template <typename Sizes>
+void readLayerSizes(ArithmeticDecoder& in, Sizes& sizes) {
+  for (auto& s : sizes) s = in.readRawU32();
 }
-void storeU16(unsigned char* p, std::uint32_t v) {
-  p[0] = static_cast<unsigned char>(v);
-  p[1] = static_cast<unsigned char>(v >> 8);
+
+/// One decoder per layer, in order; an empty layer (the field never changes) is not started.
+template <typename Sizes>
+void startEveryLayer(ArithmeticDecoder& in, const Sizes& sizes, std::vector<ArithmeticDecoder>& layers) {
+  layers.clear();
+  for (std::uint32_t s : sizes) {
+    layers.push_back(in.layer(s));
+    if (s) layers.back().start();
+  }
 }
-void storeU32(unsigned char* p, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));
-}
+
 std::uint64_t loadU64(const unsigned char* p) {
   std::uint64_t v = 0;
   for (int i = 7; i >= 0; --i) v = (v << 8) | p[i];
@@ -98,17 +103,8 @@ class Point14Item final : public LayeredItem {
     current_ = channel;
   }
 
-  void readSizes(ArithmeticDecoder& in) override {
-    for (auto& s : sizes_) s = in.readRawU32();
-  }
-
-  void startLayers(ArithmeticDecoder& in) override {
-    layers_.clear();
-    for (std::uint32_t s : sizes_) {
-      layers_.push_back(in.layer(s));
-      if (s) layers_.back().start();
-    }
-  }
+  void readSizes(ArithmeticDecoder& in) override { readLayerSizes(in, sizes_); }
+  void startLayers(ArithmeticDecoder& in) override { startEveryLayer(in, sizes_, layers_); }
 
   void next(unsigned char* out, unsigned& channel) override {
     ArithmeticDecoder& xy = layers_[kXy];
@@ -319,17 +315,8 @@ class Byte14Item final : public LayeredItem {
     ch_[channel]->last.assign(raw, raw + n_);
   }
 
-  void readSizes(ArithmeticDecoder& in) override {
-    for (auto& s : sizes_) s = in.readRawU32();
-  }
-
-  void startLayers(ArithmeticDecoder& in) override {
-    layers_.clear();
-    for (std::uint32_t s : sizes_) {
-      layers_.push_back(in.layer(s));
-      if (s) layers_.back().start();
-    }
-  }
+  void readSizes(ArithmeticDecoder& in) override { readLayerSizes(in, sizes_); }
+  void startLayers(ArithmeticDecoder& in) override { startEveryLayer(in, sizes_, layers_); }
 
   void next(unsigned char* out, unsigned& channel) override {
     BytesState* m = nullptr;
