@@ -85,8 +85,10 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
     model::MeasureOptions mo;
     mo.unitMetres = unitMetres;
     mo.leafOn = leafOn;  // as the CLI measures it: the fit, the volume's range and the verdict
+    mo.noise = s.noiseMeasured ? s.noise : -1.0;
     mo.leafPieceShare = s.model.empty() ? 0.0 : static_cast<double>(leafPieces) / static_cast<double>(s.model.size());
     t.measures = model::measure(t.tree, *cloud, mo);
+    t.measureOptions = mo;
     t.timings["metrics_ms"] = msSince(tm);
     t.timings["library_ms"] = msSince(t0);
     t.sketch = std::move(s.sketch);
@@ -149,7 +151,7 @@ std::string lower(std::string s) {
 
 /// The fit against `cloud` (what a report holds), measured on demand.
 model::ModelMeasures measuredWithFit(const PyModel& t, const geom::PointCloud& cloud, double unitMetres) {
-  model::MeasureOptions mo;
+  model::MeasureOptions mo = t.measureOptions;
   mo.unitMetres = unitMetres;
   mo.fit = true;
   return model::measure(t.tree, cloud, mo);

@@ -14,6 +14,9 @@ namespace treesketch::python {
 struct PyModel {
   model::TreeModel tree;
   model::ModelMeasures measures;  ///< with the cloud it was made from; the fit only on demand
+  /// What `measures` was measured with (leaf state, noise, leaf pieces): a report re-measures with
+  /// the same, plus the fit.
+  model::MeasureOptions measureOptions;
   sketch::Sketch sketch;          ///< the editable sketch behind the model
   std::string source;             ///< names the cloud in messages and reports
   std::string upReason;

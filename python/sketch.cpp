@@ -118,6 +118,7 @@ std::shared_ptr<PyModel> sketchModel(const PyReconstruction& r, double unitMetre
   mo.unitMetres = unitMetres;
   mo.fit = false;
   m->measures = model::measure(m->tree, *r.cloud, mo);
+  m->measureOptions = mo;
   m->sketch = r.sketch;
   m->source = r.source;
   m->upReason = std::string("the sketch's up axis, ") + geom::toString(r.sketch.up);

@@ -60,6 +60,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   model::MeasureOptions mo;
   mo.unitMetres = a.unitMetres;
   mo.leafOn = a.leafOn;
+  mo.noise = s.noiseMeasured ? s.noise : -1.0;
   mo.leafPieceShare = r.skeletonNodes ? static_cast<double>(r.leafPieces) / static_cast<double>(r.skeletonNodes) : 0.0;
   const model::ModelMeasures measures = model::measure(tree, cloud, mo);
   r.metricsMs = msSince(tm);
@@ -75,6 +76,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   header["seed"] = a.seed;
   header["skeletonNodes"] = r.skeletonNodes;
   header["forks"] = r.forks;
+  header["thinnedBySurface"] = s.thinnedBySurface;
   header["vertices"] = r.vertices;
   header["triangles"] = r.triangles;
   header["timings"] = {{"readMs", r.readMs},

@@ -234,7 +234,14 @@ double measuredVolumeShare(const TreeModel& model) {
 }
 
 std::string ModelMeasures::summary() const {
-  return hasFit ? compare::summaryLine(fit) + "; " + compare::summaryLine(figures) : compare::summaryLine(figures);
+  std::string line =
+      hasFit ? compare::summaryLine(fit) + "; " + compare::summaryLine(figures) : compare::summaryLine(figures);
+  if (std::isfinite(noiseMetres)) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "; scan noise %.1f mm", 1000.0 * noiseMetres);
+    line += buf;
+  }
+  return line;
 }
 
 ModelMeasures measure(const TreeModel& model, const geom::PointCloud& cloud, const MeasureOptions& options) {
@@ -255,6 +262,7 @@ ModelMeasures measure(const TreeModel& model, const geom::PointCloud& cloud, con
   const double dbh = m.metrics.figures.trunkDiameter, height = m.metrics.height;
   const double cylinder = std::numbers::pi / 4 * dbh * dbh * height;
   m.formFactor = cylinder > 0 ? m.figures.volume / cylinder : std::numeric_limits<double>::quiet_NaN();
+  if (options.noise >= 0 && std::isfinite(options.noise)) m.noiseMetres = options.noise * u;
   m.verdict = assess(m, cloud.size(), options);
   return m;
 }
@@ -300,7 +308,8 @@ nlohmann::json reportJson(const ModelMeasures& m, nlohmann::json header) {
                      {"figures", compare::toJson(m.figures)},
                      {"measuredVolumeShare", m.measuredVolumeShare},
                      {"volumeRangeM3", {m.volumeLow, m.volumeHigh}},
-                     {"formFactor", std::isfinite(m.formFactor) ? nlohmann::json(m.formFactor) : nlohmann::json()}};
+                     {"formFactor", std::isfinite(m.formFactor) ? nlohmann::json(m.formFactor) : nlohmann::json()},
+                     {"noiseM", std::isfinite(m.noiseMetres) ? nlohmann::json(m.noiseMetres) : nlohmann::json()}};
   header["verdict"] = verdictJson(m.verdict);
   header["metrics"] = compare::toJson(m.metrics);
   return header;

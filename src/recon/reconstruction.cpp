@@ -179,20 +179,27 @@ void Reconstruction::sweepEntries() {
   sweeper_.update(nodes);
 }
 
-std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const ProgressFn& progress) {
+std::vector<NodeId> Reconstruction::fit(const sketch::Sketch& sketch, const ProgressFn& progress) {
   const Stopwatch timer;
   sketch.validate();
   const bool lassosChanged = refreshExclusions(sketch);
   Pending pending = diff(sketch, lassosChanged);
   if (options_.fit.chooseDepth) addPriorDependents(sketch, pending);
-  const Stopwatch fitTimer;
   fitPending(sketch, pending, progress);
-  timings_.fitMs = fitTimer.ms();
+  timings_.fitMs = timer.ms();
+  timings_.sweepMs = 0.0;
+  timings_.totalMs = timings_.fitMs;
+  return std::move(pending.changed);
+}
+
+std::vector<NodeId> Reconstruction::update(const sketch::Sketch& sketch, const ProgressFn& progress) {
+  const Stopwatch timer;
+  std::vector<NodeId> changed = fit(sketch, progress);
   const Stopwatch sweepTimer;
   sweepEntries();
   timings_.sweepMs = sweepTimer.ms();
   timings_.totalMs = timer.ms();
-  return std::move(pending.changed);
+  return changed;
 }
 
 ReconstructionResult reconstruct(const geom::PointCloud& cloud, const sketch::Sketch& sketch,

@@ -11,6 +11,7 @@
 #include "skeleton/axis_smoothing.h"
 #include "skeleton/completion.h"
 #include "skeleton/radius_allometry.h"
+#include "skeleton/surface_bound.h"
 #include "treesketch/compare/tree_metrics.h"
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/skeleton/skeleton_export.h"
@@ -268,7 +269,7 @@ std::vector<fit::NodeResult> fitPass(recon::Reconstruction& rec, const sketch::S
     p.enabled = false;
     s.setParams(id, p);
   }
-  rec.update(s, progress);
+  rec.fit(s, progress);  // the fits only: the tubes are swept once, from the final model
   std::vector<fit::NodeResult> fits(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (const char* why = notFitted(nodes[i], options)) {
@@ -467,7 +468,20 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
     }
   }
 
+  // 4c. No tube thicker than the surface its points show (a scanner sees the bark).
   const auto t1 = std::chrono::steady_clock::now();
+  const double voxel = res.skeleton.graph.voxelSize;
+  res.noise = detail::measuredNoise(res.fits, res.fitAccepted, -1.0);
+  res.noiseMeasured = res.noise > 0;
+  if (!res.noiseMeasured) res.noise = 0.5 * voxel;
+
+  if (options.radii.surfaceBound) {
+    std::vector<double> own(res.model.size(), 0.0);
+    for (std::size_t i = 0; i < own.size() && i < res.fits.size(); ++i)
+      if (res.fitAccepted[i]) own[i] = res.fits[i].rms;
+    res.thinnedBySurface =
+        detail::boundRadiiBySurface(res.model, cloud, res.noise, voxel, options.radii.medianWindow, own).nodesThinned;
+  }
   // 5.-6. The model into the sketch, and recon sweeps that sketch (kept circles need no fit).
   handOver(res, options.bridgeUnfittedForks);
   rec.update(res.sketch);

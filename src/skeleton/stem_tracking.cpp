@@ -123,42 +123,13 @@ Slab fitSlab(const VoxelGraph& g, const Vec3& c, const Vec3& d, double halfHeigh
 
 }  // namespace
 
-std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis upAxis) {
-  if (root.empty() || g.size() == 0 || !(g.voxelSize > 0)) return {};
+namespace {
+
+/// The stem followed up from `base` slab by slab (see the constants); the samples, `base` first.
+std::vector<StemSample> followStem(const VoxelGraph& g, const StemSample& base, const Vec3& up) {
   const double voxel = g.voxelSize;
-  const Vec3 up = geom::upVector(upAxis);
-  // The base: the root region's centroid, raised to the middle of the base slab.
-  double lowest = std::numeric_limits<double>::infinity();
-  Vec3 mean = Vec3::Zero();
-  for (std::uint32_t v : root) {
-    lowest = std::min(lowest, geom::height(g.positions[v], upAxis));
-    mean += g.positions[v];
-  }
-  mean /= static_cast<double>(root.size());
-  double spread = 0;
-  for (std::uint32_t v : root) {
-    const Vec3 q = g.positions[v] - mean;
-    spread = std::max(spread, (q - q.dot(up) * up).norm());
-  }
-  StemSample base;
-  Vec3 centre;
-  Slab found = Slab::TooFew;
-  // The lowest slab may hold a closed mesh's end cap, or roots, or the ground's last points: a
-  // slab above it is tried next.
-  for (int j = 0; j < kBaseTries && found != Slab::Stem; ++j) {
-    found = Slab::TooFew;
-    for (int k = 0; k <= kMaxSlabDoublings && found == Slab::TooFew; ++k) {
-      const double half = 0.5 * kBaseSlabVoxels * voxel * std::ldexp(1.0, k);
-      const double bottom = lowest + j * kBaseSlabVoxels * voxel;
-      centre = mean + (bottom + half - geom::height(mean, upAxis)) * up;
-      const double search = kBaseSearchSpreads * spread + kBaseSearchVoxels * voxel;
-      found = fitSlab(g, centre, up, half, search, kMinStemRadiusVoxels * voxel, search, base);
-    }
-  }
-  if (found != Slab::Stem) return {};
   std::vector<StemSample> stem{base};
-  Vec3 axis = up;
-  centre = base.centre;
+  Vec3 axis = up, centre = base.centre;
   double radius = base.radius;
   const double maxLeanCos = std::cos(kMaxLeanDeg * std::numbers::pi / 180.0);
   int misses = 0;
@@ -186,9 +157,48 @@ std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::ui
     if (d.dot(up) < maxLeanCos) break;
     axis = d;
   }
+  return stem;
+}
+
+}  // namespace
+
+std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis upAxis) {
+  if (root.empty() || g.size() == 0 || !(g.voxelSize > 0)) return {};
+  const double voxel = g.voxelSize;
+  const Vec3 up = geom::upVector(upAxis);
+  // The base: the root region's centroid, raised to the middle of the base slab.
+  double lowest = std::numeric_limits<double>::infinity();
+  Vec3 mean = Vec3::Zero();
+  for (std::uint32_t v : root) {
+    lowest = std::min(lowest, geom::height(g.positions[v], upAxis));
+    mean += g.positions[v];
+  }
+  mean /= static_cast<double>(root.size());
+  double spread = 0;
+  for (std::uint32_t v : root) {
+    const Vec3 q = g.positions[v] - mean;
+    spread = std::max(spread, (q - q.dot(up) * up).norm());
+  }
+  // The lowest slab may hold a closed mesh's end cap, or roots, or the ground's last points, or a
+  // root flare much wider than the stem above it (a palm's swollen base): a base the stem cannot
+  // be followed from gives way to the slab above it.
+  std::vector<StemSample> stem;
+  for (int j = 0; j < kBaseTries && stem.size() < 3; ++j) {
+    StemSample base;
+    Slab found = Slab::TooFew;
+    for (int k = 0; k <= kMaxSlabDoublings && found == Slab::TooFew; ++k) {
+      const double half = 0.5 * kBaseSlabVoxels * voxel * std::ldexp(1.0, k);
+      const double bottom = lowest + j * kBaseSlabVoxels * voxel;
+      const Vec3 centre = mean + (bottom + half - geom::height(mean, upAxis)) * up;
+      const double search = kBaseSearchSpreads * spread + kBaseSearchVoxels * voxel;
+      found = fitSlab(g, centre, up, half, search, kMinStemRadiusVoxels * voxel, search, base);
+    }
+    stem = found == Slab::Stem ? followStem(g, base, up) : std::vector<StemSample>{};
+  }
   if (stem.size() < 3) return {};
   // The stem reaches down to the tree's lowest voxel, along its first segment: the lowest slabs
   // may have been skipped (see kBaseTries) or made tall.
+  const double maxLeanCos = std::cos(kMaxLeanDeg * std::numbers::pi / 180.0);
   const Vec3 firstAxis = safeNormalized(stem[1].centre - stem[0].centre, up);
   const double drop = geom::height(stem[0].centre, upAxis) - lowest;
   if (drop > 0 && firstAxis.dot(up) > maxLeanCos)

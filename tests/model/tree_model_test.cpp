@@ -68,6 +68,18 @@ TEST(TreeModel, InferredRadiiWidenTheRangeAndAreNamed) {
   EXPECT_NE(m.verdictLine().find("pipe model"), std::string::npos) << m.verdictLine();
 }
 
+TEST(TreeModel, TheMeasuredNoiseIsReportedInMetres) {
+  const geom::PointCloud cloud = stemScan(0.1);
+  MeasureOptions o;
+  o.unitMetres = 0.001;  // a cloud in millimetres
+  EXPECT_FALSE(std::isfinite(measure(stem(100, true), cloud, o).noiseMetres));  // not measured: not reported
+  o.noise = 3.5;
+  const ModelMeasures m = measure(stem(100, true), cloud, o);
+  EXPECT_DOUBLE_EQ(m.noiseMetres, 0.0035);
+  EXPECT_NE(m.summary().find("scan noise 3.5 mm"), std::string::npos) << m.summary();
+  EXPECT_DOUBLE_EQ(reportJson(m, nlohmann::json::object())["model"]["noiseM"].get<double>(), 0.0035);
+}
+
 TEST(TreeModel, ASparseCloudIsNamed) {
   geom::PointCloud few;
   for (int i = 0; i < 40; ++i) few.positions.emplace_back(0.1 * std::cos(i), 0.1 * std::sin(i), 0.1 * i);

@@ -72,6 +72,20 @@ TEST(Reconstruction, TrunkChainFitsEveryNode) {
   EXPECT_EQ(rec.result(99), nullptr);
 }
 
+TEST(Reconstruction, FittingAloneSweepsNothingAndTheNextUpdateSweepsOnce) {
+  geom::PointCloud cloud = treeCloud();
+  sketch::Sketch s = trunkSketch();
+  Reconstruction rec(cloud);
+  EXPECT_EQ(rec.fit(s).size(), 4u);
+  EXPECT_TRUE(rec.mesh().empty());  // fitted, not swept
+  for (auto id : s.ids()) EXPECT_EQ(rec.result(id)->status, fit::NodeStatus::Fitted);
+  EXPECT_TRUE(rec.update(s).empty());  // nothing to re-fit ...
+  EXPECT_EQ(rec.fitCount(), 4u);
+  const ReconstructionResult once = reconstruct(cloud, s);
+  EXPECT_EQ(rec.mesh().vertices, once.mesh.vertices);  // ... and the tubes are what one pass makes
+  EXPECT_EQ(rec.mesh().triangles.size(), once.mesh.triangles.size());
+}
+
 TEST(Reconstruction, EditsRefitOnlyTheTouchedNodes) {
   geom::PointCloud cloud = treeCloud();
   sketch::Sketch s = trunkSketch();

@@ -10,6 +10,7 @@
 #include "synthetic_tree.h"
 #include "test_support.h"
 #include "treesketch/io/mesh_io.h"
+#include "treesketch/io/point_cloud_io.h"
 #include "treesketch/scan/tls_scan.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/error.h"
@@ -678,4 +679,26 @@ TEST(Skeleton, ANarrowForksLimbsAreApartWhereTheirTubesAre) {
   EXPECT_LT(split.offAxes, 0.06);
   EXPECT_GT(merged.height, split.height + 0.25);
   EXPECT_GT(merged.offAxes, 1.5 * split.offAxes);
+}
+
+// A swollen base (a palm's, a root flare) twice the stem's radius: the stem cannot be followed
+// from a circle that wide (each slab may narrow to 0.6 of the last), so the tracker starts again
+// from a slab above it. The palm of ../shared/data/real: a slice 1.3 m above its base is a circle
+// of about 0.17 m radius; before, no stem was tracked and the crown's fits gave it 0.34 m.
+TEST(Skeleton, APalmsStemIsTrackedAboveItsSwollenBase) {
+  const std::filesystem::path file = test::sharedDataDir() / "real" / "pytlidar_tree_1.las";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
+  const geom::PointCloud cloud = io::readPointCloud(file);
+  skeleton::SkeletonOptions o = skeleton::leafOnSkeletonOptions();
+  o.up = geom::UpAxis::Z;
+  const auto s = skeleton::extractSkeleton(cloud, o);
+  const double base = cloud.bounds().min.z();
+  int measured = 0;
+  for (const auto& n : s.nodes) {
+    const double h = n.position.z() - base;
+    if (!n.stem || h < 1.0 || h > 4.0) continue;
+    ++measured;
+    EXPECT_NEAR(n.radius, 0.17, 0.05) << "at " << h << " m";
+  }
+  EXPECT_GE(measured, 5);
 }

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,9 @@ struct MeasureOptions {
   bool leafOn = false;      ///< the model was made with the leaf-on settings (the verdict's advice)
   /// Share of the automatic skeleton's pieces that looked like leaves (flat), or < 0 when unknown.
   double leafPieceShare = -1;
+  /// The scan's noise measured while modelling (cloud units; the automatic model's median circle
+  /// residual, AutoSkeletonResult::noise), or < 0 when not measured.
+  double noise = -1;
 };
 
 /// Whether the model's figures can be trusted, with the measured reasons and what to do.
@@ -91,6 +95,8 @@ struct ModelMeasures {
   /// Volume over the cylinder of the stem's DBH and the tree's height (a tree's form factor,
   /// branches included: about 0.5–2.5); NaN without a DBH.
   double formFactor = 0;
+  /// The scan's noise in metres (MeasureOptions::noise), NaN when not measured.
+  double noiseMetres = std::numeric_limits<double>::quiet_NaN();
   Verdict verdict;
   /// One line: the fit's shares (when measured) and the model's figures.
   std::string summary() const;
@@ -120,7 +126,7 @@ nlohmann::json verdictJson(const Verdict& verdict);
 
 /// The report: `header` (what the path knows: its nodes' fits, or the automatic model's counts
 /// and timings) with "model" ({"fit", "figures", "measuredVolumeShare", "volumeRangeM3",
-/// "formFactor"}), "verdict" ({"level", "reasons", "advice"}) and "metrics" added.
+/// "formFactor", "noiseM"}), "verdict" ({"level", "reasons", "advice"}) and "metrics" added.
 nlohmann::json reportJson(const ModelMeasures& measures, nlohmann::json header);
 
 /// Writes every wanted output, each atomically, in this order: cylinder table, TreeQSM text, mesh,

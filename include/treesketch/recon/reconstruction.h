@@ -59,6 +59,11 @@ class Reconstruction {
   /// Throws OptionsError for an invalid sketch (see Sketch::validate).
   std::vector<NodeId> update(const sketch::Sketch& sketch, const ProgressFn& progress = {});
 
+  /// The fitting half of update: the fits are brought up to date with `sketch`, the mesh is left
+  /// as the last update swept it (the next update sweeps whatever changed since). For passes that
+  /// read the fits and discard the tubes (the automatic model's fit pass).
+  std::vector<NodeId> fit(const sketch::Sketch& sketch, const ProgressFn& progress = {});
+
   /// Forgets every fit and the mesh (keeps the index): the next update fits every node.
   void reset();
 

@@ -68,6 +68,9 @@ struct RadiusRules {
   /// model of it (2 cut clean scans' crowns to half, 4 let a noisy crown to 1.7×;
   /// docs/notes/radii_and_volume.md).
   double allometryMaxRatio = 3.0;
+  /// The points' bound (skeleton/surface_bound.h): no tube thicker than the 10th percentile of its
+  /// points' distances to its axis plus twice the scan's noise measured on the cloud.
+  bool surfaceBound = true;
 };
 
 /// How the branch axes are re-estimated after the fits (skeleton/axis_smoothing.h): a local,
@@ -200,6 +203,13 @@ struct AutoSkeletonResult {
   /// No circle could be fitted and no stem measured (a sparse airborne cloud): every radius is
   /// the pipe model's from a stem inferred from the crown's width (none accepted in fitAccepted).
   bool radiiFromCrown = false;
+  /// The scan's noise measured on the cloud (cloud units): the median RMS residual of the accepted
+  /// circle fits, or half a voxel when fewer than three were accepted (noiseMeasured false).
+  double noise = 0;
+  bool noiseMeasured = false;
+  /// Nodes whose radius was lowered because the points around their tube lie inside it (a scanner
+  /// sees the surface; see surface_bound.h).
+  std::size_t thinnedBySurface = 0;
   /// Wall times: the skeleton's extraction; the slice index and the fit passes; the radius rules
   /// and the sweep; the completion's residual, parts and grafts (CompletionRules).
   double skeletonMs = 0, fitMs = 0, sweepMs = 0, completionMs = 0;

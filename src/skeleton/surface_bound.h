@@ -1,0 +1,37 @@
+// Internal: radii bounded by the points around each tube. A scanner sees the surface of the wood,
+// so the points a tube explains lie on its surface, not inside it: where many of them lie deeper
+// than the scan's noise inside, the tube is thicker than the wood (a circle fitted to a shell of
+// noise or leaves, or a radius the pipe model inferred for a branch the points show thinner).
+// Each tube's radius is therefore bounded by a low quantile of its points' distances to its axis
+// plus a margin of the noise, the noise being measured on the cloud itself (the residuals of the
+// circles fitted to it), never a figure in metres that assumes a scanner.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "treesketch/fit/node_fit.h"
+#include "treesketch/geom/point_cloud.h"
+#include "treesketch/skeleton/skeleton.h"
+
+namespace treesketch::skeleton::detail {
+
+/// The scan's noise (cloud units): the median RMS residual of the accepted circle fits (fits[i]
+/// with accepted[i] != 0); `fallback` when fewer than three fits were accepted.
+double measuredNoise(const std::vector<fit::NodeResult>& fits, const std::vector<char>& accepted, double fallback);
+
+/// What the bound did.
+struct SurfaceBoundStats {
+  std::size_t nodesWithEvidence = 0;  ///< nodes with enough points to be judged
+  std::size_t nodesThinned = 0;       ///< nodes whose radius the bound lowered
+};
+
+/// Lowers the radii of `model` (parent-first nodes) where the points lie inside the tubes. Each
+/// point goes to the node of its nearest tube (points farther than `noise` plus `voxel` outside it
+/// are left out); a node is judged on the points of the `window` nodes around it along its branch:
+/// its radius is at most their distances to the axis' 10th percentile plus four `noise`. A
+/// branch's first node is also capped by its parent's radius; no radius is raised.
+SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
+                                      double voxel, int window, const std::vector<double>& ownResidual = {});
+
+}  // namespace treesketch::skeleton::detail
