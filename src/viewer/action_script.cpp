@@ -186,7 +186,9 @@ std::string performAction(ViewerState& state, const ScriptAction& a, const Scrip
   switch (a.kind) {
     case Kind::Save:
     case Kind::Load: {
-      std::filesystem::path p = a.path.empty() ? hooks.sketchPath : a.path;
+      std::filesystem::path p = !a.path.empty()              ? a.path
+                                : !state.sketchPath().empty() ? state.sketchPath()
+                                                              : hooks.sketchPath;
       if (p.empty()) throw OptionsError("no sketch path: give one (\"save PATH\") or start with --sketch");
       if (a.kind == Kind::Save)
         state.saveSketch(p);

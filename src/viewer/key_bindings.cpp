@@ -4,7 +4,8 @@ namespace treesketch::viewer {
 
 const std::vector<KeyBinding>& keyBindings() {
   static const std::vector<KeyBinding> table = {
-      {"Mouse", "Left click", "add a node (child of the active node, else of the nearest node) or select a node", ""},
+      {"Mouse", "Left click", "select the node under the mouse (on empty space: nothing is added)", ""},
+      {"Mouse", "Shift+left click", "add a node there (child of the active node, else of the nearest node)", ""},
       {"Mouse", "Ctrl+left click", "select a node without making it active (new nodes keep their parent)", ""},
       {"Mouse", "Left drag on a node", "move the node", ""},
       {"Mouse", "Right drag, Alt+left drag", "orbit (trackball)", ""},
@@ -18,7 +19,8 @@ const std::vector<KeyBinding>& keyBindings() {
       {"Sketch", "Esc", "deselect, and dismiss the error in the status bar (in pick mode: clear the picks, then leave)",
        "escape"},
       {"Sketch", "A", "uniform automatic sketch (asks first when it would replace hand edits; undoable)", "a"},
-      {"Tools", "G", "tool: draw a limb as one stroke (drag along it; again: back to sketching)", "g"},
+      {"Tools", "N", "tool: add nodes: a left click on the cloud adds a node (again: back to selecting)", "n"},
+      {"Tools", "G", "tool: draw a limb as one stroke (drag along it; again: back to selecting)", "g"},
       {"Tools", "X", "tool: lasso points as not-wood (excluded from fits and the automatic skeleton)", "x"},
       {"Tools", "R", "tool: automatic skeleton inside a drawn region, merged into the sketch", "r"},
       {"Tools", "P", "tool: re-attach: click a node, then its new parent", "p"},

@@ -19,8 +19,10 @@ namespace {
 
 const char* toolName(ViewerState::Tool t) {
   switch (t) {
-    case ViewerState::Tool::Sketch:
-      return "sketch";
+    case ViewerState::Tool::Select:
+      return "select (click a node to select it, drag it to move it; Shift+click adds a node)";
+    case ViewerState::Tool::AddNodes:
+      return "add nodes (a click on the cloud adds a node under the active node)";
     case ViewerState::Tool::Stroke:
       return "stroke (drag along a missing limb, from the node it grows from)";
     case ViewerState::Tool::Lasso:
@@ -40,6 +42,24 @@ std::map<NodeId, edit::NodeAnchor> toEdit(const std::map<NodeId, std::pair<Vec3,
 }
 
 }  // namespace
+
+const char* ViewerState::toolLabel(Tool tool) {
+  switch (tool) {
+    case Tool::Select:
+      return "select";
+    case Tool::AddNodes:
+      return "add nodes";
+    case Tool::Stroke:
+      return "stroke";
+    case Tool::Lasso:
+      return "not-wood lasso";
+    case Tool::Region:
+      return "automatic in region";
+    case Tool::Reattach:
+      return "re-attach";
+  }
+  return "?";
+}
 
 void ViewerState::setTool(Tool tool) {
   tool_ = tool;
@@ -88,12 +108,16 @@ bool ViewerState::lassoNotWood(const std::vector<Vec2>& polygon) {
     error("lasso: open a point cloud first");
     return false;
   }
-  std::size_t marked = 0;
-  bool ok = edit("not-wood lasso", "not-wood lasso", "",
-                 [&] { marked = edit::lassoNotWood(sketch_, cloud_, orbit_.camera(), polygon); });
+  std::size_t marked = 0, refit = 0;
+  bool ok = edit("not-wood lasso", "not-wood lasso", "", [&] {
+    marked = edit::lassoNotWood(sketch_, cloud_, orbit_.camera(), polygon);
+    refit = edit::refitNotWoodCircles(sketch_);  // a model circle inside the lasso is fitted again
+  });
   if (ok) {
     colorsStale_ = true;
-    info("lasso: " + std::to_string(marked) + " points marked not-wood (left out of fits and the automatic skeleton)");
+    info("lasso: " + std::to_string(marked) + " points marked not-wood (left out of fits and the automatic skeleton)" +
+         (refit ? "; " + std::to_string(refit) + " model circles inside it are fitted again from the other points"
+                : std::string()));
   }
   return ok;
 }
@@ -172,7 +196,8 @@ double ViewerState::selectedDepth() const {
 // ---- input -----------------------------------------------------------------------------------------
 
 bool ViewerState::toolMouseDown(const Vec2& pos, MouseButton button, int mods) {
-  if (tool_ == Tool::Sketch || button != MouseButton::Left || (mods & kModAlt)) return false;
+  if (tool_ == Tool::Select || tool_ == Tool::AddNodes || button != MouseButton::Left || (mods & kModAlt))
+    return false;
   gesture_ = Gesture::ToolPath;
   gestureNode_ = tool_ == Tool::Reattach ? nodeAt(pos) : kNoNode;
   toolPath_ = {pos};
@@ -185,7 +210,8 @@ bool ViewerState::toolMouseUp(const Vec2& pos) {
   if (path.empty() || path.back() != pos) path.push_back(pos);
   ++sceneVersion_;
   switch (tool_) {
-    case Tool::Sketch:
+    case Tool::Select:
+    case Tool::AddNodes:
       return false;
     case Tool::Stroke:
       return strokeLimb(path);
@@ -210,8 +236,10 @@ bool ViewerState::toolMouseUp(const Vec2& pos) {
 
 bool ViewerState::toolKey(const std::string& key, int mods) {
   if (mods & (kModCtrl | kModAlt)) return false;
-  auto toggle = [&](Tool t) { setTool(tool_ == t ? Tool::Sketch : t); };
-  if (key == "g") {
+  auto toggle = [&](Tool t) { setTool(tool_ == t ? Tool::Select : t); };
+  if (key == "n") {
+    toggle(Tool::AddNodes);
+  } else if (key == "g") {
     toggle(Tool::Stroke);
   } else if (key == "x") {  // X: cross points out as not-wood (L is the node labels)
     toggle(Tool::Lasso);
@@ -225,8 +253,8 @@ bool ViewerState::toolKey(const std::string& key, int mods) {
     } else {
       automaticBelow(selected_);
     }
-  } else if (key == "escape" && tool_ != Tool::Sketch) {
-    setTool(Tool::Sketch);
+  } else if (key == "escape" && tool_ != Tool::Select) {
+    setTool(Tool::Select);
     return false;  // Escape also clears the selection, as before
   } else {
     return false;
