@@ -6,6 +6,7 @@
 #include <stb_image.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -34,6 +35,8 @@ const int kBackground[3] = {28, 31, 36};  // glClearColor(0.11, 0.12, 0.14)
 struct Args {
   std::string sketchPath, autosavePath, meshPath, pngPath;
   long nodes = -1, minTriangles = -1, cloudPixels = -1;
+  int colour[3] = {-1, -1, -1};               ///< --colour R,G,B: count the pixels of this colour
+  long minColourPixels = -1, maxColourPixels = -1;
   std::uint64_t demoRays = 0;
   bool markers = false;
 };
@@ -68,6 +71,15 @@ Args parseArgs(int argc, char** argv) {
       r.demoRays = std::stoull(next());
     else if (a == "--markers")
       r.markers = true;
+    else if (a == "--colour") {
+      if (std::sscanf(next().c_str(), "%d,%d,%d", &r.colour[0], &r.colour[1], &r.colour[2]) != 3) {
+        std::cerr << "--colour needs R,G,B\n";
+        std::exit(2);
+      }
+    } else if (a == "--min-colour-pixels")
+      r.minColourPixels = std::stol(next());
+    else if (a == "--max-colour-pixels")
+      r.maxColourPixels = std::stol(next());
     else {
       std::cerr << "unknown option " << a << "\n";
       std::exit(2);
@@ -114,6 +126,19 @@ bool checkScreenshot(const Args& args, const sketch::Sketch& sk) {
       }
     check(count >= args.cloudPixels, "the cloud covers at least " + std::to_string(args.cloudPixels) + " pixels (got " +
                                          std::to_string(count) + ")");
+  }
+  if (args.colour[0] >= 0) {
+    // Pixels of the 3D view within a small distance of one colour (a drawn tool path, say).
+    long count = 0;
+    for (int y = 0; y < h - 30; ++y)
+      for (int x = 345; x < w; ++x) {
+        const unsigned char* p = px(x, y);
+        count += std::abs(p[0] - args.colour[0]) + std::abs(p[1] - args.colour[1]) + std::abs(p[2] - args.colour[2]) < 40;
+      }
+    const std::string what = "pixels of colour " + std::to_string(args.colour[0]) + "," + std::to_string(args.colour[1]) +
+                             "," + std::to_string(args.colour[2]) + " (got " + std::to_string(count) + ")";
+    if (args.minColourPixels >= 0) check(count >= args.minColourPixels, "at least " + std::to_string(args.minColourPixels) + " " + what);
+    if (args.maxColourPixels >= 0) check(count <= args.maxColourPixels, "at most " + std::to_string(args.maxColourPixels) + " " + what);
   }
   if (args.markers && !args.sketchPath.empty()) {
     for (const auto& [id, n] : sk.nodes()) {

@@ -168,6 +168,7 @@ class App {
     else {
       gui::drawPanels(state_, panel_, ww, wh, [this] { actions_->drawMenuBar(); });
       gui::drawMarkers(state_);
+      gui::drawToolOverlay(state_);
       gui::drawRecoveryDialog(state_);
       gui::drawConfirmDialog(state_);
       gui::drawUpWarning(state_);

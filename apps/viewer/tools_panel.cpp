@@ -18,6 +18,8 @@ void toolsSection(viewer::ViewerState& state) {
     if (ImGui::Button(label)) state.setTool(on ? Tool::Select : tool);
     if (on) ImGui::PopStyleColor();
   };
+  toolButton("Add nodes (N)", Tool::AddNodes);
+  ImGui::SameLine();
   toolButton("Stroke (G)", Tool::Stroke);
   ImGui::SameLine();
   toolButton("Lasso (X)", Tool::Lasso);

@@ -107,6 +107,9 @@ void ViewerState::mouseUp(const Vec2& pos, MouseButton button, int mods) {
     } else {
       selectNode(gestureNode_);
     }
+    if (const std::size_t under = markersAt(pos); under > 1)
+      info("selected node " + std::to_string(gestureNode_) + ", the nearest to the eye of " + std::to_string(under) +
+           " markers under the click");
   } else if (g == Gesture::PendingAdd) {
     if ((pos - pressPos_).norm() < options_.dragThresholdPx) addNodeAt(pos);
   } else if (g == Gesture::PendingEmpty) {

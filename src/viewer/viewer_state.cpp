@@ -331,6 +331,7 @@ bool ViewerState::deleteSelected(bool withSubtree) {
     return false;
   }
   NodeId id = selected_;
+  if (withSubtree && !sketch_.node(id).children.empty()) return requestDeleteSubtree(id);
   return edit("delete node", std::string(withSubtree ? "delete subtree " : "delete node ") + std::to_string(id), "",
               [&] {
                 NodeId parent = sketch_.node(id).parent;
@@ -463,6 +464,7 @@ bool ViewerState::answerConfirmation(bool yes) {
   std::function<bool()> action = std::move(pendingAction_);
   pendingAction_ = nullptr;
   pendingQuestion_.clear();
+  if (pendingDelete_ != kNoNode) pendingDelete_ = kNoNode, ++sceneVersion_;  // the highlight goes
   if (!yes) {
     info("kept the sketch (" + std::to_string(sketch_.size()) + " nodes)");
     return false;

@@ -141,6 +141,26 @@ bool ViewerState::deleteSubtree(NodeId id) {
   });
 }
 
+bool ViewerState::requestDeleteSubtree(NodeId id) {
+  if (!sketch_.contains(id)) {
+    error("delete subtree: no node " + std::to_string(id));
+    return false;
+  }
+  std::size_t below = 0;
+  for (std::vector<NodeId> stack = sketch_.node(id).children; !stack.empty();) {
+    const NodeId n = stack.back();
+    stack.pop_back();
+    ++below;
+    for (NodeId c : sketch_.node(n).children) stack.push_back(c);
+  }
+  if (below == 0) return deleteSubtree(id);
+  pendingDelete_ = id;
+  ++sceneVersion_;
+  return ask("Delete node " + std::to_string(id) + " and the " + std::to_string(below) +
+                 " nodes below it (drawn in red)? (undoable)",
+             [this, id] { return deleteSubtree(id); });
+}
+
 bool ViewerState::reattachNode(NodeId id, NodeId newParent) {
   bool ok = edit("re-attach", "re-attach node " + std::to_string(id) + " to " + std::to_string(newParent), "",
                  [&] { sketch::reattach(sketch_, id, newParent); });

@@ -276,6 +276,29 @@ TEST(SketchDocument, ClicksSelectByDefaultAndAMissAddsNothing) {
   EXPECT_EQ(s.tool(), ViewerState::Tool::Select);
 }
 
+TEST(SketchDocument, APickAmongOverlappingMarkersTakesTheNearestInDepth) {
+  test::TempDir dir;
+  ViewerState s;
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
+  // Two nodes on one view ray, 1.5 m apart in depth, the far one last in the sketch (a pick by
+  // screen distance alone took the last of equals).
+  const Vec2 at = s.camera().project(Vec3(0, 2, 0)).head<2>();
+  const Vec3 nearP = s.camera().unproject(at, 0.2), farP = nearP + 1.5 * (s.camera().unproject(at, 0.9) - nearP).normalized();
+  sketch::Sketch sk;
+  const sketch::NodeId nearId = sk.addPointNode(sketch::kNoNode, nearP, Vec3::UnitY());
+  const sketch::NodeId farId = sk.addPointNode(nearId, farP, Vec3::UnitY());
+  sk.setKeptCircle(farId, sketch::KeptCircle{farP, 0.1});
+  sk.setKeptCircle(nearId, sketch::KeptCircle{nearP, 0.1});
+  io::writeSketch(dir / "two.json", sk);
+  ASSERT_TRUE(s.loadSketch(dir / "two.json"));
+  EXPECT_EQ(s.nodeAt(at + Vec2(1, 0)), nearId);
+  EXPECT_EQ(s.markersAt(at), 2u);
+  s.clickAt(at + Vec2(1, 0));
+  EXPECT_EQ(s.selected(), nearId);
+  EXPECT_NE(s.lastMessage().text.find("nearest to the eye of 2 markers"), std::string::npos) << s.lastMessage().text;
+}
+
 /// A trunk with two limbs (Y up): one to +x, one to -x and up.
 geom::PointCloud forkedTree() {
   gen::Rng rng(21);

@@ -104,7 +104,16 @@ TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
   EXPECT_EQ(f.state.sketch().size(), 4u);
   EXPECT_EQ(f.state.sketch().node(2).parent, 1);
   ASSERT_TRUE(f.state.selectNode(1));
+  // Shift+Delete shows what it will remove (nodes 1, 2, 3) and asks; no removes nothing.
   EXPECT_TRUE(f.state.keyPress("shift+delete"));
+  ASSERT_TRUE(f.state.confirmationPending());
+  EXPECT_EQ(f.state.sketch().size(), 4u);
+  for (const NodeMarker& m : f.state.nodeMarkers()) EXPECT_EQ(m.doomed, m.id != 0) << m.id;
+  EXPECT_FALSE(f.state.answerConfirmation(false));
+  EXPECT_EQ(f.state.sketch().size(), 4u);
+  for (const NodeMarker& m : f.state.nodeMarkers()) EXPECT_FALSE(m.doomed) << m.id;
+  EXPECT_TRUE(f.state.keyPress("shift+delete"));
+  EXPECT_TRUE(f.state.answerConfirmation(true));
   EXPECT_EQ(f.state.sketch().size(), 1u);
   EXPECT_TRUE(f.state.keyPress("ctrl+z"));
   EXPECT_EQ(f.state.sketch().size(), 4u);

@@ -6,7 +6,9 @@
 // Format: either a JSON array of actions or {"window": [width, height], "actions": [...]}.
 // An action is an object with one verb key, or a string "VERB [ARGUMENT]":
 //   {"click": [x, y], "button": "left"|"right"|"middle", "mods": "shift+ctrl"}
-//   {"drag": [[x0, y0], [x1, y1]], "button": ..., "mods": ..., "steps": 8}
+//   {"drag": [[x0, y0], [x1, y1]], "button": ..., "mods": ..., "steps": 8, "hold": false}
+//                                          (hold: the button stays down, for a screenshot of the
+//                                          drag being drawn, until {"release": [x, y]})
 //   {"scroll": steps}                      wheel notches, positive zooms in
 //   {"key": "ctrl+z"}                      see ViewerState::keyPress
 //   {"slider": "sliceHalfThickness"|"lineEpsilon"|"pointSize", "value": number}

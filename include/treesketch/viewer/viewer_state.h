@@ -126,6 +126,11 @@ struct NodeMarker {
   bool selected = false;
   bool active = false;
   NodeStatus status = NodeStatus::Pending;
+  /// Window depth of the node's circle (or anchor) under the current camera, 0 (near) to 1 (far);
+  /// NaN when unknown. A pick among overlapping markers takes the smallest.
+  double depth = std::nan("");
+  /// A Delete subtree waiting for its confirmation would remove this node (drawn as such).
+  bool doomed = false;
 };
 
 /// A coloured 3D line segment (world frame).
@@ -405,6 +410,10 @@ class ViewerState {
   bool lassoNotWood(const std::vector<geom::Vec2>& polygon);
   bool clearNotWood();
   bool deleteSubtree(sketch::NodeId id);
+  /// Delete subtree as the window's Shift+Delete and button do it: a node with children is not
+  /// removed at once; the question names how many nodes go, their markers are drawn as doomed
+  /// (NodeMarker::doomed) until the answer, and yes deletes them (one undoable edit).
+  bool requestDeleteSubtree(sketch::NodeId id);
   bool reattachNode(sketch::NodeId id, sketch::NodeId newParent);
   bool automaticBelow(sketch::NodeId id);
   bool automaticInRegion(const std::vector<geom::Vec2>& polygon);
@@ -445,8 +454,12 @@ class ViewerState {
   std::uint64_t colorsVersion() const { return colorsVersion_; }
   /// Markers of all nodes under the current camera.
   std::vector<NodeMarker> nodeMarkers() const;
-  /// The node whose marker is nearest to `screen` within the pick radius (kNoNode if none).
+  /// The node a click at `screen` picks: of the markers within the pick radius, the nearest to
+  /// the eye (NodeMarker::depth), then the nearest on screen (kNoNode if none).
   sketch::NodeId nodeAt(const geom::Vec2& screen) const;
+  /// How many visible markers lie within the pick radius of `screen` (a pick among several says
+  /// which it took).
+  std::size_t markersAt(const geom::Vec2& screen) const;
   /// 3D lines: fitted circles (selected one highlighted) and the selected node's sampling region.
   std::vector<Line3> sceneLines() const;
   SamplingRegion samplingRegion() const;
@@ -539,6 +552,7 @@ class ViewerState {
   /// The visible node whose marker is nearest to `screen`, at any distance (kNoNode if none).
   sketch::NodeId nearestMarker(const geom::Vec2& screen) const;
   std::function<bool()> pendingAction_;
+  sketch::NodeId pendingDelete_ = sketch::kNoNode;  ///< the subtree a waiting question would delete
   std::string pendingQuestion_;
   /// Runs `action` now, or asks `question` first when the sketch has hand edits.
   bool askBeforeReplacing(const std::string& question, std::function<bool()> action);
