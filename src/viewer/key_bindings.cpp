@@ -30,7 +30,7 @@ const std::vector<KeyBinding>& keyBindings() {
       {"View", "O", "orthographic / perspective", "o"},
       {"View", "1, 2, 3", "front, side, top view", "1"},
       {"View", "W", "tubes: solid, wireframe, hidden", "w"},
-      {"View", "C", "next point colouring: height, distance to the circles, plain, then the file's attributes", "c"},
+      {"View", "C", "next point colouring: height, distance to the model's surface, plain, then the file's attributes", "c"},
       {"View", "L", "node labels: automatic (shown up to 100 nodes), on, off", "l"},
       {"File", "Ctrl+O", "open a cloud", ""},
       {"File", "Ctrl+S", "save the sketch to the sketch path", "ctrl+s"},

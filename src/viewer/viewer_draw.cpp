@@ -7,6 +7,7 @@
 #include <exception>
 #include <limits>
 
+#include "treesketch/model/tree_model.h"
 #include "treesketch/render/color_map.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/text.h"
@@ -200,15 +201,23 @@ const std::vector<Rgb>& ViewerState::pointColors() {
         colors_ = plainColors(cloud_, options_.plainColor);
         break;
       case ColorMode::CircleDistance: {
+        const double scale = options_.distanceColorScale * std::max(bounds_.diagonal(), 1e-12);
+        if (distanceGridVersion_ != cloudVersion_ || !distanceGrid_.builtFor(cloud_, scale)) {
+          distanceGrid_.build(cloud_, scale);  // once per cloud
+          distanceGridVersion_ = cloudVersion_;
+        }
+        // The distance to the model's surface (its frustums, what fit-report measures): zero on
+        // the tubes, also between two circles. A sketch with no two linked fitted nodes has no
+        // surface yet: the distance to its fitted circles stands in.
+        const model::TreeModel tree = model::fromReconstruction(recon_->result(), sketch_.up);
+        if (!tree.cylinders.empty()) {
+          distanceGrid_.surfaceColors(tree.cylinders, colors_);
+          break;
+        }
         std::vector<Circle3> circles;
         for (NodeId id : sketch_.ids()) {
           NodeFitView f = recon_->nodeFit(id);
           if (f.status == NodeStatus::Fitted) circles.push_back(f.circle);
-        }
-        double scale = options_.distanceColorScale * std::max(bounds_.diagonal(), 1e-12);
-        if (distanceGridVersion_ != cloudVersion_ || !distanceGrid_.builtFor(cloud_, scale)) {
-          distanceGrid_.build(cloud_, scale);  // once per cloud
-          distanceGridVersion_ = cloudVersion_;
         }
         distanceGrid_.colors(circles, colors_);
         break;

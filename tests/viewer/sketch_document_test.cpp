@@ -14,6 +14,9 @@
 #include "treesketch/geom/types.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/io/xyz.h"
+#include "treesketch/render/color_map.h"
+#include "treesketch/viewer/color_legend.h"
+#include "treesketch/viewer/point_colors.h"
 #include "treesketch/util/error.h"
 #include "treesketch/viewer/viewer_state.h"
 
@@ -297,6 +300,49 @@ TEST(SketchDocument, APickAmongOverlappingMarkersTakesTheNearestInDepth) {
   s.clickAt(at + Vec2(1, 0));
   EXPECT_EQ(s.selected(), nearId);
   EXPECT_NE(s.lastMessage().text.find("nearest to the eye of 2 markers"), std::string::npos) << s.lastMessage().text;
+}
+
+TEST(SketchDocument, TheDistanceColouringIsZeroOnTheModelsSurface) {
+  // The function: a frustum from (0,0,0) to (0,2,0), radius 0.2; scale 0.1.
+  geom::CylinderModel model;
+  model.cylinders.push_back(geom::ModelCylinder{Vec3::Zero(), Vec3(0, 2, 0), 0.2, 0.2});
+  geom::PointCloud probe;
+  probe.positions = {Vec3(0.2, 1, 0), Vec3(0.25, 1, 0), Vec3(0.15, 1, 0), Vec3(3, 1, 0)};
+  const std::vector<Rgb> c = surfaceDistanceColors(probe, model, 0.1);
+  EXPECT_EQ(c[0], render::viridis(0.0));  // on the surface
+  EXPECT_EQ(c[1], render::viridis(0.5));  // 5 cm outside
+  EXPECT_EQ(c[2], render::viridis(0.5));  // 5 cm inside
+  EXPECT_EQ(c[3], render::viridis(1.0));  // far: the ramp's end
+  EXPECT_EQ(surfaceDistanceColors(probe, geom::CylinderModel{}, 0.1)[0], render::viridis(1.0));
+  DistanceColorGrid grid;
+  const geom::PointCloud cloud = trunk(0.0, 3000);
+  grid.build(cloud, 0.1);
+  std::vector<Rgb> fromGrid;
+  grid.surfaceColors(model, fromGrid);
+  EXPECT_EQ(fromGrid, surfaceDistanceColors(cloud, model, 0.1));
+
+  // In the window: trunk points halfway between two fitted circles 2 m apart lie on the tube.
+  ViewerState s;
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(s.setCloud(trunk(0.0, 20000), geom::UpAxis::Y));
+  s.setColorMode(ColorMode::CircleDistance);
+  for (double y : {1.0, 3.0})
+    s.clickAt(s.camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
+  ASSERT_EQ(s.fittedCount(), 2u);
+  const std::vector<Rgb>& colors = s.pointColors();
+  const double scale = s.options().distanceColorScale * s.bounds().diagonal();
+  int between = 0, onSurface = 0;
+  for (std::size_t i = 0; i < colors.size(); ++i) {
+    if (std::abs(s.cloud().positions[i].y() - 2.0) > 0.05) continue;
+    ++between;
+    // Within 2 cm of the surface (viridis' green grows along the ramp).
+    onSurface += colors[i].g <= render::viridis(std::min(0.02 / scale, 1.0)).g;
+  }
+  EXPECT_GT(between, 100);
+  EXPECT_EQ(onSurface, between);
+  const Legend legend = colorLegend(s);
+  EXPECT_NE(legend.title.find("model's surface"), std::string::npos) << legend.title;
+  EXPECT_NE(legend.note.find("% of the cloud's"), std::string::npos) << legend.note;
 }
 
 /// A trunk with two limbs (Y up): one to +x, one to -x and up.
