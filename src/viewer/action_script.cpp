@@ -177,7 +177,7 @@ std::optional<std::string> performInput(ViewerState& state, const ScriptAction& 
       else if (a.name == "automaticBelow")
         state.automaticBelow(id);
       else
-        state.reattachNode(id, static_cast<sketch::NodeId>(a.value2));
+        state.reattachNode(id, static_cast<sketch::NodeId>(a.value2), a.text == "reverse");
       break;
     }
     case Kind::Tool:

@@ -247,6 +247,10 @@ class Parser {
       if (!r.is_array() || r.size() != 2) fail(index, "reattach: expected [nodeId, newParentId]");
       a.value = number(r[0], index, "reattach node");
       a.value2 = number(r[1], index, "reattach parent");
+      if (j.contains("reverse")) {
+        if (!j["reverse"].is_boolean()) fail(index, "reverse: expected true or false");
+        if (j["reverse"].get<bool>()) a.text = "reverse";
+      }
     } else if (j.contains("tool")) {
       a.kind = Kind::Tool;
       a.name = string(j["tool"], index, "tool");

@@ -23,7 +23,7 @@ const std::vector<KeyBinding>& keyBindings() {
       {"Tools", "G", "tool: draw a limb as one stroke (drag along it; again: back to selecting)", "g"},
       {"Tools", "X", "tool: lasso points as not-wood (excluded from fits and the automatic skeleton)", "x"},
       {"Tools", "R", "tool: automatic skeleton inside a drawn region, merged into the sketch", "r"},
-      {"Tools", "P", "tool: re-attach: click a node, then its new parent", "p"},
+      {"Tools", "P", "tool: re-attach: click a node, then its new parent (Shift: turn the limb round)", "p"},
       {"Tools", "H", "automatic skeleton below the selected node, merged", "h"},
       {"Tools", "M", "pick mode: a left click picks a point (coordinates, attributes); two picks measure", ""},
       {"View", "F", "fit the view to the cloud", "f"},

@@ -63,6 +63,7 @@ const char* ViewerState::toolLabel(Tool tool) {
 
 void ViewerState::setTool(Tool tool) {
   tool_ = tool;
+  reattachSource_ = kNoNode;
   toolPath_.clear();
   ++sceneVersion_;
   info(std::string("tool: ") + toolName(tool));
@@ -161,10 +162,21 @@ bool ViewerState::requestDeleteSubtree(NodeId id) {
              [this, id] { return deleteSubtree(id); });
 }
 
-bool ViewerState::reattachNode(NodeId id, NodeId newParent) {
-  bool ok = edit("re-attach", "re-attach node " + std::to_string(id) + " to " + std::to_string(newParent), "",
-                 [&] { sketch::reattach(sketch_, id, newParent); });
-  if (ok) info("node " + std::to_string(id) + " now grows from node " + std::to_string(newParent));
+bool ViewerState::reattachNode(NodeId id, NodeId newParent, bool reverse) {
+  std::size_t turned = 0;
+  bool ok = edit("re-attach", std::string(reverse ? "reverse limb at node " : "re-attach node ") + std::to_string(id) +
+                                  " to " + std::to_string(newParent),
+                 "", [&] {
+                   if (reverse)
+                     turned = sketch::reattachReversed(sketch_, id, newParent).size();
+                   else
+                     sketch::reattach(sketch_, id, newParent);
+                 });
+  if (ok)
+    info("node " + std::to_string(id) + " now grows from node " + std::to_string(newParent) +
+         (reverse ? " (the limb's " + std::to_string(turned) + " nodes turned round: node " + std::to_string(id) +
+                        " is its base)"
+                  : std::string()));
   return ok;
 }
 
@@ -244,12 +256,19 @@ bool ViewerState::toolMouseUp(const Vec2& pos) {
         error("re-attach: click on a node");
         return false;
       }
-      if (selected_ == kNoNode || selected_ == gestureNode_) {
+      // The first click in the tool names the node to move (whatever was selected before), the
+      // second its new parent; Shift on the second turns the limb round.
+      if (reattachSource_ == kNoNode || !sketch_.contains(reattachSource_) || reattachSource_ == gestureNode_) {
+        reattachSource_ = gestureNode_;
         selectNode(gestureNode_);
-        info("re-attach: now click the new parent of node " + std::to_string(gestureNode_));
+        info("re-attach: now click the new parent of node " + std::to_string(gestureNode_) +
+             " (Shift+click: make node " + std::to_string(gestureNode_) + " the base of its limb, turned round)");
         return true;
+      } else {
+        const NodeId source = reattachSource_;
+        reattachSource_ = kNoNode;
+        return reattachNode(source, gestureNode_, gestureMods_ & kModShift);
       }
-      return reattachNode(selected_, gestureNode_);
   }
   return false;
 }

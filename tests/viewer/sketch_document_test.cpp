@@ -345,6 +345,35 @@ TEST(SketchDocument, TheDistanceColouringIsZeroOnTheModelsSurface) {
   EXPECT_NE(legend.note.find("% of the cloud's"), std::string::npos) << legend.note;
 }
 
+TEST(SketchDocument, ReattachsFirstClickNamesTheNodeAndShiftTurnsTheLimbRound) {
+  test::TempDir dir;
+  ViewerState s;
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
+  // 0 (trunk) -> 1 (the limb's tip, far out) -> 2 (its base, near the trunk): hung by its tip.
+  sketch::Sketch sk;
+  const sketch::NodeId root = sk.addPointNode(sketch::kNoNode, Vec3(0, 1, 0), Vec3::UnitY());
+  const sketch::NodeId tip = sk.addPointNode(root, Vec3(-1.2, 3.2, 0), Vec3::UnitY());
+  const sketch::NodeId base = sk.addPointNode(tip, Vec3(-0.3, 2.2, 0), Vec3::UnitY());
+  io::writeSketch(dir / "hung.json", sk);
+  ASSERT_TRUE(s.loadSketch(dir / "hung.json"));
+  auto at = [&](sketch::NodeId id) {
+    for (const NodeMarker& m : s.nodeMarkers())
+      if (m.id == id) return m.screen;
+    return Vec2(-1, -1);
+  };
+  ASSERT_TRUE(s.selectNode(tip));  // selected before the tool: the first click must not move it
+  s.setTool(ViewerState::Tool::Reattach);
+  s.clickAt(at(base));
+  EXPECT_EQ(s.sketch().node(tip).parent, root) << "the first click moved the node selected before";
+  EXPECT_EQ(s.selected(), base);
+  s.clickAt(at(root), MouseButton::Left, kModShift);
+  EXPECT_EQ(s.sketch().node(base).parent, root);
+  EXPECT_EQ(s.sketch().node(tip).parent, base);
+  EXPECT_TRUE(s.undo());
+  EXPECT_EQ(s.sketch().node(base).parent, tip);
+}
+
 /// A trunk with two limbs (Y up): one to +x, one to -x and up.
 geom::PointCloud forkedTree() {
   gen::Rng rng(21);

@@ -26,7 +26,9 @@
 //   {"lasso": [[x, y], ...]}               mark the points inside the polygon as not-wood
 //   {"region": [[x, y], ...]}              automatic skeleton inside the polygon, merged
 //   {"deleteSubtree": nodeId}              delete a node and everything below it
-//   {"reattach": [nodeId, newParentId]}    re-attach a node (and its subtree) to another parent
+//   {"reattach": [nodeId, newParentId], "reverse": false}   re-attach a node (and its subtree) to
+//                                          another parent; reverse: the limb is turned round, the
+//                                          node its base (sketch::reattachReversed)
 //   {"automaticBelow": nodeId}             automatic skeleton below a node, merged
 //   {"tool": "sketch"|"stroke"|"lasso"|"region"|"reattach"}   what a left drag does (as keys
 //                                          G, X, R, P), so "drag" actions can use the tools

@@ -414,7 +414,11 @@ class ViewerState {
   /// removed at once; the question names how many nodes go, their markers are drawn as doomed
   /// (NodeMarker::doomed) until the answer, and yes deletes them (one undoable edit).
   bool requestDeleteSubtree(sketch::NodeId id);
-  bool reattachNode(sketch::NodeId id, sketch::NodeId newParent);
+  /// `reverse`: sketch::reattachReversed — `id` starts the limb under `newParent` and the chain
+  /// above it is turned round (a limb the automatic model hung by its tip). In the Reattach tool
+  /// the first click names the node to move (never the node selected before), the second its new
+  /// parent; Shift on the second click reverses.
+  bool reattachNode(sketch::NodeId id, sketch::NodeId newParent, bool reverse = false);
   bool automaticBelow(sketch::NodeId id);
   bool automaticInRegion(const std::vector<geom::Vec2>& polygon);
   /// Where the selected node's circle lies along its view ray (the chosen depth, for the view to
@@ -591,6 +595,7 @@ class ViewerState {
   std::size_t errorCount_ = 0;
   std::vector<sketch::NotWoodLasso> colorsNotWood_;  ///< the lassos pointColors() last drew
   Tool tool_ = Tool::Select;
+  sketch::NodeId reattachSource_ = sketch::kNoNode;  ///< the Reattach tool's first click
   std::vector<geom::Vec2> toolPath_;
 };
 
