@@ -6,9 +6,11 @@
 // tests and the script runner drive it directly. No action ever throws: a failure becomes an error
 // status message and the sketch is kept.
 // ViewerState is implemented in several files by concern: src/viewer/viewer_state.cpp (the state
-// and its edit commands: cloud, sketch edits, undo, save/load), viewer_input.cpp (mouse, wheel,
-// keys and the view they steer), viewer_draw.cpp (what is drawn: colours, markers, lines,
-// status), recovery.cpp (the earlier session's autosave offered back).
+// and its edit commands: cloud, sketch edits, undo), viewer_files.cpp (save, load, export, through
+// the SketchDocument that ties the sketch to its cloud), viewer_input.cpp (mouse, wheel, keys and
+// the view they steer), viewer_draw.cpp (what is drawn: colours, markers, lines, status),
+// viewer_tools.cpp (the correction tools), recovery.cpp (the earlier session's autosave offered
+// back).
 #pragma once
 
 #include <array>
