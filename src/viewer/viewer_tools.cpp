@@ -98,10 +98,28 @@ bool ViewerState::strokeLimb(const std::vector<Vec2>& stroke) {
     selected_ = active_ = r.added.back();
   });
   if (ok) {
-    info("drew a limb: " + std::to_string(r.added.size()) + " nodes under node " + std::to_string(r.attachedTo));
+    info("drew a limb: " + std::to_string(r.added.size()) + " nodes under node " + std::to_string(r.attachedTo) + "; " +
+         limbFitSummary(r.added));
     if (!r.warning.empty()) info("stroke: " + r.warning);
   }
   return ok;
+}
+
+std::string ViewerState::limbFitSummary(const std::vector<NodeId>& nodes) const {
+  // How many of the limb's nodes fitted, and why the others did not, grouped by reason (a sparse
+  // limb's nodes mostly fail on the minimum support: the person sees why, not only a thin tube).
+  std::size_t fitted = 0;
+  std::map<std::string, std::size_t> reasons;
+  for (NodeId id : nodes) {
+    const NodeFitView f = recon_->nodeFit(id);
+    if (f.status == NodeStatus::Fitted)
+      ++fitted;
+    else
+      ++reasons[f.reason.empty() ? std::string(toString(f.status)) : f.reason];
+  }
+  std::string text = std::to_string(fitted) + " of " + std::to_string(nodes.size()) + " fitted";
+  for (const auto& [reason, n] : reasons) text += "; " + std::to_string(n) + " not: " + reason;
+  return text;
 }
 
 bool ViewerState::lassoNotWood(const std::vector<Vec2>& polygon) {

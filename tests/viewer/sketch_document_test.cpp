@@ -391,6 +391,35 @@ geom::PointCloud forkedTree() {
   return cloud;
 }
 
+TEST(SketchDocument, AStrokeSaysHowManyNodesFittedAndWhyOthersDidNot) {
+  // A trunk and a sparse limb (150 points over 1.5 m) from (0, 2, 0) towards +x and up.
+  geom::PointCloud cloud = trunk(0.0, 20000);
+  gen::Rng rng(3);
+  const Vec3 from(0, 2, 0), dir = Vec3(1, 0.8, 0).normalized();
+  for (int i = 0; i < 150; ++i) {
+    const double t = rng.uniform(0.15, 1.5), a = rng.uniform(0, 2 * M_PI);
+    cloud.positions.push_back(from + t * dir + 0.04 * (std::cos(a) * Vec3::UnitZ() + std::sin(a) * dir.cross(Vec3::UnitZ())));
+  }
+  ViewerState s;
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(s.setCloud(cloud, geom::UpAxis::Y));
+  for (double y : {1.0, 2.0, 3.0})
+    s.clickAt(s.camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
+  ASSERT_EQ(s.sketch().size(), 3u);
+  std::vector<Vec2> stroke;
+  for (double t = 0.0; t <= 1.45; t += 0.1) stroke.push_back(s.camera().project(from + t * dir).head<2>());
+  ASSERT_TRUE(s.strokeLimb(stroke));
+  const std::size_t added = s.sketch().size() - 3;
+  std::string said;
+  for (const StatusMessage& m : s.messages())
+    if (m.text.rfind("drew a limb", 0) == 0) said = m.text;
+  EXPECT_NE(said.find(" of " + std::to_string(added) + " fitted"), std::string::npos) << said;
+  std::size_t fitted = 0;
+  for (const auto& [id, node] : s.sketch().nodes()) fitted += id >= 3 && s.nodeFit(id).status == NodeStatus::Fitted;
+  EXPECT_NE(said.find(std::to_string(fitted) + " of "), std::string::npos) << said;
+  if (fitted < added) EXPECT_NE(said.find(" not: "), std::string::npos) << said;
+}
+
 TEST(SketchDocument, TheNotWoodLassoChangesTheAutomaticModel) {
   ViewerState s;
   s.setViewport(geom::Viewport{0, 0, 800, 600});

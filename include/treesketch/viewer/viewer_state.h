@@ -504,6 +504,8 @@ class ViewerState {
   bool toolMouseUp(const geom::Vec2& pos);
   bool toolKey(const std::string& key, int mods);
   std::map<sketch::NodeId, std::pair<geom::Vec3, double>> anchorsForTools() const;
+  /// "3 of 7 fitted; 4 not: REASON" for the nodes a tool added (the status line after a stroke).
+  std::string limbFitSummary(const std::vector<sketch::NodeId>& nodes) const;
   bool runAction(const std::string& name, const std::function<void()>& action);
   /// The edit protocol: runs `body` on the sketch; on success records the previous sketch for undo
   /// (merged with the previous edit when `mergeKey` is non-empty and repeats) and calls endEdit; on
