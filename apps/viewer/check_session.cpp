@@ -174,7 +174,7 @@ int main(int argc, char** argv) {
       check(chain && sk.root() != sketch::kNoNode, "sketch is one tree of screen nodes");
     }
     if (!args.autosavePath.empty() && !args.sketchPath.empty()) {
-      // A session that ends with its work saved leaves no autosave to offer back.
+      // A window closed with its work saved leaves no autosave to offer back.
       std::error_code ec;
       check(!std::filesystem::exists(args.autosavePath, ec), "the autosave is removed once the sketch is saved");
     }

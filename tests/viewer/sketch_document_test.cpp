@@ -38,9 +38,9 @@ geom::PointCloud trunk(double dx = 0.0, int n = 6000) {
   return cloud;
 }
 
-struct Session {
+struct OpenCloud {
   ViewerState state;
-  explicit Session(const fs::path& cloudFile) {
+  explicit OpenCloud(const fs::path& cloudFile) {
     state.setViewport(geom::Viewport{0, 0, 800, 600});
     EXPECT_TRUE(state.openFile(cloudFile, geom::UpAxis::Y));
   }
@@ -91,7 +91,7 @@ TEST(SketchDocument, TheRecordNamesTheCloudByCountAndHash) {
 TEST(SketchDocument, TwoCloudsInOneFolderKeepTheirOwnSketchesAndAutosaves) {
   TwoClouds t;
   {
-    Session s(t.a);
+    OpenCloud s(t.a);
     EXPECT_EQ(s.state.sketchPath(), t.dir / "tree.xyz.sketch.json");
     s.addNodes(3);
     ASSERT_EQ(s.state.sketch().size(), 3u);
@@ -100,7 +100,7 @@ TEST(SketchDocument, TwoCloudsInOneFolderKeepTheirOwnSketchesAndAutosaves) {
     EXPECT_EQ(io::readSketch(t.dir / "tree.xyz.sketch.json").size(), 3u);
     EXPECT_FALSE(fs::exists(t.dir / "tree.xyz.autosave.sketch.json"));  // saved: nothing to bring back
   }
-  Session s(t.b);
+  OpenCloud s(t.b);
   EXPECT_EQ(s.state.sketchPath(), t.dir / "tree.las.xyz.sketch.json");
   s.addNodes(1, 0.5);
   EXPECT_TRUE(s.state.keyPress("ctrl+s"));
@@ -112,11 +112,11 @@ TEST(SketchDocument, TwoCloudsInOneFolderKeepTheirOwnSketchesAndAutosaves) {
 TEST(SketchDocument, ASketchForAnotherCloudIsNotLoadedSilently) {
   TwoClouds t;
   {
-    Session a(t.a);
+    OpenCloud a(t.a);
     a.addNodes(3);
     ASSERT_TRUE(a.state.saveSketch(a.state.sketchPath()));
   }
-  Session s(t.b);
+  OpenCloud s(t.b);
   s.addNodes(1, 0.5);
   const fs::path other = t.dir / "tree.xyz.sketch.json";
   EXPECT_FALSE(s.state.loadSketch(other));
@@ -137,7 +137,7 @@ TEST(SketchDocument, ASketchForAnotherCloudIsNotLoadedSilently) {
 
 TEST(SketchDocument, AnOldSketchWithoutARecordStillLoads) {
   TwoClouds t;
-  Session s(t.a);
+  OpenCloud s(t.a);
   sketch::Sketch sk;
   sk.addPointNode(sketch::kNoNode, Vec3(0, 1, 0), Vec3::UnitY());
   io::writeSketch(t.dir / "old.json", sk);
@@ -149,13 +149,13 @@ TEST(SketchDocument, AnOldSketchWithoutARecordStillLoads) {
 TEST(SketchDocument, SavingOverAnotherFileAsks) {
   TwoClouds t;
   {
-    Session a(t.a);
+    OpenCloud a(t.a);
     a.addNodes(3);
     ASSERT_TRUE(a.state.saveSketch(a.state.sketchPath()));
   }
   const fs::path other = t.dir / "tree.xyz.sketch.json";
   const std::string before = test::readText(other);
-  Session s(t.b);
+  OpenCloud s(t.b);
   s.addNodes(1, 0.5);
   s.state.setSketchPath(other);  // as the old default, one name for every cloud
   EXPECT_TRUE(s.state.keyPress("ctrl+s"));
@@ -176,7 +176,7 @@ TEST(SketchDocument, SavingOverAnotherFileAsks) {
 
 TEST(SketchDocument, AutosavesGoWhenUndoneToNothingDiscardedOrTheCloudChanges) {
   TwoClouds t;
-  Session s(t.a);
+  OpenCloud s(t.a);
   const fs::path autosave = s.state.autosavePath();
   s.addNodes(2);
   ASSERT_TRUE(fs::exists(autosave));
@@ -190,7 +190,7 @@ TEST(SketchDocument, AutosavesGoWhenUndoneToNothingDiscardedOrTheCloudChanges) {
   s.state.discardUnsavedWork();  // the unsaved-work prompt's Discard
   EXPECT_FALSE(fs::exists(autosave));
   {
-    Session next(t.a);
+    OpenCloud next(t.a);
     EXPECT_FALSE(next.state.recoveryPending());
   }
   // Saved work, an edit undone back to it, then another cloud: nothing unsaved, so the first
@@ -209,7 +209,7 @@ TEST(SketchDocument, AutosavesGoWhenUndoneToNothingDiscardedOrTheCloudChanges) {
 TEST(SketchDocument, NeverWritesOverTheOpenCloudOrAFileThatFailedToLoad) {
   TwoClouds t;
   const std::string cloudBytes = test::readText(t.a);
-  Session s(t.a);
+  OpenCloud s(t.a);
   s.addNodes(3);
   EXPECT_FALSE(s.state.saveSketch(t.a));
   EXPECT_FALSE(s.state.saveSketch(t.dir / "." / "tree.xyz", true));  // another spelling, confirmed

@@ -248,7 +248,7 @@ class ViewerState {
   /// hasUnsavedWork); else it stays, to be offered next time.
   void closeSession();
   /// The person chose to drop the unsaved work (the unsaved-work prompt's Discard): the autosave
-  /// is deleted so that it is not offered back (an earlier session's autosave still waiting for
+  /// is deleted so that it is not offered back (an autosave found at start and still waiting for
   /// its offer's answer is left alone).
   void discardUnsavedWork();
 
