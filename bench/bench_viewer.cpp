@@ -44,6 +44,7 @@ std::unique_ptr<viewer::ViewerState> sketchedState(treesketch::sketch::NodeId* n
   auto s = std::make_unique<viewer::ViewerState>();
   s->setViewport({340, 0, 940, 774});
   s->setCloud(cloud(), treesketch::geom::UpAxis::Y);
+  s->setTool(viewer::ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   double top = cloud().bounds().max.y();
   for (int i = 1; i <= 8; ++i) s->clickAt(s->camera().project(Vec3(0, top * 0.05 * i, 0)).head<2>());
   *node = treesketch::sketch::kNoNode;

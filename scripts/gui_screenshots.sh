@@ -9,8 +9,9 @@
 #   (the leaves), 64 (user defined: the wood); intensity simulated as a reflectance per class
 #   (ground 0.25, leaves 0.35, wood 0.6) times 65535 with ±15 % noise. The attributes are made up
 #   to show the feature; the geometry is the demo tree's.
-# (docs/gui_sketch.png and gui_mesh.png come from apps/viewer/docs_screenshots.json, run by hand
-# with `treesketch gui --script`.)
+# (docs/gui_sketch.png and gui_mesh.png come from apps/viewer/docs_screenshots.json, and
+# docs/gui_stroke_drawn.png, gui_subtree.png, gui_distance.png from apps/viewer/docs_edits.json,
+# both run by hand with `treesketch gui --script` on the demo tree, in docs/.)
 # Usage: scripts/gui_screenshots.sh [BUILD_DIR]   (default build; needs xvfb-run and Mesa)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"

@@ -84,17 +84,23 @@ void drawJobProgress(viewer::ViewerState& state) {
 }
 
 void drawConfirmDialog(viewer::ViewerState& state) {
-  const char* title = "Replace the sketch?##confirm";
+  // One dialog for every question the state asks (replace hand edits, load another cloud's
+  // sketch, replace another file, delete a subtree): the question says what yes does.
+  const char* title = "Are you sure?##confirm";
   if (state.confirmationPending() && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
   ImGui::SetNextWindowSize(ImVec2(420, 0));
+  // In the view's corner, so that what the question is about (the nodes a Delete subtree would
+  // remove, drawn in red) stays in sight.
+  const geom::Viewport vp = state.orbit().viewport();
+  ImGui::SetNextWindowPos(ImVec2(float(vp.x + 10), float(vp.y + 10)));
   if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove)) return;
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextUnformatted(state.confirmationQuestion().c_str());
   ImGui::PopTextWrapPos();
   ImGui::Separator();
-  if (ImGui::Button("Replace")) state.answerConfirmation(true);
+  if (ImGui::Button("Yes")) state.answerConfirmation(true);
   ImGui::SameLine();
-  if (ImGui::Button("Keep my sketch") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+  if (ImGui::Button("No") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
     state.answerConfirmation(false);
   if (!state.confirmationPending()) ImGui::CloseCurrentPopup();
   ImGui::EndPopup();

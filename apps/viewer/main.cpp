@@ -132,7 +132,6 @@ int toMods(int glfwMods) {
 class App {
  public:
   App(const Args& args, GLFWwindow* window) : args_(args), window_(window) {
-    panel_.sketchPath = args.sketchPath.empty() ? "sketch.json" : args.sketchPath;
     panel_.inputName = args.input.empty() ? "demo tree (" + args.demo.preset + ")" : args.input;
     renderer_ = std::make_unique<gui::Renderer>();
     gui::WindowHooks hooks;
@@ -169,6 +168,7 @@ class App {
     else {
       gui::drawPanels(state_, panel_, ww, wh, [this] { actions_->drawMenuBar(); });
       gui::drawMarkers(state_);
+      gui::drawToolOverlay(state_);
       gui::drawRecoveryDialog(state_);
       gui::drawConfirmDialog(state_);
       gui::drawUpWarning(state_);
@@ -271,10 +271,18 @@ class App {
     state_.setCloud(std::move(loader_.cloud), up.axis, args_.input.empty() ? fs::path() : fs::path(args_.input));
     if (up.view != viewer::toUpDirection(up.axis)) state_.setUpDirection(up.view);
     std::cerr << "treesketch-gui: up " << viewer::toString(state_.upDirection()) << " (" << upReason << ")\n";
-    if (args_.input.empty()) state_.setAutosavePath("treesketch_demo.autosave.sketch.json");
+    // The demo tree has no file: its sketch and autosave are named after it in the current folder.
+    if (args_.input.empty()) {
+      state_.setAutosavePath("treesketch_demo.autosave.sketch.json");
+      state_.setSketchPath("treesketch_demo.sketch.json");
+    }
     if (!args_.autosavePath.empty()) state_.setAutosavePath(args_.autosavePath);
-    state_.setSketchPath(panel_.sketchPath);
-    if (!args_.sketchPath.empty() && fs::exists(args_.sketchPath)) state_.loadSketch(args_.sketchPath);
+    // --sketch, else the cloud's own sketch file (tree.las -> tree.las.sketch.json), loaded when
+    // it is there; one made for another cloud asks first.
+    if (!args_.sketchPath.empty()) state_.setSketchPath(args_.sketchPath);
+    panel_.sketchPath = state_.sketchPath().string();
+    std::error_code ec;
+    if (!state_.sketchPath().empty() && fs::exists(state_.sketchPath(), ec)) state_.loadSketch(state_.sketchPath());
     return true;
   }
 

@@ -118,6 +118,17 @@ void WindowActions::drawMenuBar() {
   if (ImGui::BeginMenu("View")) drawViewMenu();
   if (forcedMenu_ == "Tools") ImGui::OpenPopup("Tools");  // the same id BeginMenu uses
   if (ImGui::BeginMenu("Tools")) {
+    // What a left click or drag in the view does (the keys toggle them; Esc: back to Select).
+    using Tool = viewer::ViewerState::Tool;
+    static const std::pair<Tool, const char*> kTools[] = {{Tool::Select, "Esc"}, {Tool::AddNodes, "N"},
+                                                          {Tool::Stroke, "G"},   {Tool::Lasso, "X"},
+                                                          {Tool::Region, "R"},   {Tool::Reattach, "P"}};
+    for (const auto& [tool, key] : kTools)
+      if (ImGui::MenuItem(viewer::ViewerState::toolLabel(tool), key, state_.tool() == tool)) state_.setTool(tool);
+    if (ImGui::MenuItem("Delete subtree of the selected node", "Shift+Del", false,
+                        state_.selected() != sketch::kNoNode))
+      state_.requestDeleteSubtree(state_.selected());
+    ImGui::Separator();
     bool pick = pickMode_;
     if (ImGui::MenuItem("Pick points / measure", "M", pick)) setPickMode(!pick);
     tip("Left clicks pick points (coordinates and the file's attributes); a second pick measures the distance");

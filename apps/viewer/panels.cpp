@@ -255,8 +255,16 @@ void drawMarkers(const viewer::ViewerState& state) {
   for (const auto& m : markers) {
     const viewer::NodeMarker* p = m.parent == sketch::kNoNode ? nullptr : find(m.parent);
     if (!p || !m.visible || !p->visible) continue;
-    dl->AddLine(ImVec2(float(p->screen.x()), float(p->screen.y())), ImVec2(float(m.screen.x()), float(m.screen.y())),
-                IM_COL32(255, 235, 120, 220), 2.0f);
+    const ImU32 colour = m.doomed ? IM_COL32(255, 70, 60, 240) : IM_COL32(255, 235, 120, 220);
+    const ImVec2 a(float(p->screen.x()), float(p->screen.y())), b(float(m.screen.x()), float(m.screen.y()));
+    dl->AddLine(a, b, colour, m.doomed ? 3.0f : 2.0f);
+    // The edge's direction, parent to child: an arrowhead at its middle (edges shorter than the
+    // markers have none).
+    const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
+    if (len < 24.0f) continue;
+    const float ux = dx / len, uy = dy / len, mx = a.x + 0.5f * dx + 4.0f * ux, my = a.y + 0.5f * dy + 4.0f * uy;
+    dl->AddTriangleFilled(ImVec2(mx, my), ImVec2(mx - 8.0f * ux - 4.5f * uy, my - 8.0f * uy + 4.5f * ux),
+                          ImVec2(mx - 8.0f * ux + 4.5f * uy, my - 8.0f * uy - 4.5f * ux), colour);
   }
   for (const auto& m : markers) {
     if (!m.visible) continue;
@@ -270,6 +278,11 @@ void drawMarkers(const viewer::ViewerState& state) {
       dl->AddCircle(c, 6.0f, rgb(fill), 20, 2.5f);  // drawn under another view
     }
     dl->AddCircle(c, 7.0f, IM_COL32(20, 20, 20, 255), 20, 1.5f);
+    if (m.doomed) {  // a Delete subtree waiting for its answer removes this node
+      dl->AddCircleFilled(c, 6.0f, IM_COL32(230, 40, 30, 255), 20);
+      dl->AddLine(ImVec2(c.x - 6, c.y - 6), ImVec2(c.x + 6, c.y + 6), IM_COL32(255, 255, 255, 255), 2.0f);
+      dl->AddLine(ImVec2(c.x - 6, c.y + 6), ImVec2(c.x + 6, c.y - 6), IM_COL32(255, 255, 255, 255), 2.0f);
+    }
     if (m.active) dl->AddCircle(c, 10.5f, IM_COL32(255, 230, 0, 255), 24, 2.0f);
     if (m.selected) dl->AddCircle(c, 14.0f, IM_COL32(255, 255, 255, 255), 24, 2.0f);
     if (!labels) continue;
@@ -277,6 +290,31 @@ void drawMarkers(const viewer::ViewerState& state) {
     std::snprintf(label, sizeof label, "%d", m.id);
     dl->AddText(ImVec2(c.x + 9, c.y - 18), IM_COL32(255, 255, 255, 230), label);
   }
+  dl->PopClipRect();
+}
+
+void drawToolOverlay(const viewer::ViewerState& state) {
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  const geom::Viewport vp = state.orbit().viewport();
+  dl->PushClipRect(ImVec2(float(vp.x), float(vp.y)), ImVec2(float(vp.x + vp.width), float(vp.y + vp.height)));
+  // The path of the drag being drawn (stroke, lasso, region), closed for the polygon tools.
+  const std::vector<geom::Vec2>& path = state.toolPath();
+  if (path.size() >= 2) {
+    using Tool = viewer::ViewerState::Tool;
+    std::vector<ImVec2> pts;
+    pts.reserve(path.size());
+    for (const geom::Vec2& p : path) pts.emplace_back(float(p.x()), float(p.y()));
+    const bool closed = state.tool() == Tool::Lasso || state.tool() == Tool::Region;
+    const ImU32 colour = state.tool() == Tool::Lasso ? IM_COL32(255, 90, 200, 255) : IM_COL32(90, 220, 255, 255);
+    dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), colour, closed ? ImDrawFlags_Closed : 0, 2.0f);
+  }
+  // The active tool, always on the canvas (the panel's buttons may be scrolled away).
+  char text[96];
+  std::snprintf(text, sizeof text, "tool: %s", viewer::ViewerState::toolLabel(state.tool()));
+  const ImVec2 size = ImGui::CalcTextSize(text);
+  const ImVec2 at(float(vp.x) + 0.5f * (float(vp.width) - size.x), float(vp.y + vp.height) - size.y - 10.0f);
+  dl->AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + size.x + 4, at.y + size.y + 2), IM_COL32(0, 0, 0, 150), 3.0f);
+  dl->AddText(at, IM_COL32(255, 255, 255, 240), text);
   dl->PopClipRect();
 }
 

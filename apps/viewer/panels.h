@@ -44,5 +44,8 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
 void toolsSection(viewer::ViewerState& state);
 /// Draws node markers and parent links over the 3D view (ImGui background draw list).
 void drawMarkers(const viewer::ViewerState& state);
+/// Over the 3D view: the path of the drag being drawn (stroke, lasso, region) and the active tool's
+/// name (bottom centre), so that no tool is used blind.
+void drawToolOverlay(const viewer::ViewerState& state);
 
 }  // namespace treesketch::gui

@@ -15,9 +15,11 @@ void toolsSection(viewer::ViewerState& state) {
   auto toolButton = [&](const char* label, Tool tool) {
     const bool on = state.tool() == tool;
     if (on) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.2f, 0.5f, 0.3f, 1));
-    if (ImGui::Button(label)) state.setTool(on ? Tool::Sketch : tool);
+    if (ImGui::Button(label)) state.setTool(on ? Tool::Select : tool);
     if (on) ImGui::PopStyleColor();
   };
+  toolButton("Add nodes (N)", Tool::AddNodes);
+  ImGui::SameLine();
   toolButton("Stroke (G)", Tool::Stroke);
   ImGui::SameLine();
   toolButton("Lasso (X)", Tool::Lasso);

@@ -29,6 +29,7 @@ const Tip kTips[] = {
     {"node labels##labels", "Node numbers: automatic (shown up to 100 nodes), always or never (key L)"},
     {"up axis##upAxis", "Which direction is up in the view; the data and the sketch do not move"},
     {"Correction tools", "Edit the sketch in whole gestures: strokes, lassos, regions, re-attach"},
+    {"Add nodes (N)", "A left click on the cloud adds a node under the active node (else clicks only select)"},
     {"Stroke (G)", "Drag along a missing limb, starting on the node it grows from"},
     {"Lasso (X)", "Drag around points that are not wood: fits and the skeleton leave them out"},
     {"Region (R)", "Drag around a region: the automatic skeleton runs there and is merged"},

@@ -67,7 +67,8 @@ void WindowActions::saveAsDialog() {
   fs::path current = state_.sketchPath();
   dialog_.open(FileDialog::Mode::Save, "Save the sketch as", viewer::sketchFileFilter(), dialogFolder(),
                current.filename().string(), [this](const fs::path& p) {
-                 if (!state_.saveSketch(p)) return state_.lastMessage().text;
+                 // The dialog asked before replacing a file: no second question.
+                 if (!state_.saveSketch(p, true)) return state_.lastMessage().text;
                  state_.setSketchPath(p);
                  panel_.sketchPath = p.string();
                  remember(viewer::RecentKind::Sketch, p);
@@ -158,13 +159,13 @@ void WindowActions::openCloudNow(const fs::path& path) {
   if (!state_.setCloud(std::move(cloud), up.up, path)) return;
   state_.info("up axis: " + up.reason);
   panel_.inputName = path.string();
-  fs::path sketch = path.parent_path() / (path.stem().string() + ".sketch.json");
-  state_.setSketchPath(sketch);
+  // The cloud's own sketch file (tree.las -> tree.las.sketch.json), set by setCloud.
+  const fs::path sketch = state_.sketchPath();
   panel_.sketchPath = sketch.string();
   picks_.clear();
   remember(viewer::RecentKind::Cloud, path);
   std::error_code ec;
-  if (fs::exists(sketch, ec) && state_.loadSketch(sketch))
+  if (!sketch.empty() && fs::exists(sketch, ec) && state_.loadSketch(sketch))
     state_.info("loaded the sketch saved beside it, " + sketch.filename().string());
 }
 
@@ -197,6 +198,7 @@ void WindowActions::answerPrompt(const std::string& answer) {
     return;
   }
   if (answer == "save" && !save()) return;  // the prompt stays; the error is in the status bar
+  if (answer == "discard") state_.discardUnsavedWork();  // and its autosave, not offered back
   promptOpen_ = false;
   std::function<void()> then = std::move(afterPrompt_);
   afterPrompt_ = nullptr;

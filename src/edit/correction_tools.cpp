@@ -310,6 +310,24 @@ std::size_t lassoNotWood(sketch::Sketch& sketch, const geom::PointCloud& cloud, 
   return n;
 }
 
+void copyNotWood(const sketch::Sketch& from, sketch::Sketch& to) {
+  for (const sketch::NotWoodLasso& l : from.notWood()) {
+    const sketch::NotWoodLasso* same = nullptr;
+    for (const sketch::NotWoodLasso& m : to.notWood())
+      if (m.polygon == l.polygon && to.cameras()[m.camera].view == from.cameras()[l.camera].view) same = &m;
+    if (!same) to.addNotWoodLasso(to.addCamera(from.cameras()[l.camera]), l.polygon);
+  }
+}
+
+std::size_t refitNotWoodCircles(sketch::Sketch& sketch) {
+  if (sketch.notWood().empty()) return 0;
+  std::vector<NodeId> inside;
+  for (const auto& [id, node] : sketch.nodes())
+    if (node.kept && sketch.isNotWood(node.kept->centre)) inside.push_back(id);
+  for (NodeId id : inside) sketch.setKeptCircle(id, std::nullopt);
+  return inside.size();
+}
+
 geom::PointCloud woodOnly(const geom::PointCloud& cloud, const sketch::Sketch& sketch) {
   if (sketch.notWood().empty()) return cloud;
   geom::PointCloud out;

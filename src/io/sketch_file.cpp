@@ -1,6 +1,8 @@
 // Sketch files and camera files (JSON, nlohmann). See include/treesketch/io/sketch_file.h.
 #include "treesketch/io/sketch_file.h"
 
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -203,6 +205,24 @@ sketch::Node nodeFromJson(const json& j, std::size_t index, const sketch::Sampli
   return n;
 }
 
+std::optional<SketchCloudRecord> cloudRecordFromJson(const json& root, const std::string& source) {
+  auto it = root.find("cloud");
+  if (it == root.end()) return std::nullopt;
+  const Ctx ctx{source, "\"cloud\""};
+  if (!it->is_object()) ctx.fail("expected an object {\"path\", \"points\", \"hash\"}, got " + typeName(*it));
+  SketchCloudRecord r;
+  const json& path = field(*it, "path", ctx);
+  const json& points = field(*it, "points", ctx);
+  const json& hash = field(*it, "hash", ctx);
+  if (!path.is_string()) ctx.fail("\"path\": expected a string, got " + typeName(path));
+  if (!points.is_number_unsigned()) ctx.fail("\"points\": expected a count, got " + points.dump());
+  if (!hash.is_string()) ctx.fail("\"hash\": expected a string, got " + typeName(hash));
+  r.path = path.get<std::string>();
+  r.points = points.get<std::uint64_t>();
+  r.hash = hash.get<std::string>();
+  return r;
+}
+
 sketch::Sketch sketchFromJson(const json& root, const std::string& source) {
   Ctx top{source, ""};
   if (!root.is_object()) top.fail("expected a JSON object at the top level, got " + typeName(root));
@@ -275,10 +295,11 @@ sketch::Sketch sketchFromJson(const json& root, const std::string& source) {
   return sk;
 }
 
-ojson sketchToJson(const sketch::Sketch& sk) {
+ojson sketchToJson(const sketch::Sketch& sk, const SketchCloudRecord* cloud = nullptr) {
   ojson j;
   j["format"] = kFormatName;
   j["version"] = kFormatVersion;
+  if (cloud) j["cloud"] = ojson{{"path", cloud->path}, {"points", cloud->points}, {"hash", cloud->hash}};
   j["up"] = geom::toString(sk.up);
   j["defaults"] = paramsToJson(sk.defaults, sketch::SamplingParams{});  // absent = -1 = unlimited (thesis)
   j["cameras"] = ojson::array();
@@ -358,6 +379,59 @@ void writeSketch(const std::filesystem::path& path, const sketch::Sketch& sk) {
   sk.validate();
   std::string text = layout(sketchToJson(sk));
   writeFileAtomically(path, [&](std::ostream& out) { out << text; });
+}
+
+void writeSketch(const std::filesystem::path& path, const sketch::Sketch& sk, const SketchCloudRecord& cloud) {
+  sk.validate();
+  std::string text = layout(sketchToJson(sk, &cloud));
+  writeFileAtomically(path, [&](std::ostream& out) { out << text; });
+}
+
+SketchFile readSketchFile(std::istream& in, const std::string& source) {
+  const json root = parseJson(in, source);
+  SketchFile f;
+  f.sketch = sketchFromJson(root, source);
+  f.cloud = cloudRecordFromJson(root, source);
+  return f;
+}
+
+SketchFile readSketchFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot open for reading");
+  return readSketchFile(in, path.string());
+}
+
+std::string cloudContentHash(const geom::PointCloud& cloud) {
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64-bit offset basis
+  for (const geom::Vec3& p : cloud.positions) {
+    for (int k = 0; k < 3; ++k) {
+      std::uint64_t bits;
+      const double v = p[k];
+      std::memcpy(&bits, &v, sizeof bits);
+      for (int b = 0; b < 8; ++b) {
+        h ^= (bits >> (8 * b)) & 0xffu;
+        h *= 1099511628211ull;  // FNV prime
+      }
+    }
+  }
+  char text[40];
+  std::snprintf(text, sizeof text, "fnv1a64:%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+SketchCloudRecord makeCloudRecord(const geom::PointCloud& cloud, const std::filesystem::path& cloudPath,
+                                  const std::filesystem::path& sketchPath) {
+  SketchCloudRecord r;
+  r.points = cloud.size();
+  r.hash = cloudContentHash(cloud);
+  std::error_code ec;
+  if (!cloudPath.empty()) {
+    const std::filesystem::path dir = std::filesystem::absolute(sketchPath, ec).parent_path();
+    const std::filesystem::path abs = std::filesystem::absolute(cloudPath, ec).lexically_normal();
+    const std::filesystem::path rel = abs.lexically_relative(dir);
+    r.path = (!rel.empty() && !ec ? rel : cloudPath).generic_string();
+  }
+  return r;
 }
 
 geom::Camera readCamera(std::istream& in, const std::string& source) {

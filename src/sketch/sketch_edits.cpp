@@ -37,6 +37,24 @@ void reattach(Sketch& sketch, NodeId id, NodeId newParent) {
   sketch.setParent(id, newParent);
 }
 
+std::vector<NodeId> reattachReversed(Sketch& sketch, NodeId base, NodeId newParent) {
+  if (newParent == kNoNode) throw OptionsError("re-attach: give the new parent");
+  sketch.node(newParent);  // throws for an unknown id
+  if (sketch.node(base).parent == kNoNode) throw OptionsError("re-attach: node " + std::to_string(base) + " is the root");
+  std::set<NodeId> above;  // newParent and its ancestors
+  for (NodeId n = newParent; n != kNoNode; n = sketch.node(n).parent) above.insert(n);
+  if (above.count(base))
+    throw OptionsError("re-attach: node " + std::to_string(newParent) + " lies below node " + std::to_string(base) +
+                       " (that would make a cycle)");
+  std::vector<NodeId> chain;  // base, its parent, ... up to the common ancestor (excluded)
+  for (NodeId n = base; n != kNoNode && !above.count(n); n = sketch.node(n).parent) chain.push_back(n);
+  // Top-down is safe: base leaves the chain first, then each node hangs under the one below it,
+  // which by then is under newParent, outside the moved node's subtree.
+  reattach(sketch, base, newParent);
+  for (std::size_t i = 1; i < chain.size(); ++i) reattach(sketch, chain[i], chain[i - 1]);
+  return chain;
+}
+
 std::vector<NodeId> graft(Sketch& target, const Sketch& piece, NodeId attachTo, const std::vector<NodeId>& drop) {
   if (attachTo == kNoNode && !target.empty())
     throw OptionsError("graft: the sketch has a root already; give the node to attach to");

@@ -125,8 +125,18 @@ std::optional<std::string> performInput(ViewerState& state, const ScriptAction& 
       state.clickAt(a.from, a.button, a.mods);
       break;
     case Kind::Drag:
-      // Move in steps, drawing a frame after each, as a real drag would.
-      state.dragTo(a.from, a.to, a.button, a.mods, a.steps, hooks.frame);
+      if (a.name == "release") {  // ends a drag held by "hold"
+        state.mouseUp(a.to, a.button, a.mods);
+      } else if (a.name == "hold") {  // press and move, the button kept down (what is drawn meanwhile)
+        state.mouseDown(a.from, a.button, a.mods);
+        for (int i = 1; i <= a.steps; ++i) {
+          state.mouseMove(a.from + (a.to - a.from) * (double(i) / a.steps));
+          if (hooks.frame) hooks.frame();
+        }
+      } else {
+        // Move in steps, drawing a frame after each, as a real drag would.
+        state.dragTo(a.from, a.to, a.button, a.mods, a.steps, hooks.frame);
+      }
       break;
     case Kind::Scroll:
       state.scroll(a.value);
@@ -167,7 +177,7 @@ std::optional<std::string> performInput(ViewerState& state, const ScriptAction& 
       else if (a.name == "automaticBelow")
         state.automaticBelow(id);
       else
-        state.reattachNode(id, static_cast<sketch::NodeId>(a.value2));
+        state.reattachNode(id, static_cast<sketch::NodeId>(a.value2), a.text == "reverse");
       break;
     }
     case Kind::Tool:
@@ -186,7 +196,9 @@ std::string performAction(ViewerState& state, const ScriptAction& a, const Scrip
   switch (a.kind) {
     case Kind::Save:
     case Kind::Load: {
-      std::filesystem::path p = a.path.empty() ? hooks.sketchPath : a.path;
+      std::filesystem::path p = !a.path.empty()              ? a.path
+                                : !state.sketchPath().empty() ? state.sketchPath()
+                                                              : hooks.sketchPath;
       if (p.empty()) throw OptionsError("no sketch path: give one (\"save PATH\") or start with --sketch");
       if (a.kind == Kind::Save)
         state.saveSketch(p);

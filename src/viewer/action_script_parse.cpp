@@ -164,7 +164,7 @@ class Parser {
     return a;
   }
 
-  /// {"click"}, {"drag"}, {"scroll"}, {"key"}, {"slider"}, {"option"}, {"view"}, {"select"}; false
+  /// {"click"}, {"drag"}, {"release"}, {"scroll"}, {"key"}, {"slider"}, {"option"}, {"view"}, {"select"}; false
   /// when `j` holds none of them.
   bool inputVerb(const json& j, std::size_t index, ScriptAction& a) const {
     if (j.contains("click")) {
@@ -180,6 +180,15 @@ class Parser {
       if (j.contains("button")) a.button = button(j["button"].get<std::string>(), index);
       if (j.contains("steps")) a.steps = static_cast<int>(number(j["steps"], index, "steps"));
       if (a.steps < 1) fail(index, "steps must be at least 1");
+      if (j.contains("hold")) {
+        if (!j["hold"].is_boolean()) fail(index, "hold: expected true or false");
+        if (j["hold"].get<bool>()) a.name = "hold";  // the button stays down until "release"
+      }
+    } else if (j.contains("release")) {
+      a.kind = Kind::Drag;
+      a.name = "release";
+      a.from = a.to = point(j["release"], index, "release");
+      if (j.contains("button")) a.button = button(j["button"].get<std::string>(), index);
     } else if (j.contains("scroll")) {
       a.kind = Kind::Scroll;
       a.value = number(j["scroll"], index, "scroll");
@@ -238,6 +247,10 @@ class Parser {
       if (!r.is_array() || r.size() != 2) fail(index, "reattach: expected [nodeId, newParentId]");
       a.value = number(r[0], index, "reattach node");
       a.value2 = number(r[1], index, "reattach parent");
+      if (j.contains("reverse")) {
+        if (!j["reverse"].is_boolean()) fail(index, "reverse: expected true or false");
+        if (j["reverse"].get<bool>()) a.text = "reverse";
+      }
     } else if (j.contains("tool")) {
       a.kind = Kind::Tool;
       a.name = string(j["tool"], index, "tool");

@@ -11,6 +11,7 @@
 #include <optional>
 #include <thread>
 
+#include "treesketch/edit/correction_tools.h"
 #include "treesketch/skeleton/skeleton.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/cancel.h"
@@ -65,7 +66,10 @@ bool ViewerState::startAutoSkeletonJob(bool leafOn) {
   j->hold = holdJobs_;
   const skeleton::AutoSkeletonOptions options =
       skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, *axis);
-  const geom::PointCloud* cloud = &cloud_;
+  // The lassoed points are not wood: the job is given the cloud without them (a copy only when
+  // there are lassos; setCloud is refused while a job runs, so the open cloud outlives it).
+  std::shared_ptr<const geom::PointCloud> cloud(&cloud_, [](const geom::PointCloud*) {});
+  if (!sketch_.notWood().empty()) cloud = std::make_shared<const geom::PointCloud>(edit::woodOnly(cloud_, sketch_));
   job->thread = std::thread([j, options, cloud] {
     // The extraction reports d of 4, then the fit pass d of n: a new total is the next step.
     ProgressFn report = [j](std::uint64_t done, std::uint64_t total) {
@@ -134,6 +138,7 @@ bool ViewerState::pollJob() {
   } else if (job->result) {
     sketch::Sketch result = std::move(*job->result);
     bool ok = edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
+      edit::copyNotWood(sketch_, result);  // the person's lassos stay
       sketch_ = std::move(result);
       selected_ = kNoNode;
       active_ = sketch_.root();

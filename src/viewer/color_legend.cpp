@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "treesketch/render/color_map.h"
 #include "treesketch/viewer/view_up.h"
@@ -46,7 +47,7 @@ const char* colorModeLabel(ColorMode mode) {
     case ColorMode::Height:
       return "height";
     case ColorMode::CircleDistance:
-      return "distance to circles";
+      return "distance to the model";
     case ColorMode::Plain:
       return "plain";
     case ColorMode::Intensity:
@@ -92,10 +93,18 @@ Legend colorLegend(const ViewerState& state) {
                          {0.0, span}, render::viridis);
     }
     case ColorMode::CircleDistance: {
-      double scale = state.options().distanceColorScale * std::max(state.bounds().diagonal(), 1e-12);
-      Legend l = scaleLegend("distance to the nearest fitted circle (m)", {0.0, scale}, render::viridis);
+      const double diagonal = std::max(state.bounds().diagonal(), 1e-12);
+      const double scale = state.options().distanceColorScale * diagonal;
+      char title[96];
+      std::snprintf(title, sizeof title, "distance to the model's surface (m; top: %.3g %% of the diagonal)",
+                    100.0 * state.options().distanceColorScale);
+      Legend l = scaleLegend(title, {0.0, scale}, render::viridis);
+      char note[160];
+      std::snprintf(note, sizeof note, "0 on the tubes; the top colour: %.3g m (%.3g %% of the cloud's %.3g m diagonal) "
+                    "or farther", scale, 100.0 * state.options().distanceColorScale, diagonal);
       l.note = state.fittedCount() == 0 ? "no fitted circle yet: every point is at the far end"
-                                        : "the top colour: that far or farther";
+               : state.fittedCount() == 1 ? "one fitted circle, no tube yet: the distance to the circle"
+                                          : std::string(note);
       return l;
     }
     case ColorMode::Intensity: {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "treesketch/compare/model_fit.h"
 #include "treesketch/render/color_map.h"
 
 namespace treesketch::viewer {
@@ -118,6 +119,64 @@ void DistanceColorGrid::colors(const std::vector<Circle3>& circles, std::vector<
 
 std::vector<Rgb> plainColors(const geom::PointCloud& cloud, const Rgb& color) {
   return std::vector<Rgb>(cloud.size(), color);
+}
+
+void DistanceColorGrid::surfaceColors(const geom::CylinderModel& model, std::vector<Rgb>& out) {
+  out.assign(size_, render::viridis(1.0));
+  if (!cloud_ || model.empty() || size_ == 0 || !(maxDistance_ > 0)) return;
+  const compare::CylinderModelIndex index(model);
+  if (index.size() == 0) return;
+  // The cells within maxDistance of some piece's box: only their points can be nearer than that.
+  std::vector<char> near(start_.size() - 1, 0);
+  for (const geom::ModelCylinder& c : model.cylinders) {
+    const geom::BBox b = c.bounds();
+    if (!b.min.allFinite() || !b.max.allFinite()) continue;
+    int lo[3], hi[3];
+    bool outside = false;
+    for (int k = 0; k < 3; ++k) {
+      const double a = (b.min[k] - maxDistance_ - origin_[k]) / cell_, z = (b.max[k] + maxDistance_ - origin_[k]) / cell_;
+      outside |= z < 0 || a > dims_[k];
+      lo[k] = std::clamp(static_cast<int>(std::floor(a)), 0, dims_[k] - 1);
+      hi[k] = std::clamp(static_cast<int>(std::floor(z)), 0, dims_[k] - 1);
+    }
+    if (outside) continue;
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x)
+          near[(static_cast<std::size_t>(z) * dims_[1] + static_cast<std::size_t>(y)) * dims_[0] +
+               static_cast<std::size_t>(x)] = 1;
+  }
+  touched_.clear();
+  for (std::size_t cell = 0; cell < near.size(); ++cell)
+    if (near[cell]) touched_.insert(touched_.end(), points_.begin() + start_[cell], points_.begin() + start_[cell + 1]);
+  const double scale = 1.0 / maxDistance_;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched_.size(), 2048), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      const std::uint32_t i = touched_[j];
+      out[i] = render::viridis(std::min(std::abs(index.signedDistance(cloud_->positions[i])) * scale, 1.0));
+    }
+  });
+  touched_.clear();
+}
+
+std::vector<Rgb> surfaceDistanceColors(const geom::PointCloud& cloud, const geom::CylinderModel& model,
+                                       double maxDistance) {
+  std::vector<Rgb> out(cloud.size(), render::viridis(1.0));
+  if (model.empty() || !(maxDistance > 0)) return out;
+  const compare::CylinderModelIndex index(model);
+  if (index.size() == 0) return out;
+  geom::BBox box;
+  for (const geom::ModelCylinder& c : model.cylinders) box.add(c.bounds());
+  const geom::Vec3 lo = box.min.array() - maxDistance, hi = box.max.array() + maxDistance;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 4096), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const geom::Vec3& p = cloud.positions[i];
+      if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;  // beyond the ramp
+      const double d = std::abs(index.signedDistance(p));
+      out[i] = render::viridis(std::min(d / maxDistance, 1.0));
+    }
+  });
+  return out;
 }
 
 }  // namespace treesketch::viewer

@@ -8,6 +8,7 @@
 
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/util/error.h"
+#include "treesketch/viewer/unsaved_work.h"
 #include "treesketch/viewer/viewer_state.h"
 
 namespace treesketch::viewer {
@@ -34,8 +35,12 @@ std::filesystem::path keptName(const std::filesystem::path& autosave) {
 }  // namespace
 
 void ViewerState::setAutosavePath(const std::filesystem::path& path) {
-  autosavePath_ = path;
-  detectRecovery();
+  if (runAction("autosave", [&] { doc_.setAutosavePath(path); })) detectRecovery();
+}
+
+void ViewerState::discardUnsavedWork() {
+  if (!recoveryPending_) doc_.removeAutosave();
+  dirty_ = false;
 }
 
 void ViewerState::detectRecovery() {
@@ -43,11 +48,11 @@ void ViewerState::detectRecovery() {
   recoveryNodes_ = 0;
   recoveryError_.clear();
   std::error_code ec;
-  if (autosavePath_.empty() || !std::filesystem::is_regular_file(autosavePath_, ec)) return;
+  if (autosavePath().empty() || !std::filesystem::is_regular_file(autosavePath(), ec)) return;
   recoveryPending_ = true;
   try {
-    recoveryNodes_ = io::readSketch(autosavePath_).size();
-    info("found unsaved work from an earlier session: " + autosavePath_.string() + " (" +
+    recoveryNodes_ = io::readSketch(autosavePath()).size();
+    info("found unsaved work from an earlier session: " + autosavePath().string() + " (" +
          std::to_string(recoveryNodes_) + " nodes): restore, discard or keep it");
   } catch (const std::exception& e) {
     recoveryError_ = e.what();
@@ -60,7 +65,7 @@ bool ViewerState::resolveRecovery(RecoveryChoice choice) {
     error("recovery: no earlier autosave is waiting");
     return false;
   }
-  const std::filesystem::path file = autosavePath_;
+  const std::filesystem::path file = autosavePath();
   bool ok = false;
   switch (choice) {
     case RecoveryChoice::Restore: {
@@ -100,9 +105,9 @@ bool ViewerState::resolveRecovery(RecoveryChoice choice) {
 }
 
 void ViewerState::closeSession() {
-  if (autosavePath_.empty() || recoveryPending_ || dirty_) return;
-  std::error_code ec;
-  std::filesystem::remove(autosavePath_, ec);
+  if (autosavePath().empty() || recoveryPending_) return;
+  // Nothing unsaved: the sketch is empty or is what its file holds (saved, or undone back to it).
+  if (!hasUnsavedWork(*this)) doc_.removeAutosave();
 }
 
 }  // namespace treesketch::viewer

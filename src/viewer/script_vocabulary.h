@@ -42,7 +42,8 @@ struct ToolName {
   ViewerState::Tool tool;
 };
 inline const ToolName kTools[] = {
-    {"sketch", ViewerState::Tool::Sketch},     {"stroke", ViewerState::Tool::Stroke},
+    {"select", ViewerState::Tool::Select},     {"sketch", ViewerState::Tool::Select},
+    {"add", ViewerState::Tool::AddNodes},      {"stroke", ViewerState::Tool::Stroke},
     {"lasso", ViewerState::Tool::Lasso},       {"region", ViewerState::Tool::Region},
     {"reattach", ViewerState::Tool::Reattach},
 };

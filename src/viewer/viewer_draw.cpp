@@ -7,6 +7,7 @@
 #include <exception>
 #include <limits>
 
+#include "treesketch/model/tree_model.h"
 #include "treesketch/render/color_map.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/text.h"
@@ -200,15 +201,23 @@ const std::vector<Rgb>& ViewerState::pointColors() {
         colors_ = plainColors(cloud_, options_.plainColor);
         break;
       case ColorMode::CircleDistance: {
+        const double scale = options_.distanceColorScale * std::max(bounds_.diagonal(), 1e-12);
+        if (distanceGridVersion_ != cloudVersion_ || !distanceGrid_.builtFor(cloud_, scale)) {
+          distanceGrid_.build(cloud_, scale);  // once per cloud
+          distanceGridVersion_ = cloudVersion_;
+        }
+        // The distance to the model's surface (its frustums, what fit-report measures): zero on
+        // the tubes, also between two circles. A sketch with no two linked fitted nodes has no
+        // surface yet: the distance to its fitted circles stands in.
+        const model::TreeModel tree = model::fromReconstruction(recon_->result(), sketch_.up);
+        if (!tree.cylinders.empty()) {
+          distanceGrid_.surfaceColors(tree.cylinders, colors_);
+          break;
+        }
         std::vector<Circle3> circles;
         for (NodeId id : sketch_.ids()) {
           NodeFitView f = recon_->nodeFit(id);
           if (f.status == NodeStatus::Fitted) circles.push_back(f.circle);
-        }
-        double scale = options_.distanceColorScale * std::max(bounds_.diagonal(), 1e-12);
-        if (distanceGridVersion_ != cloudVersion_ || !distanceGrid_.builtFor(cloud_, scale)) {
-          distanceGrid_.build(cloud_, scale);  // once per cloud
-          distanceGridVersion_ = cloudVersion_;
         }
         distanceGrid_.colors(circles, colors_);
         break;
@@ -236,6 +245,9 @@ std::vector<NodeMarker> ViewerState::nodeMarkers() const {
   std::vector<NodeMarker> markers;
   geom::Camera cur = orbit_.camera();
   markers.reserve(sketch_.size());
+  const bool currentView = !sketch_.cameras().empty();
+  std::vector<bool> sameCamera(sketch_.cameras().size());
+  for (std::size_t c = 0; currentView && c < sameCamera.size(); ++c) sameCamera[c] = sameAsCurrent(sketch_.cameras()[c]);
   for (const auto& [id, node] : sketch_.nodes()) {
     NodeMarker m;
     m.id = id;
@@ -243,7 +255,16 @@ std::vector<NodeMarker> ViewerState::nodeMarkers() const {
     m.selected = id == selected_;
     m.active = id == active_;
     m.status = recon_->nodeFit(id).status;
-    if (node.isScreenNode() && sameAsCurrent(sketch_.cameras()[node.camera])) {
+    // A node goes with a pending Delete subtree when the path to the root meets its root.
+    m.doomed = pendingDelete_ != kNoNode && sketch_.contains(pendingDelete_);
+    for (NodeId a = id; m.doomed && a != pendingDelete_; a = sketch_.node(a).parent)
+      if (a == kNoNode || sketch_.node(a).parent == kNoNode) m.doomed = false;
+    try {
+      const Vec3 s = cur.project(anchor(id));
+      if (s.allFinite()) m.depth = s.z();
+    } catch (const std::exception&) {
+    }
+    if (node.isScreenNode() && sameCamera[node.camera]) {
       m.screen = node.screen;
       m.inCurrentView = true;
       m.visible = true;
@@ -263,17 +284,28 @@ std::vector<NodeMarker> ViewerState::nodeMarkers() const {
 }
 
 NodeId ViewerState::nodeAt(const Vec2& screen) const {
+  // Of the markers under the click (within the pick radius), the nearest to the eye: the node the
+  // person sees in front, not one hidden behind it; ties in depth go to the nearer marker.
   NodeId best = kNoNode;
-  double bestD = options_.pickRadiusPx;
+  double bestDepth = std::numeric_limits<double>::infinity(), bestD = options_.pickRadiusPx;
   for (const NodeMarker& m : nodeMarkers()) {
     if (!m.visible) continue;
-    double d = (m.screen - screen).norm();
-    if (d <= bestD) {
+    const double d = (m.screen - screen).norm();
+    if (d > options_.pickRadiusPx) continue;
+    const double depth = std::isfinite(m.depth) ? m.depth : 2.0;
+    if (depth < bestDepth || (depth == bestDepth && d < bestD)) {
+      bestDepth = depth;
       bestD = d;
       best = m.id;
     }
   }
   return best;
+}
+
+std::size_t ViewerState::markersAt(const Vec2& screen) const {
+  std::size_t n = 0;
+  for (const NodeMarker& m : nodeMarkers()) n += m.visible && (m.screen - screen).norm() <= options_.pickRadiusPx;
+  return n;
 }
 
 NodeId ViewerState::nearestMarker(const Vec2& screen) const {

@@ -50,7 +50,10 @@ void ViewerState::mouseDown(const Vec2& pos, MouseButton button, int mods) {
   if (toolMouseDown(pos, button, mods)) return;
   if (button == MouseButton::Left && !(mods & kModAlt)) {
     gestureNode_ = nodeAt(pos);
-    gesture_ = gestureNode_ != kNoNode ? Gesture::PendingNode : Gesture::PendingAdd;
+    // Clicks select by default: adding is the AddNodes tool's, or Shift's, so that a click that
+    // misses a marker by a few pixels never makes a stray node.
+    const bool adds = tool_ == Tool::AddNodes || (mods & kModShift);
+    gesture_ = gestureNode_ != kNoNode ? Gesture::PendingNode : adds ? Gesture::PendingAdd : Gesture::PendingEmpty;
   } else if ((button == MouseButton::Right && !(mods & kModShift)) || button == MouseButton::Left) {
     gesture_ = Gesture::Orbit;
   } else {
@@ -104,8 +107,16 @@ void ViewerState::mouseUp(const Vec2& pos, MouseButton button, int mods) {
     } else {
       selectNode(gestureNode_);
     }
+    if (const std::size_t under = markersAt(pos); under > 1)
+      info("selected node " + std::to_string(gestureNode_) + ", the nearest to the eye of " + std::to_string(under) +
+           " markers under the click");
   } else if (g == Gesture::PendingAdd) {
     if ((pos - pressPos_).norm() < options_.dragThresholdPx) addNodeAt(pos);
+  } else if (g == Gesture::PendingEmpty) {
+    if ((pos - pressPos_).norm() < options_.dragThresholdPx) {
+      selectNode(kNoNode);
+      info("no node here (nothing added): N or Tools > Add nodes adds nodes with a click, Shift+click adds one");
+    }
   } else if (g == Gesture::DragNode) {
     lastEditKey_.clear();
     if (autosavePending_) {
@@ -160,10 +171,10 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
   } else if (key == "y" && ctrl) {
     redo();
   } else if (key == "s" && ctrl) {
-    if (sketchPath_.empty())
+    if (sketchPath().empty())
       error("save: no sketch path (type one in the panel and use Save)");
     else
-      saveSketch(sketchPath_);
+      saveSketch(sketchPath());
   } else if (key == "escape") {
     selectNode(kNoNode);
     dismissStatus();

@@ -1,14 +1,17 @@
-// ViewerState, part 1 of 3: the state itself and its edit commands — construction, the cloud,
-// the edit protocol (undo, rebuild, autosave) and every sketch action, save/load/export.
-// Input handling (mouse, wheel, keys, the view they steer) is in viewer_input.cpp; what is drawn
-// (colours, markers, lines, status messages) in viewer_draw.cpp.
+// ViewerState, part 1: the state itself and its edit commands — construction, the cloud, the
+// edit protocol (undo, rebuild, autosave) and every sketch action. Saving, loading and exporting
+// are in viewer_files.cpp; input handling (mouse, wheel, keys, the view they steer) in
+// viewer_input.cpp; what is drawn (colours, markers, lines, status messages) in viewer_draw.cpp.
 #include "treesketch/viewer/viewer_state.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <new>
 
+#include "treesketch/edit/correction_tools.h"
 #include "treesketch/io/file_info.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/sketch_file.h"
@@ -19,6 +22,7 @@
 #include "treesketch/sketch/auto_sketch.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/stopwatch.h"
+#include "treesketch/viewer/picking.h"
 
 namespace treesketch::viewer {
 
@@ -66,25 +70,56 @@ bool ViewerState::runAction(const std::string& name, const std::function<void()>
 
 // ---- data ----------------------------------------------------------------------------------------
 
+namespace {
+
+/// Refuses a cloud nothing can be sketched on, before anything of the open one is replaced: the
+/// view, the sampling sizes and every fit need an extent (a box under a micrometre, or under 1e-9
+/// of its distance from the origin, where doubles no longer resolve it, is no extent).
+void checkSketchable(const geom::PointCloud& cloud, const geom::BBox& box) {
+  if (cloud.empty()) throw InputError("the point cloud is empty");
+  const double d = box.diagonal();
+  const double offset = box.empty() ? 0.0 : std::max(box.min.cwiseAbs().maxCoeff(), box.max.cwiseAbs().maxCoeff());
+  if (box.empty() || !std::isfinite(d) || !std::isfinite(offset))
+    throw InputError("the cloud's bounding box is not finite");
+  if (!(d >= 1e-6) || !(d >= 1e-9 * offset)) {
+    char text[200];
+    std::snprintf(text, sizeof text, "the cloud has no extent to sketch on: its %zu points span %.3g (every point "
+                  "at one place%s)", cloud.size(), d, d > 0 ? ", or the wrong units" : "");
+    throw DegenerateInputError(text);
+  }
+}
+
+}  // namespace
+
 bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::filesystem::path& sourcePath) {
   if (refuseWhileBusy("open")) return false;  // the job reads the cloud
+  geom::BBox box;
+  sketch::SamplingParams defaults;
+  // Everything that can fail is done before the open cloud and sketch are touched.
+  if (!runAction("open", [&] {
+        box = cloud.bounds();
+        checkSketchable(cloud, box);
+        defaults = sketch::defaultSamplingFor(box);
+      }))
+    return false;
+  closeSession();  // the previous cloud's autosave goes when it holds nothing unsaved
   return runAction("open", [&] {
-    if (cloud.empty()) throw InputError("the point cloud is empty");
-    recon_.reset();
+    recon_ = std::make_unique<NullReconstruction>();
     cloud_ = std::move(cloud);
     ++cloudVersion_;
     up_ = up;
     viewUp_ = toUpDirection(up);
-    sourcePath_ = sourcePath;
     sketch_ = sketch::Sketch{};
     sketch_.up = up;
-    bounds_ = cloud_.bounds();
-    sketch_.defaults = sketch::defaultSamplingFor(bounds_);
+    bounds_ = box;
+    sketch_.defaults = defaults;
     undo_.clear();
     lastEditKey_.clear();
     selected_ = active_ = kNoNode;
     activeChosen_ = false;
     dirty_ = false;
+    recoveryPending_ = false;
+    doc_.setCloud(sourcePath, cloud_);
 
     orbit_.setSceneBounds(bounds_);
     orbit_.preset(geom::PresetView::Front, upDirectionVector(viewUp_));
@@ -95,10 +130,8 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
          std::to_string(cloud_.size()) + " points, up " + toString(viewUp_));
     upWarningDismissed_ = false;
     if (std::string w = lyingDownWarning(); !w.empty()) info("warning: " + w);
-    // The whole file name, not the stem: tree.las and tree.xyz in one folder are two clouds. Set
-    // last, so that the offer of an earlier autosave is the message shown.
-    if (!sourcePath.empty())
-      setAutosavePath(sourcePath.parent_path() / (sourcePath.filename().string() + ".autosave.sketch.json"));
+    // Last, so that the offer of an earlier autosave is the message shown.
+    detectRecovery();
   });
 }
 
@@ -159,14 +192,9 @@ void ViewerState::rebuild() {
 
 void ViewerState::autosave() {
   // An earlier session's autosave waits for the person's choice: never overwrite it before.
-  if (autosavePath_.empty() || recoveryPending_) return;
-  runAction("autosave to " + autosavePath_.string(), [&] {
-    if (sketch_.empty()) {
-      // An empty sketch cannot be a valid sketch file; keep the last saved work instead.
-      return;
-    }
-    io::writeSketch(autosavePath_, sketch_);
-  });
+  if (autosavePath().empty() || recoveryPending_) return;
+  // An empty sketch (undone or cleared to nothing) removes the autosave: nothing to bring back.
+  runAction("autosave to " + autosavePath().string(), [&] { doc_.writeAutosave(sketch_); });
 }
 
 bool ViewerState::edit(const std::string& name, const std::string& label, const std::string& mergeKey,
@@ -194,8 +222,18 @@ bool ViewerState::addNodeAt(const Vec2& screen) {
   std::string how;
   NodeId added = kNoNode, parent = kNoNode;
   const std::size_t errorsBefore = errorCount_;
+  if (!orbit_.viewport().contains(screen)) {
+    error("add node: the point is outside the view");
+    return false;
+  }
+  // A node's circle is fitted from the points along its view ray: where the ray meets none, the
+  // node could only be skipped (or fit something far away), so nothing is added.
+  if (!pickPoint(cloud_, orbit_.camera(), screen, options_.pickRadiusPx).found) {
+    info("add node: nothing added: the view ray there meets no points (none within " +
+         std::to_string(static_cast<int>(options_.pickRadiusPx)) + " px of the click)");
+    return false;
+  }
   bool ok = edit("add node", "add node", "", [&] {
-    if (!orbit_.viewport().contains(screen)) throw OptionsError("the point is outside the view");
     if (!sketch_.empty()) {
       // A node the person made active is the parent (the thesis's chain of clicks). Without one
       // (after a load or an automatic sketch the active node is only the root by default), a click
@@ -293,6 +331,7 @@ bool ViewerState::deleteSelected(bool withSubtree) {
     return false;
   }
   NodeId id = selected_;
+  if (withSubtree && !sketch_.node(id).children.empty()) return requestDeleteSubtree(id);
   return edit("delete node", std::string(withSubtree ? "delete subtree " : "delete node ") + std::to_string(id), "",
               [&] {
                 NodeId parent = sketch_.node(id).parent;
@@ -394,7 +433,9 @@ bool ViewerState::autoSketchUniform(int nodes) {
     return false;
   }
   bool ok = edit("automatic sketch", "uniform automatic sketch", "", [&] {
-    sketch_ = sketch::uniformAutoSketch(cloud_, orbit_.camera(), nodes, up_);
+    sketch::Sketch uniform = sketch::uniformAutoSketch(cloud_, orbit_.camera(), nodes, up_);
+    edit::copyNotWood(sketch_, uniform);  // the person's lassos stay
+    sketch_ = std::move(uniform);
     selected_ = kNoNode;
     std::vector<NodeId> order = sketch_.topologicalOrder();
     active_ = order.empty() ? kNoNode : order.back();
@@ -405,6 +446,10 @@ bool ViewerState::autoSketchUniform(int nodes) {
 
 bool ViewerState::askBeforeReplacing(const std::string& question, std::function<bool()> action) {
   if (!hasHandEdits()) return action();
+  return ask(question, std::move(action));
+}
+
+bool ViewerState::ask(const std::string& question, std::function<bool()> action) {
   pendingQuestion_ = question;
   pendingAction_ = std::move(action);
   info(question);
@@ -419,6 +464,7 @@ bool ViewerState::answerConfirmation(bool yes) {
   std::function<bool()> action = std::move(pendingAction_);
   pendingAction_ = nullptr;
   pendingQuestion_.clear();
+  if (pendingDelete_ != kNoNode) pendingDelete_ = kNoNode, ++sceneVersion_;  // the highlight goes
   if (!yes) {
     info("kept the sketch (" + std::to_string(sketch_.size()) + " nodes)");
     return false;
@@ -450,8 +496,13 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
   bool ok = edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
     const skeleton::AutoSkeletonOptions options =
         skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, up_);
-    skeleton::AutoSkeletonResult result = skeleton::autoSkeletonSketch(cloud_, options);
+    // The not-wood lassos are honoured (the skeleton never sees their points) and kept.
+    geom::PointCloud wood;
+    if (!sketch_.notWood().empty()) wood = edit::woodOnly(cloud_, sketch_);
+    skeleton::AutoSkeletonResult result =
+        skeleton::autoSkeletonSketch(sketch_.notWood().empty() ? cloud_ : wood, options);
     if (result.sketch.empty()) throw OptionsError("no skeleton found in this cloud");
+    edit::copyNotWood(sketch_, result.sketch);
     sketch_ = std::move(result.sketch);
     selected_ = kNoNode;
     active_ = sketch_.root();
@@ -482,60 +533,6 @@ bool ViewerState::refitAll() {
     return false;
   }
   return edit("refit all", "refit all nodes", "", [&] { sketch_.clearKeptCircles(); });
-}
-
-bool ViewerState::saveSketch(const std::filesystem::path& path) {
-  return runAction("save sketch", [&] {
-    if (sketch_.empty()) throw OptionsError("the sketch is empty: nothing to save");
-    io::writeSketch(path, sketch_);
-    dirty_ = false;
-    info("saved sketch to " + path.string() + " (" + std::to_string(sketch_.size()) + " nodes)");
-  });
-}
-
-bool ViewerState::loadSketch(const std::filesystem::path& path) {
-  sketch::Sketch loaded;
-  if (!runAction("load sketch", [&] { loaded = io::readSketch(path); })) return false;
-  bool ok = edit("load sketch", "load sketch " + path.filename().string(), "", [&] {
-    sketch_ = std::move(loaded);
-    selected_ = kNoNode;
-    active_ = kNoNode;
-  });
-  if (ok) dirty_ = false, activeChosen_ = false;
-  if (ok) info("loaded sketch " + path.string() + " (" + std::to_string(sketch_.size()) + " nodes)");
-  return ok;
-}
-
-bool ViewerState::exportMesh(const std::filesystem::path& path) { return exportModel(ModelFile::Mesh, path); }
-
-bool ViewerState::exportModel(ModelFile what, const std::filesystem::path& path, double unitMetres) {
-  static constexpr const char* kNames[] = {"mesh", "cylinder table", "TreeQSM table", "metrics", "report"};
-  const char* name = kNames[static_cast<int>(what)];
-  return runAction(std::string("export ") + name, [&] {
-    if (!recon_) throw OptionsError("no cloud is open");
-    if (what == ModelFile::Mesh ? recon_->mesh().empty() : false)
-      throw OptionsError("no mesh to export: no node has been fitted yet");
-    const model::TreeModel tree = model::fromReconstruction(recon_->result(), sketch_.up);
-    if (what != ModelFile::Mesh && tree.empty())
-      throw OptionsError(std::string("no ") + name + " to export: no two linked nodes are fitted yet");
-    model::OutputPaths out;
-    std::string* target[] = {&out.mesh, &out.cylinders, &out.qsm, &out.metrics, &out.report};
-    *target[static_cast<int>(what)] = path.string();
-    model::checkOutputs(out, {sourcePath_.string()});
-    model::MeasureOptions mo;
-    mo.unitMetres = unitMetres;
-    mo.fit = what == ModelFile::Report;
-    const bool measured = what == ModelFile::Metrics || what == ModelFile::Report;
-    const model::ModelMeasures m = measured ? model::measure(tree, cloud_, mo) : model::ModelMeasures{};
-    nlohmann::json header;
-    header["cloud"] = sourcePath_.string();
-    header["sketch"] = sketchPath_.string();
-    header["nodes"] = sketch_.size();
-    model::writeOutputs(tree, m, out, header);
-    info("exported " + std::string(name) + " to " + path.string() +
-         (what == ModelFile::Mesh ? " (" + std::to_string(tree.mesh.triangles.size()) + " triangles)"
-                                  : " (" + std::to_string(tree.cylinders.size()) + " cylinders)"));
-  });
 }
 
 }  // namespace treesketch::viewer

@@ -19,8 +19,10 @@ namespace {
 
 const char* toolName(ViewerState::Tool t) {
   switch (t) {
-    case ViewerState::Tool::Sketch:
-      return "sketch";
+    case ViewerState::Tool::Select:
+      return "select (click a node to select it, drag it to move it; Shift+click adds a node)";
+    case ViewerState::Tool::AddNodes:
+      return "add nodes (a click on the cloud adds a node under the active node)";
     case ViewerState::Tool::Stroke:
       return "stroke (drag along a missing limb, from the node it grows from)";
     case ViewerState::Tool::Lasso:
@@ -41,8 +43,27 @@ std::map<NodeId, edit::NodeAnchor> toEdit(const std::map<NodeId, std::pair<Vec3,
 
 }  // namespace
 
+const char* ViewerState::toolLabel(Tool tool) {
+  switch (tool) {
+    case Tool::Select:
+      return "select";
+    case Tool::AddNodes:
+      return "add nodes";
+    case Tool::Stroke:
+      return "stroke";
+    case Tool::Lasso:
+      return "not-wood lasso";
+    case Tool::Region:
+      return "automatic in region";
+    case Tool::Reattach:
+      return "re-attach";
+  }
+  return "?";
+}
+
 void ViewerState::setTool(Tool tool) {
   tool_ = tool;
+  reattachSource_ = kNoNode;
   toolPath_.clear();
   ++sceneVersion_;
   info(std::string("tool: ") + toolName(tool));
@@ -77,10 +98,28 @@ bool ViewerState::strokeLimb(const std::vector<Vec2>& stroke) {
     selected_ = active_ = r.added.back();
   });
   if (ok) {
-    info("drew a limb: " + std::to_string(r.added.size()) + " nodes under node " + std::to_string(r.attachedTo));
+    info("drew a limb: " + std::to_string(r.added.size()) + " nodes under node " + std::to_string(r.attachedTo) + "; " +
+         limbFitSummary(r.added));
     if (!r.warning.empty()) info("stroke: " + r.warning);
   }
   return ok;
+}
+
+std::string ViewerState::limbFitSummary(const std::vector<NodeId>& nodes) const {
+  // How many of the limb's nodes fitted, and why the others did not, grouped by reason (a sparse
+  // limb's nodes mostly fail on the minimum support: the person sees why, not only a thin tube).
+  std::size_t fitted = 0;
+  std::map<std::string, std::size_t> reasons;
+  for (NodeId id : nodes) {
+    const NodeFitView f = recon_->nodeFit(id);
+    if (f.status == NodeStatus::Fitted)
+      ++fitted;
+    else
+      ++reasons[f.reason.empty() ? std::string(toString(f.status)) : f.reason];
+  }
+  std::string text = std::to_string(fitted) + " of " + std::to_string(nodes.size()) + " fitted";
+  for (const auto& [reason, n] : reasons) text += "; " + std::to_string(n) + " not: " + reason;
+  return text;
 }
 
 bool ViewerState::lassoNotWood(const std::vector<Vec2>& polygon) {
@@ -88,12 +127,16 @@ bool ViewerState::lassoNotWood(const std::vector<Vec2>& polygon) {
     error("lasso: open a point cloud first");
     return false;
   }
-  std::size_t marked = 0;
-  bool ok = edit("not-wood lasso", "not-wood lasso", "",
-                 [&] { marked = edit::lassoNotWood(sketch_, cloud_, orbit_.camera(), polygon); });
+  std::size_t marked = 0, refit = 0;
+  bool ok = edit("not-wood lasso", "not-wood lasso", "", [&] {
+    marked = edit::lassoNotWood(sketch_, cloud_, orbit_.camera(), polygon);
+    refit = edit::refitNotWoodCircles(sketch_);  // a model circle inside the lasso is fitted again
+  });
   if (ok) {
     colorsStale_ = true;
-    info("lasso: " + std::to_string(marked) + " points marked not-wood (left out of fits and the automatic skeleton)");
+    info("lasso: " + std::to_string(marked) + " points marked not-wood (left out of fits and the automatic skeleton)" +
+         (refit ? "; " + std::to_string(refit) + " model circles inside it are fitted again from the other points"
+                : std::string()));
   }
   return ok;
 }
@@ -117,10 +160,41 @@ bool ViewerState::deleteSubtree(NodeId id) {
   });
 }
 
-bool ViewerState::reattachNode(NodeId id, NodeId newParent) {
-  bool ok = edit("re-attach", "re-attach node " + std::to_string(id) + " to " + std::to_string(newParent), "",
-                 [&] { sketch::reattach(sketch_, id, newParent); });
-  if (ok) info("node " + std::to_string(id) + " now grows from node " + std::to_string(newParent));
+bool ViewerState::requestDeleteSubtree(NodeId id) {
+  if (!sketch_.contains(id)) {
+    error("delete subtree: no node " + std::to_string(id));
+    return false;
+  }
+  std::size_t below = 0;
+  for (std::vector<NodeId> stack = sketch_.node(id).children; !stack.empty();) {
+    const NodeId n = stack.back();
+    stack.pop_back();
+    ++below;
+    for (NodeId c : sketch_.node(n).children) stack.push_back(c);
+  }
+  if (below == 0) return deleteSubtree(id);
+  pendingDelete_ = id;
+  ++sceneVersion_;
+  return ask("Delete node " + std::to_string(id) + " and the " + std::to_string(below) +
+                 " nodes below it (drawn in red)? (undoable)",
+             [this, id] { return deleteSubtree(id); });
+}
+
+bool ViewerState::reattachNode(NodeId id, NodeId newParent, bool reverse) {
+  std::size_t turned = 0;
+  bool ok = edit("re-attach", std::string(reverse ? "reverse limb at node " : "re-attach node ") + std::to_string(id) +
+                                  " to " + std::to_string(newParent),
+                 "", [&] {
+                   if (reverse)
+                     turned = sketch::reattachReversed(sketch_, id, newParent).size();
+                   else
+                     sketch::reattach(sketch_, id, newParent);
+                 });
+  if (ok)
+    info("node " + std::to_string(id) + " now grows from node " + std::to_string(newParent) +
+         (reverse ? " (the limb's " + std::to_string(turned) + " nodes turned round: node " + std::to_string(id) +
+                        " is its base)"
+                  : std::string()));
   return ok;
 }
 
@@ -172,7 +246,8 @@ double ViewerState::selectedDepth() const {
 // ---- input -----------------------------------------------------------------------------------------
 
 bool ViewerState::toolMouseDown(const Vec2& pos, MouseButton button, int mods) {
-  if (tool_ == Tool::Sketch || button != MouseButton::Left || (mods & kModAlt)) return false;
+  if (tool_ == Tool::Select || tool_ == Tool::AddNodes || button != MouseButton::Left || (mods & kModAlt))
+    return false;
   gesture_ = Gesture::ToolPath;
   gestureNode_ = tool_ == Tool::Reattach ? nodeAt(pos) : kNoNode;
   toolPath_ = {pos};
@@ -185,7 +260,8 @@ bool ViewerState::toolMouseUp(const Vec2& pos) {
   if (path.empty() || path.back() != pos) path.push_back(pos);
   ++sceneVersion_;
   switch (tool_) {
-    case Tool::Sketch:
+    case Tool::Select:
+    case Tool::AddNodes:
       return false;
     case Tool::Stroke:
       return strokeLimb(path);
@@ -198,20 +274,29 @@ bool ViewerState::toolMouseUp(const Vec2& pos) {
         error("re-attach: click on a node");
         return false;
       }
-      if (selected_ == kNoNode || selected_ == gestureNode_) {
+      // The first click in the tool names the node to move (whatever was selected before), the
+      // second its new parent; Shift on the second turns the limb round.
+      if (reattachSource_ == kNoNode || !sketch_.contains(reattachSource_) || reattachSource_ == gestureNode_) {
+        reattachSource_ = gestureNode_;
         selectNode(gestureNode_);
-        info("re-attach: now click the new parent of node " + std::to_string(gestureNode_));
+        info("re-attach: now click the new parent of node " + std::to_string(gestureNode_) +
+             " (Shift+click: make node " + std::to_string(gestureNode_) + " the base of its limb, turned round)");
         return true;
+      } else {
+        const NodeId source = reattachSource_;
+        reattachSource_ = kNoNode;
+        return reattachNode(source, gestureNode_, gestureMods_ & kModShift);
       }
-      return reattachNode(selected_, gestureNode_);
   }
   return false;
 }
 
 bool ViewerState::toolKey(const std::string& key, int mods) {
   if (mods & (kModCtrl | kModAlt)) return false;
-  auto toggle = [&](Tool t) { setTool(tool_ == t ? Tool::Sketch : t); };
-  if (key == "g") {
+  auto toggle = [&](Tool t) { setTool(tool_ == t ? Tool::Select : t); };
+  if (key == "n") {
+    toggle(Tool::AddNodes);
+  } else if (key == "g") {
     toggle(Tool::Stroke);
   } else if (key == "x") {  // X: cross points out as not-wood (L is the node labels)
     toggle(Tool::Lasso);
@@ -225,8 +310,8 @@ bool ViewerState::toolKey(const std::string& key, int mods) {
     } else {
       automaticBelow(selected_);
     }
-  } else if (key == "escape" && tool_ != Tool::Sketch) {
-    setTool(Tool::Sketch);
+  } else if (key == "escape" && tool_ != Tool::Select) {
+    setTool(Tool::Select);
     return false;  // Escape also clears the selection, as before
   } else {
     return false;

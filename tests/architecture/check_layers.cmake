@@ -17,7 +17,7 @@ set(allowed_skeleton "recon;compare;fit;sweep;sketch;accel;geom;util")
 set(allowed_model "skeleton;recon;compare;io;fit;sweep;sketch;accel;geom;util")
 set(allowed_edit "skeleton;recon;fit;sweep;sketch;accel;geom;util")
 set(allowed_eval "model;edit;skeleton;recon;compare;scan;gen;fit;sweep;sketch;io;render;accel;geom;util")
-set(allowed_viewer "model;edit;skeleton;recon;render;scan;gen;fit;sweep;sketch;io;accel;geom;util")
+set(allowed_viewer "model;edit;skeleton;recon;compare;render;scan;gen;fit;sweep;sketch;io;accel;geom;util")
 set(modules util geom accel gen sketch io fit sweep scan compare render recon skeleton model edit eval viewer)
 
 if(NOT ROOT)

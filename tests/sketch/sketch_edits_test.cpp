@@ -46,6 +46,29 @@ TEST(SketchEdits, ReattachMovesTheSubtreeAndRefusesCycles) {
   EXPECT_EQ(sk.node(2).parent, 1);
 }
 
+TEST(SketchEdits, ReattachReversedTurnsALimbHungByItsTipRound) {
+  // The limb 1 - 4 - 5 hung by its tip: the model made 1 -> 5 -> 4 (4 is the true base).
+  Sketch sk = chain();
+  reattach(sk, 5, 1);
+  reattach(sk, 4, 5);
+  ASSERT_EQ(sk.node(4).parent, 5);
+  EXPECT_EQ(reattachReversed(sk, 4, 1), (std::vector<NodeId>{4, 5}));
+  EXPECT_EQ(sk.node(4).parent, 1);  // the base grows from the trunk
+  EXPECT_EQ(sk.node(5).parent, 4);  // the tip at the end
+  EXPECT_NO_THROW(sk.validate());
+  // The chain 1 - 2 - 3 turned round under 0 keeps 1's side branch (4) on 1.
+  Sketch t = chain();
+  EXPECT_EQ(reattachReversed(t, 3, 0), (std::vector<NodeId>{3, 2, 1}));
+  EXPECT_EQ(t.node(3).parent, 0);
+  EXPECT_EQ(t.node(2).parent, 3);
+  EXPECT_EQ(t.node(1).parent, 2);
+  EXPECT_EQ(t.node(4).parent, 1);
+  EXPECT_NO_THROW(t.validate());
+  EXPECT_THROW(reattachReversed(t, 0, 3), OptionsError);  // the root
+  EXPECT_THROW(reattachReversed(t, 2, 1), OptionsError);  // 1 lies below 2 now
+  EXPECT_THROW(reattachReversed(t, 2, kNoNode), OptionsError);
+}
+
 TEST(SketchEdits, GraftCopiesStructureAndKeptCirclesAndDropsRepeats) {
   Sketch target = chain();
   Sketch piece;

@@ -106,6 +106,7 @@ TEST(ActionScript, RunsASessionAndReportsFailures) {
   ViewerState state;
   state.setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
+  state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   Vec2 a = state.camera().project(Vec3(0, 1.5, 0)).head<2>();
   Vec2 b = state.camera().project(Vec3(0, 2.5, 0)).head<2>();
   std::ostringstream text;
@@ -144,6 +145,7 @@ TEST(ActionScript, TheModelsOutputsAreTheCommandLines) {
   ViewerState state;
   state.setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(state.setCloud(io::readPointCloud(dir / "trunk.xyz"), geom::UpAxis::Y));
+  state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   std::ostringstream text;
   text << "[";
   for (double y : {0.5, 1.5, 2.5, 3.5}) {
@@ -184,6 +186,7 @@ TEST(ActionScript, RefitButtonsDropKeptCircles) {
   ViewerState state;
   state.setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
+  state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   ScriptReport report = runActionScript(state, parse(R"(["autoSkeleton"])"));
   EXPECT_TRUE(report.failures.empty());
   const std::size_t kept = state.sketch().keptCircleCount();

@@ -46,6 +46,7 @@ struct Fixture {
   Fixture() {
     state.setViewport(geom::Viewport{0, 0, 800, 600});
     EXPECT_TRUE(state.setCloud(tree(), geom::UpAxis::Y));
+    state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
     for (int i = 1; i <= 3; ++i) state.clickAt(state.camera().project(Vec3(0, 0.8 * i, 0)).head<2>());
   }
 };

@@ -28,6 +28,7 @@ struct Fixture {
   Fixture() {
     state.setViewport(geom::Viewport{0, 0, 800, 600});
     EXPECT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
+    state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
     EXPECT_TRUE(state.autoSketchUniform(12));  // the active node is a default, not the person's
   }
   Vec2 markerOf(sketch::NodeId id) const {
@@ -70,11 +71,12 @@ TEST(NearMiss, AClickWithinThePickRadiusSelectsTheNearestNode) {
 TEST(NearMiss, ANodeThePersonMadeActiveIsTheParentWhereverTheClick) {
   Fixture f;
   ASSERT_TRUE(f.state.selectNode(2));
-  f.state.clickAt(f.markerOf(9) + Vec2(30, 0));
+  // On the trunk between two markers (away from both): the view ray meets points there.
+  f.state.clickAt(0.5 * (f.markerOf(9) + f.markerOf(10)));
   EXPECT_EQ(f.state.sketch().node(f.lastAdded()).parent, 2);
   // The chain of clicks goes on from the node just added.
   sketch::NodeId first = f.lastAdded();
-  f.state.clickAt(f.markerOf(9) + Vec2(60, 0));
+  f.state.clickAt(0.5 * (f.markerOf(10) + f.markerOf(11)));
   EXPECT_EQ(f.state.sketch().node(f.lastAdded()).parent, first);
 }
 

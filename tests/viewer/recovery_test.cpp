@@ -30,6 +30,7 @@ geom::PointCloud trunk(int n = 3000) {
 std::unique_ptr<ViewerState> session(const std::filesystem::path& file, int clicks) {
   auto s = std::make_unique<ViewerState>();
   s->setViewport(geom::Viewport{0, 0, 800, 600});
+  s->setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   EXPECT_TRUE(s->setCloud(trunk(), geom::UpAxis::Y, file));
   for (int i = 1; i <= clicks; ++i) s->clickAt(s->camera().project(Vec3(0, 0.8 * i, 0)).head<2>());
   return s;

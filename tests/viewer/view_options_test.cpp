@@ -62,6 +62,7 @@ TEST(Labels, AutoHidesThemOnLargeSketchesAndTheKeyCycles) {
   ViewerState s;
   s.setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
+  s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   ASSERT_TRUE(s.autoSketchUniform(12));
   EXPECT_EQ(s.display().labels, LabelMode::Auto);
   EXPECT_TRUE(s.labelsShown());
@@ -79,6 +80,7 @@ TEST(Legend, DistanceScaleMatchesThePointColoursAndHeightFollowsTheViewUp) {
   ViewerState s;
   s.setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
+  s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   s.setColorMode(ColorMode::CircleDistance);
   Legend l = colorLegend(s);
   ASSERT_EQ(l.kind, Legend::Kind::Scale);
@@ -126,10 +128,12 @@ TEST(UpDirection, TheLibraryRuleDecidesAndALyingCloudIsWarnedAbout) {
   ViewerState s;
   s.setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(zUp, geom::UpAxis::Y));
+  s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   EXPECT_TRUE(s.upWarningShown());
   EXPECT_NE(s.lyingDownWarning().find("lying down"), std::string::npos);
-  s.clickAt(Vec2(400, 300));
-  s.clickAt(Vec2(420, 280));
+  // On two of its points (the view looks down the hollow trunk: its axis meets no points).
+  s.clickAt(s.camera().project(zUp.positions[0]).head<2>());
+  s.clickAt(s.camera().project(zUp.positions[1]).head<2>());
   ASSERT_EQ(s.sketch().size(), 2u);
   s.setUpDirection(UpDirection::PosZ);
   EXPECT_FALSE(s.upWarningShown());

@@ -35,6 +35,7 @@ struct Fixture {
   Fixture() {
     state.setViewport(geom::Viewport{0, 0, 800, 600});
     EXPECT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
+    state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   }
   Vec2 screenOf(const Vec3& p) const { return state.camera().project(p).head<2>(); }
 };
@@ -103,7 +104,16 @@ TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
   EXPECT_EQ(f.state.sketch().size(), 4u);
   EXPECT_EQ(f.state.sketch().node(2).parent, 1);
   ASSERT_TRUE(f.state.selectNode(1));
+  // Shift+Delete shows what it will remove (nodes 1, 2, 3) and asks; no removes nothing.
   EXPECT_TRUE(f.state.keyPress("shift+delete"));
+  ASSERT_TRUE(f.state.confirmationPending());
+  EXPECT_EQ(f.state.sketch().size(), 4u);
+  for (const NodeMarker& m : f.state.nodeMarkers()) EXPECT_EQ(m.doomed, m.id != 0) << m.id;
+  EXPECT_FALSE(f.state.answerConfirmation(false));
+  EXPECT_EQ(f.state.sketch().size(), 4u);
+  for (const NodeMarker& m : f.state.nodeMarkers()) EXPECT_FALSE(m.doomed) << m.id;
+  EXPECT_TRUE(f.state.keyPress("shift+delete"));
+  EXPECT_TRUE(f.state.answerConfirmation(true));
   EXPECT_EQ(f.state.sketch().size(), 1u);
   EXPECT_TRUE(f.state.keyPress("ctrl+z"));
   EXPECT_EQ(f.state.sketch().size(), 4u);
@@ -264,6 +274,7 @@ TEST(ViewerState, ReconstructionFailureBecomesAMessage) {
   ViewerState s({}, [](const geom::PointCloud&) { return std::make_unique<Throwing>(); });
   s.setViewport(geom::Viewport{0, 0, 800, 600});
   s.setCloud(trunk(500), geom::UpAxis::Y);
+  s.setTool(ViewerState::Tool::AddNodes);
   std::size_t before = s.errorCount();
   EXPECT_NO_THROW(s.clickAt(Vec2(400, 300)));
   EXPECT_EQ(s.sketch().size(), 1u);
@@ -276,6 +287,7 @@ TEST(ViewerState, AutosavesBesideTheCloudOnEveryEdit) {
   ViewerState s;
   s.setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(2000), geom::UpAxis::Y, dir / "tree.xyz"));
+  s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   EXPECT_EQ(s.autosavePath(), dir / "tree.xyz.autosave.sketch.json");
   s.clickAt(s.camera().project(Vec3(0, 1, 0)).head<2>());
   s.clickAt(s.camera().project(Vec3(0, 2, 0)).head<2>());
@@ -283,12 +295,18 @@ TEST(ViewerState, AutosavesBesideTheCloudOnEveryEdit) {
   EXPECT_EQ(saved.size(), 2u);
   s.undo();
   EXPECT_EQ(io::readSketch(s.autosavePath()).size(), 1u);
-  // Ctrl+S saves to the sketch path, once one is set.
+  // Ctrl+S saves to the sketch path: the cloud's own sketch file unless another is set; a save
+  // removes the autosave (the work is in its file), the next edit writes it again.
+  EXPECT_EQ(s.sketchPath(), dir / "tree.xyz.sketch.json");
   EXPECT_TRUE(s.keyPress("ctrl+s"));
-  EXPECT_TRUE(s.lastMessage().error);
+  EXPECT_FALSE(s.lastMessage().error);
+  EXPECT_EQ(io::readSketch(dir / "tree.xyz.sketch.json").size(), 1u);
+  EXPECT_FALSE(std::filesystem::exists(s.autosavePath()));
   s.setSketchPath(dir / "mine.json");
   EXPECT_TRUE(s.keyPress("s", kModCtrl));
   EXPECT_EQ(io::readSketch(dir / "mine.json").size(), 1u);
+  s.clickAt(s.camera().project(Vec3(0, 3, 0)).head<2>());
+  EXPECT_EQ(io::readSketch(s.autosavePath()).size(), 2u);
   // A drag is saved when the button is released.
   Vec2 from = s.sketch().node(0).screen, to = from + Vec2(0, -20);
   s.mouseDown(from, MouseButton::Left);
@@ -374,6 +392,7 @@ TEST(ViewerState, SkeletonAutoSketchInLeafIsOneUndoStep) {
   geom::PointCloud bent = trunk(3000);
   for (auto& p : bent.positions) p.x() += 0.4 * std::sin(p.y() * M_PI / 4);
   ASSERT_TRUE(state.setCloud(bent, geom::UpAxis::Y));
+  state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   ASSERT_TRUE(state.autoSketchSkeleton(true)) << state.lastMessage().text;
   const sketch::Sketch& sk = state.sketch();
   ASSERT_GE(sk.size(), 2u);
@@ -410,6 +429,7 @@ TEST(ViewerState, OrthographicViewSketchesToo) {
   ViewerState s;
   s.setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
+  s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   s.setOrthographic(true);
   s.presetView(geom::PresetView::Front);
   for (double y : {1.0, 2.0, 3.0}) s.clickAt(s.camera().project(Vec3(0, y, 0)).head<2>());

@@ -35,6 +35,7 @@ struct Fixture {
   Fixture() {
     state.setViewport(geom::Viewport{0, 0, 1280, 800});
     EXPECT_TRUE(state.setCloud(tree(), geom::UpAxis::Y));
+    state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   }
   Vec2 at(const Vec3& p) const { return state.camera().project(p).head<2>(); }
   std::string pt(const Vec3& p) const {
@@ -134,7 +135,7 @@ TEST(ViewerTools, MouseDragsUseTheChosenTool) {
   EXPECT_EQ(f.state.sketch().node(2).parent, 0);
   // Escape goes back to sketching; a drag with the lasso tool adds a lasso.
   f.state.keyPress("escape");
-  EXPECT_EQ(f.state.tool(), ViewerState::Tool::Sketch);
+  EXPECT_EQ(f.state.tool(), ViewerState::Tool::Select);
   f.state.keyPress("x");
   f.state.mouseDown(Vec2(10, 10), MouseButton::Left);
   f.state.mouseMove(Vec2(200, 10));

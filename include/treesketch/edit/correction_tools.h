@@ -125,6 +125,15 @@ std::size_t lassoNotWood(sketch::Sketch& sketch, const geom::PointCloud& cloud, 
 /// The cloud without its not-wood points (what the automatic skeleton is given).
 geom::PointCloud woodOnly(const geom::PointCloud& cloud, const sketch::Sketch& sketch);
 
+/// Adds `from`'s not-wood lassos (with their cameras) to `to`: a sketch that replaces another
+/// (an automatic one) keeps the person's lassos.
+void copyNotWood(const sketch::Sketch& from, sketch::Sketch& to);
+
+/// Drops the kept circle of every node whose circle centre is not-wood (a model circle inside a
+/// lasso was fitted to what the person says is not wood): those nodes are fitted from the
+/// remaining points by the next reconstruction. Returns how many were dropped.
+std::size_t refitNotWoodCircles(sketch::Sketch& sketch);
+
 struct AutoHereOptions {
   skeleton::AutoSkeletonOptions skeleton;
   /// automaticBelow: the region is the half-space beyond the node's plane (in its growth

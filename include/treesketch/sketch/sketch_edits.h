@@ -19,6 +19,15 @@ std::vector<NodeId> deleteSubtree(Sketch& sketch, NodeId id);
 /// `newParent` == kNoNode, and when `newParent` lies in `id`'s own subtree (a cycle).
 void reattach(Sketch& sketch, NodeId id, NodeId newParent);
 
+/// Re-attaches a limb hung by its tip the right way round: `base` (the node that should start the
+/// limb) becomes a child of `newParent`, and the chain from `base` up to (not including) the
+/// nearest ancestor it shares with `newParent` is reversed — each node on it becomes the child of
+/// the node that was its child — so the old top of the chain (the limb's tip) ends as the leaf
+/// end. Side branches stay on the nodes they grow from. Returns the reversed chain, `base` first.
+/// Throws OptionsError as reattach does (unknown ids, no new parent, `newParent` in `base`'s
+/// subtree) and when `base` is the root.
+std::vector<NodeId> reattachReversed(Sketch& sketch, NodeId base, NodeId newParent);
+
 /// The ids of `id`'s subtree, `id` first, parents before children.
 std::vector<NodeId> subtreeOf(const Sketch& sketch, NodeId id);
 

@@ -6,7 +6,9 @@
 // Format: either a JSON array of actions or {"window": [width, height], "actions": [...]}.
 // An action is an object with one verb key, or a string "VERB [ARGUMENT]":
 //   {"click": [x, y], "button": "left"|"right"|"middle", "mods": "shift+ctrl"}
-//   {"drag": [[x0, y0], [x1, y1]], "button": ..., "mods": ..., "steps": 8}
+//   {"drag": [[x0, y0], [x1, y1]], "button": ..., "mods": ..., "steps": 8, "hold": false}
+//                                          (hold: the button stays down, for a screenshot of the
+//                                          drag being drawn, until {"release": [x, y]})
 //   {"scroll": steps}                      wheel notches, positive zooms in
 //   {"key": "ctrl+z"}                      see ViewerState::keyPress
 //   {"slider": "sliceHalfThickness"|"lineEpsilon"|"pointSize", "value": number}
@@ -24,7 +26,9 @@
 //   {"lasso": [[x, y], ...]}               mark the points inside the polygon as not-wood
 //   {"region": [[x, y], ...]}              automatic skeleton inside the polygon, merged
 //   {"deleteSubtree": nodeId}              delete a node and everything below it
-//   {"reattach": [nodeId, newParentId]}    re-attach a node (and its subtree) to another parent
+//   {"reattach": [nodeId, newParentId], "reverse": false}   re-attach a node (and its subtree) to
+//                                          another parent; reverse: the limb is turned round, the
+//                                          node its base (sketch::reattachReversed)
 //   {"automaticBelow": nodeId}             automatic skeleton below a node, merged
 //   {"tool": "sketch"|"stroke"|"lasso"|"region"|"reattach"}   what a left drag does (as keys
 //                                          G, X, R, P), so "drag" actions can use the tools

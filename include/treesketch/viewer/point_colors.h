@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "treesketch/geom/cylinder_model.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/types.h"
 #include "treesketch/render/image.h"
@@ -46,6 +47,10 @@ class DistanceColorGrid {
   }
   /// The colours (as circleDistanceColors(cloud, circles, maxDistance)) into `out`.
   void colors(const std::vector<Circle3>& circles, std::vector<Rgb>& out);
+  /// The colours of surfaceDistanceColors(cloud, model, maxDistance) into `out`, querying only the
+  /// points of the cells within maxDistance of a piece's box (every other point is at least that
+  /// far from the surface, so it gets the ramp's end colour anyway).
+  void surfaceColors(const geom::CylinderModel& model, std::vector<Rgb>& out);
 
  private:
   const geom::PointCloud* cloud_ = nullptr;
@@ -57,6 +62,15 @@ class DistanceColorGrid {
   std::vector<double> best_;
   std::vector<std::uint32_t> touched_;
 };
+
+/// One colour per point by its distance to the surface of a cylinder model (the union of its
+/// frustums, compare::CylinderModelIndex: the distance fit-report measures, here unsigned: a point
+/// inside the model is as far from the surface as it is deep) on render::viridis: 0 (on the
+/// surface) -> ramp start, `maxDistance` (world units, > 0) or more -> ramp end. Points farther
+/// than `maxDistance` from the model's box are not queried. An empty model gives every point the
+/// ramp's end colour. Runs in parallel (TBB).
+std::vector<Rgb> surfaceDistanceColors(const geom::PointCloud& cloud, const geom::CylinderModel& model,
+                                       double maxDistance);
 
 /// The same colour for every point.
 std::vector<Rgb> plainColors(const geom::PointCloud& cloud, const Rgb& color);

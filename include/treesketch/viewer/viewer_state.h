@@ -6,9 +6,11 @@
 // tests and the script runner drive it directly. No action ever throws: a failure becomes an error
 // status message and the sketch is kept.
 // ViewerState is implemented in several files by concern: src/viewer/viewer_state.cpp (the state
-// and its edit commands: cloud, sketch edits, undo, save/load), viewer_input.cpp (mouse, wheel,
-// keys and the view they steer), viewer_draw.cpp (what is drawn: colours, markers, lines,
-// status), recovery.cpp (the earlier session's autosave offered back).
+// and its edit commands: cloud, sketch edits, undo), viewer_files.cpp (save, load, export, through
+// the SketchDocument that ties the sketch to its cloud), viewer_input.cpp (mouse, wheel, keys and
+// the view they steer), viewer_draw.cpp (what is drawn: colours, markers, lines, status),
+// viewer_tools.cpp (the correction tools), recovery.cpp (the earlier session's autosave offered
+// back).
 #pragma once
 
 #include <array>
@@ -31,6 +33,7 @@
 #include "treesketch/util/progress.h"
 #include "treesketch/viewer/orbit_camera.h"
 #include "treesketch/viewer/point_colors.h"
+#include "treesketch/viewer/sketch_document.h"
 #include "treesketch/viewer/undo_stack.h"
 #include "treesketch/viewer/view_up.h"
 
@@ -125,6 +128,11 @@ struct NodeMarker {
   bool selected = false;
   bool active = false;
   NodeStatus status = NodeStatus::Pending;
+  /// Window depth of the node's circle (or anchor) under the current camera, 0 (near) to 1 (far);
+  /// NaN when unknown. A pick among overlapping markers takes the smallest.
+  double depth = std::nan("");
+  /// A Delete subtree waiting for its confirmation would remove this node (drawn as such).
+  bool doomed = false;
 };
 
 /// A coloured 3D line segment (world frame).
@@ -187,11 +195,14 @@ class ViewerState {
 
   // ---- data -------------------------------------------------------------------------------------
   /// Takes a cloud (world units, `up` axis): resets the sketch, history and selection, frames the
-  /// view (front preset). `sourcePath` names it in messages and places the autosave file beside it,
-  /// named after the whole file name ("tree.las" -> "tree.las.autosave.sketch.json", so tree.las
-  /// and tree.xyz in one folder keep apart); empty: no autosave unless setAutosavePath is called.
-  /// An autosave found there is offered back (recoveryPending()). Returns false (error status) for
-  /// an empty cloud.
+  /// view (front preset). `sourcePath` names it in messages and, through document(), gives the
+  /// sketch its default file and its autosave beside the cloud, named after the whole file name
+  /// ("tree.las" -> "tree.las.sketch.json", "tree.las.autosave.sketch.json", so tree.las and
+  /// tree.xyz in one folder keep apart); empty: no sketch path and no autosave unless set. An
+  /// autosave found there is offered back (recoveryPending()). The previous cloud's autosave is
+  /// removed when it holds nothing unsaved (as closeSession). Returns false (error status, the
+  /// open cloud and sketch kept) for an empty cloud or one with no extent to sketch on (every point
+  /// at one place, or a box under a micrometre or under 1e-9 of its distance from the origin).
   bool setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::filesystem::path& sourcePath = {});
   /// Reads a cloud file (io::readPointCloud) and calls setCloud. Mesh files (.obj, PLY with faces)
   /// are scanned first with the sphere scanner's defaults; `progress` reports the scan.
@@ -206,11 +217,16 @@ class ViewerState {
   /// Where the sketch is autosaved after every edit (empty: never). An existing file there is work
   /// from an earlier session (a crash, or a window closed with unsaved edits): it is offered back
   /// (recoveryPending()) and never overwritten before resolveRecovery() is called.
+  /// A path that must never be written (the open cloud, a file that failed to load) is refused
+  /// with an error and the autosave stays where it was.
   void setAutosavePath(const std::filesystem::path& path);
-  const std::filesystem::path& autosavePath() const { return autosavePath_; }
-  /// Where Ctrl+S saves the sketch (empty: Ctrl+S reports that a path is needed).
-  void setSketchPath(const std::filesystem::path& path) { sketchPath_ = path; }
-  const std::filesystem::path& sketchPath() const { return sketchPath_; }
+  const std::filesystem::path& autosavePath() const { return doc_.autosavePath(); }
+  /// Where Ctrl+S saves the sketch (empty: Ctrl+S reports that a path is needed). setCloud sets it
+  /// to the cloud's own sketch file (SketchDocument::sketchPathFor).
+  void setSketchPath(const std::filesystem::path& path) { doc_.setSketchPath(path); }
+  const std::filesystem::path& sketchPath() const { return doc_.sketchPath(); }
+  /// The open cloud's record (path, point count, hash), its files, and what may not be written.
+  const SketchDocument& document() const { return doc_; }
 
   // ---- crash recovery ---------------------------------------------------------------------------
   /// What to do with an autosave found at start: load it (an undoable edit), delete it, or keep
@@ -228,8 +244,13 @@ class ViewerState {
   /// Edits since the sketch was last saved, loaded or the cloud opened.
   bool hasUnsavedChanges() const { return dirty_; }
   /// A clean end of the session: the autosave is deleted when there is nothing it would bring
-  /// back (no unsaved edits and no pending offer); else it stays, to be offered next time.
+  /// back (no pending offer, and the sketch is empty or is what its sketch file holds:
+  /// hasUnsavedWork); else it stays, to be offered next time.
   void closeSession();
+  /// The person chose to drop the unsaved work (the unsaved-work prompt's Discard): the autosave
+  /// is deleted so that it is not offered back (an autosave found at start and still waiting for
+  /// its offer's answer is left alone).
+  void discardUnsavedWork();
 
   // ---- view -------------------------------------------------------------------------------------
   /// The 3D view's rectangle in window pixels (top-left origin).
@@ -276,9 +297,10 @@ class ViewerState {
   // ---- input (window pixels; what a mouse and keyboard do) -------------------------------------
   /// Left button: press on a node (the nearest marker within the pick radius) picks it (release
   /// without moving selects it and makes it active — with Ctrl it only selects it; moving drags
-  /// it); press elsewhere and release adds a node there as a child of the active node when the
-  /// person chose one, else of the node whose marker is nearest to the click (the first node is the
-  /// root); the status line names the parent. Right button drag (or
+  /// it); press elsewhere and release clears the selection and says how to add a node, unless the
+  /// tool is AddNodes or Shift is held: then it adds a node there as a child of the active node when
+  /// the person chose one, else of the node whose marker is nearest to the click (the first node is
+  /// the root); the status line names the parent. Right button drag (or
   /// Alt + left): trackball orbit. Middle button drag (or Shift + right): pan. Presses outside the
   /// viewport are ignored.
   void mouseDown(const geom::Vec2& pos, MouseButton button, int mods = kModNone);
@@ -301,6 +323,8 @@ class ViewerState {
   bool keyPress(const std::string& key, int mods = kModNone);
 
   // ---- sketch actions (each one undoable, rebuilds, autosaves; false + error status on failure) --
+  /// Adds a screen node at `screen`. Where the view ray meets no cloud point (none projects
+  /// within the pick radius) nothing is added and the status line says why.
   bool addNodeAt(const geom::Vec2& screen);
   bool selectNode(sketch::NodeId id);  ///< also makes it active; kNoNode clears the selection
   bool setActiveNode(sketch::NodeId id);
@@ -368,12 +392,16 @@ class ViewerState {
   bool refitSelected();
   bool refitAll();
   // ---- correction tools (src/viewer/viewer_tools.cpp over edit/correction_tools.h) ----
-  /// What a left-button drag in the view does: Sketch (add / pick / drag nodes, the default),
-  /// Stroke (draw a limb as one stroke), Lasso (mark points as not-wood), Region (automatic
-  /// skeleton inside the drawn region, merged), Reattach (a click on a node makes it the selected
-  /// node's new parent). Keys: G stroke, L lasso, R region, P re-attach (each toggles its tool),
-  /// H automatic below the selected node, Escape back to Sketch.
-  enum class Tool { Sketch, Stroke, Lasso, Region, Reattach };
+  /// What a left click or drag in the view does: Select (pick and drag nodes; a click on empty
+  /// space adds nothing, Shift+click adds a node there — the default), AddNodes (a click on
+  /// empty space adds a node), Stroke (draw a limb as one stroke), Lasso (mark points as
+  /// not-wood), Region (automatic skeleton inside the drawn region, merged), Reattach (a click on
+  /// a node makes it the selected node's new parent). Keys: N add nodes, G stroke, X lasso, R
+  /// region, P re-attach (each toggles its tool), H automatic below the selected node, Escape
+  /// back to Select.
+  enum class Tool { Select, AddNodes, Stroke, Lasso, Region, Reattach };
+  /// The tool's name as the canvas and the Tools menu show it ("select", "add nodes", ...).
+  static const char* toolLabel(Tool tool);
   void setTool(Tool tool);
   Tool tool() const { return tool_; }
   /// The stroke or polygon being drawn (window pixels), for the overlay.
@@ -384,7 +412,15 @@ class ViewerState {
   bool lassoNotWood(const std::vector<geom::Vec2>& polygon);
   bool clearNotWood();
   bool deleteSubtree(sketch::NodeId id);
-  bool reattachNode(sketch::NodeId id, sketch::NodeId newParent);
+  /// Delete subtree as the window's Shift+Delete and button do it: a node with children is not
+  /// removed at once; the question names how many nodes go, their markers are drawn as doomed
+  /// (NodeMarker::doomed) until the answer, and yes deletes them (one undoable edit).
+  bool requestDeleteSubtree(sketch::NodeId id);
+  /// `reverse`: sketch::reattachReversed — `id` starts the limb under `newParent` and the chain
+  /// above it is turned round (a limb the automatic model hung by its tip). In the Reattach tool
+  /// the first click names the node to move (never the node selected before), the second its new
+  /// parent; Shift on the second click reverses.
+  bool reattachNode(sketch::NodeId id, sketch::NodeId newParent, bool reverse = false);
   bool automaticBelow(sketch::NodeId id);
   bool automaticInRegion(const std::vector<geom::Vec2>& polygon);
   /// Where the selected node's circle lies along its view ray (the chosen depth, for the view to
@@ -393,7 +429,14 @@ class ViewerState {
 
   /// Ends the current merge of consecutive edits (call when a slider is released).
   void finishEdit() { lastEditKey_.clear(); }
-  bool saveSketch(const std::filesystem::path& path);
+  /// Saves the sketch with its cloud's record (the autosave is then removed). Never writes the
+  /// open cloud or a file that failed to load (error). Replacing a file that is not this
+  /// document's (another cloud's sketch, or not a sketch) asks first (confirmationPending()) unless
+  /// `replaceConfirmed` (the save dialog has asked already); false until the answer is yes.
+  bool saveSketch(const std::filesystem::path& path, bool replaceConfirmed = false);
+  /// Loads a sketch file. One made for another cloud (its record's point count or hash differ)
+  /// asks first (confirmationPending(); false until the answer is yes); one without a record
+  /// (older files) loads as before. A file that fails to load is never written afterwards.
   bool loadSketch(const std::filesystem::path& path);
   /// Writes the current tube mesh (.obj or .ply, atomically).
   bool exportMesh(const std::filesystem::path& path);
@@ -417,8 +460,12 @@ class ViewerState {
   std::uint64_t colorsVersion() const { return colorsVersion_; }
   /// Markers of all nodes under the current camera.
   std::vector<NodeMarker> nodeMarkers() const;
-  /// The node whose marker is nearest to `screen` within the pick radius (kNoNode if none).
+  /// The node a click at `screen` picks: of the markers within the pick radius, the nearest to
+  /// the eye (NodeMarker::depth), then the nearest on screen (kNoNode if none).
   sketch::NodeId nodeAt(const geom::Vec2& screen) const;
+  /// How many visible markers lie within the pick radius of `screen` (a pick among several says
+  /// which it took).
+  std::size_t markersAt(const geom::Vec2& screen) const;
   /// 3D lines: fitted circles (selected one highlighted) and the selected node's sampling region.
   std::vector<Line3> sceneLines() const;
   SamplingRegion samplingRegion() const;
@@ -451,12 +498,14 @@ class ViewerState {
   const ViewerOptions& options() const { return options_; }
 
  private:
-  enum class Gesture { None, PendingAdd, PendingNode, DragNode, Orbit, Pan, ToolPath };
+  enum class Gesture { None, PendingAdd, PendingEmpty, PendingNode, DragNode, Orbit, Pan, ToolPath };
   /// The tools' share of the mouse (viewer_tools.cpp); true when the tool took the event.
   bool toolMouseDown(const geom::Vec2& pos, MouseButton button, int mods);
   bool toolMouseUp(const geom::Vec2& pos);
   bool toolKey(const std::string& key, int mods);
   std::map<sketch::NodeId, std::pair<geom::Vec3, double>> anchorsForTools() const;
+  /// "3 of 7 fitted; 4 not: REASON" for the nodes a tool added (the status line after a stroke).
+  std::string limbFitSummary(const std::vector<sketch::NodeId>& nodes) const;
   bool runAction(const std::string& name, const std::function<void()>& action);
   /// The edit protocol: runs `body` on the sketch; on success records the previous sketch for undo
   /// (merged with the previous edit when `mergeKey` is non-empty and repeats) and calls endEdit; on
@@ -486,9 +535,7 @@ class ViewerState {
   geom::PointCloud cloud_;
   geom::BBox bounds_;
   geom::UpAxis up_ = geom::UpAxis::Y;
-  std::filesystem::path sourcePath_;
-  std::filesystem::path autosavePath_;
-  std::filesystem::path sketchPath_;
+  SketchDocument doc_;
   sketch::Sketch sketch_;
   std::unique_ptr<ViewerReconstruction> recon_;
   OrbitCamera orbit_;
@@ -513,9 +560,14 @@ class ViewerState {
   /// The visible node whose marker is nearest to `screen`, at any distance (kNoNode if none).
   sketch::NodeId nearestMarker(const geom::Vec2& screen) const;
   std::function<bool()> pendingAction_;
+  sketch::NodeId pendingDelete_ = sketch::kNoNode;  ///< the subtree a waiting question would delete
   std::string pendingQuestion_;
   /// Runs `action` now, or asks `question` first when the sketch has hand edits.
   bool askBeforeReplacing(const std::string& question, std::function<bool()> action);
+  /// Asks `question` (confirmationPending()); `action` runs on answerConfirmation(true).
+  bool ask(const std::string& question, std::function<bool()> action);
+  bool takeLoadedSketch(const std::filesystem::path& path, sketch::Sketch loaded, bool ownCloud);
+  bool writeSketchFile(const std::filesystem::path& path);
   struct Job;
   std::shared_ptr<Job> job_;
   bool holdJobs_ = false;  // shared_ptr: Job is complete only in background_job.cpp
@@ -546,7 +598,8 @@ class ViewerState {
   }
   std::size_t errorCount_ = 0;
   std::vector<sketch::NotWoodLasso> colorsNotWood_;  ///< the lassos pointColors() last drew
-  Tool tool_ = Tool::Sketch;
+  Tool tool_ = Tool::Select;
+  sketch::NodeId reattachSource_ = sketch::kNoNode;  ///< the Reattach tool's first click
   std::vector<geom::Vec2> toolPath_;
 };
 
