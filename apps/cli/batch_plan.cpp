@@ -154,7 +154,7 @@ std::string csvField(const nlohmann::json& v) {
 }  // namespace
 
 std::size_t writeBatchSummary(const fs::path& out, const BatchPlan& plan) {
-  static const char* kColumns[] = {"tree",     "cloud",        "status",  "error",     "points",
+  static const char* kColumns[] = {"tree",     "cloud",        "status",  "error",     "points", "strayPoints",
                                    "up",       "totalMs",      "heightM", "dbhModelM", "dbhCloudM",
                                    "volumeM3", "volumeLowM3", "volumeHighM3", "measuredVolumeShare", "stemVolumeM3",
                                    "lengthM", "branches", "crownAreaM2", "verdict", "verdictReasons"};

@@ -94,6 +94,7 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
                                     {"status", "ok"},
                                     {"error", nullptr},
                                     {"points", r.points},
+                                    {"strayPoints", r.strays.count()},
                                     {"up", r.up},
                                     {"totalMs", r.totalMs},
                                     {"timings",
@@ -116,8 +117,9 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
                                     {"branches", m.branches},
                                     {"crownAreaM2", m.crownArea},
                                     {"input", inputStamp(t.cloud)}});
-    std::printf("batch: %s: %zu points, up %s, %.0f ms\n%s\n%s", t.name.c_str(), r.points, r.upReason.c_str(),
-                r.totalMs, r.measures.verdictLine().c_str(), compare::metricsTable(m).c_str());
+    std::printf("batch: %s: %zu points (%s), up %s, %.0f ms\n%s\n%s", t.name.c_str(), r.points,
+                cloud::strayPointsLine(r.strays).c_str(), r.upReason.c_str(), r.totalMs,
+                r.measures.verdictLine().c_str(), compare::metricsTable(m).c_str());
   } catch (const InputError& e) {
     recordFailure(dir, t, e.what(), kExitInput);
     throw;

@@ -290,6 +290,15 @@ void checkOutputs(const OutputPaths& paths, const std::vector<std::string>& inpu
   }
 }
 
+nlohmann::json strayPointsJson(const cloud::StrayPoints& s) {
+  return {{"setAside", s.count()},
+          {"far", s.far},
+          {"isolated", s.isolated},
+          {"spacing", s.spacing},
+          {"linkDistance", s.linkDistance},
+          {"tooSparse", s.tooSparse}};
+}
+
 nlohmann::json verdictJson(const Verdict& v) {
   return {{"level", toString(v.level)}, {"reasons", v.reasons}, {"advice", v.advice}};
 }

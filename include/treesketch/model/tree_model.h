@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "treesketch/cloud/stray_points.h"
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/compare/tree_metrics.h"
 #include "treesketch/geom/cylinder_model.h"
@@ -114,6 +115,9 @@ struct OutputPaths {
 /// path, or a folder that cannot be written, or a mesh path with an extension other than .obj or
 /// .ply (OptionsError / OutputError naming the path).
 void checkOutputs(const OutputPaths& paths, const std::vector<std::string>& inputs);
+
+/// {"setAside", "far", "isolated", "spacing", "linkDistance"}: what the automatic model set aside.
+nlohmann::json strayPointsJson(const cloud::StrayPoints& strays);
 
 /// {"level", "reasons", "advice"}.
 nlohmann::json verdictJson(const Verdict& verdict);
