@@ -157,7 +157,7 @@ std::size_t writeBatchSummary(const fs::path& out, const BatchPlan& plan) {
   static const char* kColumns[] = {"tree",     "cloud",        "status",  "error",     "points", "strayPoints",
                                    "up",       "totalMs",      "heightM", "dbhModelM", "dbhCloudM",
                                    "volumeM3", "volumeLowM3", "volumeHighM3", "measuredVolumeShare", "stemVolumeM3",
-                                   "lengthM", "branches", "crownAreaM2", "verdict", "verdictReasons"};
+                                   "lengthM", "branches", "crownAreaM2", "verdict", "verdictReasons", "warnings"};
   nlohmann::json rows = nlohmann::json::array();
   std::size_t notDone = 0;
   for (const auto& t : plan.trees) {

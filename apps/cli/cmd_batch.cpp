@@ -95,6 +95,7 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
                                     {"error", nullptr},
                                     {"points", r.points},
                                     {"strayPoints", r.strays.count()},
+                                    {"warnings", joined(r.scale.warnings)},
                                     {"up", r.up},
                                     {"totalMs", r.totalMs},
                                     {"timings",

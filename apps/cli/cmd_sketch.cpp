@@ -9,6 +9,9 @@
 #include <vector>
 
 #include "commands.h"
+#include "tree_job.h"
+#include "treesketch/cloud/scale_check.h"
+#include "treesketch/model/tree_model.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/io/up_axis.h"
@@ -24,6 +27,7 @@ namespace {
 
 /// What every automatic method gets.
 struct AutoSketchInput {
+  const std::string& source;  ///< the cloud's path, for messages
   const geom::PointCloud& cloud;
   const geom::Camera& camera;
   int nodes;
@@ -44,7 +48,12 @@ const std::map<std::string, AutoSketchMethod>& autoSketchMethods() {
        [](const AutoSketchInput& in) {
          const auto o =
              skeleton::autoSkeletonPreset(in.leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, in.up);
-         return skeleton::autoSkeletonSketch(in.cloud, o).sketch;
+         const skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, o);
+         // The check every automatic model gets: no sketch of unfitted circles on a degenerate cloud.
+         model::checkAutoModel(in.source, r.strays.empty() ? in.cloud : cloud::keptPoints(in.cloud, r.strays), r);
+         std::printf("%s of %zu\n", cloud::strayPointsLine(r.strays).c_str(), in.cloud.size());
+         printScaleWarnings(cloud::checkScale(in.cloud, r.strays));
+         return r.sketch;
        }},
   };
   return methods;
@@ -73,7 +82,7 @@ void runAuto(const AutoOptions& o) {
   const auto& methods = autoSketchMethods();
   auto it = methods.find(o.method);
   if (it == methods.end()) throw OptionsError("--method: unknown method '" + o.method + "'");
-  sketch::Sketch sk = it->second(AutoSketchInput{cloud, camera, o.nodes, up, o.leafOn});
+  sketch::Sketch sk = it->second(AutoSketchInput{o.cloud, cloud, camera, o.nodes, up, o.leafOn});
   io::writeSketch(std::filesystem::path(o.output), sk);
   std::printf("sketch: %zu nodes (%s, view %s), %zu kept circles, from %zu points -> %s\n", sk.size(), o.method.c_str(),
               o.view.c_str(), sk.keptCircleCount(), cloud.size(), o.output.c_str());

@@ -52,6 +52,8 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   geom::PointCloud keptStore;
   const geom::PointCloud& kept = s.strays.empty() ? cloud : (keptStore = cloud::keptPoints(cloud, s.strays));
   r.strays = s.strays;
+  r.scale = cloud::checkScale(cloud, s.strays, a.unitMetres);
+  printScaleWarnings(r.scale);
   model::checkAutoModel(a.cloud, kept, s);
   r.skeletonMs = s.skeletonMs;
   r.fitMs = s.fitMs;
@@ -81,6 +83,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   header["upReason"] = r.upReason;
   header["points"] = r.points;
   header["strayPoints"] = model::strayPointsJson(s.strays);
+  header["warnings"] = r.scale.warnings;
   header["seed"] = a.seed;
   header["skeletonNodes"] = r.skeletonNodes;
   header["forks"] = r.forks;
@@ -99,6 +102,11 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   r.measures = measures;
   r.totalMs = msSince(t0);
   return r;
+}
+
+void printScaleWarnings(const cloud::ScaleCheck& scale) {
+  for (const std::string& w : scale.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  std::fflush(stderr);
 }
 
 void printModelSummary(const model::ModelMeasures& m, const model::OutputPaths& outputs) {

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "treesketch/cloud/scale_check.h"
 #include "treesketch/cloud/stray_points.h"
 #include "treesketch/model/tree_model.h"
 
@@ -28,6 +29,7 @@ struct TreeJob {
 struct TreeJobResult {
   std::size_t points = 0;
   cloud::StrayPoints strays;  ///< the points set aside before modelling
+  cloud::ScaleCheck scale;    ///< the cloud's size and precision, with warnings and their fixes
   std::string up, upReason;
   std::size_t skeletonNodes = 0, forks = 0, fitsAccepted = 0, leafPieces = 0, vertices = 0, triangles = 0;
   double readMs = 0, skeletonMs = 0, fitMs = 0, sweepMs = 0, metricsMs = 0, totalMs = 0;
@@ -40,6 +42,9 @@ TreeJobResult runTreeJob(const TreeJob& job);
 /// The lines every command that makes a model prints after it: the fit summary (with the report's
 /// path), the volume's range and the verdict, and the metrics table (when a report or metrics file
 /// was written).
+/// Prints each warning of `scale` on stderr ("warning: ...").
+void printScaleWarnings(const cloud::ScaleCheck& scale);
+
 void printModelSummary(const model::ModelMeasures& measures, const model::OutputPaths& outputs);
 
 }  // namespace treesketch::cli
