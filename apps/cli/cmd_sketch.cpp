@@ -70,10 +70,17 @@ struct AutoOptions {
 void runAuto(const AutoOptions& o) {
   if (!o.up.empty()) geom::parseUpAxis(o.up);  // a bad value fails before the cloud is read
   if (o.nodes < 1) throw OptionsError("--nodes must be >= 1, got " + std::to_string(o.nodes));
+  // A node is a slice of the cloud fitted by RANSAC: the thesis drew 18; 100,000 is past any tree
+  // (1e8 ran out of memory before it was refused).
+  if (o.nodes > 100000) throw OptionsError("--nodes must be at most 100000, got " + std::to_string(o.nodes));
   if (o.width < 1 || o.height < 1) throw OptionsError("--width and --height must be >= 1");
   checkNotAnInput(o.output, {o.cloud});
   checkOutputWritable(o.output);
   geom::PointCloud cloud = io::readPointCloud(o.cloud);
+  if (!(cloud.bounds().diagonal() > 0))
+    throw DegenerateInputError(o.cloud + " (" + std::to_string(cloud.size()) +
+                               " points, bounding-box diagonal 0): every point is the same; no sketch can be made; "
+                               "nothing written");
   const io::UpAxisChoice choice = io::chooseUpAxis(o.up, cloud);
   const geom::UpAxis up = choice.up;
   std::printf("up axis: %s\n", choice.reason.c_str());
