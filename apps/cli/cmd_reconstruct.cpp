@@ -156,6 +156,8 @@ void runReconstruct(const ReconstructArgs& a) {
                                " skipped, " + std::to_string(disabled) + " disabled); no mesh written" +
                                (a.out.report.empty() ? "" : ", see " + a.out.report));
   }
+  const model::FittedShape shape = model::fittedShape(r);
+  model::checkFittedShape(shape, a.sketch, a.cloud);
   if (wantsModel && tree.cylinders.empty())
     throw DegenerateInputError(a.sketch + ": only " + std::to_string(fitted + kept) +
                                " node(s) fitted in " + a.cloud +
@@ -166,6 +168,8 @@ void runReconstruct(const ReconstructArgs& a) {
       "triangles; index %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
       r.results.size(), fitted, skipped, disabled, kept, r.mesh.vertices.size(), r.mesh.triangles.size(),
       r.timings.indexMs, r.timings.fitMs, r.timings.sweepMs, a.out.mesh.c_str());
+  if (!shape.unfitted.empty())
+    std::printf("nodes that did not fit (bridged by their neighbours): %s\n", shape.unfittedList().c_str());
   printModelSummary(measures, outputs);
 }
 

@@ -42,6 +42,22 @@ struct TreeModel {
 /// with the branch's own radius, as the automatic model's do. The mesh is the reconstruction's.
 TreeModel fromReconstruction(const recon::ReconstructionResult& result, geom::UpAxis up);
 
+/// How a fitted sketch's nodes hold together: the nodes that did not fit (skipped; disabled nodes
+/// are off by choice) and how many separate pieces the fitted ones make (a fitted node with no
+/// fitted ancestor starts one; fromReconstruction bridges unfitted nodes inside a piece).
+struct FittedShape {
+  std::vector<sketch::NodeId> unfitted;
+  std::size_t pieces = 0;
+  /// "3, 7, 12" (the first 20, then "...").
+  std::string unfittedList() const;
+};
+FittedShape fittedShape(const recon::ReconstructionResult& result);
+
+/// Refuses a fitted sketch whose fitted nodes make more than one piece (floating discs and tubes:
+/// a sketch of another tree, or one whose trunk missed the cloud) with DegenerateInputError naming
+/// `sketch`, `cloud` and the nodes that did not fit.
+void checkFittedShape(const FittedShape& shape, const std::string& sketch, const std::string& cloud);
+
 /// Refuses an automatic result that is no model, with DegenerateInputError naming `source` (the
 /// cloud's path), its point count and its diagonal: no skeleton, no radius measured or inferred
 /// (no fit, no measured stem, no crown to infer a stem from: points all equal or on a line), or a
