@@ -145,11 +145,15 @@ bool readJson(const fs::path& p, nlohmann::json* j) {
 namespace {
 
 /// Why a failure recorded in `j` may pass on a second try ("" = it would fail again).
-std::string retryReason(const nlohmann::json& j, double treeTimeoutS) {
+std::string retryReason(const nlohmann::json& j, double treeTimeoutS, double treeMemoryMb) {
   if (j.contains("signal")) return "killed by signal " + j["signal"].dump();
   if (j.contains("timedOutAfterS")) {
     const double limit = j["timedOutAfterS"].get<double>();
     return treeTimeoutS <= 0 || treeTimeoutS > limit ? "stopped by a shorter time limit" : "";
+  }
+  if (j.contains("outOfMemoryMb")) {
+    const double limit = j["outOfMemoryMb"].get<double>();
+    return treeMemoryMb <= 0 || treeMemoryMb > limit ? "running out of a smaller memory limit" : "";
   }
   const int code = j.value("exitCode", 0);
   if (code == 1) return "an internal error";
@@ -177,7 +181,7 @@ std::string treeState(const fs::path& dir, const BatchTree& tree, const BatchRun
       if (why) *why = "failed with other options";
       return "";
     }
-    const std::string retry = options.model.is_null() ? "" : retryReason(j, options.treeTimeoutS);
+    const std::string retry = options.model.is_null() ? "" : retryReason(j, options.treeTimeoutS, options.treeMemoryMb);
     if (retry.empty()) return "failed";
     if (why) *why = "failed by " + retry;
     return "";

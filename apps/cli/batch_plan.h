@@ -16,8 +16,8 @@
 // time and the same options, and every output is there (atomic writes: present = complete): a
 // rerun with other options runs the tree again. A failure is not retried while its input and
 // options are unchanged, unless it may pass on a second try: a tree killed by a signal, one that
-// could not write its outputs (a full disk) or met an internal error, one stopped by a time limit
-// that is now longer or gone. The batch's own summary is never taken for a tree.
+// could not write its outputs (a full disk) or met an internal error, one stopped by a time or
+// memory limit that is now larger or gone. The batch's own summary is never taken for a tree.
 #pragma once
 
 #include <cstdint>
@@ -55,6 +55,7 @@ struct BatchRunOptions {
   /// {"up", "leafOn", "unitMetres", "seed"}; null = any (the summary gathers whatever was run).
   nlohmann::json model;
   double treeTimeoutS = 0;  ///< 0 = none
+  double treeMemoryMb = 0;  ///< 0 = none
 };
 
 /// "done" when the tree is complete with these options, "failed" when it failed on this very input

@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,6 +19,7 @@
 #include <cstring>
 #include <map>
 #include <memory>
+#include <new>
 #include <string>
 #include <thread>
 #include <vector>
@@ -51,6 +53,7 @@ struct BatchArgs {
   double unitMetres = 1.0;
   std::uint64_t seed = 1;
   double treeTimeoutS = 0;  // --tree-timeout (0 = none)
+  double treeMemoryMb = 0;  // --tree-memory (0 = none): the address space of each tree's process
 };
 
 /// The options recorded in each tree's markers: those that shape the model.
@@ -59,6 +62,7 @@ BatchRunOptions runOptions(const BatchArgs& a) {
   o.model = {
       {"up", a.up.empty() ? "auto" : a.up}, {"leafOn", a.leafOn}, {"unitMetres", a.unitMetres}, {"seed", a.seed}};
   o.treeTimeoutS = a.treeTimeoutS;
+  o.treeMemoryMb = a.treeMemoryMb;
   return o;
 }
 
@@ -80,16 +84,8 @@ void recordFailure(const fs::path& dir, const BatchTree& t, const BatchArgs& a, 
   writeMarker(dir / kFailedMarker, j);
 }
 
-/// One tree in this process: its outputs, then done.json; on an error failed.json, rethrown.
-void runOneTree(const BatchArgs& a, const BatchTree& t) {
-  const fs::path dir = fs::path(a.out) / t.name;
-  if (treeState(dir, t, runOptions(a)) == "done") {
-    std::printf("batch: %s already done\n", t.name.c_str());
-    return;
-  }
-  std::error_code ec;
-  fs::remove(dir / kDoneMarker, ec);
-  fs::remove(dir / kFailedMarker, ec);
+/// The job of one tree: its outputs in `dir`, the run's options.
+TreeJob treeJob(const BatchArgs& a, const BatchTree& t, const fs::path& dir) {
   TreeJob job;
   job.cloud = t.cloud.string();
   job.out.mesh = (dir / "mesh.ply").string();
@@ -101,6 +97,25 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
   job.leafOn = a.leafOn;
   job.seed = a.seed;
   job.unitMetres = a.unitMetres;
+  return job;
+}
+
+/// One tree in this process: its outputs, then done.json; on an error failed.json, rethrown.
+void runOneTree(const BatchArgs& a, const BatchTree& t) {
+  const fs::path dir = fs::path(a.out) / t.name;
+  if (treeState(dir, t, runOptions(a)) == "done") {
+    std::printf("batch: %s already done\n", t.name.c_str());
+    return;
+  }
+  if (a.treeMemoryMb > 0) {  // this process is the tree's own (--index): bound its address space
+    rlimit limit{};
+    limit.rlim_cur = limit.rlim_max = static_cast<rlim_t>(a.treeMemoryMb * 1024.0 * 1024.0);
+    ::setrlimit(RLIMIT_AS, &limit);
+  }
+  std::error_code ec;
+  fs::remove(dir / kDoneMarker, ec);
+  fs::remove(dir / kFailedMarker, ec);
+  const TreeJob job = treeJob(a, t, dir);
   try {
     const TreeJobResult r = runTreeJob(job);
     const compare::TreeMetrics& m = r.measures.metrics;
@@ -149,6 +164,12 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
   } catch (const OptionsError& e) {
     recordFailure(dir, t, a, e.what(), kExitUsage);
     throw;
+  } catch (const std::bad_alloc&) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "out of memory: the tree needs more than %.6g MB (--tree-memory)", a.treeMemoryMb);
+    recordFailure(dir, t, a, a.treeMemoryMb > 0 ? buf : "out of memory", kExitNoResult,
+                  {{"outOfMemoryMb", a.treeMemoryMb}});
+    throw;
   } catch (const std::exception& e) {
     recordFailure(dir, t, a, std::string("internal error: ") + e.what(), kExitInternal);
     throw;
@@ -168,6 +189,11 @@ std::vector<std::string> childArgs(const BatchArgs& a, std::size_t k) {
                                 std::to_string(a.seed)};
   if (!a.up.empty()) v.insert(v.end(), {"--up", a.up});
   if (a.leafOn) v.push_back("--leaf-on");
+  if (a.treeMemoryMb > 0) {
+    char mb[64];
+    std::snprintf(mb, sizeof mb, "%.17g", a.treeMemoryMb);
+    v.insert(v.end(), {"--tree-memory", mb});
+  }
   char unit[64];
   std::snprintf(unit, sizeof unit, "%.17g", a.unitMetres);
   v.insert(v.end(), {"--units-metres", unit});
@@ -307,6 +333,8 @@ void runAll(const BatchArgs& a, const BatchPlan& plan) {
 
 void runBatch(const BatchArgs& a) {
   if (a.jobs < 1) throw OptionsError("--jobs must be >= 1, got " + std::to_string(a.jobs));
+  if (!(a.treeMemoryMb >= 0) || !std::isfinite(a.treeMemoryMb))
+    throw OptionsError("--tree-memory must be a number of megabytes >= 0 (0 = no limit)");
   if (!(a.treeTimeoutS >= 0) || !std::isfinite(a.treeTimeoutS))
     throw OptionsError("--tree-timeout must be a number of seconds >= 0 (0 = no limit)");
   if (a.index < 0) checkOutputWritable((fs::path(a.out) / "summary.csv").string());  // exit 4 before any work
@@ -354,6 +382,9 @@ void registerBatch(CLI::App& app, Action& action) {
   sub->add_option("--tree-timeout", a->treeTimeoutS,
                   "Stop a tree that runs longer than this many seconds and record it in failed.json (default 0: no "
                   "limit; a rerun with a longer limit runs it again)");
+  sub->add_option("--tree-memory", a->treeMemoryMb,
+                  "Limit each tree's process to this many MB of address space and record a tree that needs more in "
+                  "failed.json (default 0: no limit; a rerun with a larger limit runs it again)");
   sub->callback([a, &action] { action = [a] { runBatch(*a); }; });
 }
 

@@ -186,6 +186,20 @@ TEST_F(BatchCli, ATreeTimeoutIsRecordedAndALongerLimitRetries) {
   EXPECT_EQ(batch(" --tree-timeout -1", &out), 2) << out;
 }
 
+// --tree-memory bounds each tree's process; a tree that needs more is recorded in failed.json,
+// and a rerun with a larger limit (or none) runs it again.
+TEST_F(BatchCli, ATreeOverItsMemoryLimitIsRecordedAndALargerLimitRetries) {
+  std::string out;
+  EXPECT_EQ(batch(" --tree-memory 1", &out), 6) << out;
+  const auto failed = nlohmann::json::parse(test::readText(dir / "out" / "tree_a" / "failed.json"));
+  EXPECT_EQ(failed["outOfMemoryMb"], 1) << failed.dump();
+  EXPECT_NE(failed["error"].get<std::string>().find("--tree-memory"), std::string::npos) << failed.dump();
+  EXPECT_EQ(batch(" --tree-memory 1", &out), 6) << out;
+  EXPECT_NE(out.find("0 to run"), std::string::npos) << out;
+  EXPECT_EQ(batch(" --tree-memory 4000", &out), 6) << out;
+  EXPECT_TRUE(fs::exists(dir / "out" / "tree_a" / "done.json")) << out;
+}
+
 // An --out that cannot be written is exit 4 before any work (not an internal error).
 TEST_F(BatchCli, AnUnwritableOutIsAnOutputError) {
   test::writeText(dir / "file", "x");
