@@ -56,7 +56,10 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
       progress.rethrowIfFailed();
       throw;
     }
-    model::checkAutoModel(t.source, *cloud, s);
+    // The model is made from, and measured against, the points kept (the strays are set aside).
+    geom::PointCloud keptStore;
+    const geom::PointCloud& kept = s.strays.empty() ? *cloud : (keptStore = cloud::keptPoints(*cloud, s.strays));
+    model::checkAutoModel(t.source, kept, s);
     std::size_t accepted = 0, leafPieces = 0;
     for (char c : s.fitAccepted) accepted += c != 0;
     for (const auto& n : s.model) leafPieces += skeleton::isLeafPiece(n, opt);
@@ -65,6 +68,7 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
                 {"forks", skeleton::countBranchPoints(s.model)},
                 {"fits_accepted", accepted},
                 {"leaf_pieces", leafPieces},
+                {"stray_points", s.strays.count()},
                 {"vertices", s.mesh.vertices.size()},
                 {"triangles", s.mesh.triangles.size()}};
     t.reportHeader = {{"cloud", t.source},
@@ -73,6 +77,7 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
                       {"up", geom::toString(choice.up)},
                       {"upReason", t.upReason},
                       {"points", t.points},
+                      {"strayPoints", model::strayPointsJson(s.strays)},
                       {"seed", seed},
                       {"skeletonNodes", t.counts["skeleton_nodes"]},
                       {"forks", t.counts["forks"]},
@@ -87,11 +92,12 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
     mo.leafOn = leafOn;  // as the CLI measures it: the fit, the volume's range and the verdict
     mo.noise = s.noiseMeasured ? s.noise : -1.0;
     mo.leafPieceShare = s.model.empty() ? 0.0 : static_cast<double>(leafPieces) / static_cast<double>(s.model.size());
-    t.measures = model::measure(t.tree, *cloud, mo);
+    t.measures = model::measure(t.tree, kept, mo);
     t.measureOptions = mo;
     t.timings["metrics_ms"] = msSince(tm);
     t.timings["library_ms"] = msSince(t0);
     t.sketch = std::move(s.sketch);
+    t.strays = std::move(s.strays);
   }
   return result;
 }
@@ -149,11 +155,13 @@ std::string lower(std::string s) {
   return s;
 }
 
-/// The fit against `cloud` (what a report holds), measured on demand.
+/// The fit against `cloud` (what a report holds), measured on demand; on the model's own cloud
+/// (as many points) without the points it set aside as strays, as the CLI's report measures it.
 model::ModelMeasures measuredWithFit(const PyModel& t, const geom::PointCloud& cloud, double unitMetres) {
   model::MeasureOptions mo = t.measureOptions;
   mo.unitMetres = unitMetres;
   mo.fit = true;
+  if (!t.strays.empty() && cloud.size() == t.points) return model::measure(t.tree, cloud::keptPoints(cloud, t.strays), mo);
   return model::measure(t.tree, cloud, mo);
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "bindings.h"
+#include "treesketch/cloud/stray_points.h"
 #include "treesketch/model/tree_model.h"
 #include "treesketch/sketch/sketch.h"
 
@@ -21,6 +22,7 @@ struct PyModel {
   std::string source;             ///< names the cloud in messages and reports
   std::string upReason;
   std::size_t points = 0;
+  cloud::StrayPoints strays;  ///< the points of its cloud set aside before modelling
   double unitMetres = 1.0;
   nlohmann::json counts = nlohmann::json::object();        ///< e.g. skeleton_nodes, forks, vertices
   nlohmann::json timings = nlohmann::json::object();       ///< *_ms, library_ms

@@ -113,6 +113,7 @@ std::shared_ptr<PyModel> sketchModel(const PyReconstruction& r, double unitMetre
   if (fitted == 0)
     throw DegenerateInputError("the sketch: no node could be fitted in " + r.source + " (" + std::to_string(skipped) +
                                " skipped, " + std::to_string(disabled) + " disabled); no model");
+  model::checkFittedShape(model::fittedShape(res), "the sketch", r.source);  // as `reconstruct --sketch`
   m->tree = model::fromReconstruction(res, r.sketch.up);  // the sketch's up axis
   model::MeasureOptions mo;
   mo.unitMetres = unitMetres;

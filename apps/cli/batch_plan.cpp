@@ -77,12 +77,27 @@ std::vector<BatchTree> readManifest(const fs::path& manifest) {
 
 }  // namespace
 
-BatchPlan planBatch(const fs::path& input) {
+namespace {
+
+/// Whether `file` is one of the batch's own outputs in `out` (its summary; the trees' files are in
+/// folders, which a folder's listing does not enter): an --out that is the input folder must not
+/// take its summary.csv for a tree on the next run.
+bool isBatchOutput(const fs::path& file, const fs::path& out) {
+  if (out.empty()) return false;
+  const std::string name = file.filename().string();
+  if (name != "summary.csv" && name != "summary.json") return false;
+  std::error_code ec;
+  return fs::equivalent(file.parent_path(), out, ec);
+}
+
+}  // namespace
+
+BatchPlan planBatch(const fs::path& input, const fs::path& out) {
   BatchPlan plan;
   if (fs::is_directory(input)) {
     std::vector<fs::path> files;
     for (const auto& e : fs::directory_iterator(input))
-      if (e.is_regular_file()) files.push_back(e.path());
+      if (e.is_regular_file() && !isBatchOutput(e.path(), out)) files.push_back(e.path());
     std::sort(files.begin(), files.end());
     for (const auto& f : files) {
       const std::string ext = lower(f.extension().string());
@@ -127,15 +142,50 @@ bool readJson(const fs::path& p, nlohmann::json* j) {
 
 }  // namespace
 
-std::string treeState(const fs::path& dir, const BatchTree& tree) {
+namespace {
+
+/// Why a failure recorded in `j` may pass on a second try ("" = it would fail again).
+std::string retryReason(const nlohmann::json& j, double treeTimeoutS, double treeMemoryMb) {
+  if (j.contains("signal")) return "killed by signal " + j["signal"].dump();
+  if (j.contains("timedOutAfterS")) {
+    const double limit = j["timedOutAfterS"].get<double>();
+    return treeTimeoutS <= 0 || treeTimeoutS > limit ? "stopped by a shorter time limit" : "";
+  }
+  if (j.contains("outOfMemoryMb")) {
+    const double limit = j["outOfMemoryMb"].get<double>();
+    return treeMemoryMb <= 0 || treeMemoryMb > limit ? "running out of a smaller memory limit" : "";
+  }
+  const int code = j.value("exitCode", 0);
+  if (code == 1) return "an internal error";
+  if (code == 4) return "its outputs could not be written";
+  return "";
+}
+
+}  // namespace
+
+std::string treeState(const fs::path& dir, const BatchTree& tree, const BatchRunOptions& options, std::string* why) {
   nlohmann::json j;
   const nlohmann::json stamp = inputStamp(tree.cloud);
+  const auto sameOptions = [&](const nlohmann::json& m) {
+    return options.model.is_null() || m.value("options", nlohmann::json()) == options.model;
+  };
   if (readJson(dir / kDoneMarker, &j) && j.value("input", nlohmann::json()) == stamp) {
     for (const auto& name : batchOutputNames())
       if (!fs::exists(dir / name)) return "";
-    return "done";
+    if (sameOptions(j)) return "done";
+    if (why) *why = "made with other options (" + j.value("options", nlohmann::json()).dump() + ")";
+    return "";
   }
-  if (readJson(dir / kFailedMarker, &j) && j.value("input", nlohmann::json()) == stamp) return "failed";
+  if (readJson(dir / kFailedMarker, &j) && j.value("input", nlohmann::json()) == stamp) {
+    if (!sameOptions(j)) {
+      if (why) *why = "failed with other options";
+      return "";
+    }
+    const std::string retry = options.model.is_null() ? "" : retryReason(j, options.treeTimeoutS, options.treeMemoryMb);
+    if (retry.empty()) return "failed";
+    if (why) *why = "failed by " + retry;
+    return "";
+  }
   return "";
 }
 
@@ -153,17 +203,17 @@ std::string csvField(const nlohmann::json& v) {
 
 }  // namespace
 
-std::size_t writeBatchSummary(const fs::path& out, const BatchPlan& plan) {
-  static const char* kColumns[] = {"tree",     "cloud",        "status",  "error",     "points",
+std::size_t writeBatchSummary(const fs::path& out, const BatchPlan& plan, const BatchRunOptions& options) {
+  static const char* kColumns[] = {"tree",     "cloud",        "status",  "error",     "points", "strayPoints",
                                    "up",       "totalMs",      "heightM", "dbhModelM", "dbhCloudM",
                                    "volumeM3", "volumeLowM3", "volumeHighM3", "measuredVolumeShare", "stemVolumeM3",
-                                   "lengthM", "branches", "crownAreaM2", "verdict", "verdictReasons"};
+                                   "lengthM", "branches", "crownAreaM2", "verdict", "verdictReasons", "warnings"};
   nlohmann::json rows = nlohmann::json::array();
   std::size_t notDone = 0;
   for (const auto& t : plan.trees) {
     nlohmann::json j;
     const fs::path dir = out / t.name;
-    const std::string state = treeState(dir, t);
+    const std::string state = treeState(dir, t, options);
     if (state == "done" || state == "failed") {
       readJson(dir / (state == "done" ? kDoneMarker : kFailedMarker), &j);
     } else {

@@ -6,16 +6,22 @@
 // only gathers the summary. Exit code: 0 when every tree is done, 6 (kExitSomeFailed) otherwise.
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <map>
 #include <memory>
+#include <new>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "batch_plan.h"
@@ -46,7 +52,19 @@ struct BatchArgs {
   bool summarise = false, leafOn = false;
   double unitMetres = 1.0;
   std::uint64_t seed = 1;
+  double treeTimeoutS = 0;  // --tree-timeout (0 = none)
+  double treeMemoryMb = 0;  // --tree-memory (0 = none): the address space of each tree's process
 };
+
+/// The options recorded in each tree's markers: those that shape the model.
+BatchRunOptions runOptions(const BatchArgs& a) {
+  BatchRunOptions o;
+  o.model = {
+      {"up", a.up.empty() ? "auto" : a.up}, {"leafOn", a.leafOn}, {"unitMetres", a.unitMetres}, {"seed", a.seed}};
+  o.treeTimeoutS = a.treeTimeoutS;
+  o.treeMemoryMb = a.treeMemoryMb;
+  return o;
+}
 
 void writeMarker(const fs::path& path, const nlohmann::json& j) {
   const std::string text = j.dump(2) + "\n";
@@ -56,25 +74,18 @@ void writeMarker(const fs::path& path, const nlohmann::json& j) {
 
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-void recordFailure(const fs::path& dir, const BatchTree& t, const std::string& error, int code) {
-  writeMarker(dir / kFailedMarker, {{"tree", t.name},
-                                    {"cloud", t.cloud.string()},
-                                    {"status", "failed"},
-                                    {"error", error},
-                                    {"exitCode", code},
-                                    {"input", inputStamp(t.cloud)}});
+/// failed.json; `extra` adds how it ended ({"signal": n} or {"timedOutAfterS": s}).
+void recordFailure(const fs::path& dir, const BatchTree& t, const BatchArgs& a, const std::string& error, int code,
+                   const nlohmann::json& extra = nlohmann::json::object()) {
+  nlohmann::json j = {
+      {"tree", t.name},   {"cloud", t.cloud.string()},      {"status", "failed"},          {"error", error},
+      {"exitCode", code}, {"options", runOptions(a).model}, {"input", inputStamp(t.cloud)}};
+  j.update(extra);
+  writeMarker(dir / kFailedMarker, j);
 }
 
-/// One tree in this process: its outputs, then done.json; on an error failed.json, rethrown.
-void runOneTree(const BatchArgs& a, const BatchTree& t) {
-  const fs::path dir = fs::path(a.out) / t.name;
-  if (treeState(dir, t) == "done") {
-    std::printf("batch: %s already done\n", t.name.c_str());
-    return;
-  }
-  std::error_code ec;
-  fs::remove(dir / kDoneMarker, ec);
-  fs::remove(dir / kFailedMarker, ec);
+/// The job of one tree: its outputs in `dir`, the run's options.
+TreeJob treeJob(const BatchArgs& a, const BatchTree& t, const fs::path& dir) {
   TreeJob job;
   job.cloud = t.cloud.string();
   job.out.mesh = (dir / "mesh.ply").string();
@@ -86,6 +97,25 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
   job.leafOn = a.leafOn;
   job.seed = a.seed;
   job.unitMetres = a.unitMetres;
+  return job;
+}
+
+/// One tree in this process: its outputs, then done.json; on an error failed.json, rethrown.
+void runOneTree(const BatchArgs& a, const BatchTree& t) {
+  const fs::path dir = fs::path(a.out) / t.name;
+  if (treeState(dir, t, runOptions(a)) == "done") {
+    std::printf("batch: %s already done\n", t.name.c_str());
+    return;
+  }
+  if (a.treeMemoryMb > 0) {  // this process is the tree's own (--index): bound its address space
+    rlimit limit{};
+    limit.rlim_cur = limit.rlim_max = static_cast<rlim_t>(a.treeMemoryMb * 1024.0 * 1024.0);
+    ::setrlimit(RLIMIT_AS, &limit);
+  }
+  std::error_code ec;
+  fs::remove(dir / kDoneMarker, ec);
+  fs::remove(dir / kFailedMarker, ec);
+  const TreeJob job = treeJob(a, t, dir);
   try {
     const TreeJobResult r = runTreeJob(job);
     const compare::TreeMetrics& m = r.measures.metrics;
@@ -94,6 +124,8 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
                                     {"status", "ok"},
                                     {"error", nullptr},
                                     {"points", r.points},
+                                    {"strayPoints", r.strays.count()},
+                                    {"warnings", joined(r.scale.warnings)},
                                     {"up", r.up},
                                     {"totalMs", r.totalMs},
                                     {"timings",
@@ -115,20 +147,31 @@ void runOneTree(const BatchArgs& a, const BatchTree& t) {
                                     {"lengthM", m.figures.length},
                                     {"branches", m.branches},
                                     {"crownAreaM2", m.crownArea},
+                                    {"options", runOptions(a).model},
                                     {"input", inputStamp(t.cloud)}});
-    std::printf("batch: %s: %zu points, up %s, %.0f ms\n%s\n%s", t.name.c_str(), r.points, r.upReason.c_str(),
-                r.totalMs, r.measures.verdictLine().c_str(), compare::metricsTable(m).c_str());
+    std::printf("batch: %s: %zu points (%s), up %s, %.0f ms\n%s\n%s", t.name.c_str(), r.points,
+                cloud::strayPointsLine(r.strays).c_str(), r.upReason.c_str(), r.totalMs,
+                r.measures.verdictLine().c_str(), compare::metricsTable(m).c_str());
+  } catch (const DegenerateInputError& e) {
+    recordFailure(dir, t, a, e.what(), kExitNoResult);
+    throw;
   } catch (const InputError& e) {
-    recordFailure(dir, t, e.what(), kExitInput);
+    recordFailure(dir, t, a, e.what(), kExitInput);
     throw;
   } catch (const OutputError& e) {
-    recordFailure(dir, t, e.what(), kExitOutput);
+    recordFailure(dir, t, a, e.what(), kExitOutput);
     throw;
   } catch (const OptionsError& e) {
-    recordFailure(dir, t, e.what(), kExitUsage);
+    recordFailure(dir, t, a, e.what(), kExitUsage);
+    throw;
+  } catch (const std::bad_alloc&) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "out of memory: the tree needs more than %.6g MB (--tree-memory)", a.treeMemoryMb);
+    recordFailure(dir, t, a, a.treeMemoryMb > 0 ? buf : "out of memory", kExitNoResult,
+                  {{"outOfMemoryMb", a.treeMemoryMb}});
     throw;
   } catch (const std::exception& e) {
-    recordFailure(dir, t, std::string("internal error: ") + e.what(), kExitInternal);
+    recordFailure(dir, t, a, std::string("internal error: ") + e.what(), kExitInternal);
     throw;
   }
 }
@@ -146,6 +189,11 @@ std::vector<std::string> childArgs(const BatchArgs& a, std::size_t k) {
                                 std::to_string(a.seed)};
   if (!a.up.empty()) v.insert(v.end(), {"--up", a.up});
   if (a.leafOn) v.push_back("--leaf-on");
+  if (a.treeMemoryMb > 0) {
+    char mb[64];
+    std::snprintf(mb, sizeof mb, "%.17g", a.treeMemoryMb);
+    v.insert(v.end(), {"--tree-memory", mb});
+  }
   char unit[64];
   std::snprintf(unit, sizeof unit, "%.17g", a.unitMetres);
   v.insert(v.end(), {"--units-metres", unit});
@@ -169,48 +217,114 @@ pid_t spawnTree(const BatchArgs& a, std::size_t k, const fs::path& log) {
   return pid;
 }
 
+/// An exclusive lock on OUT/.batch.lock for the life of the object (flock: released when the
+/// process ends, however it ends). Throws OutputError when another run holds it.
+class OutLock {
+ public:
+  explicit OutLock(const fs::path& out) {
+    const fs::path path = out / ".batch.lock";
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw OutputError(path.string() + ": cannot create the lock file: " + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      throw OutputError("--out " + out.string() +
+                        ": another batch run is writing there (it holds .batch.lock); wait for it to finish or "
+                        "choose another --out");
+    }
+  }
+  ~OutLock() { ::close(fd_); }
+  OutLock(const OutLock&) = delete;
+  OutLock& operator=(const OutLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+/// The trees to run, saying why a tree with a marker runs again.
+std::vector<std::size_t> treesToRun(const BatchArgs& a, const BatchPlan& plan, std::size_t* already) {
+  std::vector<std::size_t> todo;
+  for (std::size_t k = 0; k < plan.trees.size(); ++k) {
+    std::string why;
+    const std::string state = treeState(fs::path(a.out) / plan.trees[k].name, plan.trees[k], runOptions(a), &why);
+    if (!state.empty()) {
+      ++*already;
+      continue;
+    }
+    todo.push_back(k);
+    if (!why.empty()) std::printf("batch: %s runs again: %s\n", plan.trees[k].name.c_str(), why.c_str());
+  }
+  return todo;
+}
+
+struct Running {
+  std::size_t tree = 0;
+  std::chrono::steady_clock::time_point start;
+  bool stopped = false;  // killed by --tree-timeout
+};
+
+/// Kills the trees running longer than --tree-timeout.
+void stopOverdue(const BatchArgs& a, std::map<pid_t, Running>& running) {
+  if (a.treeTimeoutS <= 0) return;
+  const auto now = std::chrono::steady_clock::now();
+  for (auto& [pid, r] : running)
+    if (!r.stopped && std::chrono::duration<double>(now - r.start).count() > a.treeTimeoutS) {
+      ::kill(pid, SIGKILL);
+      r.stopped = true;
+    }
+}
+
+/// Records how a child ended; returns "ok" or what went wrong.
+std::string recordEnd(const BatchArgs& a, const BatchTree& t, const Running& r, int status) {
+  const fs::path dir = fs::path(a.out) / t.name;
+  if (r.stopped) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "stopped after the time limit of %.4g s (--tree-timeout)", a.treeTimeoutS);
+    recordFailure(dir, t, a, buf, kExitNoResult, {{"timedOutAfterS", a.treeTimeoutS}});
+    return buf;
+  }
+  if (WIFSIGNALED(status)) {
+    const std::string what = "crashed (signal " + std::to_string(WTERMSIG(status)) + ")";
+    recordFailure(dir, t, a, what + "; see log.txt", kExitInternal, {{"signal", WTERMSIG(status)}});
+    return what;
+  }
+  if (WEXITSTATUS(status) != 0)
+    return "failed (exit " + std::to_string(WEXITSTATUS(status)) + ", see " + (dir / "log.txt").string() + ")";
+  return "ok";
+}
+
 void runAll(const BatchArgs& a, const BatchPlan& plan) {
   const fs::path out = a.out;
   fs::create_directories(out);
+  const OutLock lock(out);
   for (const auto& s : plan.skipped) std::printf("batch: skipped %s\n", s.c_str());
-  std::vector<std::size_t> todo;
   std::size_t already = 0;
-  for (std::size_t k = 0; k < plan.trees.size(); ++k) {
-    const std::string state = treeState(out / plan.trees[k].name, plan.trees[k]);
-    if (state.empty())
-      todo.push_back(k);
-    else
-      ++already;
-  }
-  std::printf("batch: %zu trees, %zu to run (%zu already done or failed on the same input), %d at a time\n",
+  const std::vector<std::size_t> todo = treesToRun(a, plan, &already);
+  std::printf("batch: %zu trees, %zu to run (%zu already done or failed on the same input and options), %d at a time\n",
               plan.trees.size(), todo.size(), already, a.jobs);
   std::fflush(stdout);
-  std::map<pid_t, std::pair<std::size_t, std::chrono::steady_clock::time_point>> running;
-  std::size_t next = 0, finished = 0, failed = 0;
+  std::map<pid_t, Running> running;
+  std::size_t next = 0, finished = 0;
   while (next < todo.size() || !running.empty()) {
     while (next < todo.size() && running.size() < static_cast<std::size_t>(a.jobs)) {
       const std::size_t k = todo[next++];
       const pid_t pid = spawnTree(a, k, out / plan.trees[k].name / "log.txt");
-      running[pid] = {k, std::chrono::steady_clock::now()};
+      running[pid] = {k, std::chrono::steady_clock::now(), false};
     }
     int status = 0;
-    const pid_t pid = waitpid(-1, &status, 0);
+    const pid_t pid = waitpid(-1, &status, a.treeTimeoutS > 0 ? WNOHANG : 0);
+    if (pid == 0) {  // none ended yet: the time limit, then a short wait
+      stopOverdue(a, running);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      continue;
+    }
     if (pid < 0) break;
     auto it = running.find(pid);
     if (it == running.end()) continue;
-    const auto [k, start] = it->second;
+    const Running r = it->second;
     running.erase(it);
-    const BatchTree& t = plan.trees[k];
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::string what = "ok";
-    if (WIFSIGNALED(status)) {
-      what = "crashed (signal " + std::to_string(WTERMSIG(status)) + ")";
-      recordFailure(out / t.name, t, what + "; see log.txt", kExitInternal);
-    } else if (WEXITSTATUS(status) != 0) {
-      what =
-          "failed (exit " + std::to_string(WEXITSTATUS(status)) + ", see " + (out / t.name / "log.txt").string() + ")";
-    }
-    failed += what != "ok";
+    const BatchTree& t = plan.trees[r.tree];
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - r.start).count();
+    const std::string what = recordEnd(a, t, r, status);
     ++finished;
     std::printf("batch: [%zu/%zu] %s: %s in %.1f s\n", finished, todo.size(), t.name.c_str(), what.c_str(), s);
     std::fflush(stdout);
@@ -219,7 +333,12 @@ void runAll(const BatchArgs& a, const BatchPlan& plan) {
 
 void runBatch(const BatchArgs& a) {
   if (a.jobs < 1) throw OptionsError("--jobs must be >= 1, got " + std::to_string(a.jobs));
-  const BatchPlan plan = planBatch(a.input);
+  if (!(a.treeMemoryMb >= 0) || !std::isfinite(a.treeMemoryMb))
+    throw OptionsError("--tree-memory must be a number of megabytes >= 0 (0 = no limit)");
+  if (!(a.treeTimeoutS >= 0) || !std::isfinite(a.treeTimeoutS))
+    throw OptionsError("--tree-timeout must be a number of seconds >= 0 (0 = no limit)");
+  if (a.index < 0) checkOutputWritable((fs::path(a.out) / "summary.csv").string());  // exit 4 before any work
+  const BatchPlan plan = planBatch(a.input, a.out);
   if (a.index >= 0) {
     if (a.summarise) throw OptionsError("--index and --summarise are separate steps");
     if (static_cast<std::size_t>(a.index) >= plan.trees.size())
@@ -228,7 +347,9 @@ void runBatch(const BatchArgs& a) {
     return runOneTree(a, plan.trees[static_cast<std::size_t>(a.index)]);
   }
   if (!a.summarise) runAll(a, plan);
-  const std::size_t notDone = writeBatchSummary(a.out, plan);
+  BatchRunOptions gather = runOptions(a);
+  if (a.summarise) gather.model = nullptr;  // whatever the runs recorded
+  const std::size_t notDone = writeBatchSummary(a.out, plan, gather);
   std::printf("batch: %zu of %zu trees done -> %s, %s\n", plan.trees.size() - notDone, plan.trees.size(),
               (fs::path(a.out) / "summary.csv").c_str(), (fs::path(a.out) / "summary.json").c_str());
   if (notDone > 0)
@@ -258,6 +379,12 @@ void registerBatch(CLI::App& app, Action& action) {
   sub->add_flag("--leaf-on", a->leafOn, "The trees were scanned in leaf");
   sub->add_option("--units-metres", a->unitMetres, "Metres per cloud unit (default 1)")->check(CLI::PositiveNumber);
   sub->add_option("--seed", a->seed, "Random seed of the circle fits (default 1)");
+  sub->add_option("--tree-timeout", a->treeTimeoutS,
+                  "Stop a tree that runs longer than this many seconds and record it in failed.json (default 0: no "
+                  "limit; a rerun with a longer limit runs it again)");
+  sub->add_option("--tree-memory", a->treeMemoryMb,
+                  "Limit each tree's process to this many MB of address space and record a tree that needs more in "
+                  "failed.json (default 0: no limit; a rerun with a larger limit runs it again)");
   sub->callback([a, &action] { action = [a] { runBatch(*a); }; });
 }
 

@@ -157,7 +157,13 @@ void writeOutputs(const CompareArgs& args, const geom::TriMesh& a, const Target&
   }
 }
 
+/// Most samples per kind: 20M backward samples held 2.6 GB in the scale test (docs/reliability.md).
+constexpr std::uint64_t kMaxSamples = 20000000;
+
 void runCompare(const CompareArgs& args) {
+  if (args.samples > kMaxSamples)
+    throw OptionsError("--samples " + std::to_string(args.samples) + ": at most " + std::to_string(kMaxSamples) +
+                       " per kind (20M samples need about 2.6 GB)");
   if (!args.range.empty() && args.range.size() != 2) throw OptionsError("--range takes two values: MIN MAX (metres)");
   if (args.range.size() == 2 && !(args.range[0] <= args.range[1]))
     throw OptionsError("--range: MIN must not exceed MAX");

@@ -24,6 +24,7 @@ namespace {
 
 struct ReconstructArgs {
   std::string cloud, sketch;
+  std::string outliers;             // --outliers (with --auto): the stray points set aside
   model::OutputPaths out;  // -o, --cylinders, --qsm, --metrics, --report
   int ring = 16;
   double inlierThreshold = -1.0;  // < 0: library default
@@ -89,6 +90,7 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   job.cloud = a.cloud;
   job.out = a.out;
   job.sketch = a.sketch;
+  job.strays = a.outliers;
   job.up = a.up;
   job.leafOn = a.leafOn;
   job.seed = a.seed;
@@ -97,6 +99,8 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   job.unitMetres = a.unitMetres == 0.0 ? 1.0 : a.unitMetres;
   const TreeJobResult r = runTreeJob(job);
   std::printf("up axis: %s\n", r.upReason.c_str());
+  std::printf("%s of %zu%s\n", cloud::strayPointsLine(r.strays).c_str(), r.points,
+              a.outliers.empty() ? "" : (" -> " + a.outliers).c_str());
   std::printf(
       "reconstruct --auto: %zu skeleton nodes (%zu forks), %zu fits accepted, %zu leaf pieces not fitted; "
       "%zu vertices, %zu triangles; skeleton %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
@@ -112,6 +116,7 @@ void runReconstruct(const ReconstructArgs& a) {
   if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
   if (!a.up.empty()) throw OptionsError("--up needs --auto (a sketch file carries its own up axis)");
   if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");
+  if (!a.outliers.empty()) throw OptionsError("--outliers needs --auto (a sketch is fitted to every point)");
   const model::OutputPaths& outputs = a.out;
   model::checkOutputs(outputs, {a.cloud, a.sketch});
   recon::ReconstructionOptions opt = recon::sketchReconstructionOptions();  // as the desktop tool fits it
@@ -151,6 +156,8 @@ void runReconstruct(const ReconstructArgs& a) {
                                " skipped, " + std::to_string(disabled) + " disabled); no mesh written" +
                                (a.out.report.empty() ? "" : ", see " + a.out.report));
   }
+  const model::FittedShape shape = model::fittedShape(r);
+  model::checkFittedShape(shape, a.sketch, a.cloud);
   if (wantsModel && tree.cylinders.empty())
     throw DegenerateInputError(a.sketch + ": only " + std::to_string(fitted + kept) +
                                " node(s) fitted in " + a.cloud +
@@ -161,6 +168,8 @@ void runReconstruct(const ReconstructArgs& a) {
       "triangles; index %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
       r.results.size(), fitted, skipped, disabled, kept, r.mesh.vertices.size(), r.mesh.triangles.size(),
       r.timings.indexMs, r.timings.fitMs, r.timings.sweepMs, a.out.mesh.c_str());
+  if (!shape.unfitted.empty())
+    std::printf("nodes that did not fit (bridged by their neighbours): %s\n", shape.unfittedList().c_str());
   printModelSummary(measures, outputs);
 }
 
@@ -178,6 +187,9 @@ void registerReconstruct(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"y", "z", "Y", "Z"}));
   sub->add_flag("--leaf-on", a->leafOn,
                 "With --auto: the tree was scanned in leaf (finer voxels, weaker foliage rule)");
+  sub->add_option("--outliers", a->outliers,
+                  "With --auto: write the stray points set aside before modelling (far from the tree or isolated) "
+                  "to this cloud file (.ply, .xyz)");
   sub->add_option("--cylinders", a->out.cylinders, "Also write the model's cylinder table (.csv)");
   sub->add_option("--qsm", a->out.qsm, "Also write the model's cylinders in TreeQSM's text layout (.txt)");
   sub->add_option("--metrics", a->out.metrics,

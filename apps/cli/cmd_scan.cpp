@@ -134,9 +134,13 @@ void registerScan(CLI::App& app, Action& action) {
   sub->add_option("--pattern", a->pattern, "sphere (thesis §4.2) or tls (terrestrial stations)")
       ->check(CLI::IsMember({"sphere", "tls"}))
       ->capture_default_str();
+  // Bounds refused before any work: 18*4^11 = 75M rays is several times the 20M-point scale test;
+  // 0 rays is no scan (it used to fall back to the default quietly).
   auto* subdiv = sub->add_option("--subdiv", a->subdiv, "sphere: subdivision level k, 18*4^k rays (thesis: 6-8)")
+                     ->check(CLI::Range(0, 11))
                      ->capture_default_str();
-  auto* rays = sub->add_option("--rays", a->rays, "sphere: target ray count (instead of --subdiv)");
+  auto* rays = sub->add_option("--rays", a->rays, "sphere: target ray count (instead of --subdiv; 1 to 100,000,000)")
+                   ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100000000}));
   subdiv->excludes(rays);
   sub->add_option("--radius", a->radius, "sphere: radius in mesh units (default: 1 x bbox diagonal)");
   sub->add_option("--jitter", a->jitter, "sphere: half-angle of the random aim jitter, degrees")->capture_default_str();

@@ -9,6 +9,9 @@
 #include <vector>
 
 #include "commands.h"
+#include "tree_job.h"
+#include "treesketch/cloud/scale_check.h"
+#include "treesketch/model/tree_model.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/io/up_axis.h"
@@ -24,6 +27,7 @@ namespace {
 
 /// What every automatic method gets.
 struct AutoSketchInput {
+  const std::string& source;  ///< the cloud's path, for messages
   const geom::PointCloud& cloud;
   const geom::Camera& camera;
   int nodes;
@@ -44,7 +48,12 @@ const std::map<std::string, AutoSketchMethod>& autoSketchMethods() {
        [](const AutoSketchInput& in) {
          const auto o =
              skeleton::autoSkeletonPreset(in.leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, in.up);
-         return skeleton::autoSkeletonSketch(in.cloud, o).sketch;
+         const skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, o);
+         // The check every automatic model gets: no sketch of unfitted circles on a degenerate cloud.
+         model::checkAutoModel(in.source, r.strays.empty() ? in.cloud : cloud::keptPoints(in.cloud, r.strays), r);
+         std::printf("%s of %zu\n", cloud::strayPointsLine(r.strays).c_str(), in.cloud.size());
+         printScaleWarnings(cloud::checkScale(in.cloud, r.strays));
+         return r.sketch;
        }},
   };
   return methods;
@@ -61,10 +70,17 @@ struct AutoOptions {
 void runAuto(const AutoOptions& o) {
   if (!o.up.empty()) geom::parseUpAxis(o.up);  // a bad value fails before the cloud is read
   if (o.nodes < 1) throw OptionsError("--nodes must be >= 1, got " + std::to_string(o.nodes));
+  // A node is a slice of the cloud fitted by RANSAC: the thesis drew 18; 100,000 is past any tree
+  // (1e8 ran out of memory before it was refused).
+  if (o.nodes > 100000) throw OptionsError("--nodes must be at most 100000, got " + std::to_string(o.nodes));
   if (o.width < 1 || o.height < 1) throw OptionsError("--width and --height must be >= 1");
   checkNotAnInput(o.output, {o.cloud});
   checkOutputWritable(o.output);
   geom::PointCloud cloud = io::readPointCloud(o.cloud);
+  if (!(cloud.bounds().diagonal() > 0))
+    throw DegenerateInputError(o.cloud + " (" + std::to_string(cloud.size()) +
+                               " points, bounding-box diagonal 0): every point is the same; no sketch can be made; "
+                               "nothing written");
   const io::UpAxisChoice choice = io::chooseUpAxis(o.up, cloud);
   const geom::UpAxis up = choice.up;
   std::printf("up axis: %s\n", choice.reason.c_str());
@@ -73,7 +89,7 @@ void runAuto(const AutoOptions& o) {
   const auto& methods = autoSketchMethods();
   auto it = methods.find(o.method);
   if (it == methods.end()) throw OptionsError("--method: unknown method '" + o.method + "'");
-  sketch::Sketch sk = it->second(AutoSketchInput{cloud, camera, o.nodes, up, o.leafOn});
+  sketch::Sketch sk = it->second(AutoSketchInput{o.cloud, cloud, camera, o.nodes, up, o.leafOn});
   io::writeSketch(std::filesystem::path(o.output), sk);
   std::printf("sketch: %zu nodes (%s, view %s), %zu kept circles, from %zu points -> %s\n", sk.size(), o.method.c_str(),
               o.view.c_str(), sk.keptCircleCount(), cloud.size(), o.output.c_str());

@@ -30,6 +30,10 @@ TreeJobResult runTreeJob(const TreeJob& a) {
     checkNotAnInput(a.sketch, {a.cloud});
     checkOutputWritable(a.sketch);
   }
+  if (!a.strays.empty()) {
+    checkNotAnInput(a.strays, {a.cloud});
+    checkOutputWritable(a.strays);
+  }
   TreeJobResult r;
   const geom::PointCloud cloud = io::readPointCloud(a.cloud);
   r.points = cloud.size();
@@ -44,7 +48,13 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   opt.ringVertices = a.ring;
   if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;
   const skeleton::AutoSkeletonResult s = skeleton::autoSkeletonSketch(cloud, opt);
-  model::checkAutoModel(a.cloud, cloud, s);
+  // The model is made from, and measured against, the points kept (the strays are set aside).
+  geom::PointCloud keptStore;
+  const geom::PointCloud& kept = s.strays.empty() ? cloud : (keptStore = cloud::keptPoints(cloud, s.strays));
+  r.strays = s.strays;
+  r.scale = cloud::checkScale(cloud, s.strays, a.unitMetres);
+  printScaleWarnings(r.scale);
+  model::checkAutoModel(a.cloud, kept, s);
   r.skeletonMs = s.skeletonMs;
   r.fitMs = s.fitMs;
   r.sweepMs = s.sweepMs;
@@ -62,7 +72,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   mo.leafOn = a.leafOn;
   mo.noise = s.noiseMeasured ? s.noise : -1.0;
   mo.leafPieceShare = r.skeletonNodes ? static_cast<double>(r.leafPieces) / static_cast<double>(r.skeletonNodes) : 0.0;
-  const model::ModelMeasures measures = model::measure(tree, cloud, mo);
+  const model::ModelMeasures measures = model::measure(tree, kept, mo);
   r.metricsMs = msSince(tm);
 
   nlohmann::json header;
@@ -73,6 +83,8 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   header["up"] = r.up;
   header["upReason"] = r.upReason;
   header["points"] = r.points;
+  header["strayPoints"] = model::strayPointsJson(s.strays);
+  header["warnings"] = r.scale.warnings;
   header["seed"] = a.seed;
   header["skeletonNodes"] = r.skeletonNodes;
   header["forks"] = r.forks;
@@ -87,10 +99,16 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   // The sketch first; the model's outputs end with the report, after which a batch writes its
   // done marker, so their presence says the tree is complete.
   if (!a.sketch.empty()) io::writeSketch(std::filesystem::path(a.sketch), s.sketch);
+  if (!a.strays.empty()) io::writePointCloud(a.strays, cloud::selectPoints(cloud, s.strays.setAside));
   model::writeOutputs(tree, measures, a.out, header);
   r.measures = measures;
   r.totalMs = msSince(t0);
   return r;
+}
+
+void printScaleWarnings(const cloud::ScaleCheck& scale) {
+  for (const std::string& w : scale.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  std::fflush(stderr);
 }
 
 void printModelSummary(const model::ModelMeasures& m, const model::OutputPaths& outputs) {

@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "treesketch/cloud/scale_check.h"
+#include "treesketch/cloud/stray_points.h"
 #include "treesketch/model/tree_model.h"
 
 namespace treesketch::cli {
@@ -15,6 +17,7 @@ struct TreeJob {
   std::string cloud;
   model::OutputPaths out;  ///< the model's files: the mesh is required, the others optional ("" = none)
   std::string sketch;      ///< the automatic sketch (optional)
+  std::string strays;      ///< the points set aside as strays, a cloud file (optional; written even when none)
   std::string up;                 ///< --up ("" = the rule of io/up_axis.h)
   bool leafOn = false;
   std::uint64_t seed = 1;
@@ -25,6 +28,8 @@ struct TreeJob {
 
 struct TreeJobResult {
   std::size_t points = 0;
+  cloud::StrayPoints strays;  ///< the points set aside before modelling
+  cloud::ScaleCheck scale;    ///< the cloud's size and precision, with warnings and their fixes
   std::string up, upReason;
   std::size_t skeletonNodes = 0, forks = 0, fitsAccepted = 0, leafPieces = 0, vertices = 0, triangles = 0;
   double readMs = 0, skeletonMs = 0, fitMs = 0, sweepMs = 0, metricsMs = 0, totalMs = 0;
@@ -37,6 +42,9 @@ TreeJobResult runTreeJob(const TreeJob& job);
 /// The lines every command that makes a model prints after it: the fit summary (with the report's
 /// path), the volume's range and the verdict, and the metrics table (when a report or metrics file
 /// was written).
+/// Prints each warning of `scale` on stderr ("warning: ...").
+void printScaleWarnings(const cloud::ScaleCheck& scale);
+
 void printModelSummary(const model::ModelMeasures& measures, const model::OutputPaths& outputs);
 
 }  // namespace treesketch::cli

@@ -364,7 +364,15 @@ const char* toString(CylinderTableFormat format) {
 }
 
 CylinderTable parseCylinderTable(std::string_view text, const std::string& source) {
-  return TableReader(source).read(text);
+  CylinderTable table = TableReader(source).read(text);
+  // Parent links that form a cycle or point past the table are the file's fault: say so here,
+  // naming it (exit 3), not later as a bad option.
+  try {
+    geom::branchStructure(table.model, geom::UpAxis::Z);
+  } catch (const OptionsError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+  return table;
 }
 
 CylinderTable readCylinderTable(std::istream& in, const std::string& source) {

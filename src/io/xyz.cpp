@@ -37,6 +37,7 @@ int splitFields(const char* b, const char* e, std::string_view* fields, int maxF
 struct ColumnMap {
   int x = 0, y = 1, z = 2;
   int intensity = -1, red = -1, green = -1, blue = -1, classification = -1;
+  bool namesXyz = false;  ///< a header named all three coordinates
   bool any() const { return intensity >= 0 || red >= 0 || classification >= 0; }
   bool defaultXyz() const { return x == 0 && y == 1 && z == 2; }
   int needed() const { return std::max({intensity, red, green, blue, classification}) + 1; }
@@ -45,14 +46,40 @@ struct ColumnMap {
 
 constexpr int kMaxFields = 32;
 
+/// The fields of a header line. A line with commas, semicolons or tabs is split at each one, so
+/// an empty name keeps its column (pandas writes ",x,y,z" over an unnamed index column); other
+/// lines at runs of spaces. Returns how many fields were found (at most kMaxFields).
+int splitHeader(std::string_view line, std::string_view* fields) {
+  char sep = 0;
+  for (char c : {',', ';', '\t'})
+    if (line.find(c) != std::string_view::npos) {
+      sep = c;
+      break;
+    }
+  if (sep == 0) return splitFields(line.data(), line.data() + line.size(), fields, kMaxFields);
+  int n = 0;
+  std::size_t start = 0;
+  while (n < kMaxFields && start <= line.size()) {
+    std::size_t end = line.find(sep, start);
+    if (end == std::string_view::npos) end = line.size();
+    std::string_view f = line.substr(start, end - start);
+    while (!f.empty() && (f.front() == ' ' || isSeparator(f.front()))) f.remove_prefix(1);
+    while (!f.empty() && (f.back() == ' ' || isSeparator(f.back()))) f.remove_suffix(1);
+    fields[n++] = f;
+    start = end + 1;
+  }
+  while (n > 0 && fields[n - 1].empty()) --n;  // a trailing separator names nothing
+  return n;
+}
+
 /// Columns named by a header line ("X,Y,Z,Intensity,R,G,B", "//X Y Z Rf Gf Bf Classification",
-/// CloudCompare's ASCII export '"x" "y" "z"', "id;x;y;z;label"): names are matched
-/// case-insensitively, without quotes, with CloudCompare's "scalar_" prefix and "f" suffix on
-/// colour names dropped. x, y and z stay the first three columns unless the line names all three.
-/// Returns a map with no attribute when the line names none.
+/// CloudCompare's ASCII export '"x" "y" "z"', "id;x;y;z;label", pandas' ",x,y,z"): names are
+/// matched case-insensitively, without quotes, with CloudCompare's "scalar_" prefix and "f"
+/// suffix on colour names dropped; other names (an id or index column, a label) are ignored.
+/// x, y and z stay the first three columns unless the line names all three (namesXyz).
 ColumnMap columnsFromHeader(std::string_view header) {
   std::string_view f[kMaxFields];
-  int n = splitFields(header.data(), header.data() + header.size(), f, kMaxFields);
+  int n = splitHeader(header, f);
   ColumnMap m;
   int xyz[3] = {-1, -1, -1};
   for (int i = 0; i < n; ++i) {
@@ -75,8 +102,23 @@ ColumnMap columnsFromHeader(std::string_view header) {
       m.classification = i;
   }
   if (m.red < 0 || m.green < 0 || m.blue < 0) m.red = m.green = m.blue = -1;  // colour needs all three
-  if (xyz[0] >= 0 && xyz[1] >= 0 && xyz[2] >= 0) m.x = xyz[0], m.y = xyz[1], m.z = xyz[2];
+  if (xyz[0] >= 0 && xyz[1] >= 0 && xyz[2] >= 0) m.x = xyz[0], m.y = xyz[1], m.z = xyz[2], m.namesXyz = true;
   return m;
+}
+
+/// A header line before the first point must name the x, y and z columns, or be a point count
+/// (one number, as PTS files start); anything else would leave the columns to a guess.
+void checkHeaderLine(std::string_view line, const ColumnMap& columns, const std::string& source, std::size_t lineNo) {
+  if (columns.namesXyz) return;
+  std::string_view f[2];
+  double count = 0;
+  if (splitFields(line.data(), line.data() + line.size(), f, 2) == 1 &&
+      detail::parseDouble(f[0].data(), f[0].data() + f[0].size(), count))
+    return;
+  throw InputError(atLine(source, lineNo,
+                          "header line " + detail::quoted(line) +
+                              " does not name the coordinate columns; expected a header naming x, y and z (in any "
+                              "order and case; other columns such as an id are ignored), a point count, or none"));
 }
 
 /// Columns by count when no header names them: 4 = x y z intensity; 6 = x y z r g b; 7 = x y z
@@ -130,7 +172,19 @@ void setColors(geom::PointCloud& cloud, const std::vector<std::array<double, 3>>
       cloud.color[i][k] = static_cast<std::uint8_t>(std::lround(std::clamp(colors[i][k] * scale, 0.0, 255.0)));
 }
 
+/// Drops a UTF-8 byte-order mark (Windows tools write one; it would make the first point a header);
+/// refuses UTF-16 text, whose every other byte is zero.
+std::string_view withoutByteOrderMark(std::string_view data, const std::string& source) {
+  if (data.substr(0, 3) == "\xEF\xBB\xBF") return data.substr(3);
+  if (data.substr(0, 2) == "\xFF\xFE" || data.substr(0, 2) == "\xFE\xFF")
+    throw InputError(source + ": byte offset 0: UTF-16 text (byte-order mark " +
+                     (data[0] == '\xFF' ? std::string("FF FE") : std::string("FE FF")) +
+                     "); expected ASCII or UTF-8: save the file as UTF-8");
+  return data;
+}
+
 geom::PointCloud parseXyz(std::string_view data, const std::string& source, const CloudReadOptions& options) {
+  data = withoutByteOrderMark(data, source);
   geom::PointCloud cloud;
   // One point a line, and a point line takes at least 6 bytes ("0 0 0\n").
   const std::size_t lineCount = static_cast<std::size_t>(std::count(data.begin(), data.end(), '\n')) + 1;
@@ -166,6 +220,7 @@ geom::PointCloud parseXyz(std::string_view data, const std::string& source, cons
         ++headerLines;
         lastHeader = line;
         columns = columnsFromHeader(lastHeader);
+        checkHeaderLine(line, columns, source, lineNo);
         continue;
       }
       throw InputError(atLine(source, lineNo,

@@ -90,6 +90,38 @@ TreeModel fromReconstruction(const recon::ReconstructionResult& r, geom::UpAxis 
   return model;
 }
 
+std::string FittedShape::unfittedList() const {
+  std::string s;
+  for (std::size_t i = 0; i < unfitted.size() && i < 20; ++i) s += (i ? ", " : "") + std::to_string(unfitted[i]);
+  return unfitted.size() > 20 ? s + ", ..." : s;
+}
+
+FittedShape fittedShape(const recon::ReconstructionResult& r) {
+  FittedShape f;
+  const auto fitted = [&](sketch::NodeId id) {
+    const fit::NodeResult& n = r.results.at(id);
+    return n.status == fit::NodeStatus::Fitted && n.radius > 0 && n.centre.allFinite();
+  };
+  for (sketch::NodeId id : r.order) {
+    if (!fitted(id)) {
+      if (r.results.at(id).status == fit::NodeStatus::Skipped) f.unfitted.push_back(id);
+      continue;
+    }
+    bool joined = false;
+    for (sketch::NodeId p = r.parents.at(id); p != sketch::kNoNode && !joined; p = r.parents.at(p)) joined = fitted(p);
+    f.pieces += !joined;
+  }
+  return f;
+}
+
+void checkFittedShape(const FittedShape& shape, const std::string& sketch, const std::string& cloud) {
+  if (shape.pieces <= 1) return;
+  throw DegenerateInputError(sketch + ": the nodes fitted in " + cloud + " make " + std::to_string(shape.pieces) +
+                             " separate pieces, no fitted node joins them (does the sketch belong to this cloud?); "
+                             "nodes that did not fit: " +
+                             shape.unfittedList() + "; no mesh written");
+}
+
 void checkAutoModel(const std::string& source, const geom::PointCloud& cloud, const skeleton::AutoSkeletonResult& r) {
   char what[512];
   std::snprintf(what, sizeof what, "%s (%zu points, bounding-box diagonal %.6g)", source.c_str(), cloud.size(),
@@ -296,6 +328,15 @@ void checkOutputs(const OutputPaths& paths, const std::vector<std::string>& inpu
       throw OptionsError(std::string("mesh output: ") + e.what());
     }
   }
+}
+
+nlohmann::json strayPointsJson(const cloud::StrayPoints& s) {
+  return {{"setAside", s.count()},
+          {"far", s.far},
+          {"isolated", s.isolated},
+          {"spacing", s.spacing},
+          {"linkDistance", s.linkDistance},
+          {"tooSparse", s.tooSparse}};
 }
 
 nlohmann::json verdictJson(const Verdict& v) {

@@ -426,9 +426,11 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
 
 }  // namespace
 
-AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
-                                      const ProgressFn& progress) {
-  checkOptions(options);
+namespace {
+
+/// The pipeline on the kept points.
+AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
+                                   const ProgressFn& progress) {
   AutoSkeletonResult res;
   // 1. The skeleton.
   const auto t0 = std::chrono::steady_clock::now();
@@ -487,6 +489,19 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   rec.update(res.sketch);
   res.mesh = rec.mesh();
   res.sweepMs += elapsedMs(t1);
+  return res;
+}
+
+}  // namespace
+
+AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
+                                      const ProgressFn& progress) {
+  checkOptions(options);
+  cloud::StrayPoints strays = cloud::findStrayPoints(cloud, options.strays);
+  AutoSkeletonResult res =
+      strays.empty() ? modelKeptPoints(cloud, options, progress)
+                     : modelKeptPoints(cloud::keptPoints(cloud, strays), options, progress);
+  res.strays = std::move(strays);
   return res;
 }
 

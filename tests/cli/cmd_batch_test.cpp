@@ -1,6 +1,9 @@
 // `treesketch batch` run as a process: a folder with two trees, a truncated LAS and a cylinder
 // table; failure isolation, the summary, resume, --index, a manifest.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -103,6 +106,105 @@ TEST_F(BatchCli, ManifestAndBadInput) {
   EXPECT_NE(out.find("bad.txt:1"), std::string::npos) << out;
   EXPECT_EQ(test::runCli("batch " + quoted(dir / "none") + " --out " + quoted(dir / "m3"), &out), 3) << out;
   EXPECT_EQ(batch(" --jobs 0", &out), 2) << out;
+}
+
+// done.json keeps the options that shaped the model; a rerun with other options runs the trees
+// again (and says why) instead of reporting the old results.
+TEST_F(BatchCli, ARerunWithOtherOptionsRunsTheTreesAgain) {
+  std::string out;
+  EXPECT_EQ(batch("", &out), 6) << out;
+  const fs::path done = dir / "out" / "tree_a" / "done.json";
+  auto j = nlohmann::json::parse(test::readText(done));
+  EXPECT_EQ(j["options"]["seed"], 1);
+  EXPECT_EQ(j["options"]["leafOn"], false);
+  EXPECT_EQ(batch(" --seed 2", &out), 6) << out;
+  EXPECT_NE(out.find("3 to run"), std::string::npos) << out;
+  EXPECT_NE(out.find("tree_a runs again: made with other options"), std::string::npos) << out;
+  j = nlohmann::json::parse(test::readText(done));
+  EXPECT_EQ(j["options"]["seed"], 2);
+  EXPECT_EQ(batch(" --seed 2", &out), 6) << out;
+  EXPECT_NE(out.find("0 to run"), std::string::npos) << out;
+  // --summarise gathers whatever the runs recorded
+  EXPECT_EQ(batch(" --summarise", &out), 6) << out;
+  EXPECT_EQ(nlohmann::json::parse(test::readText(dir / "out" / "summary.json"))["done"], 2);
+}
+
+// A tree killed by a signal (or failed writing its outputs) is run again; a tree whose input is
+// broken is not.
+TEST_F(BatchCli, ATreeKilledByASignalIsRetried) {
+  std::string out;
+  EXPECT_EQ(batch("", &out), 6) << out;
+  const fs::path tree = dir / "out" / "tree_a";
+  const auto done = nlohmann::json::parse(test::readText(tree / "done.json"));
+  const nlohmann::json failed = {{"status", "failed"}, {"error", "crashed (signal 9)"}, {"exitCode", 1},
+                                 {"signal", 9},        {"input", done["input"]},        {"options", done["options"]}};
+  fs::remove(tree / "done.json");
+  test::writeText(tree / "failed.json", failed.dump());
+  EXPECT_EQ(batch("", &out), 6) << out;
+  EXPECT_NE(out.find("1 to run"), std::string::npos) << out;
+  EXPECT_NE(out.find("tree_a runs again: failed by killed by signal 9"), std::string::npos) << out;
+  EXPECT_TRUE(fs::exists(tree / "done.json"));
+  EXPECT_FALSE(fs::exists(tree / "failed.json"));
+}
+
+// Two runs on one --out at once: the second is refused (exit 4) while the first holds the lock.
+TEST_F(BatchCli, TwoRunsOnOneOutAreRefused) {
+  fs::create_directories(dir / "out");
+  const int fd = ::open((dir / "out" / ".batch.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  std::string out;
+  EXPECT_EQ(batch("", &out), 4) << out;
+  EXPECT_NE(out.find("another batch run"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir / "out" / "tree_a"));
+  ::close(fd);
+  EXPECT_EQ(batch("", &out), 6) << out;  // the lock is gone with its holder
+}
+
+// --out inside the input folder: the batch's own summary.csv is not taken for a tree.
+TEST_F(BatchCli, AnOutInsideTheInputIsNotReadAsTrees) {
+  std::string out;
+  EXPECT_EQ(test::runCli("batch " + quoted(plot) + " --out " + quoted(plot), &out), 6) << out;
+  ASSERT_TRUE(fs::exists(plot / "summary.csv"));
+  EXPECT_EQ(test::runCli("batch " + quoted(plot) + " --out " + quoted(plot), &out), 6) << out;
+  EXPECT_NE(out.find("3 trees, 0 to run"), std::string::npos) << out;
+  EXPECT_EQ(nlohmann::json::parse(test::readText(plot / "summary.json"))["trees"], 3);
+  EXPECT_FALSE(fs::exists(plot / "summary"));
+}
+
+// --tree-timeout stops a tree and records it in failed.json; a rerun without the limit runs it.
+TEST_F(BatchCli, ATreeTimeoutIsRecordedAndALongerLimitRetries) {
+  std::string out;
+  EXPECT_EQ(batch(" --tree-timeout 0.001", &out), 6) << out;
+  const auto failed = nlohmann::json::parse(test::readText(dir / "out" / "tree_a" / "failed.json"));
+  EXPECT_EQ(failed["timedOutAfterS"], 0.001);
+  EXPECT_NE(failed["error"].get<std::string>().find("--tree-timeout"), std::string::npos) << failed.dump();
+  EXPECT_EQ(batch(" --tree-timeout 0.001", &out), 6) << out;
+  EXPECT_NE(out.find("0 to run"), std::string::npos) << out;
+  EXPECT_EQ(batch("", &out), 6) << out;
+  EXPECT_TRUE(fs::exists(dir / "out" / "tree_a" / "done.json")) << out;
+  EXPECT_EQ(batch(" --tree-timeout -1", &out), 2) << out;
+}
+
+// --tree-memory bounds each tree's process; a tree that needs more is recorded in failed.json,
+// and a rerun with a larger limit (or none) runs it again.
+TEST_F(BatchCli, ATreeOverItsMemoryLimitIsRecordedAndALargerLimitRetries) {
+  std::string out;
+  EXPECT_EQ(batch(" --tree-memory 1", &out), 6) << out;
+  const auto failed = nlohmann::json::parse(test::readText(dir / "out" / "tree_a" / "failed.json"));
+  EXPECT_EQ(failed["outOfMemoryMb"], 1) << failed.dump();
+  EXPECT_NE(failed["error"].get<std::string>().find("--tree-memory"), std::string::npos) << failed.dump();
+  EXPECT_EQ(batch(" --tree-memory 1", &out), 6) << out;
+  EXPECT_NE(out.find("0 to run"), std::string::npos) << out;
+  EXPECT_EQ(batch(" --tree-memory 4000", &out), 6) << out;
+  EXPECT_TRUE(fs::exists(dir / "out" / "tree_a" / "done.json")) << out;
+}
+
+// An --out that cannot be written is exit 4 before any work (not an internal error).
+TEST_F(BatchCli, AnUnwritableOutIsAnOutputError) {
+  test::writeText(dir / "file", "x");
+  std::string out;
+  EXPECT_EQ(test::runCli("batch " + quoted(plot) + " --out " + quoted(dir / "file"), &out), 4) << out;
 }
 
 }  // namespace

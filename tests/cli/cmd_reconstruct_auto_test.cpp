@@ -1,6 +1,8 @@
 // `treesketch reconstruct --auto` and `sketch auto --method skeleton`, run as processes.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -96,6 +98,56 @@ TEST(CmdAuto, SavedSketchRebuildsTheAutomaticMeshAndRefitFitsIt) {
   EXPECT_EQ(test::runCli("reconstruct " + cloud + " --auto --refit -o " + quoted(dir / "x.ply"), &out), 2) << out;
   EXPECT_NE(out.find("--refit"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.ply"));
+}
+
+}  // namespace
+}  // namespace treesketch
+
+namespace treesketch {
+namespace {
+
+// Stray points far from the tree are set aside, counted in the summary line and the report, and
+// written to --outliers; the model is the one made without them.
+TEST(CmdAuto, StrayPointsAreSetAsideCountedAndWrittenOut) {
+  test::TempDir dir;
+  const geom::PointCloud clean = test::sampleCylinders(test::yTree(), 0.02, 0.003, 7);
+  geom::PointCloud withStrays = clean;
+  withStrays.positions.emplace_back(1e6, 0, 0);    // 1,000 km out
+  withStrays.positions.emplace_back(0, 50.0, 20);  // 50 m out
+  io::writePointCloud(dir / "clean.ply", clean);
+  io::writePointCloud(dir / "strays.ply", withStrays);
+  std::string out;
+  ASSERT_EQ(test::runCli("reconstruct " + quoted(dir / "clean.ply") + " --auto --report " + quoted(dir / "r0.json") +
+                             " -o " + quoted(dir / "m0.ply"),
+                         &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("no stray point set aside"), std::string::npos) << out;
+  ASSERT_EQ(test::runCli("reconstruct " + quoted(dir / "strays.ply") + " --auto --report " + quoted(dir / "r.json") +
+                             " --outliers " + quoted(dir / "out.xyz") + " -o " + quoted(dir / "m.ply"),
+                         &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("2 stray points set aside (2 far from the tree"), std::string::npos) << out;
+  const auto r0 = nlohmann::json::parse(test::readText(dir / "r0.json"));
+  const auto r = nlohmann::json::parse(test::readText(dir / "r.json"));
+  EXPECT_EQ(r0["strayPoints"]["setAside"], 0);
+  EXPECT_EQ(r["strayPoints"]["setAside"], 2);
+  EXPECT_EQ(r["strayPoints"]["far"], 2);
+  EXPECT_EQ(r["points"], clean.size() + 2);
+  EXPECT_EQ(r["metrics"]["volumeM3"], r0["metrics"]["volumeM3"]);
+  EXPECT_EQ(r["metrics"]["heightM"], r0["metrics"]["heightM"]);
+  io::CloudReadOptions any;
+  any.minPoints = 1;
+  const geom::PointCloud set = io::readPointCloud(dir / "out.xyz", any);
+  ASSERT_EQ(set.size(), 2u);
+  EXPECT_EQ(set.positions[0].x(), 1e6);
+  // --outliers belongs to the automatic model
+  EXPECT_EQ(test::runCli("reconstruct " + quoted(dir / "strays.ply") + " --sketch " + quoted(dir / "s.json") +
+                             " --outliers " + quoted(dir / "o.xyz") + " -o " + quoted(dir / "x.ply"),
+                         &out),
+            2)
+      << out;
 }
 
 }  // namespace

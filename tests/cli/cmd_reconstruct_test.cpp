@@ -121,6 +121,29 @@ TEST(CmdReconstruct, ASketchWritesEveryModelOutputAsTheLibraryDoes) {
   EXPECT_NEAR(table.model.cylinders[0].endRadius, 0.2, 0.004);
 }
 
+// Fitted nodes that no fitted node joins (a sketch whose trunk misses the cloud: floating pieces)
+// are refused, naming the nodes that did not fit; a bridged gap inside one piece is named too.
+TEST(CmdReconstruct, FittedNodesInSeparatePiecesAreRefused) {
+  Files f;
+  sketch::Sketch s;
+  sketch::SamplingParams sp;
+  sp.lineEpsilon = 0.4;
+  const auto root = s.addPointNode(sketch::kNoNode, Vec3(0, 9.0, 0), Vec3::UnitY(), sp);  // off the cloud
+  s.addPointNode(root, Vec3(0, 0.5, 0), Vec3::UnitY(), sp);
+  s.addPointNode(root, Vec3(0, 1.2, 0), Vec3::UnitY(), sp);
+  const std::string two = (f.dir / "two.json").string();
+  io::writeSketch(two, s);
+  std::string out;
+  const std::string mesh = (f.dir / "m.obj").string();
+  EXPECT_EQ(test::runCli("reconstruct " + f.cloud + " --sketch " + two + " -o " + mesh, &out), 5) << out;
+  EXPECT_NE(out.find("2 separate pieces"), std::string::npos) << out;
+  EXPECT_NE(out.find("nodes that did not fit: " + std::to_string(root)), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(mesh));
+  // The fixture's sketch: its third node (above the cloud) is named, the model is written.
+  EXPECT_EQ(test::runCli("reconstruct " + f.cloud + " --sketch " + f.sketch + " -o " + mesh, &out), 0) << out;
+  EXPECT_NE(out.find("nodes that did not fit (bridged by their neighbours): "), std::string::npos) << out;
+}
+
 TEST(CmdReconstruct, AModelOutputWithNoCylinderIsRefusedNotSkipped) {
   Files f;
   sketch::Sketch s;

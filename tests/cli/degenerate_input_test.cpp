@@ -4,6 +4,8 @@
 // "successful" empty or fit-less model. No output file is written.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -135,6 +137,54 @@ TEST_F(DegenerateCli, ReconstructAutoOfADegenerateCloudIsAnError) {
     EXPECT_NE(out.find("c.xyz"), std::string::npos) << out;
     EXPECT_FALSE(exists("m.obj"));
     EXPECT_FALSE(exists("s.json"));
+  }
+}
+
+// `sketch auto --method skeleton` gets the automatic model's check too: no sketch of unfitted
+// circles on equal or collinear points.
+TEST_F(DegenerateCli, SketchAutoSkeletonOfADegenerateCloudIsAnError) {
+  for (const auto& c : degenerateClouds()) {
+    SCOPED_TRACE(c.name);
+    writeText(dir / "c.xyz", c.xyz);
+    std::string out;
+    const int rc = runCli("sketch auto " + q("c.xyz") + " --method skeleton -o " + q("s.json"), &out);
+    if (c.inferredAutoModel) {
+      EXPECT_EQ(rc, 0) << out;
+      fs::remove(dir / "s.json");
+      continue;
+    }
+    EXPECT_EQ(rc, c.exitCode) << out;
+    EXPECT_NE(out.find("c.xyz"), std::string::npos) << out;
+    EXPECT_FALSE(exists("s.json"));
+  }
+}
+
+// A cloud in millimetres and one far from its origin are named, with the fix, by `info` and by
+// the automatic model (whose report keeps the warnings).
+TEST_F(DegenerateCli, ImplausibleUnitsAndLostPrecisionAreNamedWithTheFix) {
+  std::string mm, far;
+  for (int z = 0; z < 400; ++z)
+    for (int k = 0; k < 60; ++k) {
+      const double a = 6.283185307179586 * k / 60, r = 200.0;  // a 0.2 m trunk in millimetres
+      mm += std::to_string(r * std::cos(a)) + " " + std::to_string(r * std::sin(a)) + " " + std::to_string(10 * z) +
+            "\n";
+      far += std::to_string(1e15 + 0.2 * std::cos(a)) + " " + std::to_string(0.2 * std::sin(a)) + " " +
+             std::to_string(0.01 * z) + "\n";
+    }
+  writeText(dir / "mm.xyz", mm);
+  writeText(dir / "far.xyz", far);
+  std::string out;
+  ASSERT_EQ(runCli("info " + q("mm.xyz"), &out), 0) << out;
+  EXPECT_NE(out.find("warning: the cloud is 3990 m across"), std::string::npos) << out;
+  EXPECT_NE(out.find("--units-metres"), std::string::npos) << out;
+  ASSERT_EQ(runCli("info " + q("far.xyz"), &out), 0) << out;
+  EXPECT_NE(out.find("doubles step by 0.125"), std::string::npos) << out;
+  EXPECT_NE(out.find("recentre"), std::string::npos) << out;
+  runCli("reconstruct " + q("mm.xyz") + " --auto --report " + q("r.json") + " -o " + q("m.obj"), &out);
+  EXPECT_NE(out.find("warning: the cloud is 3990 m across"), std::string::npos) << out;
+  if (exists("r.json")) {
+    const auto report = nlohmann::json::parse(test::readText(dir / "r.json"));
+    ASSERT_EQ(report["warnings"].size(), 1u);
   }
 }
 

@@ -127,12 +127,47 @@ TEST(Xyz, RejectsEmptyAndBlankFiles) {
 TEST(Xyz, RejectsGarbageTextWithItsLine) {
   CloudReadOptions opt;
   opt.maxHeaderLines = 2;
-  expectError([&] { readText("hello\nworld\nthis is\nnot a cloud\n", opt); }, {"mem.xyz:3:", "expected 'x y z'"});
+  expectError([&] { readText("hello\nworld\nthis is\nnot a cloud\n", opt); }, {"mem.xyz:1:", "'hello'"});
+  expectError([&] { readText("x y z\nworld\nthis is\nnot a cloud\n", opt); }, {"mem.xyz:2:", "'world'"});
   expectError([] { readText("0 0 0\n1 1 1\n2 2\n3 3 3\n4 4 4\n"); }, {"mem.xyz:3:", "'2 2'"});
   expectError([] { readText("0 0 0\n1 1 1\nx y z\n3 3 3\n"); }, {"mem.xyz:3:"});
   expectError([] { readText("0 0 0\n1 1 1e999\n"); }, {"mem.xyz:2:"});
   std::string binary("\x01\x02\xff\x00\x10", 5);
   expectError([&] { readText(binary + "\n" + binary + "\n", opt); }, {"mem.xyz"});
+}
+
+TEST(Xyz, AUtf8ByteOrderMarkIsSkipped) {
+  geom::PointCloud c = readText("\xEF\xBB\xBF" "1 2 3\n4 5 6\n7 8 9\n0 0 1\n");
+  ASSERT_EQ(c.size(), 4u);  // the first point is not taken for a header
+  EXPECT_EQ(c.positions[0], geom::Vec3(1, 2, 3));
+  c = readText("\xEF\xBB\xBF" "Z,Y,X\n3,2,1\n6,5,4\n9,8,7\n1,0,0\n");
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c.positions[0], geom::Vec3(1, 2, 3));
+  expectError([] { readText(std::string("\xFF\xFE" "1\0 \0" "2\0", 8)); }, {"mem.xyz", "UTF-16", "UTF-8"});
+}
+
+TEST(Xyz, HeaderColumnsAreUsedByNameInAnyOrderAndCase) {
+  // pandas' to_csv: an unnamed index column first
+  geom::PointCloud c = readText(",x,y,z\n0,1.5,2.5,3.5\n1,4,5,6\n2,7,8,9\n3,1,1,1\n");
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c.positions[0], geom::Vec3(1.5, 2.5, 3.5));
+  EXPECT_EQ(c.positions[3], geom::Vec3(1, 1, 1));
+  c = readText("id,x,y,z\n10,1,2,3\n11,4,5,6\n12,7,8,9\n13,0,0,1\n");
+  EXPECT_EQ(c.positions[0], geom::Vec3(1, 2, 3));
+  c = readText("Z Y X\n3 2 1\n6 5 4\n9 8 7\n1 0 0\n");  // the tree does not lie on its side
+  EXPECT_EQ(c.positions[0], geom::Vec3(1, 2, 3));
+  EXPECT_EQ(c.positions[3], geom::Vec3(0, 0, 1));
+  c = readText("index\ty\tZ\tX\n0\t2\t3\t1\n1\t5\t6\t4\n2\t8\t9\t7\n3\t0\t1\t0\n");
+  EXPECT_EQ(c.positions[1], geom::Vec3(4, 5, 6));
+}
+
+TEST(Xyz, AnUnrecognisedHeaderIsAnErrorNamingIt) {
+  expectError([] { readText("a b c\n1 2 3\n4 5 6\n7 8 9\n0 0 1\n"); },
+              {"mem.xyz:1:", "'a b c'", "does not name the coordinate columns"});
+  expectError([] { readText("easting,northing,height\n1,2,3\n4,5,6\n7,8,9\n0,0,1\n"); },
+              {"mem.xyz:1:", "easting"});
+  // a point count (PTS) and comments are not headers to check
+  EXPECT_EQ(readText("# made by hand\n4\n1 2 3\n4 5 6\n7 8 9\n0 0 1\n").size(), 4u);
 }
 
 TEST(Xyz, RejectsDecimalCommas) {

@@ -178,6 +178,7 @@ TEST(GeneratedTree, ASparselyScannedTrunkIsOneStraightChain) {
   struct Figures {
     double rms = 0;
     int thinChains = 0;
+    std::size_t strays = 0;
   };
   auto measure = [&](bool track) {
     skeleton::AutoSkeletonOptions o;
@@ -185,6 +186,7 @@ TEST(GeneratedTree, ASparselyScannedTrunkIsOneStraightChain) {
     o.skeleton.trackStem = track;
     const auto res = skeleton::autoSkeletonSketch(cloud, o);
     Figures f;
+    f.strays = res.strays.count();
     double sum = 0;
     int count = 0;
     for (const auto& n : res.model) {
@@ -206,8 +208,8 @@ TEST(GeneratedTree, ASparselyScannedTrunkIsOneStraightChain) {
   const Figures on = measure(true), off = measure(false);
   std::printf(
       "sparse trunk (%zu points): lower trunk segment-to-axis RMS %.4f with stem tracking, %.4f without; thin "
-      "segments along it %d / %d (trunk radius %.4f)\n",
-      cloud.size(), on.rms, off.rms, on.thinChains, off.thinChains, baseRadius);
+      "segments along it %d / %d (trunk radius %.4f); %zu stray points set aside\n",
+      cloud.size(), on.rms, off.rms, on.thinChains, off.thinChains, baseRadius, on.strays);
   EXPECT_LT(on.rms, 0.6 * off.rms);
   EXPECT_LT(on.rms, 0.25 * baseRadius);
   EXPECT_LT(on.thinChains, off.thinChains);

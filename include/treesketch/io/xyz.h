@@ -20,8 +20,10 @@ namespace treesketch::io {
 
 /// Reads a text cloud from `in`; `source` names it in error messages. Coordinates are taken as
 /// they are (metres in the file's frame). Lines starting with '#' or "//" and blank lines are
-/// skipped anywhere; up to `options.maxHeaderLines` non-numeric lines are skipped before the
-/// first point. Decimal separators must be '.'; a first point line mixing ';' and ',' (decimal
+/// skipped anywhere; up to `options.maxHeaderLines` non-numeric lines are taken as a header before
+/// the first point: each must name the x, y and z columns (any order and case; other columns such
+/// as an id are ignored, an unnamed first column of pandas' ",x,y,z" too) or be a point count,
+/// else InputError names it. A UTF-8 byte-order mark is skipped; UTF-16 text is refused. Decimal separators must be '.'; a first point line mixing ';' and ',' (decimal
 /// commas, "1,5;2,5;3,5") is rejected rather than misread.
 /// Throws InputError naming the line for: a line with fewer than 3 numbers after the data
 /// started, NaN/Inf, a number out of range, no points at all, fewer than options.minPoints.

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "treesketch/cloud/stray_points.h"
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/compare/tree_metrics.h"
 #include "treesketch/geom/cylinder_model.h"
@@ -41,6 +42,22 @@ struct TreeModel {
 /// the branch, every other child starts one of the next order), so a branch's first piece starts
 /// with the branch's own radius, as the automatic model's do. The mesh is the reconstruction's.
 TreeModel fromReconstruction(const recon::ReconstructionResult& result, geom::UpAxis up);
+
+/// How a fitted sketch's nodes hold together: the nodes that did not fit (skipped; disabled nodes
+/// are off by choice) and how many separate pieces the fitted ones make (a fitted node with no
+/// fitted ancestor starts one; fromReconstruction bridges unfitted nodes inside a piece).
+struct FittedShape {
+  std::vector<sketch::NodeId> unfitted;
+  std::size_t pieces = 0;
+  /// "3, 7, 12" (the first 20, then "...").
+  std::string unfittedList() const;
+};
+FittedShape fittedShape(const recon::ReconstructionResult& result);
+
+/// Refuses a fitted sketch whose fitted nodes make more than one piece (floating discs and tubes:
+/// a sketch of another tree, or one whose trunk missed the cloud) with DegenerateInputError naming
+/// `sketch`, `cloud` and the nodes that did not fit.
+void checkFittedShape(const FittedShape& shape, const std::string& sketch, const std::string& cloud);
 
 /// Refuses an automatic result that is no model, with DegenerateInputError naming `source` (the
 /// cloud's path), its point count and its diagonal: no skeleton, no radius measured or inferred
@@ -120,6 +137,9 @@ struct OutputPaths {
 /// path, or a folder that cannot be written, or a mesh path with an extension other than .obj or
 /// .ply (OptionsError / OutputError naming the path).
 void checkOutputs(const OutputPaths& paths, const std::vector<std::string>& inputs);
+
+/// {"setAside", "far", "isolated", "spacing", "linkDistance"}: what the automatic model set aside.
+nlohmann::json strayPointsJson(const cloud::StrayPoints& strays);
 
 /// {"level", "reasons", "advice"}.
 nlohmann::json verdictJson(const Verdict& verdict);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "treesketch/cloud/stray_points.h"
 #include "treesketch/fit/node_fit.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/tri_mesh.h"
@@ -171,6 +172,9 @@ struct AutoSkeletonOptions {
   /// Vertices per ring of the swept mesh.
   int ringVertices = 16;
   CompletionRules completion;
+  /// Points far from the tree are set aside before anything else (cloud/stray_points.h): one
+  /// stray point 50 m out stretched the voxel size and the model with it.
+  cloud::StrayPointOptions strays;
 };
 // The measurements behind these defaults: docs/notes/auto_sketch_options.md.
 
@@ -210,12 +214,16 @@ struct AutoSkeletonResult {
   /// Nodes whose radius was lowered because the points around their tube lie inside it (a scanner
   /// sees the surface; see surface_bound.h).
   std::size_t thinnedBySurface = 0;
+  /// The points set aside as strays before modelling (indices into the input cloud); the model
+  /// is made from the others (cloud::keptPoints), and is measured against them.
+  cloud::StrayPoints strays;
   /// Wall times: the skeleton's extraction; the slice index and the fit passes; the radius rules
   /// and the sweep; the completion's residual, parts and grafts (CompletionRules).
   double skeletonMs = 0, fitMs = 0, sweepMs = 0, completionMs = 0;
 };
 
-/// The automatic skeleton as a sketch source: extractSkeleton, skeletonToSketch, then
+/// The automatic skeleton as a sketch source: the stray points set aside (options.strays), then
+/// on the kept points extractSkeleton, skeletonToSketch, then
 /// recon::Reconstruction fits every node (the fit pass, in parallel), the RadiusRules accept fits
 /// and regularise the radii, the model goes into the sketch as kept circles, and the same
 /// Reconstruction sweeps that sketch. recon is the only place that fits and sweeps. Empty cloud →
