@@ -35,6 +35,7 @@ struct ClassifyArgs {
   std::vector<std::string> conditions;
   double metresPerUnit = eval::kEzTreeMetresPerUnit;
   int leafVariants = 2;
+  bool noPosition = false;
 };
 
 classify::ClassifyOptions classifyOptions(const ClassifyArgs& a) {
@@ -64,6 +65,7 @@ void runTrain(const ClassifyArgs& a) {
   eval::ClassifierTraining t;
   t.conditions = conditions(a);
   t.leafVariants = a.leafVariants;
+  t.features.positionFeatures = !a.noPosition;
   t.log = [](const std::string& line) { std::cerr << line << "\n"; };
   const classify::BoostedTrees m = eval::trainClassifier(labelledTrees(a, true), t);
   writeFileAtomically(a.train, [&](std::ostream& out) { out << classify::toJson(m); });
@@ -95,7 +97,8 @@ void runClassifyCloud(const ClassifyArgs& a, const classify::BoostedTrees* model
   const classify::Classification c = classify::classifyWood(cloud, up.up, classifyOptions(a), model);
   io::writeClassifiedCloud(a.output, cloud, classify::classCodes(c), c.woodProbability);
   std::printf("up axis: %s\n", up.reason.c_str());
-  std::printf("%zu points, spacing %.4g: %zu wood (%.1f %%), %zu leaf; threshold %.3f\n", cloud.size(), c.spacing,
+  std::printf("%zu points (%zu core points), spacing %.4g: %zu wood (%.1f %%), %zu leaf; threshold %.3f\n",
+              cloud.size(), c.cores, c.spacing,
               c.woodPoints, 100.0 * c.woodPoints / cloud.size(), cloud.size() - c.woodPoints, c.threshold);
   if (!a.noGraph)
     std::printf("graph step: %zu wood points reached from %zu at the base, %zu in pieces of their own, %zu demoted\n",
@@ -145,6 +148,8 @@ void registerClassify(CLI::App& app, Action& action) {
   cmd->add_option("--leaf-variants", a->leafVariants, "--train: scans per tree and condition (1 = leaves as given)")
       ->capture_default_str()
       ->check(CLI::Range(1, 8));
+  cmd->add_flag("--no-position-features", a->noPosition,
+                "--train: leave out the height and distance from the stem (shape and paths only)");
   cmd->add_option("--metres-per-unit", a->metresPerUnit, "Scale of the --trees meshes")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

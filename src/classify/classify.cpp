@@ -18,6 +18,17 @@ const BoostedTrees& trainedModel() {
   return model;
 }
 
+FeatureOptions featureOptionsFor(const BoostedTrees& model, FeatureOptions options) {
+  for (int position = 1; position >= 0; --position)
+    for (int graph = 1; graph >= 0; --graph) {
+      options.positionFeatures = position != 0;
+      options.graphFeatures = graph != 0;
+      if (featureNames(options) == model.featureNames) return options;
+    }
+  throw OptionsError("classify: the model was trained on other features than these (" +
+                     std::to_string(model.featureNames.size()) + " features)");
+}
+
 std::vector<float> predictWood(const FeatureTable& f, const BoostedTrees& model) {
   if (model.featureNames != f.names)
     throw OptionsError("classify: the model was trained on other features than these (" +
@@ -34,21 +45,29 @@ Classification classifyWood(const geom::PointCloud& cloud, geom::UpAxis up, cons
   const BoostedTrees& m = model ? *model : trainedModel();
   Classification c;
   Stopwatch clock;
-  const FeatureTable f = computeFeatures(cloud, up, options.features);
+  const FeatureTable f = computeFeatures(cloud, up, featureOptionsFor(m, options.features));
   c.featuresMs = clock.ms();
   clock.restart();
   c.spacing = f.spacing;
-  c.woodProbability = predictWood(f, m);
+  c.cores = f.points();
+  const std::vector<float> coreP = predictWood(f, m);
   c.predictMs = clock.ms();
   clock.restart();
   c.threshold = std::isnan(options.threshold) ? m.threshold : options.threshold;
+  std::vector<std::uint8_t> coreWood;
   if (options.connect) {
-    c.graph = connectWood(f, c.woodProbability, c.threshold, options.graph);
-    c.wood = std::move(c.graph.wood);
+    c.graph = connectWood(f, coreP, c.threshold, options.graph);
+    coreWood = std::move(c.graph.wood);
     c.graph.wood.clear();
   } else {
-    c.wood.resize(cloud.size());
-    for (std::size_t i = 0; i < cloud.size(); ++i) c.wood[i] = c.woodProbability[i] >= c.threshold ? 1 : 0;
+    coreWood.resize(coreP.size());
+    for (std::size_t i = 0; i < coreP.size(); ++i) coreWood[i] = coreP[i] >= c.threshold ? 1 : 0;
+  }
+  c.woodProbability.resize(cloud.size());
+  c.wood.resize(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    c.woodProbability[i] = coreP[f.coreOf[i]];
+    c.wood[i] = coreWood[f.coreOf[i]];
   }
   c.graphMs = clock.ms();
   for (auto w : c.wood) c.woodPoints += w;

@@ -178,21 +178,23 @@ struct Samples {
   std::vector<std::uint32_t> scan;  ///< which scan each row came from
 };
 
-/// Samples up to `count` points of one labelled scan into `s`, wood and leaves weighted to equal
-/// totals.
+/// Samples up to `count` core points of one labelled scan into `s`, each labelled wood when most
+/// of its points are, wood and leaves weighted to equal totals.
 void sampleScan(const classify::FeatureTable& f, const geom::PointCloud& cloud, std::size_t count, std::uint32_t scanId,
                 std::mt19937_64& rng, Samples& s) {
   const std::size_t n = f.points();
+  std::vector<std::uint32_t> woodIn(n, 0);
+  for (std::size_t i = 0; i < cloud.size(); ++i) woodIn[f.coreOf[i]] += cloud.meshId[i] == 0;
   std::vector<std::uint32_t> pick(n);
   for (std::size_t i = 0; i < n; ++i) pick[i] = static_cast<std::uint32_t>(i);
   std::shuffle(pick.begin(), pick.end(), rng);
   pick.resize(std::min(count, n));
   std::size_t wood = 0;
-  for (auto i : pick) wood += cloud.meshId[i] == 0;
+  for (auto i : pick) wood += 2 * woodIn[i] > f.coreSize[i];
   if (wood == 0 || wood == pick.size()) return;
   const float ww = 0.5f * pick.size() / wood, wl = 0.5f * pick.size() / (pick.size() - wood);
   for (auto i : pick) {
-    const bool isWood = cloud.meshId[i] == 0;
+    const bool isWood = 2 * woodIn[i] > f.coreSize[i];
     s.rows.insert(s.rows.end(), f.row(i), f.row(i) + f.count);
     s.labels.push_back(isWood);
     s.weights.push_back(isWood ? ww : wl);

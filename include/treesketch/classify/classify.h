@@ -38,7 +38,8 @@ struct Classification {
   std::size_t woodPoints = 0;
   double threshold = 0.5;  ///< the threshold used
   double spacing = 0;      ///< the cloud's median spacing (cloud units)
-  WoodGraphResult graph;   ///< what the graph step did (its `wood` is moved to `wood` above)
+  std::size_t cores = 0;   ///< core points the features, classifier and graph ran on
+  WoodGraphResult graph;   ///< what the graph step did, in cores (its `wood` is moved to `wood` above)
   double featuresMs = 0, predictMs = 0, graphMs = 0;
 };
 
@@ -46,10 +47,15 @@ struct Classification {
 const BoostedTrees& trainedModel();
 
 /// Classifies every point of `cloud` with `model` (default: trainedModel()). `up` is the cloud's up
-/// axis. Throws OptionsError when the model's features are not those of options.features, and
+/// axis. The feature switches follow the model (featureOptionsFor). Throws OptionsError when the
+/// model's features are not those of options.features in any switch setting, and
 /// DegenerateInputError for a cloud too small for the largest feature scale.
 Classification classifyWood(const geom::PointCloud& cloud, geom::UpAxis up, const ClassifyOptions& options = {},
                             const BoostedTrees* model = nullptr);
+
+/// `options` with the feature switches set to what `model` was trained on (the model's feature
+/// names decide). Throws OptionsError when no switch setting gives its names.
+FeatureOptions featureOptionsFor(const BoostedTrees& model, FeatureOptions options = {});
 
 /// The wood probability of every row of `features` (TBB parallel).
 std::vector<float> predictWood(const FeatureTable& features, const BoostedTrees& model);

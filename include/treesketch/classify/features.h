@@ -1,8 +1,9 @@
 // Per-point geometric features for telling wood from leaves: the eigenvalues of the local
 // covariance at several neighbourhood sizes (linearity, planarity, scattering, the verticality
 // of the principal axis and of the normal), the neighbourhood's size against the cloud's own
-// spacing (density), how far the neighbourhood's centroid sits off the point, and the point's
-// height above the base and distance from the base's vertical line as fractions of the height.
+// spacing (density), how far the neighbourhood's centroid sits off the point, the same over a
+// coarse level (cubes of a fraction of the tree's height), and the point's height above the base
+// and distance from the base's vertical line as fractions of the height.
 // Neighbourhoods are k nearest points, so every scale follows the cloud's local spacing; features
 // are ratios, so they do not depend on the cloud's unit.
 // Method: the multi-scale covariance features of Weinmann et al. (2015, "Semantic point cloud
@@ -23,11 +24,30 @@ struct FeatureOptions {
   /// a branch's length beyond its width (a flat leaf and a thin branch both look planar or linear
   /// at one scale only). The largest also bounds the one k-nearest query per point.
   std::vector<int> scales = {8, 16, 32};
-  /// Neighbours kept per point for the graph step (classify/wood_graph.h), the nearest first.
+  /// Neighbours kept per core point for the graph step (classify/wood_graph.h), the nearest first.
   int graphNeighbours = 10;
+  /// Core points: the cloud is cut into cubes of this many spacings and the centroid of each
+  /// cube's points stands for them (features, classifier and graph run on the cores; every point
+  /// takes its core's answer). 2 spacings: about a quarter of a scan's points, which is what keeps
+  /// a million points within seconds, and finer than a twig's width at the scans' spacings
+  /// (docs/classify.md). 0: every point is a core.
+  double coreSpacings = 2.0;
+  /// The coarse level: the same features over cubes of `coarseHeightFraction` of the tree's
+  /// height, at these neighbourhood sizes (in cubes). On a dense scan the fine scales see only a
+  /// patch of a thick stem, as flat as a leaf; at 1 % of the height (5 cm on a 5 m tree) a stem is
+  /// a smooth cylinder and a cluster of leaves a scattered cloud. Empty: no coarse level.
+  std::vector<int> coarseScales = {8, 24};
+  double coarseHeightFraction = 0.01;
+  /// Shortest-path features over the core points' neighbour graph from the base (the points whose
+  /// paths pass through a point, the path's length and detour; src/classify/graph_features.h).
+  bool graphFeatures = true;
+  /// The point's height above the base and distance from the base's vertical line, as fractions
+  /// of the height: a prior on where wood is (the stem low and central) that the generator's trees
+  /// teach and a bare crown or a conifer's needles contradict.
+  bool positionFeatures = true;
 };
 
-/// Features of every point, row-major: point i's features are values[i * count .. i * count +
+/// Features of every core point, row-major: core i's features are values[i * count .. i * count +
 /// count - 1], in the order of `names`.
 struct FeatureTable {
   std::vector<std::string> names;
@@ -35,12 +55,15 @@ struct FeatureTable {
   std::vector<float> values;
   /// The cloud's spacing: the median distance from a point to its nearest neighbour (cloud units).
   double spacing = 0;
-  /// Each point's `graphNeighbours` nearest neighbours (itself excluded; fewer in a tiny cloud:
-  /// padded with the point's own index), row-major, and their distances.
+  /// The core of every point of the cloud, and the number of cloud points each core stands for.
+  std::vector<std::uint32_t> coreOf;
+  std::vector<std::uint32_t> coreSize;
+  /// Each core's `graphNeighbours` nearest cores (itself excluded; fewer in a tiny cloud: padded
+  /// with its own index), row-major, and their distances.
   int neighbourCount = 0;
   std::vector<std::uint32_t> neighbours;
   std::vector<float> neighbourDistances;
-  /// Height of every point above the cloud's lowest point along `up` (cloud units), and the range.
+  /// Height of every core above the cloud's lowest point along `up` (cloud units), and the range.
   std::vector<float> heights;
   double treeHeight = 0;
 
@@ -51,9 +74,10 @@ struct FeatureTable {
 /// The feature names for `options` (the order of FeatureTable::values).
 std::vector<std::string> featureNames(const FeatureOptions& options);
 
-/// Computes the features of every point of `cloud` (TBB parallel; deterministic). `up` is the
-/// cloud's up axis (io/up_axis.h's rule). Throws OptionsError for scales that are not increasing
-/// and >= 3, or a cloud with fewer points than the largest scale + 1 (DegenerateInputError).
+/// Computes the features of the core points of `cloud` (TBB parallel; deterministic). `up` is
+/// the cloud's up axis (io/up_axis.h's rule). Throws OptionsError for scales that are not
+/// increasing and >= 3, and DegenerateInputError for a cloud with fewer cores than the largest
+/// scale + 1.
 FeatureTable computeFeatures(const geom::PointCloud& cloud, geom::UpAxis up, const FeatureOptions& options = {});
 
 }  // namespace treesketch::classify

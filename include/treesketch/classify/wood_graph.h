@@ -25,20 +25,21 @@ struct WoodGraphOptions {
   /// Graph edges longer than this many cloud spacings join nothing (a gap in the scan is not a
   /// connection).
   double maxEdgeSpacings = 6.0;
-  /// A piece of wood not reached from the base stays wood when it has at least this many points
-  /// (a limb whose link to the stem is occluded), else it is demoted.
-  int minPiecePoints = 60;
+  /// A piece of wood not reached from the base stays wood when it has at least this many core
+  /// points (a limb whose link to the stem is occluded), else it is demoted.
+  int minPiecePoints = 30;
 };
 
+/// Counts are of core points (features.h).
 struct WoodGraphResult {
-  std::vector<std::uint8_t> wood;  ///< 1 = wood, one per point
+  std::vector<std::uint8_t> wood;  ///< 1 = wood, one per core point
   std::size_t seeds = 0;           ///< wood points at the base growth started from
   std::size_t reached = 0;         ///< wood points reached from the base
   std::size_t kept = 0;            ///< wood points in large enough pieces not reached
   std::size_t demoted = 0;         ///< wood points demoted to leaf
 };
 
-/// Applies the graph step to `probability` (one per point of `features`, wood at >= `threshold`).
+/// Applies the graph step to `probability` (one per core point of `features`, wood at >= `threshold`).
 /// With no wood at the base (a cloud cut above the ground, a branch alone) every piece is judged
 /// by its size alone.
 WoodGraphResult connectWood(const FeatureTable& features, const std::vector<float>& probability, double threshold,
