@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <iterator>
 #include <iostream>
+#include <iterator>
 #include <memory>
 
 #include "commands.h"
@@ -98,8 +98,8 @@ void runClassifyCloud(const ClassifyArgs& a, const classify::BoostedTrees* model
   io::writeClassifiedCloud(a.output, cloud, classify::classCodes(c), c.woodProbability);
   std::printf("up axis: %s\n", up.reason.c_str());
   std::printf("%zu points (%zu core points), spacing %.4g: %zu wood (%.1f %%), %zu leaf; threshold %.3f\n",
-              cloud.size(), c.cores, c.spacing,
-              c.woodPoints, 100.0 * c.woodPoints / cloud.size(), cloud.size() - c.woodPoints, c.threshold);
+              cloud.size(), c.cores, c.spacing, c.woodPoints, 100.0 * c.woodPoints / cloud.size(),
+              cloud.size() - c.woodPoints, c.threshold);
   if (!a.noGraph)
     std::printf("graph step: %zu wood points reached from %zu at the base, %zu in pieces of their own, %zu demoted\n",
                 c.graph.reached, c.graph.seeds, c.graph.kept, c.graph.demoted);

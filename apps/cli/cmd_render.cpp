@@ -138,7 +138,8 @@ void registerRender(CLI::App& app, Action& action) {
   sub->add_option("--point-size", a->pointSize, "Cloud point size in pixels")
       ->check(CLI::Range(1, 32))
       ->capture_default_str();
-  sub->add_option("--color-by", a->colorBy, "Cloud colour: height (ramp), class (the classification: wood brown, leaf green, other grey) or none")
+  sub->add_option("--color-by", a->colorBy,
+                  "Cloud colour: height (ramp), class (the classification: wood brown, leaf green, other grey) or none")
       ->check(CLI::IsMember({"height", "class", "none"}))
       ->capture_default_str();
   sub->add_flag("--wireframe", a->wireframe, "Draw mesh triangle edges over the shading");

@@ -129,7 +129,8 @@ BoostedTrees trainBoostedTrees(const std::vector<float>& rows, const std::vector
                                const std::vector<std::uint8_t>& labels, const std::vector<float>& weights,
                                const BoostOptions& o) {
   const int f = static_cast<int>(names.size());
-  if (f == 0 || labels.empty() || rows.size() != labels.size() * f || (!weights.empty() && weights.size() != labels.size()))
+  if (f == 0 || labels.empty() || rows.size() != labels.size() * f ||
+      (!weights.empty() && weights.size() != labels.size()))
     throw OptionsError("classify training: rows, labels and weights do not match");
   if (o.bins < 2 || o.bins > 255 || o.depth < 1 || o.rounds < 1 || !(o.learningRate > 0))
     throw OptionsError("classify training: bins must be 2..255, depth, rounds and rate positive");

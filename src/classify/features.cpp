@@ -29,13 +29,13 @@ void scaleFeatures(const geom::Vec3& sum, const geom::Mat3& outer, int k, double
   eig.computeDirect(cov);
   const geom::Vec3 ev = eig.eigenvalues().cwiseMax(0.0);  // ascending
   const double l1 = std::max(ev[2], 1e-30), l2 = ev[1], l3 = ev[0];
-  out[0] = static_cast<float>((l1 - l2) / l1);                                  // linearity
-  out[1] = static_cast<float>((l2 - l3) / l1);                                  // planarity
-  out[2] = static_cast<float>(l3 / l1);                                         // scattering
-  out[3] = static_cast<float>(std::abs(eig.eigenvectors().col(2).dot(up)));     // principal axis up
-  out[4] = static_cast<float>(std::abs(eig.eigenvectors().col(0).dot(up)));     // normal up
-  out[5] = static_cast<float>(std::log(std::max(r, 1e-12) / spacing));          // density
-  out[6] = static_cast<float>(mean.norm() / std::max(r, 1e-12));                // centroid offset
+  out[0] = static_cast<float>((l1 - l2) / l1);                               // linearity
+  out[1] = static_cast<float>((l2 - l3) / l1);                               // planarity
+  out[2] = static_cast<float>(l3 / l1);                                      // scattering
+  out[3] = static_cast<float>(std::abs(eig.eigenvectors().col(2).dot(up)));  // principal axis up
+  out[4] = static_cast<float>(std::abs(eig.eigenvectors().col(0).dot(up)));  // normal up
+  out[5] = static_cast<float>(std::log(std::max(r, 1e-12) / spacing));       // density
+  out[6] = static_cast<float>(mean.norm() / std::max(r, 1e-12));             // centroid offset
 }
 
 void checkOptions(const FeatureOptions& o) {
@@ -63,8 +63,8 @@ void checkCores(std::size_t cores, std::size_t points, const FeatureOptions& o) 
 
 /// Cuts `points` into cubes of side `size` and returns each non-empty cube's centroid; fills
 /// `coreOf` (per point) and `coreSize` (per cube). size 0: every point is its own core.
-std::vector<geom::Vec3> makeCores(const std::vector<geom::Vec3>& points, double size, std::vector<std::uint32_t>& coreOf,
-                                  std::vector<std::uint32_t>& coreSize) {
+std::vector<geom::Vec3> makeCores(const std::vector<geom::Vec3>& points, double size,
+                                  std::vector<std::uint32_t>& coreOf, std::vector<std::uint32_t>& coreSize) {
   const std::size_t n = points.size();
   coreOf.resize(n);
   coreSize.clear();
@@ -134,11 +134,12 @@ void coarseFeatures(const std::vector<geom::Vec3>& cores, const FeatureOptions& 
   const accel::PointIndex index(coarse);
   const std::size_t per = o.coarseScales.size() * kPerScale;
   std::vector<float> values(coarse.size() * per);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, coarse.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::vector<accel::Neighbour> nb;
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      pointFeatures(index, static_cast<std::uint32_t>(i), o.coarseScales, size, up, values.data() + i * per, nb);
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, coarse.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::vector<accel::Neighbour> nb;
+        for (std::size_t i = r.begin(); i != r.end(); ++i)
+          pointFeatures(index, static_cast<std::uint32_t>(i), o.coarseScales, size, up, values.data() + i * per, nb);
+      });
   for (std::size_t i = 0; i < cores.size(); ++i)
     std::copy_n(values.data() + coarseOf[i] * per, per, t.values.data() + i * t.count + column);
 }
@@ -183,8 +184,8 @@ geom::Vec3 heightsAndBase(const std::vector<geom::Vec3>& cores, geom::UpAxis up,
 }  // namespace
 
 std::vector<std::string> featureNames(const FeatureOptions& options) {
-  static const char* per[kPerScale] = {"linearity",   "planarity", "scattering", "axis_up",
-                                       "normal_up",   "density",   "centroid_offset"};
+  static const char* per[kPerScale] = {"linearity", "planarity", "scattering",     "axis_up",
+                                       "normal_up", "density",   "centroid_offset"};
   std::vector<std::string> names;
   for (int k : options.scales)
     for (const char* p : per) names.push_back(std::string(p) + "_k" + std::to_string(k));

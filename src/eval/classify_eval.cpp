@@ -35,7 +35,8 @@ geom::TriMesh warpLeaves(const geom::TriMesh& leaves, const LeafWarp& w) {
   for (std::uint32_t v = 0; v < nv; ++v) members[pieces.find(v)].push_back(v);
   std::map<std::uint32_t, geom::Vec3> normal;
   for (const auto& t : leaves.triangles) {
-    const geom::Vec3 n = (leaves.vertices[t[1]] - leaves.vertices[t[0]]).cross(leaves.vertices[t[2]] - leaves.vertices[t[0]]);
+    const geom::Vec3 n =
+        (leaves.vertices[t[1]] - leaves.vertices[t[0]]).cross(leaves.vertices[t[2]] - leaves.vertices[t[0]]);
     if (n.norm() > 0) normal.emplace(pieces.find(t[0]), n.normalized());
   }
   std::mt19937_64 rng(w.seed);
@@ -76,10 +77,14 @@ double WoodScore::mcc() const {
   return den == 0 ? 0.0 : (a * d - b * c) / den;
 }
 void WoodScore::add(bool truth, bool called) {
-  if (truth && called) ++tp;
-  else if (called) ++fp;
-  else if (truth) ++fn;
-  else ++tn;
+  if (truth && called)
+    ++tp;
+  else if (called)
+    ++fp;
+  else if (truth)
+    ++fn;
+  else
+    ++tn;
 }
 
 // ---- evaluation ----------------------------------------------------------------------------------
@@ -116,7 +121,8 @@ std::vector<ClassifyRow> evaluateClassifier(const std::vector<TreeCase>& trees, 
       }
       if (o.log) {
         char buf[256];
-        std::snprintf(buf, sizeof buf, "%s %s: %zu points (%zu wood), F1 %.3f MCC %.3f (classifier alone %.3f %.3f), %.0f ms",
+        std::snprintf(buf, sizeof buf,
+                      "%s %s: %zu points (%zu wood), F1 %.3f MCC %.3f (classifier alone %.3f %.3f), %.0f ms",
                       tree.name.c_str(), c.name.c_str(), r.points, r.woodPoints, r.score.f1(), r.score.mcc(),
                       r.rawScore.f1(), r.rawScore.mcc(), r.ms);
         o.log(buf);
@@ -128,11 +134,13 @@ std::vector<ClassifyRow> evaluateClassifier(const std::vector<TreeCase>& trees, 
 }
 
 std::string classifyReport(const std::vector<ClassifyRow>& rows) {
-  std::string s = "| condition | half | scans | F1 mean | F1 worst | MCC mean | MCC worst | precision | recall | "
-                  "F1 classifier alone |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  std::string s =
+      "| condition | half | scans | F1 mean | F1 worst | MCC mean | MCC worst | precision | recall | "
+      "F1 classifier alone |\n|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<std::string> conditions;
   for (const auto& r : rows)
-    if (std::find(conditions.begin(), conditions.end(), r.condition) == conditions.end()) conditions.push_back(r.condition);
+    if (std::find(conditions.begin(), conditions.end(), r.condition) == conditions.end())
+      conditions.push_back(r.condition);
   conditions.push_back("all");
   char buf[512];
   for (const auto& c : conditions) {
@@ -176,12 +184,13 @@ struct Samples {
   std::vector<std::uint8_t> labels;
   std::vector<float> weights;
   std::vector<std::uint32_t> scan;  ///< which scan each row came from
+  std::vector<std::uint8_t> fold;   ///< which half of the trees (0 or 1) each row came from
 };
 
 /// Samples up to `count` core points of one labelled scan into `s`, each labelled wood when most
 /// of its points are, wood and leaves weighted to equal totals.
 void sampleScan(const classify::FeatureTable& f, const geom::PointCloud& cloud, std::size_t count, std::uint32_t scanId,
-                std::mt19937_64& rng, Samples& s) {
+                std::uint8_t fold, std::mt19937_64& rng, Samples& s) {
   const std::size_t n = f.points();
   std::vector<std::uint32_t> woodIn(n, 0);
   for (std::size_t i = 0; i < cloud.size(); ++i) woodIn[f.coreOf[i]] += cloud.meshId[i] == 0;
@@ -199,14 +208,33 @@ void sampleScan(const classify::FeatureTable& f, const geom::PointCloud& cloud, 
     s.labels.push_back(isWood);
     s.weights.push_back(isWood ? ww : wl);
     s.scan.push_back(scanId);
+    s.fold.push_back(fold);
   }
 }
 
-/// The threshold with the best mean F1 over the training scans (on their samples).
-double chooseThreshold(const classify::BoostedTrees& m, const Samples& s, int features) {
+/// Out-of-fold wood probabilities: a model trained on the rows of one half of the trees predicts
+/// the other half's rows, so the threshold is chosen on answers the model did not learn from.
+std::vector<float> outOfFold(const Samples& s, const std::vector<std::string>& names, const classify::BoostOptions& o) {
+  const std::size_t n = s.labels.size(), f = names.size();
+  std::vector<float> p(n, 0.5f);
+  for (std::uint8_t fold = 0; fold < 2; ++fold) {
+    Samples in;
+    for (std::size_t i = 0; i < n; ++i)
+      if (s.fold[i] != fold) {
+        in.rows.insert(in.rows.end(), s.rows.begin() + i * f, s.rows.begin() + (i + 1) * f);
+        in.labels.push_back(s.labels[i]);
+        in.weights.push_back(s.weights[i]);
+      }
+    const classify::BoostedTrees m = classify::trainBoostedTrees(in.rows, names, in.labels, in.weights, o);
+    for (std::size_t i = 0; i < n; ++i)
+      if (s.fold[i] == fold) p[i] = static_cast<float>(m.probability(s.rows.data() + i * f));
+  }
+  return p;
+}
+
+/// The threshold with the best mean F1 over the training scans (on their samples' probabilities `p`).
+double chooseThreshold(const std::vector<float>& p, const Samples& s) {
   const std::size_t n = s.labels.size();
-  std::vector<float> p(n);
-  for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<float>(m.probability(s.rows.data() + i * features));
   const std::uint32_t scans = s.scan.empty() ? 0 : s.scan.back() + 1;
   double best = 0.5, bestF1 = -1;
   for (double t = 0.1; t < 0.951; t += 0.025) {
@@ -219,34 +247,44 @@ double chooseThreshold(const classify::BoostedTrees& m, const Samples& s, int fe
   return best;
 }
 
+/// A stable hash of a name (FNV-1a), for per-tree seeds.
+std::uint64_t nameHash(const std::string& name) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
 }  // namespace
 
 classify::BoostedTrees trainClassifier(const std::vector<TreeCase>& trees, const ClassifierTraining& o) {
   Samples s;
   std::mt19937_64 rng(o.seed);
   std::uint32_t scanId = 0;
-  for (const auto& tree : trees) {
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    const TreeCase& tree = trees[t];
     for (int v = 0; v < o.leafVariants; ++v) {
       TreeCase variant = tree;
       if (v > 0 && !tree.leaves.empty()) {
         LeafWarp w = o.warp;
-        w.seed = o.seed * 1000 + v * 7 + std::hash<std::string>{}(tree.name) % 997;
+        w.seed = o.seed * 1000 + v * 7 + nameHash(tree.name) % 997;
         variant.leaves = warpLeaves(tree.leaves, w);
       }
       for (const auto& c : o.conditions) {
         const TreeScan scan = scanLeafOn(variant, c, o.seed + v);
         const classify::FeatureTable f = classify::computeFeatures(scan.cloud, tree.up, o.features);
-        sampleScan(f, scan.cloud, o.rowsPerScan, scanId++, rng, s);
-        if (o.log) o.log(tree.name + " variant " + std::to_string(v) + " " + c.name + ": " +
-                         std::to_string(scan.cloud.size()) + " points");
+        sampleScan(f, scan.cloud, o.rowsPerScan, scanId++, static_cast<std::uint8_t>(t % 2), rng, s);
+        if (o.log)
+          o.log(tree.name + " variant " + std::to_string(v) + " " + c.name + ": " + std::to_string(scan.cloud.size()) +
+                " points");
       }
     }
   }
   const std::vector<std::string> names = classify::featureNames(o.features);
   classify::BoostedTrees m = classify::trainBoostedTrees(s.rows, names, s.labels, s.weights, o.boost);
-  m.threshold = chooseThreshold(m, s, static_cast<int>(names.size()));
-  if (o.log) o.log("trained on " + std::to_string(s.labels.size()) + " points of " + std::to_string(scanId) +
-                   " scans; threshold " + std::to_string(m.threshold));
+  m.threshold = trees.size() >= 2 ? chooseThreshold(outOfFold(s, names, o.boost), s) : 0.5;
+  if (o.log)
+    o.log("trained on " + std::to_string(s.labels.size()) + " points of " + std::to_string(scanId) +
+          " scans; threshold " + std::to_string(m.threshold));
   return m;
 }
 

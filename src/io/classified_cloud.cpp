@@ -50,16 +50,16 @@ void putText(std::string& s, const std::string& text, std::size_t width) {
   s += t;
 }
 
-constexpr std::uint16_t kLasHeaderSize = 375;  // LAS 1.4
-constexpr std::uint16_t kExtraBytesSize = 192;  // one Extra Bytes descriptor
+constexpr std::uint16_t kLasHeaderSize = 375;    // LAS 1.4
+constexpr std::uint16_t kExtraBytesSize = 192;   // one Extra Bytes descriptor
 constexpr std::uint16_t kRecordLength = 30 + 4;  // format 6 + one float
 
 /// The public header block of LAS 1.4 with one VLR and `n` points of format 6.
 std::string lasHeader(std::uint64_t n, const geom::Vec3& scale, const geom::Vec3& offset, const geom::BBox& box) {
   std::string s = "LASF";
-  detail::storeLE<std::uint16_t>(s, 0);       // file source id
-  detail::storeLE<std::uint16_t>(s, 0x10);    // global encoding: WKT (required for formats 6-10)
-  s.append(16, '\0');                         // project GUID
+  detail::storeLE<std::uint16_t>(s, 0);     // file source id
+  detail::storeLE<std::uint16_t>(s, 0x10);  // global encoding: WKT (required for formats 6-10)
+  s.append(16, '\0');                       // project GUID
   s += static_cast<char>(1);
   s += static_cast<char>(4);
   putText(s, "treesketch", 32);
@@ -68,7 +68,7 @@ std::string lasHeader(std::uint64_t n, const geom::Vec3& scale, const geom::Vec3
   detail::storeLE<std::uint16_t>(s, 0);  // creation year
   detail::storeLE<std::uint16_t>(s, kLasHeaderSize);
   detail::storeLE<std::uint32_t>(s, kLasHeaderSize + 54 + kExtraBytesSize);  // offset to point data
-  detail::storeLE<std::uint32_t>(s, 1);                                       // VLRs
+  detail::storeLE<std::uint32_t>(s, 1);                                      // VLRs
   s += static_cast<char>(6);
   detail::storeLE<std::uint16_t>(s, kRecordLength);
   s.append(4 + 20, '\0');  // legacy counts: 0 for formats 6-10
@@ -122,10 +122,10 @@ void writeLas(std::ostream& out, const geom::PointCloud& cloud, const std::vecto
     buf += static_cast<char>(0x11);  // return 1 of 1
     buf += static_cast<char>(0);     // flags, channel, direction, edge
     buf += static_cast<char>(codes[i]);
-    buf += static_cast<char>(0);              // user data
-    detail::storeLE<std::int16_t>(buf, 0);    // scan angle
-    detail::storeLE<std::uint16_t>(buf, 0);   // point source id
-    detail::storeLE<double>(buf, 0.0);        // GPS time
+    buf += static_cast<char>(0);             // user data
+    detail::storeLE<std::int16_t>(buf, 0);   // scan angle
+    detail::storeLE<std::uint16_t>(buf, 0);  // point source id
+    detail::storeLE<double>(buf, 0.0);       // GPS time
     detail::storeLE(buf, p[i]);
     detail::flushIfFull(out, buf);
   }

@@ -34,7 +34,8 @@ TEST(BoostedTrees, LearnsARingAndRoundTripsThroughJson) {
   const BoostedTrees m = trainBoostedTrees(rows, {"x", "y", "z"}, labels, {}, o);
   ASSERT_EQ(m.trees.size(), 80u);
   std::size_t right = 0;
-  for (std::size_t i = 0; i < testLabels.size(); ++i) right += (m.probability(&testRows[3 * i]) >= 0.5) == testLabels[i];
+  for (std::size_t i = 0; i < testLabels.size(); ++i)
+    right += (m.probability(&testRows[3 * i]) >= 0.5) == testLabels[i];
   EXPECT_GT(static_cast<double>(right) / testLabels.size(), 0.9);
   const BoostedTrees back = boostedTreesFromJson(toJson(m), "test");
   EXPECT_EQ(back.featureNames, m.featureNames);

@@ -15,8 +15,8 @@ geom::PointCloud lineAndPlane(unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   geom::PointCloud c;
-  for (int i = 0; i < 2000; ++i) c.positions.emplace_back(0.0, 4.0 * u(rng), 0.002 * u(rng));          // a vertical stick
-  for (int i = 0; i < 2000; ++i) c.positions.emplace_back(2.0 + u(rng), 2.0, 2.0 + u(rng));             // a flat square
+  for (int i = 0; i < 2000; ++i) c.positions.emplace_back(0.0, 4.0 * u(rng), 0.002 * u(rng));  // a vertical stick
+  for (int i = 0; i < 2000; ++i) c.positions.emplace_back(2.0 + u(rng), 2.0, 2.0 + u(rng));    // a flat square
   return c;
 }
 
@@ -40,7 +40,7 @@ TEST(Features, StickIsLinearAndVerticalSquareIsPlanarAndFlat) {
   for (std::size_t i = 2000; i < 4000; ++i) squarePla += t.row(i)[pla], squareNormal += t.row(i)[nup];
   EXPECT_GT(stickLin / 2000, 0.9);
   EXPECT_GT(stickAxis / 2000, 0.95);
-  EXPECT_GT(squarePla / 2000, 0.4);  // random points on a square: l2 near l1, l3 near 0
+  EXPECT_GT(squarePla / 2000, 0.4);      // random points on a square: l2 near l1, l3 near 0
   EXPECT_GT(squareNormal / 2000, 0.95);  // the square lies flat: its normal is up
   // Height: the stick's top is the highest point; the square sits at half the height.
   EXPECT_NEAR(t.treeHeight, 4.0, 0.01);

@@ -65,8 +65,9 @@ TEST(ClassifiedCloud, BadArraysAndExtensionsAreRefused) {
   const geom::PointCloud c = cloud();
   EXPECT_THROW(writeClassifiedCloud(dir / "a.ply", c, std::vector<std::uint8_t>(3), std::vector<float>(c.size())),
                OptionsError);
-  EXPECT_THROW(writeClassifiedCloud(dir / "a.xyz", c, std::vector<std::uint8_t>(c.size()), std::vector<float>(c.size())),
-               OutputError);
+  EXPECT_THROW(
+      writeClassifiedCloud(dir / "a.xyz", c, std::vector<std::uint8_t>(c.size()), std::vector<float>(c.size())),
+      OutputError);
   geom::PointCloud bad = c;
   bad.positions[7].x() = NAN;
   std::ostringstream out;

@@ -85,7 +85,8 @@ struct ClassifierTraining {
 };
 
 /// Trains a classifier on scans of `trees` (pass the tuning half) and chooses its threshold as
-/// the one with the best mean F1 over the training scans.
+/// the one with the best mean F1 over the training scans, each scored by a model trained on the
+/// other half of the trees (two folds by tree; 0.5 with a single tree).
 classify::BoostedTrees trainClassifier(const std::vector<TreeCase>& trees, const ClassifierTraining& options);
 
 }  // namespace treesketch::eval
