@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+
+#include "treesketch/eval/evaluation.h"
 
 namespace treesketch::eval {
 namespace {
@@ -66,6 +69,30 @@ TEST(ClassifyEval, ScoresALabelledScanOfABuiltInTree) {
   EXPECT_GT(r.score.f1(), 0.5);
   const std::string report = classifyReport(rows);
   EXPECT_NE(report.find("| sphere-73k |"), std::string::npos) << report;
+}
+
+}  // namespace
+}  // namespace treesketch::eval
+
+namespace treesketch::eval {
+namespace {
+
+// The skeleton on the classified wood: a leaf-on scan is modelled from fewer points (the leaves
+// left out), so its sketch has far fewer tips than the skeleton on every point; not an evaluation
+// default.
+TEST(ClassifyEval, SkeletonOnTheClassifiedWood) {
+  const std::vector<TreeCase> trees = builtinTrees(1);
+  const TreeScan scan = scanTree(trees[0], selectConditions(fullMatrix(), {"sphere-73k"})[0], true, 1);
+  EvalOptions o;
+  const MethodOutput wood = runMethod("skeleton-wood", MethodInput{trees[0], scan.cloud, o, 0, true});
+  const MethodOutput all = runMethod("skeleton", MethodInput{trees[0], scan.cloud, o, 0, true});
+  EXPECT_GT(wood.mesh.triangles.size(), 0u);
+  EXPECT_GT(wood.fitted, 0);
+  EXPECT_LT(wood.nodes, all.nodes);
+  const auto names = defaultMethodNames();
+  EXPECT_EQ(std::find(names.begin(), names.end(), "skeleton-wood"), names.end());
+  const auto every = methodNames();
+  EXPECT_NE(std::find(every.begin(), every.end(), "skeleton-wood"), every.end());
 }
 
 }  // namespace
