@@ -28,6 +28,7 @@ namespace {
 struct ClassifyArgs {
   std::string cloud, output, up;
   double threshold = NAN;
+  double promote = 1.0;
   bool noGraph = false;
   std::string model;  // a trained JSON instead of the built-in model
   // labelled scans
@@ -42,6 +43,7 @@ classify::ClassifyOptions classifyOptions(const ClassifyArgs& a) {
   classify::ClassifyOptions o;
   o.threshold = a.threshold;
   o.connect = !a.noGraph;
+  o.graph.promoteProbability = a.promote;
   return o;
 }
 
@@ -134,6 +136,9 @@ void registerClassify(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", a->output, "Output cloud (.ply or .las)");
   cmd->add_option("--up", a->up, "Up axis, y or z (default: the file's, else z)")->check(CLI::IsMember({"y", "z"}));
   cmd->add_option("--threshold", a->threshold, "Wood at and above this probability (default: the model's)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--promote", a->promote,
+                  "Points at least this probable become wood where the growth from the base reaches them")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--no-graph", a->noGraph, "The classifier's call alone, without keeping wood connected to the stem");
   cmd->add_option("--model", a->model, "A model trained with --train instead of the built-in one");

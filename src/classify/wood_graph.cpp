@@ -43,7 +43,13 @@ WoodGraphResult connectWood(const FeatureTable& f, const std::vector<float>& p, 
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (p[i] < threshold) continue;
+    if (p[i] < threshold) {
+      if (p[i] >= o.promoteProbability && rooted.count(pieces.find(static_cast<std::uint32_t>(i)))) {
+        r.wood[i] = 1;
+        ++r.promoted;
+      }
+      continue;
+    }
     const std::uint32_t root = pieces.find(static_cast<std::uint32_t>(i));
     if (rooted.count(root)) {
       r.wood[i] = 1;

@@ -41,6 +41,12 @@ TEST(WoodGraph, GrowsFromTheBaseAndDemotesSmallIsolatedWood) {
   EXPECT_EQ(r.kept, 40u);
   EXPECT_EQ(r.demoted, 10u);
   EXPECT_GE(r.seeds, 1u);
+  // Promotion: the unsure point on the stem, reached from the base, becomes wood.
+  WoodGraphOptions promote = o;
+  promote.promoteProbability = 0.25;
+  const WoodGraphResult pr = connectWood(t, p, 0.5, promote);
+  EXPECT_EQ(pr.wood[20], 1);
+  EXPECT_EQ(pr.promoted, 1u);
   // A confident leaf cuts the stem: points 21..49 are a piece of their own, 29 points: demoted.
   p[20] = 0.05f;
   const WoodGraphResult cut = connectWood(t, p, 0.5, o);

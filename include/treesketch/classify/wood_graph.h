@@ -28,6 +28,9 @@ struct WoodGraphOptions {
   /// A piece of wood not reached from the base stays wood when it has at least this many core
   /// points (a limb whose link to the stem is occluded), else it is demoted.
   int minPiecePoints = 30;
+  /// Points below the wood threshold but at least this probable become wood where growth from the
+  /// base reaches them (1: never).
+  double promoteProbability = 1.0;
 };
 
 /// Counts are of core points (features.h).
@@ -37,6 +40,7 @@ struct WoodGraphResult {
   std::size_t reached = 0;         ///< wood points reached from the base
   std::size_t kept = 0;            ///< wood points in large enough pieces not reached
   std::size_t demoted = 0;         ///< wood points demoted to leaf
+  std::size_t promoted = 0;        ///< points below the threshold made wood (promoteProbability)
 };
 
 /// Applies the graph step to `probability` (one per core point of `features`, wood at >= `threshold`).
