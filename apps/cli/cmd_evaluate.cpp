@@ -73,7 +73,9 @@ void addScanOptions(CLI::App& cmd, EvaluateOpts& o) {
 
 // The methods, the sweep, the leaf states, the view and the correcting user.
 void addMethodOptions(CLI::App& cmd, EvaluateOpts& o) {
-  cmd.add_option("--methods", o.methods, "Methods: uniform, user, ideal, skeleton (default: all built in)");
+  cmd.add_option("--methods", o.methods,
+                 "Methods: uniform, user, ideal, skeleton, skeleton-wood (the skeleton on the classified wood; "
+                 "default: all but skeleton-wood)");
   cmd.add_option("--uniform-nodes", o.e.uniformNodes, "Nodes of the uniform automatic sketch (thesis: 18)")
       ->capture_default_str();
   cmd.add_option("--user-nodes", o.e.userNodes, "Node budget of the simulated user")->capture_default_str();
@@ -132,7 +134,7 @@ void runEvaluate(const EvaluateOpts& o, bool cmdRaysGiven, const std::string& le
   if (!o.methods.empty())
     e.methods = o.methods;
   else
-    e.methods = eval::methodNames();
+    e.methods = eval::defaultMethodNames();
   if (!o.sweep.empty()) e.nodeSweep = o.sweep;
   if (o.noSweep) e.nodeSweep.clear();
   e.leafOn = !o.noLeafOn;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "treesketch/classify/classify.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
@@ -21,6 +22,16 @@
 namespace treesketch::cli {
 
 namespace {
+
+/// Colours of class codes: wood and leaf as `treesketch classify` writes them, anything else grey.
+std::vector<render::Rgb> classColors(const std::vector<std::uint8_t>& codes) {
+  std::vector<render::Rgb> out(codes.size(), render::Rgb{150, 150, 150});
+  for (std::size_t i = 0; i < codes.size(); ++i) {
+    if (codes[i] == classify::kWoodClass) out[i] = {125, 70, 25};
+    if (codes[i] == classify::kLeafClass) out[i] = {95, 185, 80};
+  }
+  return out;
+}
 
 struct RenderArgs {
   std::string cloud;
@@ -69,7 +80,9 @@ void runRender(const RenderArgs& a) {
   render::RenderScene scene;
   scene.pointSize = a.pointSize;
   scene.meshStyle.wireframe = a.wireframe;
-  if (!a.cloud.empty()) scene.cloud = io::readPointCloud(a.cloud).positions;
+  geom::PointCloud cloud;
+  if (!a.cloud.empty()) cloud = io::readPointCloud(a.cloud);
+  scene.cloud = cloud.positions;
   for (const std::string& m : a.meshes) scene.meshes.push_back(io::readMesh(m));
   const bool faint = !scene.meshes.empty();  // the cloud recedes behind a reconstruction
   scene.cloudBehindMeshes = faint;
@@ -77,6 +90,10 @@ void runRender(const RenderArgs& a) {
     scene.cloudColors = render::heightColors(scene.cloud, up);
     if (faint)
       for (auto& c : scene.cloudColors) c = render::blend(c, {255, 255, 255}, 0.65);
+  } else if (a.colorBy == "class") {
+    if (cloud.classification.empty())
+      throw InputError(a.cloud + ": --color-by class needs a classification (write one with `treesketch classify`)");
+    scene.cloudColors = classColors(cloud.classification);
   } else {
     scene.cloudColor = faint ? render::Rgb{185, 185, 185} : render::Rgb{110, 110, 110};
   }
@@ -121,8 +138,9 @@ void registerRender(CLI::App& app, Action& action) {
   sub->add_option("--point-size", a->pointSize, "Cloud point size in pixels")
       ->check(CLI::Range(1, 32))
       ->capture_default_str();
-  sub->add_option("--color-by", a->colorBy, "Cloud colour: height (ramp) or none (grey)")
-      ->check(CLI::IsMember({"height", "none"}))
+  sub->add_option("--color-by", a->colorBy,
+                  "Cloud colour: height (ramp), class (the classification: wood brown, leaf green, other grey) or none")
+      ->check(CLI::IsMember({"height", "class", "none"}))
       ->capture_default_str();
   sub->add_flag("--wireframe", a->wireframe, "Draw mesh triangle edges over the shading");
   sub->add_option("-o,--output", a->output, "Output picture (.png)")->required();

@@ -29,6 +29,7 @@ struct SomeFailed : std::runtime_error {
 
 // [declare register functions here, one line each]
 void registerBatch(CLI::App& app, Action& action);
+void registerClassify(CLI::App& app, Action& action);
 void registerCompare(CLI::App& app, Action& action);
 void registerDemo(CLI::App& app, Action& action);
 void registerEvaluate(CLI::App& app, Action& action);

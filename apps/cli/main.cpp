@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
   setCreateOutputDirectories(true);  // output folders are created when missing (a file in the way is exit 4)
   // [register subcommands here, one line each]
   registerBatch(app, action);
+  registerClassify(app, action);
   registerCompare(app, action);
   registerDemo(app, action);
   registerEvaluate(app, action);

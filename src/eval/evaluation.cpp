@@ -8,6 +8,7 @@
 #include <set>
 #include <tuple>
 
+#include "treesketch/classify/classify.h"
 #include "treesketch/eval/mesh_distance.h"
 #include "treesketch/io/view_camera.h"
 #include "treesketch/recon/reconstruction.h"
@@ -166,6 +167,23 @@ MethodOutput methodSkeleton(const MethodInput& in) {
   return out;
 }
 
+// The automatic skeleton on the points the wood/leaf classification calls wood (leaf-off settings:
+// what is left is meant to be wood); on a leaf-off scan the same as "skeleton".
+MethodOutput methodSkeletonWood(const MethodInput& in) {
+  if (!in.leafOn) return methodSkeleton(in);
+  const Stopwatch timer;
+  const classify::Classification c = classify::classifyWood(in.cloud, in.tree.up);
+  geom::PointCloud wood;
+  wood.up = in.cloud.up;
+  for (std::size_t i = 0; i < in.cloud.size(); ++i)
+    if (c.wood[i]) wood.positions.push_back(in.cloud.positions[i]);
+  if (wood.size() < 100) return methodSkeleton(in);  // nothing to model as wood: as before
+  MethodInput woodInput{in.tree, wood, in.options, in.nodeCount, false};
+  MethodOutput out = methodSkeleton(woodInput);
+  out.ms = timer.ms();
+  return out;
+}
+
 const std::map<std::string, Method>& registry() {
   static const std::map<std::string, Method> methods = [] {
     std::map<std::string, Method> m;
@@ -173,12 +191,20 @@ const std::map<std::string, Method>& registry() {
     m["user"] = methodUser;
     m["ideal"] = methodIdeal;
     m["skeleton"] = methodSkeleton;
+    m["skeleton-wood"] = methodSkeletonWood;
     return m;
   }();
   return methods;
 }
 
 }  // namespace
+
+std::vector<std::string> defaultMethodNames() {
+  std::vector<std::string> names;
+  for (const auto& name : methodNames())
+    if (name != "skeleton-wood") names.push_back(name);
+  return names;
+}
 
 std::vector<std::string> methodNames() {
   std::vector<std::string> names;

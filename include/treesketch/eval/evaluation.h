@@ -14,6 +14,8 @@
 //  - "skeleton": treesketch's automatic branching skeleton (skeleton::autoSkeletonSketch): its
 //    nodes are fitted with the same slice + RANSAC machinery and radii regularised. Leaf-on
 //    scans use skeleton::leafOnSkeletonOptions() (the user says the tree was in leaf).
+//  - "skeleton-wood": leaf-on scans classified first (classify/classify.h) and the skeleton, with
+//    the leaf-off settings, run on the points called wood; leaf-off scans as "skeleton".
 // Percentages are of the *reference* (branch mesh) bounding-box diagonal in both directions, so
 // that methods are compared on one scale (MeshLab divides the backward numbers by the
 // reconstruction's own diagonal; a reconstruction with stray parts would look better there).
@@ -159,8 +161,10 @@ struct MethodInput {
 
 using Method = std::function<MethodOutput(const MethodInput&)>;
 
-/// The methods built in, by name ("uniform", "user", "ideal", and "skeleton" when available).
+/// The methods built in, by name ("uniform", "user", "ideal", "skeleton", "skeleton-wood").
 std::vector<std::string> methodNames();
+/// The methods an evaluation runs when none are named: all but "skeleton-wood".
+std::vector<std::string> defaultMethodNames();
 /// Runs one method by name; throws OptionsError for an unknown name.
 MethodOutput runMethod(const std::string& name, const MethodInput& input);
 

@@ -1,0 +1,164 @@
+// `treesketch classify CLOUD -o OUT.ply|.las`: wood/leaf classification of a tree's points
+// (classify/classify.h), written with the class code and the wood probability of every point
+// (io/classified_cloud.h). Two more modes on labelled virtual scans of a tree folder
+// (eval/classify_eval.h): --evaluate REPORT.md scores the built-in classifier per scan, --train
+// OUT.json trains a new one on the tuning half (docs/classify.md).
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <memory>
+
+#include "commands.h"
+#include "treesketch/classify/classify.h"
+#include "treesketch/eval/classify_eval.h"
+#include "treesketch/io/classified_cloud.h"
+#include "treesketch/io/point_cloud_io.h"
+#include "treesketch/io/up_axis.h"
+#include "treesketch/util/atomic_file.h"
+#include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
+#include "treesketch/util/text.h"
+
+namespace treesketch::cli {
+
+namespace {
+
+struct ClassifyArgs {
+  std::string cloud, output, up;
+  double threshold = NAN;
+  double promote = 1.0;
+  bool noGraph = false;
+  std::string model;  // a trained JSON instead of the built-in model
+  // labelled scans
+  std::string train, evaluate, trees, split = "held-out";
+  std::vector<std::string> conditions;
+  double metresPerUnit = eval::kEzTreeMetresPerUnit;
+  int leafVariants = 2;
+  bool noPosition = false;
+};
+
+classify::ClassifyOptions classifyOptions(const ClassifyArgs& a) {
+  classify::ClassifyOptions o;
+  o.threshold = a.threshold;
+  o.connect = !a.noGraph;
+  o.graph.promoteProbability = a.promote;
+  return o;
+}
+
+std::vector<eval::TreeCase> labelledTrees(const ClassifyArgs& a, bool tuning) {
+  if (a.trees.empty()) throw OptionsError("--train and --evaluate need --trees FOLDER (e.g. ../shared/data/trees)");
+  std::vector<eval::TreeCase> out;
+  for (auto& t : eval::loadTreeFolder(a.trees, a.metresPerUnit))
+    if (tuning ? eval::treeHalf(t.name) == eval::TreeHalf::Tune : eval::splitSelects(a.split, eval::treeHalf(t.name)))
+      out.push_back(std::move(t));
+  if (out.empty()) throw OptionsError("the split selects none of the trees in " + a.trees);
+  return out;
+}
+
+std::vector<eval::ScanCondition> conditions(const ClassifyArgs& a) {
+  const auto all = eval::leafOnConditions();
+  return a.conditions.empty() ? all : eval::selectConditions(all, a.conditions);
+}
+
+void runTrain(const ClassifyArgs& a) {
+  checkOutputWritable(a.train);
+  eval::ClassifierTraining t;
+  t.conditions = conditions(a);
+  t.leafVariants = a.leafVariants;
+  t.features.positionFeatures = !a.noPosition;
+  t.log = [](const std::string& line) { std::cerr << line << "\n"; };
+  const classify::BoostedTrees m = eval::trainClassifier(labelledTrees(a, true), t);
+  writeFileAtomically(a.train, [&](std::ostream& out) { out << classify::toJson(m); });
+  std::printf("wrote %s (%zu trees, threshold %.3f)\n", a.train.c_str(), m.trees.size(), m.threshold);
+}
+
+void runEvaluate(const ClassifyArgs& a, const classify::BoostedTrees* model) {
+  checkOutputWritable(a.evaluate);
+  eval::ClassifyEvalOptions o;
+  o.conditions = conditions(a);
+  o.classify = classifyOptions(a);
+  o.log = [](const std::string& line) { std::cerr << line << "\n"; };
+  const auto rows = eval::evaluateClassifier(labelledTrees(a, false), o, model);
+  const std::string report = eval::classifyReport(rows);
+  writeFileAtomically(a.evaluate, [&](std::ostream& out) { out << report; });
+  std::cout << report.substr(0, report.find("\n\n") + 1) << "wrote " << a.evaluate << "\n";
+}
+
+void runClassifyCloud(const ClassifyArgs& a, const classify::BoostedTrees* model) {
+  if (a.cloud.empty() || a.output.empty()) throw OptionsError("classify needs a CLOUD and -o OUT.ply|.las");
+  checkNotAnInput(a.output, {a.cloud});
+  checkOutputWritable(a.output);
+  const std::string ext = lowercase(std::filesystem::path(a.output).extension().string());
+  if (ext != ".ply" && ext != ".las") throw OptionsError(a.output + ": the output is .ply or .las");
+  Stopwatch clock;
+  const geom::PointCloud cloud = io::readPointCloud(a.cloud);
+  const double readMs = clock.ms();
+  const io::UpAxisChoice up = io::chooseUpAxis(a.up, cloud);
+  const classify::Classification c = classify::classifyWood(cloud, up.up, classifyOptions(a), model);
+  io::writeClassifiedCloud(a.output, cloud, classify::classCodes(c), c.woodProbability);
+  std::printf("up axis: %s\n", up.reason.c_str());
+  std::printf("%zu points (%zu core points), spacing %.4g: %zu wood (%.1f %%), %zu leaf; threshold %.3f\n",
+              cloud.size(), c.cores, c.spacing, c.woodPoints, 100.0 * c.woodPoints / cloud.size(),
+              cloud.size() - c.woodPoints, c.threshold);
+  if (!a.noGraph)
+    std::printf("graph step: %zu wood points reached from %zu at the base, %zu in pieces of their own, %zu demoted\n",
+                c.graph.reached, c.graph.seeds, c.graph.kept, c.graph.demoted);
+  std::printf("time: read %.0f ms, features %.0f ms, classifier %.0f ms, graph %.0f ms\n", readMs, c.featuresMs,
+              c.predictMs, c.graphMs);
+  std::printf("wrote %s (classification %d = wood, %d = leaf; wood_probability)\n", a.output.c_str(),
+              classify::kWoodClass, classify::kLeafClass);
+}
+
+void runClassify(const ClassifyArgs& a) {
+  if (!a.train.empty() && !a.evaluate.empty()) throw OptionsError("--train and --evaluate are separate runs");
+  if (!a.train.empty()) return runTrain(a);
+  std::unique_ptr<classify::BoostedTrees> model;
+  if (!a.model.empty()) {
+    std::ifstream in(a.model, std::ios::binary);
+    if (!in) throw InputError(a.model + ": cannot open the model");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    model = std::make_unique<classify::BoostedTrees>(classify::boostedTreesFromJson(text, a.model));
+  }
+  if (!a.evaluate.empty()) return runEvaluate(a, model.get());
+  runClassifyCloud(a, model.get());
+}
+
+}  // namespace
+
+void registerClassify(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand("classify",
+                                 "Tell wood from leaves: write every point with its class (LAS/PLY classification 64 "
+                                 "= wood, 65 = leaf) and its wood probability");
+  auto a = std::make_shared<ClassifyArgs>();
+  cmd->add_option("cloud", a->cloud, "Input cloud (.ply .xyz .txt .csv .pts .asc .las .laz .obj)");
+  cmd->add_option("-o,--output", a->output, "Output cloud (.ply or .las)");
+  cmd->add_option("--up", a->up, "Up axis, y or z (default: the file's, else z)")->check(CLI::IsMember({"y", "z"}));
+  cmd->add_option("--threshold", a->threshold, "Wood at and above this probability (default: the model's)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--promote", a->promote,
+                  "Points at least this probable become wood where the growth from the base reaches them")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_flag("--no-graph", a->noGraph, "The classifier's call alone, without keeping wood connected to the stem");
+  cmd->add_option("--model", a->model, "A model trained with --train instead of the built-in one");
+  cmd->add_option("--evaluate", a->evaluate,
+                  "Score the classifier on labelled leaf-on scans of --trees and write a Markdown report here");
+  cmd->add_option("--train", a->train, "Train a classifier on the tuning half of --trees and write it here (JSON)");
+  cmd->add_option("--trees", a->trees, "Folder of test trees (ez-tree layout), e.g. ../shared/data/trees");
+  cmd->add_option("--split", a->split, "--evaluate: tune, held-out or all")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"tune", "held-out", "all"}));
+  cmd->add_option("--conditions", a->conditions, "Leaf-on rows of the scan matrix (default: all of them)");
+  cmd->add_option("--leaf-variants", a->leafVariants, "--train: scans per tree and condition (1 = leaves as given)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 8));
+  cmd->add_flag("--no-position-features", a->noPosition,
+                "--train: leave out the height and distance from the stem (shape and paths only)");
+  cmd->add_option("--metres-per-unit", a->metresPerUnit, "Scale of the --trees meshes")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->callback([a, &action] { action = [a] { runClassify(*a); }; });
+}
+
+}  // namespace treesketch::cli

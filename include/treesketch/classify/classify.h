@@ -1,0 +1,66 @@
+// Wood/leaf classification of a tree's point cloud, a stage of its own before the skeleton:
+// per-point features (features.h) -> a wood probability from a classifier the project trains on
+// its own labelled virtual scans (boosted_trees.h; the trained model is built into the library,
+// see docs/classify.md for the command that makes it) -> a class, with wood kept connected to the
+// stem (wood_graph.h).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "treesketch/classify/boosted_trees.h"
+#include "treesketch/classify/features.h"
+#include "treesketch/classify/wood_graph.h"
+#include "treesketch/geom/point_cloud.h"
+
+namespace treesketch::classify {
+
+/// The class codes written to files: the LAS classification field and the PLY `classification`
+/// property. 64 and 65 are the first of the codes LAS 1.4 leaves to users (R15, table 17: 64-255
+/// "user definable").
+inline constexpr std::uint8_t kWoodClass = 64;
+inline constexpr std::uint8_t kLeafClass = 65;
+
+struct ClassifyOptions {
+  FeatureOptions features;
+  WoodGraphOptions graph;
+  /// Apply the graph step (off: the classifier's call alone).
+  bool connect = true;
+  /// Wood at and above this probability; NaN = the model's own threshold (chosen in training).
+  double threshold = NAN;
+};
+
+struct Classification {
+  std::vector<float> woodProbability;  ///< the classifier's, one per point, 0..1
+  std::vector<std::uint8_t> wood;      ///< the class after the graph step: 1 wood, 0 leaf
+  std::size_t woodPoints = 0;
+  double threshold = 0.5;  ///< the threshold used
+  double spacing = 0;      ///< the cloud's median spacing (cloud units)
+  std::size_t cores = 0;   ///< core points the features, classifier and graph ran on
+  WoodGraphResult graph;   ///< what the graph step did, in cores (its `wood` is moved to `wood` above)
+  double featuresMs = 0, predictMs = 0, graphMs = 0;
+};
+
+/// The model built into the library (src/classify/trained_model.json, embedded at build time).
+const BoostedTrees& trainedModel();
+
+/// Classifies every point of `cloud` with `model` (default: trainedModel()). `up` is the cloud's up
+/// axis. The feature switches follow the model (featureOptionsFor). Throws OptionsError when the
+/// model's features are not those of options.features in any switch setting, and
+/// DegenerateInputError for a cloud too small for the largest feature scale.
+Classification classifyWood(const geom::PointCloud& cloud, geom::UpAxis up, const ClassifyOptions& options = {},
+                            const BoostedTrees* model = nullptr);
+
+/// `options` with the feature switches set to what `model` was trained on (the model's feature
+/// names decide). Throws OptionsError when no switch setting gives its names.
+FeatureOptions featureOptionsFor(const BoostedTrees& model, FeatureOptions options = {});
+
+/// The wood probability of every row of `features` (TBB parallel).
+std::vector<float> predictWood(const FeatureTable& features, const BoostedTrees& model);
+
+/// The class codes (kWoodClass / kLeafClass) of a classification, one per point.
+std::vector<std::uint8_t> classCodes(const Classification& c);
+
+}  // namespace treesketch::classify

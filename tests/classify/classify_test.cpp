@@ -1,0 +1,62 @@
+// The whole stage with the built-in model, on a leaf-on scan of a tree from the project's own
+// generator (not the ez-tree trees the model was trained on): the scanner's labels are the truth.
+#include "treesketch/classify/classify.h"
+
+#include <gtest/gtest.h>
+
+#include "treesketch/accel/ray_scene.h"
+#include "treesketch/gen/tree_generator.h"
+#include "treesketch/scan/sphere_scan.h"
+#include "treesketch/util/error.h"
+
+namespace treesketch::classify {
+namespace {
+
+geom::PointCloud leafOnScan() {
+  const gen::GeneratedTree tree = gen::generateTree(gen::presetOptions("default"));
+  scan::SphereScanOptions s;
+  s.rays = 300000;
+  s.jitterDeg = 26.0;  // the cone over the whole tree
+  s.rangeNoise = 0.003;
+  s.recordMesh = true;
+  return scan::sphereScan(std::vector<geom::TriMesh>{tree.branches.mesh, tree.leaves}, s).cloud;
+}
+
+TEST(Classify, BuiltInModelSeparatesWoodFromLeavesOnAnotherGeneratorsTree) {
+  const BoostedTrees& m = trainedModel();
+  ASSERT_FALSE(m.empty());
+  EXPECT_EQ(m.featureNames, featureNames(FeatureOptions{}));
+  const geom::PointCloud cloud = leafOnScan();
+  const Classification c = classifyWood(cloud, geom::UpAxis::Y);
+  ASSERT_EQ(c.wood.size(), cloud.size());
+  ASSERT_EQ(c.woodProbability.size(), cloud.size());
+  std::size_t tp = 0, fp = 0, fn = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const bool truth = cloud.meshId[i] == 0;
+    tp += truth && c.wood[i];
+    fp += !truth && c.wood[i];
+    fn += truth && !c.wood[i];
+    ASSERT_GE(c.woodProbability[i], 0.0f);
+    ASSERT_LE(c.woodProbability[i], 1.0f);
+  }
+  const double f1 = 2.0 * tp / (2.0 * tp + fp + fn);
+  EXPECT_GT(f1, 0.7) << "tp " << tp << " fp " << fp << " fn " << fn;
+  EXPECT_EQ(c.woodPoints, tp + fp);
+  // The graph step only demotes: wood after it is a subset of the classifier's wood.
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (c.wood[i]) ASSERT_GE(c.woodProbability[i], c.threshold);
+  const std::vector<std::uint8_t> codes = classCodes(c);
+  for (std::size_t i = 0; i < cloud.size(); ++i) ASSERT_EQ(codes[i], c.wood[i] ? kWoodClass : kLeafClass);
+}
+
+TEST(Classify, ModelOfOtherFeaturesIsRefused) {
+  BoostedTrees other;
+  other.featureNames = {"a"};
+  other.trees = {{TreeNode{}}};
+  geom::PointCloud cloud;
+  for (int i = 0; i < 200; ++i) cloud.positions.emplace_back(0.01 * i, 0.02 * (i % 7), 0.0);
+  EXPECT_THROW(classifyWood(cloud, geom::UpAxis::Y, {}, &other), OptionsError);
+}
+
+}  // namespace
+}  // namespace treesketch::classify
