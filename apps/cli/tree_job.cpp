@@ -21,6 +21,32 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// What the report says first: the job, the cloud and the automatic model's counts and timings.
+nlohmann::json reportHeader(const TreeJob& a, const TreeJobResult& r, const skeleton::AutoSkeletonResult& s) {
+  nlohmann::json header;
+  header["cloud"] = a.cloud;
+  header["mesh"] = a.out.mesh;
+  header["auto"] = true;
+  header["leafOn"] = a.leafOn;
+  header["up"] = r.up;
+  header["upReason"] = r.upReason;
+  header["points"] = r.points;
+  header["strayPoints"] = model::strayPointsJson(s.strays);
+  header["warnings"] = r.scale.warnings;
+  header["seed"] = a.seed;
+  header["skeletonNodes"] = r.skeletonNodes;
+  header["forks"] = r.forks;
+  header["thinnedBySurface"] = s.thinnedBySurface;
+  header["vertices"] = r.vertices;
+  header["triangles"] = r.triangles;
+  header["timings"] = {{"readMs", r.readMs},
+                       {"skeletonMs", r.skeletonMs},
+                       {"fitMs", r.fitMs},
+                       {"sweepMs", r.sweepMs},
+                       {"metricsMs", r.metricsMs}};
+  return header;
+}
+
 }  // namespace
 
 TreeJobResult runTreeJob(const TreeJob& a) {
@@ -75,27 +101,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   const model::ModelMeasures measures = model::measure(tree, kept, mo);
   r.metricsMs = msSince(tm);
 
-  nlohmann::json header;
-  header["cloud"] = a.cloud;
-  header["mesh"] = a.out.mesh;
-  header["auto"] = true;
-  header["leafOn"] = a.leafOn;
-  header["up"] = r.up;
-  header["upReason"] = r.upReason;
-  header["points"] = r.points;
-  header["strayPoints"] = model::strayPointsJson(s.strays);
-  header["warnings"] = r.scale.warnings;
-  header["seed"] = a.seed;
-  header["skeletonNodes"] = r.skeletonNodes;
-  header["forks"] = r.forks;
-  header["thinnedBySurface"] = s.thinnedBySurface;
-  header["vertices"] = r.vertices;
-  header["triangles"] = r.triangles;
-  header["timings"] = {{"readMs", r.readMs},
-                       {"skeletonMs", r.skeletonMs},
-                       {"fitMs", r.fitMs},
-                       {"sweepMs", r.sweepMs},
-                       {"metricsMs", r.metricsMs}};
+  const nlohmann::json header = reportHeader(a, r, s);
   // The sketch first; the model's outputs end with the report, after which a batch writes its
   // done marker, so their presence says the tree is complete.
   if (!a.sketch.empty()) io::writeSketch(std::filesystem::path(a.sketch), s.sketch);
