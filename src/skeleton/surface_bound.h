@@ -2,7 +2,7 @@
 // so the points a tube explains lie on its surface, not inside it: where many of them lie deeper
 // than the scan's noise inside, the tube is thicker than the wood (a circle fitted to a shell of
 // noise or leaves, or a radius the pipe model inferred for a branch the points show thinner).
-// Each tube's radius is therefore bounded by a low quantile of its points' distances to its axis
+// Each tube's radius is therefore bounded by the lower quartile of its points' distances to its axis
 // plus a margin of the noise, the noise being measured on the cloud itself (the residuals of the
 // circles fitted to it), never a figure in metres that assumes a scanner.
 #pragma once
@@ -29,7 +29,7 @@ struct SurfaceBoundStats {
 /// Lowers the radii of `model` (parent-first nodes) where the points lie inside the tubes. Each
 /// point goes to the node of its nearest tube (points farther than `noise` plus `voxel` outside it
 /// are left out); a node is judged on the points of the `window` nodes around it along its branch:
-/// its radius is at most their distances to the axis' 10th percentile plus four `noise`. A
+/// its radius is at most their distances to the axis' lower quartile plus four `noise`. A
 /// branch's first node is also capped by its parent's radius; no radius is raised.
 SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
                                       double voxel, int window, const std::vector<double>& ownResidual = {});

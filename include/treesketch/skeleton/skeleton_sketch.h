@@ -69,8 +69,8 @@ struct RadiusRules {
   /// model of it (2 cut clean scans' crowns to half, 4 let a noisy crown to 1.7×;
   /// docs/notes/radii_and_volume.md).
   double allometryMaxRatio = 3.0;
-  /// The points' bound (skeleton/surface_bound.h): no tube thicker than the 10th percentile of its
-  /// points' distances to its axis plus twice the scan's noise measured on the cloud.
+  /// The points' bound (skeleton/surface_bound.h): no tube thicker than the lower quartile of its
+  /// points' distances to its axis plus four times the scan's noise measured on the cloud.
   bool surfaceBound = true;
 };
 
