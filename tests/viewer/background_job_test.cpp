@@ -12,6 +12,7 @@
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/viewer/action_script.h"
 #include "treesketch/viewer/viewer_state.h"
+#include "forked_tree.h"
 
 namespace treesketch::viewer {
 namespace {
@@ -24,28 +25,11 @@ std::string text(const sketch::Sketch& s) {
   return out.str();
 }
 
-/// A trunk with two branches, enough for a skeleton of a few nodes.
-geom::PointCloud tree() {
-  gen::Rng rng(21);
-  geom::PointCloud cloud;
-  auto limb = [&](Vec3 a, Vec3 b, double r, int n) {
-    Vec3 d = (b - a).normalized(), u = geom::anyPerpendicular(d), v = d.cross(u);
-    for (int i = 0; i < n; ++i) {
-      double t = rng.uniform(0, 1), ang = rng.uniform(0, 2 * M_PI);
-      cloud.positions.push_back(a + t * (b - a) + r * (std::cos(ang) * u + std::sin(ang) * v));
-    }
-  };
-  limb(Vec3(0, 0, 0), Vec3(0, 3, 0), 0.15, 12000);
-  limb(Vec3(0, 2, 0), Vec3(1.2, 3.5, 0), 0.06, 4000);
-  limb(Vec3(0, 2.4, 0), Vec3(-1.0, 3.6, 0.3), 0.05, 4000);
-  return cloud;
-}
-
 struct Fixture {
   ViewerState state;
   Fixture() {
     state.setViewport(geom::Viewport{0, 0, 800, 600});
-    EXPECT_TRUE(state.setCloud(tree(), geom::UpAxis::Y));
+    EXPECT_TRUE(state.setCloud(test::forkedTree(), geom::UpAxis::Y));
     state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
     for (int i = 1; i <= 3; ++i) state.clickAt(state.camera().project(Vec3(0, 0.8 * i, 0)).head<2>());
   }

@@ -19,6 +19,7 @@
 #include "treesketch/viewer/point_colors.h"
 #include "treesketch/util/error.h"
 #include "treesketch/viewer/viewer_state.h"
+#include "forked_tree.h"
 
 namespace treesketch::viewer {
 namespace {
@@ -374,22 +375,6 @@ TEST(SketchDocument, ReattachsFirstClickNamesTheNodeAndShiftTurnsTheLimbRound) {
   EXPECT_EQ(s.sketch().node(base).parent, tip);
 }
 
-/// A trunk with two limbs (Y up): one to +x, one to -x and up.
-geom::PointCloud forkedTree() {
-  gen::Rng rng(21);
-  geom::PointCloud cloud;
-  auto limb = [&](Vec3 a, Vec3 b, double r, int n) {
-    Vec3 d = (b - a).normalized(), u = geom::anyPerpendicular(d), v = d.cross(u);
-    for (int i = 0; i < n; ++i) {
-      double t = rng.uniform(0, 1), ang = rng.uniform(0, 2 * M_PI);
-      cloud.positions.push_back(a + t * (b - a) + r * (std::cos(ang) * u + std::sin(ang) * v));
-    }
-  };
-  limb(Vec3(0, 0, 0), Vec3(0, 3, 0), 0.15, 12000);
-  limb(Vec3(0, 2, 0), Vec3(1.2, 3.5, 0), 0.06, 4000);
-  limb(Vec3(0, 2.4, 0), Vec3(-1.0, 3.6, 0.3), 0.05, 4000);
-  return cloud;
-}
 
 TEST(SketchDocument, AStrokeSaysHowManyNodesFittedAndWhyOthersDidNot) {
   // A trunk and a sparse limb (150 points over 1.5 m) from (0, 2, 0) towards +x and up.
@@ -423,7 +408,7 @@ TEST(SketchDocument, AStrokeSaysHowManyNodesFittedAndWhyOthersDidNot) {
 TEST(SketchDocument, TheNotWoodLassoChangesTheAutomaticModel) {
   ViewerState s;
   s.setViewport(geom::Viewport{0, 0, 800, 600});
-  ASSERT_TRUE(s.setCloud(forkedTree(), geom::UpAxis::Y));
+  ASSERT_TRUE(s.setCloud(test::forkedTree(), geom::UpAxis::Y));
   // The lasso: around the outer part of the -x limb, away from the trunk and the other limb.
   auto at = [&](double x, double y) { return Vec2(s.camera().project(Vec3(x, y, 0)).head<2>()); };
   const std::vector<Vec2> lasso = {at(-1.4, 2.75), at(-0.3, 2.75), at(-0.3, 4.0), at(-1.4, 4.0)};
