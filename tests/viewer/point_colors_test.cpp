@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "treesketch/gen/random.h"
+#include "treesketch/viewer/point_lod.h"
 #include "treesketch/render/color_map.h"
 
 namespace treesketch::viewer {
@@ -147,6 +148,32 @@ TEST(DistanceColorGrid, KeptSurfaceColoursEqualTheFullMeasureAfterEdits) {
   grid.forgetSurface();
   check("after forgetSurface");
   EXPECT_GT(grid.lastPointsMeasured(), first);
+}
+
+}  // namespace
+}  // namespace treesketch::viewer
+
+namespace treesketch::viewer {
+namespace {
+
+// The kept upload-order colours equal the full gather after each change of a few points, after
+// a change of every point, and after a rebuild of the order.
+TEST(PointLod, KeptColoursEqualTheFullGather) {
+  gen::Rng rng(5);
+  std::vector<Rgb> colors(5000);
+  for (Rgb& c : colors) c = viridis(rng.uniform(0, 1));
+  PointLod lod;
+  lod.build(colors.size());
+  std::vector<std::uint8_t> gathered;
+  for (int round = 0; round < 4; ++round) {
+    if (round == 2)
+      for (Rgb& c : colors) c = Rgb{1, 2, 3};
+    else
+      for (int k = 0; k < 40; ++k) colors[static_cast<std::size_t>(rng.uniform(0, 4999.9))] = viridis(rng.uniform(0, 1));
+    if (round == 3) lod.build(colors.size(), 99);
+    lod.colors(colors, gathered);
+    EXPECT_EQ(lod.keptColors(colors), gathered) << "round " << round;
+  }
 }
 
 }  // namespace
