@@ -13,6 +13,8 @@
 //   build-xxx/bench_viewer --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -20,6 +22,7 @@
 #include <string>
 
 #include "treesketch/viewer/demo_scene.h"
+#include "treesketch/viewer/point_colors.h"
 #include "treesketch/viewer/point_lod.h"
 #include "treesketch/viewer/viewer_state.h"
 
@@ -148,7 +151,7 @@ void BM_EditRebuildsFrameData(benchmark::State& st) {
   s->setColorMode(st.range(0) ? viewer::ColorMode::CircleDistance : viewer::ColorMode::Height);
   viewer::PointLod lod;
   lod.build(s->cloud().size());
-  std::vector<std::uint8_t> upload;
+  const std::uint8_t* upload = nullptr;
   s->selectNode(id);
   Vec2 base = s->sketch().node(id).screen;
   int k = 0;
@@ -160,15 +163,77 @@ void BM_EditRebuildsFrameData(benchmark::State& st) {
     std::uint64_t before = s->colorsVersion();
     const auto& colors = s->pointColors();
     if (s->colorsVersion() != before) {
-      lod.colors(colors, upload);
+      upload = lod.keptColors(colors).data();  // as the window: only the changed points rewritten
       ++colourUploads;
     }
-    benchmark::DoNotOptimize(upload.data());
+    benchmark::DoNotOptimize(upload);
   }
   reportCounters(st, *s);
   st.counters["colour_uploads_per_edit"] = double(colourUploads) / double(st.iterations());
 }
 BENCHMARK(BM_EditRebuildsFrameData)->Arg(0)->Arg(1)->ArgName("distance")->Unit(benchmark::kMillisecond);
+
+/// The distance colouring alone after each one-pixel drag, two ways on the same model, timed in
+/// turn within each iteration (so both see the same load): the grid keeping its colours and
+/// measuring only near the pieces the edit changed, and a grid measuring near every piece (what
+/// every edit did before the colours were kept). Counters: milliseconds of each, their ratio, and
+/// the points each measured one by one. The two must give the same colours (checked each time).
+void BM_SurfaceColoursAfterEdit(benchmark::State& st) {
+  treesketch::sketch::NodeId id;
+  auto s = sketchedState(&id);
+  if (id == treesketch::sketch::kNoNode) {
+    st.SkipWithError("no fitted node to edit");
+    return;
+  }
+  const double scale = s->options().distanceColorScale * s->bounds().diagonal();
+  viewer::DistanceColorGrid kept, full;
+  kept.build(s->cloud(), scale);
+  full.build(s->cloud(), scale);
+  std::vector<viewer::Rgb> keptColours, fullColours;
+  kept.surfaceColors(s->treeModel().cylinders, keptColours);
+  s->selectNode(id);
+  const Vec2 base = s->sketch().node(id).screen;
+  int k = 0;
+  double keptMs = 0, fullMs = 0, keptPoints = 0, fullPoints = 0;
+  using Clock = std::chrono::steady_clock;
+  auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  for (auto _ : st) {
+    s->moveNodeTo(id, base + Vec2(0, (k & 1) ? 1.0 : 0.0));
+    const treesketch::geom::CylinderModel model = s->treeModel().cylinders;
+    auto runKept = [&] {
+      const auto t = Clock::now();
+      kept.surfaceColors(model, keptColours);
+      keptMs += ms(Clock::now() - t);
+    };
+    auto runFull = [&] {
+      const auto t = Clock::now();
+      full.forgetSurface();
+      full.surfaceColors(model, fullColours);
+      fullMs += ms(Clock::now() - t);
+    };
+    if (k++ & 1) {
+      runKept();
+      runFull();
+    } else {
+      runFull();
+      runKept();
+    }
+    keptPoints += static_cast<double>(kept.lastPointsMeasured());
+    fullPoints += static_cast<double>(full.lastPointsMeasured());
+    if (keptColours != fullColours) {
+      st.SkipWithError("the kept colours differ from the full measure");
+      return;
+    }
+  }
+  const double n = static_cast<double>(st.iterations());
+  st.counters["kept_ms"] = keptMs / n;
+  st.counters["full_ms"] = fullMs / n;
+  st.counters["full_over_kept"] = fullMs / std::max(keptMs, 1e-9);
+  st.counters["kept_points"] = keptPoints / n;
+  st.counters["full_points"] = fullPoints / n;
+  reportCounters(st, *s);
+}
+BENCHMARK(BM_SurfaceColoursAfterEdit)->Unit(benchmark::kMillisecond);
 
 /// The real window left alone: frames drawn and CPU used per second of idle (after 1 s settling).
 void BM_IdleWindow(benchmark::State& st) {

@@ -158,9 +158,9 @@ void Renderer::uploadCloud(viewer::ViewerState& state) {
   const std::vector<viewer::Rgb>& colors = state.pointColors();
   if (colorsVersion_ != state.colorsVersion()) {
     colorsVersion_ = state.colorsVersion();
-    lod_.colors(colors, colScratch_);  // in the upload order of the positions
+    const std::vector<std::uint8_t>& ordered = lod_.keptColors(colors);  // the positions' upload order
     glBindBuffer(GL_ARRAY_BUFFER, cloudCol_);
-    glBufferData(GL_ARRAY_BUFFER, colScratch_.size(), colScratch_.data(), GL_DYNAMIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, ordered.size(), ordered.data(), GL_DYNAMIC_DRAW);
   }
 }
 

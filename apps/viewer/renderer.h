@@ -47,7 +47,6 @@ class Renderer {
   geom::Vec3 origin_ = geom::Vec3::Zero();  ///< subtracted from positions (float precision)
   viewer::PointLod lod_;                    ///< the upload order
   std::vector<float> posScratch_;
-  std::vector<std::uint8_t> colScratch_;
 };
 
 }  // namespace treesketch::gui

@@ -60,6 +60,24 @@ double signedDistance(const Vec3& p, const geom::ModelCylinder& c, bool openStar
 
 double signedDistance(const Vec3& p, const geom::ModelCylinder& c) { return signedDistance(p, c, false, false); }
 
+std::vector<std::array<bool, 2>> jointCaps(const geom::CylinderModel& model) {
+  // Joints: a piece that starts where its parent ends (a chain of segments, a fork) joins it
+  // there, and the two caps at the joint lie inside the union. Within a tenth of the radius, for
+  // tables that round their coordinates (TreeQSM's text export keeps 0.1 mm).
+  std::vector<std::array<bool, 2>> open(model.size(), {false, false});
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    const geom::ModelCylinder& c = model.cylinders[i];
+    if (c.parent < 0 || static_cast<std::size_t>(c.parent) == i || c.parent >= static_cast<std::int64_t>(model.size()))
+      continue;
+    const geom::ModelCylinder& p = model.cylinders[c.parent];
+    if (p.length() > 0 && (c.start - p.end).norm() <= 0.1 * std::max(c.startRadius, p.endRadius)) {
+      open[i][0] = true;
+      open[c.parent][1] = true;
+    }
+  }
+  return open;
+}
+
 // ---- the hierarchy ----------------------------------------------------------------------------
 
 struct CylinderModelIndex::Impl {
@@ -165,19 +183,7 @@ CylinderModelIndex::CylinderModelIndex(const geom::CylinderModel& model) : impl_
       throw OptionsError("cylinder model: piece " + std::to_string(i) + " has parent " + std::to_string(c.parent) +
                          " of " + std::to_string(model.size()) + " pieces");
   }
-  // Joints: a piece that starts where its parent ends (a chain of segments, a fork) joins it
-  // there, and the two caps at the joint lie inside the union. Within a tenth of the radius, for
-  // tables that round their coordinates (TreeQSM's text export keeps 0.1 mm).
-  std::vector<std::array<bool, 2>> open(model.size(), {false, false});
-  for (std::size_t i = 0; i < model.size(); ++i) {
-    const geom::ModelCylinder& c = model.cylinders[i];
-    if (c.parent < 0 || static_cast<std::size_t>(c.parent) == i) continue;
-    const geom::ModelCylinder& p = model.cylinders[c.parent];
-    if (p.length() > 0 && (c.start - p.end).norm() <= 0.1 * std::max(c.startRadius, p.endRadius)) {
-      open[i][0] = true;
-      open[c.parent][1] = true;
-    }
-  }
+  const std::vector<std::array<bool, 2>> open = jointCaps(model);
   for (std::size_t i = 0; i < model.size(); ++i) {
     const geom::ModelCylinder& c = model.cylinders[i];
     if (!(c.length() > 0)) continue;

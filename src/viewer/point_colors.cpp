@@ -4,6 +4,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
+#include <iterator>
 #include <cmath>
 #include <limits>
 
@@ -74,6 +76,11 @@ void DistanceColorGrid::build(const geom::PointCloud& cloud, double maxDistance)
   for (std::size_t i = 0; i < size_; ++i) points_[fill[cellOf[i]]++] = static_cast<std::uint32_t>(i);
   best_.assign(size_, std::numeric_limits<double>::infinity());
   touched_.clear();
+  surfaceKept_ = false;  // the kept surface colours were another cloud's
+  surfacePieces_.clear();
+  surface_.clear();
+  cellMarked_.assign(cells, 0);
+  markedCells_.clear();
 }
 
 void DistanceColorGrid::colors(const std::vector<Circle3>& circles, std::vector<Rgb>& out) {
@@ -121,42 +128,136 @@ std::vector<Rgb> plainColors(const geom::PointCloud& cloud, const Rgb& color) {
   return std::vector<Rgb>(cloud.size(), color);
 }
 
-void DistanceColorGrid::surfaceColors(const geom::CylinderModel& model, std::vector<Rgb>& out) {
-  out.assign(size_, render::viridis(1.0));
-  if (!cloud_ || model.empty() || size_ == 0 || !(maxDistance_ > 0)) return;
-  const compare::CylinderModelIndex index(model);
-  if (index.size() == 0) return;
-  // The cells within maxDistance of some piece's box: only their points can be nearer than that.
-  std::vector<char> near(start_.size() - 1, 0);
-  for (const geom::ModelCylinder& c : model.cylinders) {
-    const geom::BBox b = c.bounds();
-    if (!b.min.allFinite() || !b.max.allFinite()) continue;
-    int lo[3], hi[3];
-    bool outside = false;
-    for (int k = 0; k < 3; ++k) {
-      const double a = (b.min[k] - maxDistance_ - origin_[k]) / cell_, z = (b.max[k] + maxDistance_ - origin_[k]) / cell_;
-      outside |= z < 0 || a > dims_[k];
-      lo[k] = std::clamp(static_cast<int>(std::floor(a)), 0, dims_[k] - 1);
-      hi[k] = std::clamp(static_cast<int>(std::floor(z)), 0, dims_[k] - 1);
-    }
-    if (outside) continue;
-    for (int z = lo[2]; z <= hi[2]; ++z)
-      for (int y = lo[1]; y <= hi[1]; ++y)
-        for (int x = lo[0]; x <= hi[0]; ++x)
-          near[(static_cast<std::size_t>(z) * dims_[1] + static_cast<std::size_t>(y)) * dims_[0] +
-               static_cast<std::size_t>(x)] = 1;
+namespace {
+
+/// The pieces of `model` that have a surface (non-zero length, as CylinderModelIndex keeps them),
+/// each with its open caps, sorted.
+std::vector<std::array<double, 10>> surfacePieces(const geom::CylinderModel& model) {
+  const std::vector<std::array<bool, 2>> open = compare::jointCaps(model);
+  std::vector<std::array<double, 10>> keys;
+  keys.reserve(model.size());
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    const geom::ModelCylinder& c = model.cylinders[i];
+    if (!(c.length() > 0)) continue;
+    keys.push_back({c.start.x(), c.start.y(), c.start.z(), c.end.x(), c.end.y(), c.end.z(), c.startRadius,
+                    c.endRadius, open[i][0] ? 1.0 : 0.0, open[i][1] ? 1.0 : 0.0});
   }
-  touched_.clear();
-  for (std::size_t cell = 0; cell < near.size(); ++cell)
-    if (near[cell]) touched_.insert(touched_.end(), points_.begin() + start_[cell], points_.begin() + start_[cell + 1]);
-  const double scale = 1.0 / maxDistance_;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched_.size(), 2048), [&](const auto& r) {
-    for (std::size_t j = r.begin(); j != r.end(); ++j) {
-      const std::uint32_t i = touched_[j];
-      out[i] = render::viridis(std::min(std::abs(index.signedDistance(cloud_->positions[i])) * scale, 1.0));
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+/// Changed pieces up to which each point is tested against their boxes (a few per edit).
+constexpr std::size_t kMaxBoxesPerPoint = 16;
+
+geom::BBox pieceBounds(const std::array<double, 10>& k) {
+  geom::ModelCylinder c;
+  c.start = Vec3(k[0], k[1], k[2]);
+  c.end = Vec3(k[3], k[4], k[5]);
+  c.startRadius = k[6];
+  c.endRadius = k[7];
+  return c.bounds();
+}
+
+}  // namespace
+
+void DistanceColorGrid::markCellsNear(const geom::BBox& b) {
+  if (!b.min.allFinite() || !b.max.allFinite()) return;
+  int lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) {
+    const double a = (b.min[k] - maxDistance_ - origin_[k]) / cell_, z = (b.max[k] + maxDistance_ - origin_[k]) / cell_;
+    if (z < 0 || a > dims_[k]) return;  // the grown box misses the cloud
+    lo[k] = std::clamp(static_cast<int>(std::floor(a)), 0, dims_[k] - 1);
+    hi[k] = std::clamp(static_cast<int>(std::floor(z)), 0, dims_[k] - 1);
+  }
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x) {
+        const std::size_t cell =
+            (static_cast<std::size_t>(z) * dims_[1] + static_cast<std::size_t>(y)) * dims_[0] + static_cast<std::size_t>(x);
+        if (cellMarked_[cell] || start_[cell] == start_[cell + 1]) continue;
+        cellMarked_[cell] = 1;
+        markedCells_.push_back(static_cast<std::uint32_t>(cell));
+      }
+}
+
+void DistanceColorGrid::measureMarkedCells(const compare::CylinderModelIndex& index,
+                                           const std::vector<geom::BBox>& changed) {
+  const Rgb beyond = render::viridis(1.0);
+  std::atomic<std::size_t> measured{0}, decided{0};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, markedCells_.size(), 4), [&](const auto& r) {
+    std::size_t pointsHere = 0, cellsHere = 0;
+    for (std::size_t m = r.begin(); m != r.end(); ++m) {
+      const std::uint32_t cell = markedCells_[m];
+      const std::uint32_t first = start_[cell], last = start_[cell + 1];
+      // The cell as a whole: a point within `spread` of the centroid is at least d - spread from
+      // the surface (outside every piece: the distance there is Euclidean). A margin of 1 % keeps
+      // rounding from deciding a point the one-by-one measure would put just inside the ramp.
+      Vec3 centroid = Vec3::Zero();
+      for (std::uint32_t j = first; j < last; ++j) centroid += cloud_->positions[points_[j]];
+      centroid /= static_cast<double>(last - first);
+      double spread = 0;
+      for (std::uint32_t j = first; j < last; ++j)
+        spread = std::max(spread, (cloud_->positions[points_[j]] - centroid).norm());
+      if (index.signedDistance(centroid) - spread >= 1.01 * maxDistance_) {
+        for (std::uint32_t j = first; j < last; ++j) surface_[points_[j]] = beyond;
+        ++cellsHere;
+        continue;
+      }
+      for (std::uint32_t j = first; j < last; ++j) {
+        const std::uint32_t i = points_[j];
+        const Vec3& p = cloud_->positions[i];
+        // Farther than maxDistance from every changed piece's box: its colour stays (the cell may
+        // reach up to a cell beyond the grown boxes).
+        if (!changed.empty() && std::none_of(changed.begin(), changed.end(), [&](const geom::BBox& b) {
+              return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all();
+            }))
+          continue;
+        const double d = std::abs(index.signedDistance(p));
+        surface_[i] = render::viridis(std::min(d / maxDistance_, 1.0));  // as surfaceDistanceColors
+        ++pointsHere;
+      }
     }
+    measured += pointsHere;
+    decided += cellsHere;
   });
-  touched_.clear();
+  lastMeasured_ = measured;
+  lastCellsDecided_ = decided;
+}
+
+void DistanceColorGrid::surfaceColors(const geom::CylinderModel& model, std::vector<Rgb>& out) {
+  lastMeasured_ = lastCellsDecided_ = 0;
+  if (!cloud_ || size_ == 0 || !(maxDistance_ > 0)) {
+    out.assign(size_, render::viridis(1.0));
+    return;
+  }
+  const compare::CylinderModelIndex index(model);  // throws before anything kept changes
+  std::vector<PieceKey> pieces = surfacePieces(model);
+  if (!surfaceKept_) {  // as after an empty model: every point beyond the ramp
+    surface_.assign(size_, render::viridis(1.0));
+    surfacePieces_.clear();
+    surfaceKept_ = true;
+  }
+  // The pieces in one model and not the other (as multisets): only near them can a colour change.
+  std::vector<PieceKey> changed;
+  std::set_symmetric_difference(surfacePieces_.begin(), surfacePieces_.end(), pieces.begin(), pieces.end(),
+                                std::back_inserter(changed));
+  // Each changed piece's box grown by maxDistance: the cells that reach into it are visited, and
+  // in them the points inside one of these boxes are measured (all of them, when many pieces
+  // changed: then testing each point against every box would cost more than it saves).
+  std::vector<geom::BBox> grown;
+  for (const PieceKey& k : changed) {
+    geom::BBox b = pieceBounds(k);
+    markCellsNear(b);
+    b.min.array() -= maxDistance_;
+    b.max.array() += maxDistance_;
+    grown.push_back(b);
+  }
+  if (grown.size() > kMaxBoxesPerPoint) grown.clear();
+  measureMarkedCells(index, grown);
+  for (std::uint32_t cell : markedCells_) cellMarked_[cell] = 0;
+  markedCells_.clear();
+  surfacePieces_ = std::move(pieces);
+  out = surface_;
 }
 
 std::vector<Rgb> surfaceDistanceColors(const geom::PointCloud& cloud, const geom::CylinderModel& model,

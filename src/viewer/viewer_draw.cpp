@@ -209,7 +209,7 @@ const std::vector<Rgb>& ViewerState::pointColors() {
         // The distance to the model's surface (its frustums, what fit-report measures): zero on
         // the tubes, also between two circles. A sketch with no two linked fitted nodes has no
         // surface yet: the distance to its fitted circles stands in.
-        const model::TreeModel tree = model::fromReconstruction(recon_->result(), sketch_.up);
+        const model::TreeModel tree = treeModel();
         if (!tree.cylinders.empty()) {
           distanceGrid_.surfaceColors(tree.cylinders, colors_);
           break;
@@ -237,6 +237,11 @@ const std::vector<Rgb>& ViewerState::pointColors() {
     ++colorsVersion_;
   }
   return colors_;
+}
+
+model::TreeModel ViewerState::treeModel() const {
+  if (!recon_) return {};
+  return model::fromReconstruction(recon_->result(), sketch_.up);
 }
 
 NodeFitView ViewerState::nodeFit(NodeId id) const { return recon_->nodeFit(id); }

@@ -346,6 +346,38 @@ TEST(SketchDocument, TheDistanceColouringIsZeroOnTheModelsSurface) {
   EXPECT_NE(legend.note.find("% of the cloud's"), std::string::npos) << legend.note;
 }
 
+// In the window, the distance colouring kept from edit to edit is the colouring measured from
+// scratch on the model the edits leave: nodes dragged, one added, one undone.
+TEST(SketchDocument, TheDistanceColouringAfterEditsIsTheFullMeasure) {
+  ViewerState s;
+  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  ASSERT_TRUE(s.setCloud(trunk(0.0, 20000), geom::UpAxis::Y));
+  s.setColorMode(ColorMode::CircleDistance);
+  for (double y : {0.5, 1.5, 2.5})
+    s.clickAt(s.camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
+  ASSERT_EQ(s.fittedCount(), 3u);
+  const double scale = s.options().distanceColorScale * s.bounds().diagonal();
+  auto check = [&](const char* what) {
+    const std::vector<Rgb> colors = s.pointColors();
+    const geom::CylinderModel model = s.treeModel().cylinders;
+    ASSERT_FALSE(model.empty()) << what;
+    EXPECT_EQ(colors, surfaceDistanceColors(s.cloud(), model, scale)) << what;
+  };
+  check("three nodes");
+  const sketch::NodeId middle = s.nodeAt(s.camera().project(Vec3(0, 1.5, 0)).head<2>());
+  ASSERT_NE(middle, sketch::kNoNode);
+  const Vec2 at = s.sketch().node(middle).screen;
+  ASSERT_TRUE(s.moveNodeTo(middle, at + Vec2(6, -4)));
+  check("middle node dragged");
+  EXPECT_GT(s.distanceColorGrid().lastPointsMeasured(), 0u);
+  s.clickAt(s.camera().project(Vec3(0, 3.5, 0)).head<2>(), MouseButton::Left, kModShift);
+  check("a node added on top");
+  ASSERT_TRUE(s.undo());
+  check("the node undone");
+  ASSERT_TRUE(s.moveNodeTo(middle, at));
+  check("dragged back");
+}
+
 TEST(SketchDocument, ReattachsFirstClickNamesTheNodeAndShiftTurnsTheLimbRound) {
   test::TempDir dir;
   ViewerState s;

@@ -19,6 +19,7 @@
 // says how many metres one unit is, and every length in the reports is in metres.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -37,6 +38,12 @@ double signedDistance(const geom::Vec3& p, const geom::ModelCylinder& c);
 /// Same, with the start and/or end cap open (joined to a neighbouring piece): for a point inside,
 /// the depth is measured to the side and the closed caps only. Outside, caps always count.
 double signedDistance(const geom::Vec3& p, const geom::ModelCylinder& c, bool openStart, bool openEnd);
+
+/// Per piece of `model`, whether its start cap ([0]) and its end cap ([1]) are joints, open as
+/// CylinderModelIndex treats them: a piece that starts within a tenth of its radius of its
+/// parent's end opens its start cap and the parent's end cap. Parent indices out of range are
+/// ignored (the index rejects them).
+std::vector<std::array<bool, 2>> jointCaps(const geom::CylinderModel& model);
 
 /// A bounding-volume hierarchy over the pieces' boxes, answering "signed distance to the union"
 /// (as above; branch and bound: boxes are skipped only when they cannot hold a smaller value), so

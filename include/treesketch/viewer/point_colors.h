@@ -1,9 +1,11 @@
-// Point colours for the viewer: by distance to the nearest fitted circle (how well the
-// reconstruction explains each point) on the project's ramp, or plain; the ramp and the height
+// Point colours for the viewer: by distance to the model's surface, or to the nearest fitted
+// circle before there is a surface (how well the reconstruction explains each point), on the
+// project's ramp, or plain; the ramp and the height
 // colouring are render/color_map.h's (one colour module for pictures and the window). Plain C++,
 // no GL; RGB bytes, one per point.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -11,6 +13,10 @@
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/types.h"
 #include "treesketch/render/image.h"
+
+namespace treesketch::compare {
+class CylinderModelIndex;
+}
 
 namespace treesketch::viewer {
 
@@ -47,12 +53,31 @@ class DistanceColorGrid {
   }
   /// The colours (as circleDistanceColors(cloud, circles, maxDistance)) into `out`.
   void colors(const std::vector<Circle3>& circles, std::vector<Rgb>& out);
-  /// The colours of surfaceDistanceColors(cloud, model, maxDistance) into `out`, querying only the
-  /// points of the cells within maxDistance of a piece's box (every other point is at least that
-  /// far from the surface, so it gets the ramp's end colour anyway).
+  /// The colours of surfaceDistanceColors(cloud, model, maxDistance) into `out`. The grid keeps the
+  /// colours of the model it was given last, and measures again only the points within
+  /// maxDistance of the box of a piece that differs between the two models (added, removed, moved,
+  /// resized, or joined to its parent differently; a piece is compared by its exact values). Any
+  /// other point's distance is the minimum over the same pieces in both models, or is at least
+  /// maxDistance in both (the ramp's end colour): its colour cannot change. A cell whose centroid
+  /// lies farther than maxDistance plus the cell's spread (its farthest point from the centroid)
+  /// from the surface is wholly beyond the ramp: its points are not measured one by one. The
+  /// first call after build() measures near every piece. Throws OptionsError (as
+  /// compare::CylinderModelIndex) for a piece with non-finite values, leaving the grid as it was.
   void surfaceColors(const geom::CylinderModel& model, std::vector<Rgb>& out);
+  /// Drops the kept surface colours: the next surfaceColors measures near every piece, as the
+  /// first after build() (the reference the kept colours are compared with).
+  void forgetSurface() { surfaceKept_ = false; }
+  /// Points whose distance the last surfaceColors call measured one by one, and cells it decided
+  /// as a whole (beyond the ramp's end); for tests and benchmarks.
+  std::size_t lastPointsMeasured() const { return lastMeasured_; }
+  std::size_t lastCellsDecided() const { return lastCellsDecided_; }
 
  private:
+  /// A piece as the distance sees it: start, end, radii, open start and end caps.
+  using PieceKey = std::array<double, 10>;
+  void markCellsNear(const geom::BBox& box);
+  void measureMarkedCells(const compare::CylinderModelIndex& index, const std::vector<geom::BBox>& changed);
+
   const geom::PointCloud* cloud_ = nullptr;
   std::size_t size_ = 0;
   double maxDistance_ = 0, cell_ = 1;
@@ -61,6 +86,13 @@ class DistanceColorGrid {
   std::vector<std::uint32_t> start_, points_;  ///< CSR: cell c holds points_[start_[c] .. start_[c+1])
   std::vector<double> best_;
   std::vector<std::uint32_t> touched_;
+  // The surface colouring kept between calls: the last model's pieces (sorted) and colours.
+  bool surfaceKept_ = false;
+  std::vector<PieceKey> surfacePieces_;
+  std::vector<Rgb> surface_;
+  std::vector<char> cellMarked_;
+  std::vector<std::uint32_t> markedCells_;
+  std::size_t lastMeasured_ = 0, lastCellsDecided_ = 0;
 };
 
 /// One colour per point by its distance to the surface of a cylinder model (the union of its

@@ -23,9 +23,17 @@ class PointLod {
   void positions(const geom::PointCloud& cloud, const geom::Vec3& origin, std::vector<float>& out) const;
   /// Colours in the shuffled order (3 bytes a point); `colors` has one per point.
   void colors(const std::vector<render::Rgb>& colors, std::vector<std::uint8_t>& out) const;
+  /// The same colours in the shuffled order, kept between calls: a call rewrites only the points
+  /// whose colour differs from the last call's (a sequential pass over `colors`, instead of a
+  /// gather in random order over all of them; an edit in the distance colouring changes a few
+  /// thousand). `colors` has one per point; the first call, or one after build(), fills it all.
+  const std::vector<std::uint8_t>& keptColors(const std::vector<render::Rgb>& colors);
 
  private:
   std::vector<std::uint32_t> order_;
+  std::vector<std::uint32_t> place_;  ///< point -> its place in order_
+  std::vector<render::Rgb> keptFrom_;  ///< the colours keptColors() was last given
+  std::vector<std::uint8_t> kept_;     ///< and them in the shuffled order
 };
 
 /// The point budget for the next moving frame: scales `current` by target / measured frame time,

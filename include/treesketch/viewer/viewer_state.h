@@ -28,6 +28,7 @@
 #include "treesketch/geom/camera.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/tri_mesh.h"
+#include "treesketch/model/tree_model.h"
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/sketch/sketch.h"
 #include "treesketch/util/progress.h"
@@ -458,6 +459,11 @@ class ViewerState {
   const std::vector<Rgb>& pointColors();
   /// Increases whenever pointColors() would change.
   std::uint64_t colorsVersion() const { return colorsVersion_; }
+  /// The model the fitted sketch makes (model::fromReconstruction): what the exports write and
+  /// the distance colouring measures against. Empty with no cloud or no two linked fitted nodes.
+  model::TreeModel treeModel() const;
+  /// The distance colouring's grid (its last call's counts; for tests and benchmarks).
+  const DistanceColorGrid& distanceColorGrid() const { return distanceGrid_; }
   /// Markers of all nodes under the current camera.
   std::vector<NodeMarker> nodeMarkers() const;
   /// The node a click at `screen` picks: of the markers within the pick radius, the nearest to
