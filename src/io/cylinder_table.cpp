@@ -401,6 +401,22 @@ void checkIds(const geom::CylinderModel& model, const std::vector<std::int64_t>&
 
 }  // namespace
 
+namespace {
+
+/// A coordinate with nine significant digits, and more where the number is large, so that it
+/// keeps a micrometre-scale absolute precision: a LAS file's coordinates 1e6 m from its origin
+/// (projected coordinates) written with nine digits alone would be rounded to the centimetre.
+std::string coordinate(double v) {
+  const double magnitude = std::abs(v);
+  const int integerDigits = magnitude >= 1 ? static_cast<int>(std::floor(std::log10(magnitude))) + 1 : 0;
+  const int digits = std::clamp(integerDigits + 6, 9, 17);
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+}  // namespace
+
 void writeCylinderCsv(std::ostream& out, const geom::CylinderModel& model, const std::vector<std::int64_t>& ids) {
   checkIds(model, ids);
   const auto id = [&](std::int64_t i) { return ids.empty() ? i : ids[static_cast<std::size_t>(i)]; };
@@ -408,10 +424,12 @@ void writeCylinderCsv(std::ostream& out, const geom::CylinderModel& model, const
   char line[512];
   for (std::size_t i = 0; i < model.size(); ++i) {
     const geom::ModelCylinder& c = model.cylinders[i];
-    std::snprintf(line, sizeof line, "%lld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g\n",
+    std::snprintf(line, sizeof line, "%lld,%lld,%s,%s,%s,%s,%s,%s,%.9g,%.9g,%d,%.9g\n",
                   static_cast<long long>(id(static_cast<std::int64_t>(i))),
-                  static_cast<long long>(c.parent < 0 ? -1 : id(c.parent)), c.start.x(), c.start.y(), c.start.z(),
-                  c.end.x(), c.end.y(), c.end.z(), c.endRadius, c.length(), c.branchOrder, c.startRadius);
+                  static_cast<long long>(c.parent < 0 ? -1 : id(c.parent)), coordinate(c.start.x()).c_str(),
+                  coordinate(c.start.y()).c_str(), coordinate(c.start.z()).c_str(), coordinate(c.end.x()).c_str(),
+                  coordinate(c.end.y()).c_str(), coordinate(c.end.z()).c_str(), c.endRadius, c.length(),
+                  c.branchOrder, c.startRadius);
     buf += line;
   }
   out << buf;
@@ -436,8 +454,9 @@ void writeTreeQsmCylinders(std::ostream& out, const geom::CylinderModel& model, 
     const double len = c.length();
     const geom::Vec3 axis = len > 0 ? geom::Vec3((c.end - c.start) / len) : geom::upVector(up);
     std::snprintf(line, sizeof line,
-                  "%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%.9g\t%lld\t%lld\t%lld\t%d\t%lld\t0\t0\t0\t%.9g\n", r, len,
-                  c.start.x(), c.start.y(), c.start.z(), axis.x(), axis.y(), axis.z(),
+                  "%.9g\t%.9g\t%s\t%s\t%s\t%.9g\t%.9g\t%.9g\t%lld\t%lld\t%lld\t%d\t%lld\t0\t0\t0\t%.9g\n", r, len,
+                  coordinate(c.start.x()).c_str(), coordinate(c.start.y()).c_str(), coordinate(c.start.z()).c_str(),
+                  axis.x(), axis.y(), axis.z(),
                   static_cast<long long>(c.parent + 1), static_cast<long long>(b.extension[i] + 1),
                   static_cast<long long>(b.branch[i] + 1), b.order[i], static_cast<long long>(b.position[i] + 1), r);
     buf += line;

@@ -55,6 +55,32 @@ TEST(CylinderTable, TreesketchCsvWithStartRadius) {
   EXPECT_EQ(t.model.cylinders[2].branchOrder, 1);
 }
 
+TEST(CylinderTable, FarCoordinatesKeepTheirMillimetres) {
+  // Projected coordinates a million metres from the origin (a LAS file's usual frame): nine
+  // significant digits alone would round them to the centimetre.
+  geom::CylinderModel m;
+  geom::ModelCylinder c;
+  c.start = Vec3(1176139.2934, 2857173.9712, 0.6555);
+  c.end = Vec3(1176139.2601, 2857173.9843, 1.0925);
+  c.startRadius = c.endRadius = 0.17;
+  m.cylinders.push_back(c);
+  for (const bool qsm : {false, true}) {
+    std::ostringstream out;
+    if (qsm)
+      io::writeTreeQsmCylinders(out, m, geom::UpAxis::Z);
+    else
+      io::writeCylinderCsv(out, m, {});
+    const CylinderTable t = parse(out.str());
+    ASSERT_EQ(t.model.size(), 1u) << out.str();
+    EXPECT_LT((t.model.cylinders[0].start - c.start).norm(), 1e-5) << out.str();
+    EXPECT_LT((t.model.cylinders[0].end - c.end).norm(), 1e-5) << out.str();
+  }
+  std::ostringstream small;  // small numbers keep their nine digits
+  m.cylinders[0].start = Vec3(0.5, 0.25, 1.0 / 3.0);
+  io::writeCylinderCsv(small, m, {});
+  EXPECT_NE(small.str().find(",0.5,0.25,0.333333333,"), std::string::npos) << small.str();
+}
+
 TEST(CylinderTable, TreesketchCsvWithoutStartRadiusTakesTheParentRow) {
   const CylinderTable t = parse(
       "id,parent,start_x,start_y,start_z,end_x,end_y,end_z,radius,length,branch_order\n"
