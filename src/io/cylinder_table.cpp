@@ -389,10 +389,14 @@ namespace treesketch::io {
 
 namespace {
 
-void checkIds(const geom::CylinderModel& model, const std::vector<std::int64_t>& ids) {
+void checkIds(const geom::CylinderModel& model, const std::vector<std::int64_t>& ids,
+              const std::vector<char>& measured) {
   if (!ids.empty() && ids.size() != model.size())
     throw OptionsError("cylinder table: " + std::to_string(ids.size()) + " ids for " + std::to_string(model.size()) +
                        " pieces");
+  if (!measured.empty() && measured.size() != model.size())
+    throw OptionsError("cylinder table: " + std::to_string(measured.size()) + " measured flags for " +
+                       std::to_string(model.size()) + " pieces");
   for (const geom::ModelCylinder& c : model.cylinders)
     if (c.parent >= static_cast<std::int64_t>(model.size()))
       throw OptionsError("cylinder table: parent index " + std::to_string(c.parent) + " out of range (" +
@@ -417,19 +421,23 @@ std::string coordinate(double v) {
 
 }  // namespace
 
-void writeCylinderCsv(std::ostream& out, const geom::CylinderModel& model, const std::vector<std::int64_t>& ids) {
-  checkIds(model, ids);
+void writeCylinderCsv(std::ostream& out, const geom::CylinderModel& model, const std::vector<std::int64_t>& ids,
+                      const std::vector<char>& measured) {
+  checkIds(model, ids, measured);
   const auto id = [&](std::int64_t i) { return ids.empty() ? i : ids[static_cast<std::size_t>(i)]; };
-  std::string buf = std::string(kCylinderCsvHeader) + "\n";
+  std::string buf = std::string(kCylinderCsvHeader);
+  if (!measured.empty()) buf += std::string(",") + kCylinderCsvMeasuredColumn;
+  buf += "\n";
   char line[512];
   for (std::size_t i = 0; i < model.size(); ++i) {
     const geom::ModelCylinder& c = model.cylinders[i];
-    std::snprintf(line, sizeof line, "%lld,%lld,%s,%s,%s,%s,%s,%s,%.9g,%.9g,%d,%.9g\n",
+    const char* source = measured.empty() ? "" : (measured[i] ? ",1" : ",0");
+    std::snprintf(line, sizeof line, "%lld,%lld,%s,%s,%s,%s,%s,%s,%.9g,%.9g,%d,%.9g%s\n",
                   static_cast<long long>(id(static_cast<std::int64_t>(i))),
                   static_cast<long long>(c.parent < 0 ? -1 : id(c.parent)), coordinate(c.start.x()).c_str(),
                   coordinate(c.start.y()).c_str(), coordinate(c.start.z()).c_str(), coordinate(c.end.x()).c_str(),
                   coordinate(c.end.y()).c_str(), coordinate(c.end.z()).c_str(), c.endRadius, c.length(),
-                  c.branchOrder, c.startRadius);
+                  c.branchOrder, c.startRadius, source);
     buf += line;
   }
   out << buf;
@@ -437,10 +445,10 @@ void writeCylinderCsv(std::ostream& out, const geom::CylinderModel& model, const
 }
 
 void writeCylinderCsv(const std::filesystem::path& path, const geom::CylinderModel& model,
-                      const std::vector<std::int64_t>& ids) {
-  checkIds(model, ids);  // bad input fails before the file
+                      const std::vector<std::int64_t>& ids, const std::vector<char>& measured) {
+  checkIds(model, ids, measured);  // bad input fails before the file
   writeFileAtomically(
-      path, [&](std::ostream& out) { writeCylinderCsv(out, model, ids); }, false);
+      path, [&](std::ostream& out) { writeCylinderCsv(out, model, ids, measured); }, false);
 }
 
 void writeTreeQsmCylinders(std::ostream& out, const geom::CylinderModel& model, geom::UpAxis up) {

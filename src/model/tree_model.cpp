@@ -358,7 +358,7 @@ nlohmann::json reportJson(const ModelMeasures& m, nlohmann::json header) {
 
 void writeOutputs(const TreeModel& model, const ModelMeasures& measures, const OutputPaths& paths,
                   const nlohmann::json& reportHeader) {
-  if (!paths.cylinders.empty()) io::writeCylinderCsv(paths.cylinders, model.cylinders, model.ids);
+  if (!paths.cylinders.empty()) io::writeCylinderCsv(paths.cylinders, model.cylinders, model.ids, model.measured);
   if (!paths.qsm.empty()) io::writeTreeQsmCylinders(paths.qsm, model.cylinders, model.up);
   if (!paths.mesh.empty()) io::writeMesh(paths.mesh, model.mesh);
   if (!paths.metrics.empty()) writeJson(paths.metrics, compare::toJson(measures.metrics));

@@ -50,6 +50,7 @@ def test_every_output_reads_back(tree_model, tmp_path):
     assert np.array_equal(table["id"], c["id"]) and np.array_equal(table["parent"], c["parent"])
     assert np.allclose(table["radius"], c["radius"], rtol=1e-8)
     assert np.allclose(table["start_radius"], c["start_radius"], rtol=1e-8)
+    assert np.array_equal(table["measured"].astype(bool), c["measured"])
     tree_model.write(str(tmp_path / "m.txt"))
     qsm = (tmp_path / "m.txt").read_text().splitlines()
     assert len(qsm) == len(c["id"]) + 1 and "radius" in qsm[0]  # a header, then a row per cylinder

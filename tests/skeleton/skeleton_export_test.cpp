@@ -21,20 +21,23 @@ TEST(SkeletonExport, CsvAndObjParseBack) {
   ASSERT_GT(s.nodes.size(), 5u);
   test::TempDir dir;
   const model::TreeModel m = model::fromSkeletonNodes(s.nodes, {}, geom::UpAxis::Y);
-  io::writeCylinderCsv(dir / "cyl.csv", m.cylinders, m.ids);
+  model::TreeModel flagged = m;  // every other piece measured: the column follows the flags
+  for (std::size_t i = 0; i < flagged.measured.size(); ++i) flagged.measured[i] = static_cast<char>(i % 2);
+  ASSERT_EQ(flagged.measured.size(), m.cylinders.size());
+  io::writeCylinderCsv(dir / "cyl.csv", m.cylinders, m.ids, flagged.measured);
   skeleton::writeSkeletonObj(dir / "skel.obj", s.nodes);
 
   std::istringstream csv(test::readText(dir / "cyl.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, io::kCylinderCsvHeader);
+  EXPECT_EQ(line, std::string(io::kCylinderCsvHeader) + "," + io::kCylinderCsvMeasuredColumn);
   std::size_t rows = 0;
   while (std::getline(csv, line)) {
     std::istringstream row(line);
     std::vector<double> v;
     std::string cell;
     while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
-    ASSERT_EQ(v.size(), 12u);
+    ASSERT_EQ(v.size(), 13u);
     const auto id = static_cast<std::size_t>(v[0]);
     ASSERT_LT(id, s.nodes.size());
     const auto& n = s.nodes[id];
@@ -47,6 +50,7 @@ TEST(SkeletonExport, CsvAndObjParseBack) {
     EXPECT_EQ(static_cast<int>(v[10]), n.branchOrder);
     // The parent's radius; a branch's first row its own (no cone of the parent's thickness).
     EXPECT_NEAR(v[11], n.branchOrder > p.branchOrder ? std::min(p.radius, n.radius) : p.radius, 1e-6);
+    EXPECT_EQ(static_cast<int>(v[12]), static_cast<int>(rows % 2));
     ++rows;
   }
   EXPECT_EQ(rows, s.nodes.size() - 1);

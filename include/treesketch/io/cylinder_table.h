@@ -52,16 +52,22 @@ CylinderTable parseCylinderTable(std::string_view text, const std::string& sourc
 /// Header line of treesketch's cylinder table (CSV).
 inline constexpr const char* kCylinderCsvHeader =
     "id,parent,start_x,start_y,start_z,end_x,end_y,end_z,radius,length,branch_order,start_radius";
+/// The column writeCylinderCsv adds after start_radius when it is given the measured flags.
+inline constexpr const char* kCylinderCsvMeasuredColumn = "measured";
 
 /// Writes `model` as treesketch's cylinder table: one row per piece, in model order: its id, its
 /// parent's id (-1 for none), start and end points, radius (the end's), length, branch order and
-/// start radius. `ids` gives each piece's id (an automatic model uses the node each piece ends at);
+/// start radius, and whether its end radius was measured (1: a circle fitted to the points) or
+/// inferred (0: from the tree's allometry, the pipe model, its neighbours) — that column only when
+/// `measured` is given. `ids` gives each piece's id (an automatic model uses the node each piece ends at);
 /// empty = the piece's index. Numbers with 9 significant digits; readCylinderTable reads it back to
 /// the same frustums. Throws OptionsError when `ids` has the wrong size or a parent index is out of
-/// range; the path form writes atomically (OutputError).
-void writeCylinderCsv(std::ostream& out, const geom::CylinderModel& model, const std::vector<std::int64_t>& ids = {});
+/// range or `measured` is neither empty nor one flag per piece; the path form writes atomically
+/// (OutputError).
+void writeCylinderCsv(std::ostream& out, const geom::CylinderModel& model, const std::vector<std::int64_t>& ids = {},
+                      const std::vector<char>& measured = {});
 void writeCylinderCsv(const std::filesystem::path& path, const geom::CylinderModel& model,
-                      const std::vector<std::int64_t>& ids = {});
+                      const std::vector<std::int64_t>& ids = {}, const std::vector<char>& measured = {});
 
 /// Header of TreeQSM's cylinder text export (tab separated; start_point and axis_direction are
 /// three columns each, so a row has 17 numbers).
