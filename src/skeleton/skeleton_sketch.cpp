@@ -473,7 +473,14 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
   // 4c. No tube thicker than the surface its points show (a scanner sees the bark).
   const auto t1 = std::chrono::steady_clock::now();
   const double voxel = res.skeleton.graph.voxelSize;
-  res.noise = detail::measuredNoise(res.fits, res.fitAccepted, -1.0);
+  // The noise: the smaller of the tracked stem's points' spread and the circles' (each is the
+  // scanner's noise plus the shape's own departure from a circle: a polygonal or rough stem, a
+  // leafy crown's circles).
+  {
+    const double onStem = detail::stemNoise(res.model, cloud, voxel);
+    const double onFits = detail::measuredNoise(res.fits, res.fitAccepted, cloud, -1.0);
+    res.noise = onStem > 0 && onFits > 0 ? std::min(onStem, onFits) : std::max(onStem, onFits);
+  }
   res.noiseMeasured = res.noise > 0;
   if (!res.noiseMeasured) res.noise = 0.5 * voxel;
 

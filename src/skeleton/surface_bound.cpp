@@ -24,11 +24,19 @@ using geom::Vec3;
 /// 15-25 %; 0.5 changed nothing on the tuning clouds (docs/notes/radii_and_volume.md).
 constexpr double kInsideQuantile = 0.25;
 /// The margin, in noise. A surface scanned with Gaussian noise σ has its lower quartile at
-/// r − 0.67σ, so any margin above that keeps a true radius; the noise is the RMS of RANSAC
-/// inliers, which the inlier band truncates, and bark is rougher than a circle. Of 2 and 4, chosen
-/// on the tuning clouds alone, 4 keeps the clean scans' volume (2 took 10 % off archi_Tree_2 and
-/// voxr_t0, whose tubes their points do not lie inside).
-constexpr double kMarginNoise = 4.0;
+/// r − 0.67σ, so any margin above that keeps a true radius; bark is rougher than a circle and a
+/// branch's axis is only known to about the noise. Of 1.5, 2 and 3 (with the noise of
+/// stemNoise / measuredNoise), chosen on the tuning clouds: 2 (3 left adtree_tree7 with 1.3 % of
+/// its points inside and 1.33× TreeQSM's volume; 1.5 took 2-3 more points of volume off the
+/// synthetic trees' sphere scans, docs/notes/radii_and_volume.md).
+constexpr double kMarginNoise = 2.0;
+/// The circles' noise is the lower quartile of their spreads: a well-sampled branch's circle shows
+/// the scanner's noise, a circle around a leaf cluster or a twig's blob of points a wider spread
+/// (of the median and the lower quartile, chosen on the tuning clouds: the quartile left
+/// adtree_tree7 with 1.0 % of its points inside instead of 1.2 %, the others within 0.1 point).
+constexpr double kFitNoiseQuantile = 0.25;
+/// The stem's noise is measured over windows of this many nodes along it.
+constexpr std::size_t kStemWindow = 3;
 /// A node judged on fewer points than this keeps its radius.
 constexpr std::size_t kMinPoints = 12;
 /// Points measured at most: every k-th point of a larger cloud (deterministic), enough for the
@@ -81,12 +89,63 @@ std::vector<std::vector<double>> distancesPerNode(const std::vector<SkeletonNode
 
 }  // namespace
 
-double measuredNoise(const std::vector<fit::NodeResult>& fits, const std::vector<char>& accepted, double fallback) {
-  std::vector<double> rms;
-  for (std::size_t i = 0; i < fits.size() && i < accepted.size(); ++i)
-    if (accepted[i] && std::isfinite(fits[i].rms) && fits[i].rms >= 0) rms.push_back(fits[i].rms);
-  if (rms.size() < 3) return fallback;
-  return quantile(rms, 0.5);
+namespace {
+
+/// 1.4826 × the median absolute residual of the fit's test points about its circle (a robust σ),
+/// or NaN when it has too few.
+double fitNoise(const fit::NodeResult& f, const geom::PointCloud& cloud, std::vector<double>& residuals) {
+  constexpr std::size_t kMinTestPoints = 12;
+  constexpr double kMadToSigma = 1.4826;  // a normal distribution's σ over its median absolute deviation
+  if (f.testIndices.size() < kMinTestPoints || !(f.radius > 0)) return std::nan("");
+  residuals.clear();
+  for (const std::uint32_t id : f.testIndices) {
+    if (id >= cloud.size()) continue;
+    Vec3 d = cloud.positions[id] - f.centre;
+    d -= d.dot(f.normal) * f.normal;
+    residuals.push_back(std::abs(d.norm() - f.radius));
+  }
+  if (residuals.size() < kMinTestPoints) return std::nan("");
+  return kMadToSigma * quantile(residuals, 0.5);
+}
+
+}  // namespace
+
+double measuredNoise(const std::vector<fit::NodeResult>& fits, const std::vector<char>& accepted,
+                     const geom::PointCloud& cloud, double fallback) {
+  std::vector<double> perFit, residuals;
+  for (std::size_t i = 0; i < fits.size() && i < accepted.size(); ++i) {
+    if (!accepted[i]) continue;
+    const double sigma = fitNoise(fits[i], cloud, residuals);
+    if (std::isfinite(sigma)) perFit.push_back(sigma);
+  }
+  if (perFit.size() < 3) return fallback;
+  return quantile(perFit, kFitNoiseQuantile);
+}
+
+double stemNoise(const std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double voxel) {
+  constexpr double kMadToSigma = 1.4826;
+  constexpr std::size_t kMinStemPoints = 30;
+  if (model.size() < 2 || cloud.empty() || !(voxel > 0)) return -1.0;
+  std::size_t stemNodes = 0;
+  for (const SkeletonNode& n : model) stemNodes += n.stem ? 1 : 0;
+  if (stemNodes < 3) return -1.0;
+  // Points up to two voxels outside a tube are its (a stem's noise is well under that).
+  const std::vector<std::vector<double>> perNode = distancesPerNode(model, cloud, 2 * voxel);
+  std::vector<double> perWindow, pooled, spread;
+  for (const auto& chain : branchChains(model)) {
+    for (std::size_t k = 0; k < chain.size(); k += kStemWindow) {
+      pooled.clear();
+      for (std::size_t j = k; j < std::min(chain.size(), k + kStemWindow); ++j)
+        if (model[chain[j]].stem) pooled.insert(pooled.end(), perNode[chain[j]].begin(), perNode[chain[j]].end());
+      if (pooled.size() < kMinStemPoints) continue;
+      const double centre = quantile(pooled, 0.5);
+      spread.clear();
+      for (const double rho : pooled) spread.push_back(std::abs(rho - centre));
+      perWindow.push_back(kMadToSigma * quantile(spread, 0.5));
+    }
+  }
+  if (perWindow.size() < 3) return -1.0;
+  return quantile(perWindow, 0.5);
 }
 
 SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,

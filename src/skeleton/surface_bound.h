@@ -16,9 +16,23 @@
 
 namespace treesketch::skeleton::detail {
 
-/// The scan's noise (cloud units): the median RMS residual of the accepted circle fits (fits[i]
-/// with accepted[i] != 0); `fallback` when fewer than three fits were accepted.
-double measuredNoise(const std::vector<fit::NodeResult>& fits, const std::vector<char>& accepted, double fallback);
+/// The scan's noise (cloud units), a robust standard deviation of the points about the accepted
+/// circles (fits[i] with accepted[i] != 0): per fit with at least 12 test points, 1.4826 × the
+/// median of |distance to the centre in the node's plane − radius| over all its test points
+/// (inliers or not: the inliers' own RMS is truncated by the RANSAC band, and a scan with 25 mm
+/// of range noise measured 13 mm by it), and the lower quartile over the fits (the cleanest
+/// circles: a leaf cluster's or a twig's blob spreads wider). `fallback` when fewer than three
+/// fits qualify.
+double measuredNoise(const std::vector<fit::NodeResult>& fits, const std::vector<char>& accepted,
+                     const geom::PointCloud& cloud, double fallback);
+
+/// The scan's noise measured on the stem (cloud units): the points of the tracked stem's tubes
+/// (model nodes with `stem`), in windows of three nodes, their distances to the axis' robust
+/// spread (1.4826 × the median absolute deviation from their median); the median over the
+/// windows. A stem is large and well sampled, and round: the spread of its points about its
+/// surface is the scanner's noise (and the bark's roughness), where a leafy crown's circles hold
+/// leaves about them. -1 when fewer than three windows have 30 points (no tracked stem).
+double stemNoise(const std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double voxel);
 
 /// What the bound did.
 struct SurfaceBoundStats {
