@@ -159,6 +159,9 @@ struct MeshClosestPoint::Impl {
   /// Improves `best` (a starting bound: +inf, the search distance or a warm start's answer) to
   /// the closest triangle of the mesh.
   void search(const Vec3& q, Best& best) const;
+  /// The same for a query far from the mesh (see kFarQuery): boxes measured in double, every
+  /// triangle of an opened leaf tested exactly, no float margin.
+  void searchFar(const Vec3& rel, const Vec3& q, Best& best) const;
 };
 
 void MeshClosestPoint::Impl::build(const geom::TriMesh& mesh) {
@@ -352,9 +355,76 @@ void MeshClosestPoint::Impl::layoutSlots(const geom::TriMesh& mesh, const std::v
   }
 }
 
+// A query farther from the mesh's centre than this many bounding-box diagonals is searched in
+// double (searchFar): the float margin grows with the query's distance (4e-6 of it) and from about
+// 10,000 diagonals it spans the whole mesh, so every box was opened and every triangle tested
+// exactly (a 7 m model against its cloud moved by 1e6 m took minutes, not a second). Distances
+// there are lengths (std::hypot), not squares, so they stay finite up to the largest doubles.
+constexpr double kFarQuery = 1000;
+
+inline double length(const Vec3& v) { return std::hypot(v.x(), v.y(), v.z()); }
+
+// Distance (double) from `rel` to lane i of a 4-wide node's float boxes (exact in double); +inf
+// for an empty lane (an inverted box).
+inline double boxDistanceExact(const Node4& n, int i, const Vec3& rel) {
+  auto axis = [](float lo, float hi, double x) { return std::max({double(lo) - x, x - double(hi), 0.0}); };
+  return std::hypot(axis(n.lox[i], n.hix[i], rel.x()), axis(n.loy[i], n.hiy[i], rel.y()),
+                    axis(n.loz[i], n.hiz[i], rel.z()));
+}
+
+void MeshClosestPoint::Impl::searchFar(const Vec3& rel, const Vec3& q, Best& best) const {
+  double bestDistance = std::sqrt(best.d2);
+  // A box is skipped when it is farther than the best by more than the rounding of its distance
+  // (a subtraction and a hypot: a few parts in 1e16). And once a triangle is found, when the whole
+  // mesh is narrower than that rounding (a 7 m model seen from 1e300 away), all its triangles are
+  // equally close to the last digit and any is the answer: searching on would test them all.
+  auto beyond = [&](double d) {
+    return d > bestDistance * (1 + 1e-15) || (best.slot >= 0 && scale < 1e-15 * bestDistance);
+  };
+  std::uint32_t stackIndex[128], stackCount[128];
+  double stackDistance[128];
+  stackIndex[0] = 0, stackCount[0] = 0, stackDistance[0] = 0.0;
+  int top = 1;
+  while (top > 0) {
+    --top;
+    if (beyond(stackDistance[top])) continue;
+    const std::uint32_t index = stackIndex[top], count = stackCount[top];
+    if (count > 0) {
+      for (std::uint32_t s = index; s < index + count; ++s) {
+        const Vec3 c = closestPointOnTriangle(q, tris[s].a, tris[s].b, tris[s].c);
+        const double d = length(c - q);
+        if (d < bestDistance || (best.slot < 0 && d <= bestDistance)) bestDistance = d, best.slot = s, best.point = c;
+      }
+      continue;
+    }
+    const Node4& n = nodes4[index];
+    double d[4];
+    int order[4], k = 0;
+    for (int i = 0; i < 4; ++i) {
+      if (n.count[i] == 0 && n.child[i] == 0) continue;  // an empty lane (see search)
+      d[i] = boxDistanceExact(n, i, rel);
+      if (beyond(d[i])) continue;
+      int j = k++;  // by decreasing distance: the nearest ends on top of the stack
+      while (j > 0 && d[order[j - 1]] < d[i]) {
+        order[j] = order[j - 1];
+        --j;
+      }
+      order[j] = i;
+    }
+    if (top + k > 128) k = 128 - top;  // unreachable (as in search)
+    for (int j = 0; j < k; ++j) {
+      stackIndex[top] = n.child[order[j]], stackCount[top] = n.count[order[j]], stackDistance[top] = d[order[j]];
+      ++top;
+    }
+  }
+  best.d2 = bestDistance * bestDistance;  // +inf past 1.3e154, as the squared distances of search
+}
+
 void MeshClosestPoint::Impl::search(const Vec3& q, Best& best) const {
   if (nodes4.empty()) return;
   const Vec3 rel = q - origin;
+  const double far = rel.cwiseAbs().maxCoeff();
+  if (far > kFarQuery * scale && std::isfinite(far)) return searchFar(rel, q, best);
   // Clamped into float's range first (a cast out of range is undefined): a farther query sees
   // every box at +inf, and the exact double test below decides.
   auto toFloat = [](double x) {
@@ -451,6 +521,7 @@ ClosestHit MeshClosestPoint::Impl::answer(const Vec3& q, double maxDistance, std
   if (best.slot < 0) return hit;
   hit.point = best.point;
   hit.distance = std::sqrt(best.d2);
+  if (std::isinf(hit.distance)) hit.distance = length(best.point - q);  // its square overflowed (past 1.3e154)
   hit.index = best.slot;  // a slot; mapped to the input triangle by the caller
   return hit;
 }
