@@ -159,9 +159,10 @@ struct MeshClosestPoint::Impl {
   /// Improves `best` (a starting bound: +inf, the search distance or a warm start's answer) to
   /// the closest triangle of the mesh.
   void search(const Vec3& q, Best& best) const;
-  /// The same for a query far from the mesh (see kFarQuery): boxes measured in double, every
-  /// triangle of an opened leaf tested exactly, no float margin.
-  void searchFar(const Vec3& rel, const Vec3& q, Best& best) const;
+  /// The answer for a query far from the mesh (see kFarQuery): boxes measured in double, every
+  /// triangle of an opened leaf tested exactly, no float margin, no warm start (so a batch and a
+  /// single query search alike and name the same triangle).
+  ClosestHit answerFar(const Vec3& rel, const Vec3& q, double maxDistance) const;
 };
 
 void MeshClosestPoint::Impl::build(const geom::TriMesh& mesh) {
@@ -355,31 +356,41 @@ void MeshClosestPoint::Impl::layoutSlots(const geom::TriMesh& mesh, const std::v
   }
 }
 
-// A query farther from the mesh's centre than this many bounding-box diagonals is searched in
-// double (searchFar): the float margin grows with the query's distance (4e-6 of it) and from about
+// A query farther from the mesh's centre than this many bounding-box diagonals is answered in
+// double (answerFar): the float margin grows with the query's distance (4e-6 of it) and from about
 // 10,000 diagonals it spans the whole mesh, so every box was opened and every triangle tested
-// exactly (a 7 m model against its cloud moved by 1e6 m took minutes, not a second). Distances
-// there are lengths (std::hypot), not squares, so they stay finite up to the largest doubles.
-constexpr double kFarQuery = 1000;
+// exactly (a 7 m model against its cloud moved by 1e6 m took minutes, not a second). Its distances
+// stay finite up to the largest doubles. A query within kFarQueryFloor of the centre (a mesh of
+// subnormal size) keeps the float path, whose handling of squared distances that underflow was
+// fuzzed; no distance that far out underflows.
+constexpr double kFarQuery = 1000, kFarQueryFloor = 1e-100;
 
-inline double length(const Vec3& v) { return std::hypot(v.x(), v.y(), v.z()); }
+// A far query's distances: the root of the squared distance, as every answer reports it
+// (ClosestHit::distance), unless the square overflowed (past 1.3e154): then std::hypot.
+inline double length(double x, double y, double z) {
+  const double n2 = x * x + y * y + z * z;
+  return std::isfinite(n2) ? std::sqrt(n2) : std::hypot(x, y, z);
+}
+inline double length(const Vec3& v) { return length(v.x(), v.y(), v.z()); }
 
 // Distance (double) from `rel` to lane i of a 4-wide node's float boxes (exact in double); +inf
 // for an empty lane (an inverted box).
 inline double boxDistanceExact(const Node4& n, int i, const Vec3& rel) {
   auto axis = [](float lo, float hi, double x) { return std::max({double(lo) - x, x - double(hi), 0.0}); };
-  return std::hypot(axis(n.lox[i], n.hix[i], rel.x()), axis(n.loy[i], n.hiy[i], rel.y()),
-                    axis(n.loz[i], n.hiz[i], rel.z()));
+  return length(axis(n.lox[i], n.hix[i], rel.x()), axis(n.loy[i], n.hiy[i], rel.y()),
+                axis(n.loz[i], n.hiz[i], rel.z()));
 }
 
-void MeshClosestPoint::Impl::searchFar(const Vec3& rel, const Vec3& q, Best& best) const {
-  double bestDistance = std::sqrt(best.d2);
+ClosestHit MeshClosestPoint::Impl::answerFar(const Vec3& rel, const Vec3& q, double maxDistance) const {
+  double bestDistance = maxDistance;
+  std::int64_t bestSlot = -1;
+  Vec3 bestPoint = Vec3::Zero();
   // A box is skipped when it is farther than the best by more than the rounding of its distance
   // (a subtraction and a hypot: a few parts in 1e16). And once a triangle is found, when the whole
   // mesh is narrower than that rounding (a 7 m model seen from 1e300 away), all its triangles are
   // equally close to the last digit and any is the answer: searching on would test them all.
   auto beyond = [&](double d) {
-    return d > bestDistance * (1 + 1e-15) || (best.slot >= 0 && scale < 1e-15 * bestDistance);
+    return d > bestDistance * (1 + 1e-15) || (bestSlot >= 0 && scale < 1e-15 * bestDistance);
   };
   std::uint32_t stackIndex[128], stackCount[128];
   double stackDistance[128];
@@ -393,7 +404,7 @@ void MeshClosestPoint::Impl::searchFar(const Vec3& rel, const Vec3& q, Best& bes
       for (std::uint32_t s = index; s < index + count; ++s) {
         const Vec3 c = closestPointOnTriangle(q, tris[s].a, tris[s].b, tris[s].c);
         const double d = length(c - q);
-        if (d < bestDistance || (best.slot < 0 && d <= bestDistance)) bestDistance = d, best.slot = s, best.point = c;
+        if (d < bestDistance || (bestSlot < 0 && d <= bestDistance)) bestDistance = d, bestSlot = s, bestPoint = c;
       }
       continue;
     }
@@ -417,14 +428,17 @@ void MeshClosestPoint::Impl::searchFar(const Vec3& rel, const Vec3& q, Best& bes
       ++top;
     }
   }
-  best.d2 = bestDistance * bestDistance;  // +inf past 1.3e154, as the squared distances of search
+  ClosestHit hit;
+  if (bestSlot < 0) return hit;
+  hit.point = bestPoint;
+  hit.distance = bestDistance;
+  hit.index = bestSlot;  // a slot, as answer's
+  return hit;
 }
 
 void MeshClosestPoint::Impl::search(const Vec3& q, Best& best) const {
   if (nodes4.empty()) return;
   const Vec3 rel = q - origin;
-  const double far = rel.cwiseAbs().maxCoeff();
-  if (far > kFarQuery * scale && std::isfinite(far)) return searchFar(rel, q, best);
   // Clamped into float's range first (a cast out of range is undefined): a farther query sees
   // every box at +inf, and the exact double test below decides.
   auto toFloat = [](double x) {
@@ -509,6 +523,9 @@ void MeshClosestPoint::Impl::testLeaf(std::uint32_t slot, std::uint32_t count, c
 ClosestHit MeshClosestPoint::Impl::answer(const Vec3& q, double maxDistance, std::int64_t warmSlot) const {
   ClosestHit hit;
   if (tris.empty() || !q.allFinite() || !(maxDistance >= 0)) return hit;
+  const Vec3 rel = q - origin;
+  const double far = rel.cwiseAbs().maxCoeff();
+  if (far > kFarQuery * scale && far > kFarQueryFloor && std::isfinite(far)) return answerFar(rel, q, maxDistance);
   Best best{std::isfinite(maxDistance) ? maxDistance * maxDistance : std::numeric_limits<double>::infinity(), -1,
             Vec3::Zero(), 0.0f};
   if (warmSlot >= 0) {
@@ -521,7 +538,6 @@ ClosestHit MeshClosestPoint::Impl::answer(const Vec3& q, double maxDistance, std
   if (best.slot < 0) return hit;
   hit.point = best.point;
   hit.distance = std::sqrt(best.d2);
-  if (std::isinf(hit.distance)) hit.distance = length(best.point - q);  // its square overflowed (past 1.3e154)
   hit.index = best.slot;  // a slot; mapped to the input triangle by the caller
   return hit;
 }
