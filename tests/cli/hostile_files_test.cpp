@@ -312,6 +312,24 @@ class HostileFiles : public ::testing::Test {
   std::string slowestRun;
 };
 
+// The limits the runs below are held to are real: a run past its time is stopped and said to be,
+// and a process under a small address-space limit cannot model a cloud.
+TEST_F(HostileFiles, TheLimitsHold) {
+  io::writePointCloud(dir / "tree.ply", test::sampleCylinders(test::threeLevelTree(), 0.05, 0.002, 5));
+  const std::vector<std::string> args = {"reconstruct", (dir / "tree.ply").string(), "--auto", "-o",
+                                         (dir / "m.obj").string()};
+  const ChildRun quick = runLimited(args, dir / "log.txt", 0.001, 0);
+  EXPECT_TRUE(quick.timedOut);
+  EXPECT_EQ(quick.signal, SIGKILL);
+  if (sanitized()) GTEST_SKIP() << "an address-space limit cannot hold an AddressSanitizer process";
+  const ChildRun small = runLimited(args, dir / "log.txt", 60, rlim_t{32} << 20);  // 32 MB
+  EXPECT_FALSE(small.timedOut);
+  EXPECT_NE(small.exitCode, 0) << small.output;
+  EXPECT_FALSE(fs::exists(dir / "m.obj"));
+  const ChildRun enough = runLimited(args, dir / "log.txt", 60, rlim_t{4} << 30);
+  EXPECT_EQ(enough.exitCode, 0) << enough.output;
+}
+
 // A generated tree (binary PLY, Y up, 2,700 points).
 TEST_F(HostileFiles, EveryCommandOnCopiesOfAGeneratedCloud) {
   const geom::PointCloud cloud = test::sampleCylinders(test::threeLevelTree(), 0.05, 0.002, 5);
