@@ -12,6 +12,7 @@
 
 #include "commands.h"
 #include "treesketch/classify/classify.h"
+#include "treesketch/cloud/usable_extent.h"
 #include "treesketch/eval/classify_eval.h"
 #include "treesketch/io/classified_cloud.h"
 #include "treesketch/io/point_cloud_io.h"
@@ -94,9 +95,16 @@ void runClassifyCloud(const ClassifyArgs& a, const classify::BoostedTrees* model
   if (ext != ".ply" && ext != ".las") throw OptionsError(a.output + ": the output is .ply or .las");
   Stopwatch clock;
   const geom::PointCloud cloud = io::readPointCloud(a.cloud);
+  cloud::requireUsableExtent(cloud, a.cloud);
   const double readMs = clock.ms();
   const io::UpAxisChoice up = io::chooseUpAxis(a.up, cloud);
-  const classify::Classification c = classify::classifyWood(cloud, up.up, classifyOptions(a), model);
+  const classify::Classification c = [&] {
+    try {
+      return classify::classifyWood(cloud, up.up, classifyOptions(a), model);
+    } catch (const DegenerateInputError& e) {  // the stage does not know the file: name it
+      throw DegenerateInputError(a.cloud + ": " + e.what());
+    }
+  }();
   io::writeClassifiedCloud(a.output, cloud, classify::classCodes(c), c.woodProbability);
   std::printf("up axis: %s\n", up.reason.c_str());
   std::printf("%zu points (%zu core points), spacing %.4g: %zu wood (%.1f %%), %zu leaf; threshold %.3f\n",

@@ -11,6 +11,7 @@
 
 #include "commands.h"
 #include "tree_job.h"
+#include "treesketch/cloud/usable_extent.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/model/tree_model.h"
@@ -125,6 +126,7 @@ void runReconstruct(const ReconstructArgs& a) {
   if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;
 
   geom::PointCloud cloud = io::readPointCloud(a.cloud);
+  cloud::requireUsableExtent(cloud, a.cloud);
   sketch::Sketch sk = io::readSketch(a.sketch);
   if (sk.empty()) throw InputError(a.sketch + ": the sketch has no nodes, expected at least one");
   if (a.refit) sk.clearKeptCircles();

@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "treesketch/classify/classify.h"
+#include "treesketch/cloud/usable_extent.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
@@ -81,7 +82,10 @@ void runRender(const RenderArgs& a) {
   scene.pointSize = a.pointSize;
   scene.meshStyle.wireframe = a.wireframe;
   geom::PointCloud cloud;
-  if (!a.cloud.empty()) cloud = io::readPointCloud(a.cloud);
+  if (!a.cloud.empty()) {
+    cloud = io::readPointCloud(a.cloud);
+    cloud::requireUsableExtent(cloud, a.cloud);
+  }
   scene.cloud = cloud.positions;
   for (const std::string& m : a.meshes) scene.meshes.push_back(io::readMesh(m));
   const bool faint = !scene.meshes.empty();  // the cloud recedes behind a reconstruction

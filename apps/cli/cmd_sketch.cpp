@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "tree_job.h"
 #include "treesketch/cloud/scale_check.h"
+#include "treesketch/cloud/usable_extent.h"
 #include "treesketch/model/tree_model.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
@@ -77,10 +78,7 @@ void runAuto(const AutoOptions& o) {
   checkNotAnInput(o.output, {o.cloud});
   checkOutputWritable(o.output);
   geom::PointCloud cloud = io::readPointCloud(o.cloud);
-  if (!(cloud.bounds().diagonal() > 0))
-    throw DegenerateInputError(o.cloud + " (" + std::to_string(cloud.size()) +
-                               " points, bounding-box diagonal 0): every point is the same; no sketch can be made; "
-                               "nothing written");
+  cloud::requireUsableExtent(cloud, o.cloud);
   const io::UpAxisChoice choice = io::chooseUpAxis(o.up, cloud);
   const geom::UpAxis up = choice.up;
   std::printf("up axis: %s\n", choice.reason.c_str());

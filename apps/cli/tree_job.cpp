@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "treesketch/cloud/usable_extent.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/io/up_axis.h"
@@ -62,6 +63,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   }
   TreeJobResult r;
   const geom::PointCloud cloud = io::readPointCloud(a.cloud);
+  cloud::requireUsableExtent(cloud, a.cloud);
   r.points = cloud.size();
   r.readMs = msSince(t0);
   const io::UpAxisChoice up = io::chooseUpAxis(a.up, cloud);

@@ -159,6 +159,10 @@ struct MeshClosestPoint::Impl {
   /// Improves `best` (a starting bound: +inf, the search distance or a warm start's answer) to
   /// the closest triangle of the mesh.
   void search(const Vec3& q, Best& best) const;
+  /// The answer for a query far from the mesh (see kFarQuery): boxes measured in double, every
+  /// triangle of an opened leaf tested exactly, no float margin, no warm start (so a batch and a
+  /// single query search alike and name the same triangle).
+  ClosestHit answerFar(const Vec3& rel, const Vec3& q, double maxDistance) const;
 };
 
 void MeshClosestPoint::Impl::build(const geom::TriMesh& mesh) {
@@ -352,6 +356,86 @@ void MeshClosestPoint::Impl::layoutSlots(const geom::TriMesh& mesh, const std::v
   }
 }
 
+// A query farther from the mesh's centre than this many bounding-box diagonals is answered in
+// double (answerFar): the float margin grows with the query's distance (4e-6 of it) and from about
+// 10,000 diagonals it spans the whole mesh, so every box was opened and every triangle tested
+// exactly (a 7 m model against its cloud moved by 1e6 m took minutes, not a second). Its distances
+// stay finite up to the largest doubles. A query within kFarQueryFloor of the centre (a mesh of
+// subnormal size) keeps the float path, whose handling of squared distances that underflow was
+// fuzzed; no distance that far out underflows.
+constexpr double kFarQuery = 1000, kFarQueryFloor = 1e-100;
+
+// A far query's distances: the root of the squared distance, as every answer reports it
+// (ClosestHit::distance), unless the square overflowed (past 1.3e154): then std::hypot.
+inline double length(double x, double y, double z) {
+  const double n2 = x * x + y * y + z * z;
+  return std::isfinite(n2) ? std::sqrt(n2) : std::hypot(x, y, z);
+}
+inline double length(const Vec3& v) { return length(v.x(), v.y(), v.z()); }
+
+// Distance (double) from `rel` to lane i of a 4-wide node's float boxes (exact in double); +inf
+// for an empty lane (an inverted box).
+inline double boxDistanceExact(const Node4& n, int i, const Vec3& rel) {
+  auto axis = [](float lo, float hi, double x) { return std::max({double(lo) - x, x - double(hi), 0.0}); };
+  return length(axis(n.lox[i], n.hix[i], rel.x()), axis(n.loy[i], n.hiy[i], rel.y()),
+                axis(n.loz[i], n.hiz[i], rel.z()));
+}
+
+ClosestHit MeshClosestPoint::Impl::answerFar(const Vec3& rel, const Vec3& q, double maxDistance) const {
+  double bestDistance = maxDistance;
+  std::int64_t bestSlot = -1;
+  Vec3 bestPoint = Vec3::Zero();
+  // A box is skipped when it is farther than the best by more than the rounding of its distance
+  // (a subtraction and a hypot: a few parts in 1e16). And once a triangle is found, when the whole
+  // mesh is narrower than that rounding (a 7 m model seen from 1e300 away), all its triangles are
+  // equally close to the last digit and any is the answer: searching on would test them all.
+  auto beyond = [&](double d) {
+    return d > bestDistance * (1 + 1e-15) || (bestSlot >= 0 && scale < 1e-15 * bestDistance);
+  };
+  std::uint32_t stackIndex[128], stackCount[128];
+  double stackDistance[128];
+  stackIndex[0] = 0, stackCount[0] = 0, stackDistance[0] = 0.0;
+  int top = 1;
+  while (top > 0) {
+    --top;
+    if (beyond(stackDistance[top])) continue;
+    const std::uint32_t index = stackIndex[top], count = stackCount[top];
+    if (count > 0) {
+      for (std::uint32_t s = index; s < index + count; ++s) {
+        const Vec3 c = closestPointOnTriangle(q, tris[s].a, tris[s].b, tris[s].c);
+        const double d = length(c - q);
+        if (d < bestDistance || (bestSlot < 0 && d <= bestDistance)) bestDistance = d, bestSlot = s, bestPoint = c;
+      }
+      continue;
+    }
+    const Node4& n = nodes4[index];
+    double d[4];
+    int order[4], k = 0;
+    for (int i = 0; i < 4; ++i) {
+      if (n.count[i] == 0 && n.child[i] == 0) continue;  // an empty lane (see search)
+      d[i] = boxDistanceExact(n, i, rel);
+      if (beyond(d[i])) continue;
+      int j = k++;  // by decreasing distance: the nearest ends on top of the stack
+      while (j > 0 && d[order[j - 1]] < d[i]) {
+        order[j] = order[j - 1];
+        --j;
+      }
+      order[j] = i;
+    }
+    if (top + k > 128) k = 128 - top;  // unreachable (as in search)
+    for (int j = 0; j < k; ++j) {
+      stackIndex[top] = n.child[order[j]], stackCount[top] = n.count[order[j]], stackDistance[top] = d[order[j]];
+      ++top;
+    }
+  }
+  ClosestHit hit;
+  if (bestSlot < 0) return hit;
+  hit.point = bestPoint;
+  hit.distance = bestDistance;
+  hit.index = bestSlot;  // a slot, as answer's
+  return hit;
+}
+
 void MeshClosestPoint::Impl::search(const Vec3& q, Best& best) const {
   if (nodes4.empty()) return;
   const Vec3 rel = q - origin;
@@ -439,6 +523,9 @@ void MeshClosestPoint::Impl::testLeaf(std::uint32_t slot, std::uint32_t count, c
 ClosestHit MeshClosestPoint::Impl::answer(const Vec3& q, double maxDistance, std::int64_t warmSlot) const {
   ClosestHit hit;
   if (tris.empty() || !q.allFinite() || !(maxDistance >= 0)) return hit;
+  const Vec3 rel = q - origin;
+  const double far = rel.cwiseAbs().maxCoeff();
+  if (far > kFarQuery * scale && far > kFarQueryFloor && std::isfinite(far)) return answerFar(rel, q, maxDistance);
   Best best{std::isfinite(maxDistance) ? maxDistance * maxDistance : std::numeric_limits<double>::infinity(), -1,
             Vec3::Zero(), 0.0f};
   if (warmSlot >= 0) {

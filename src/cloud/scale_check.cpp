@@ -58,6 +58,12 @@ ScaleCheck checkScale(const geom::PointCloud& cloud, const StrayPoints& strays, 
                          " point spacing: the points have lost their shape; recentre the cloud (subtract a point near "
                          "the tree, e.g. CloudCompare's global shift or PDAL's filters.transformation) and export it "
                          "again");
+  } else if (c.offset > o.maxTestedOffset) {
+    c.beyondTestedOffset = true;
+    c.warnings.push_back("the coordinates reach " + figure(c.offset) + ", past the " + figure(o.maxTestedOffset) +
+                         " from the origin up to which the automatic model was measured to be the recentred cloud's "
+                         "(a real scan's volume moved by 1.6 % at 1e11, 16 % at 1e12); recentre the cloud (subtract a point near the "
+                         "tree, e.g. CloudCompare's global shift or PDAL's filters.transformation) and export it again");
   }
   return c;
 }

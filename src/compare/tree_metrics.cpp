@@ -177,6 +177,11 @@ void convexHullFigures(std::vector<geom::Vec2> p, double* area, double* spread) 
   });
   p.erase(std::unique(p.begin(), p.end()), p.end());
   if (p.size() < 2) return;
+  // Relative to the first point: the area's cross products of coordinates 1e9 from the origin
+  // are 1e18, whose rounding (128) swamped a crown of a few square metres; of differences (exact
+  // for points this close) they are the crown's own size.
+  const geom::Vec2 origin = p[0];
+  for (geom::Vec2& q : p) q -= origin;
   // Andrew's monotone chain.
   std::vector<geom::Vec2> h(2 * p.size());
   std::size_t k = 0;

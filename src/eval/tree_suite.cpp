@@ -154,6 +154,10 @@ std::vector<TreeCase> loadTreeFolder(const fs::path& folder, double metresPerUni
     TreeCase tc;
     tc.name = stem.filename().string();
     tc.branches = io::readMesh(stem.string() + ".branches.obj");
+    if (!(tc.branches.area() > 0))  // nothing to scan or compare with: a data error, named
+      throw DegenerateInputError(stem.string() + ".branches.obj: the branch mesh has zero area (its " +
+                                 std::to_string(tc.branches.triangles.size()) +
+                                 " triangles all have repeated or collinear corners); nothing to scan or compare");
     if (fs::exists(stem.string() + ".leaves.obj")) tc.leaves = io::readMesh(stem.string() + ".leaves.obj");
     tc.up = geom::UpAxis::Y;
     tc.metresPerUnit = metresPerUnit;

@@ -134,5 +134,39 @@ TEST(MeshClosestPointExtremes, TinyMeshesMatchBruteForce) {
   }
 }
 
+// Queries far from a small mesh (a model against a cloud in other coordinates): from 1,000 mesh
+// diagonals on they are searched in double, which prunes as tightly as near the mesh (the float
+// margin had grown over the whole mesh: every triangle tested, minutes for a compare). Answers
+// equal a brute-force search, by lengths that do not overflow: past 1e154 the squared distance
+// did, and the distance came back +inf.
+TEST(MeshClosestPointExtremes, QueriesFarFromTheMeshMatchBruteForce) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  geom::TriMesh mesh;
+  for (std::uint32_t i = 0; i < 600; ++i) {
+    mesh.vertices.push_back(Vec3(u(rng), u(rng), u(rng)));
+    if (i >= 2) mesh.triangles.push_back({i - 2, i - 1, i});
+  }
+  auto length = [](const Vec3& v) { return std::hypot(v.x(), v.y(), v.z()); };
+  for (double far : {1e3, 1e4, 1e6, 1e9, 1e12, 1e200, 1e300}) {
+    std::vector<Vec3> queries;
+    for (int i = 0; i < 40; ++i) queries.push_back(Vec3(u(rng), u(rng), u(rng)).normalized() * far + Vec3(u(rng), 0, 0));
+    const MeshClosestPoint index(mesh);
+    const std::vector<ClosestHit> batch = index.queryAll(queries);
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      const Vec3& q = queries[i];
+      double expected = std::numeric_limits<double>::infinity();
+      for (const auto& t : mesh.triangles)
+        expected = std::min(expected, length(closestPointOnTriangle(q, mesh.vertices[t[0]], mesh.vertices[t[1]],
+                                                                    mesh.vertices[t[2]]) - q));
+      const ClosestHit hit = index.query(q);
+      ASSERT_TRUE(hit.found() && batch[i].found()) << far;
+      EXPECT_NEAR(hit.distance, expected, 1e-9 * expected) << far << ", query " << i;
+      EXPECT_NEAR(batch[i].distance, expected, 1e-9 * expected) << far << ", query " << i;
+      EXPECT_NEAR(length(hit.point - q), hit.distance, 1e-9 * expected) << far;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace treesketch::accel

@@ -203,5 +203,19 @@ TEST(EvaluateCorrectingUser, WritesTheCurveAndRejectsBadOptions) {
   EXPECT_EQ(test::runCli("evaluate --correcting-user --edits 0 --out " + (dir / "x").string(), &out), 2) << out;
 }
 
+// A tree folder whose branch mesh has zero area is a data error naming the mesh (exit 5), before
+// any scan; it was "bad command line" (exit 2) from deep inside the sampling sizes.
+TEST(EvaluateCli, ATreeWithAZeroAreaBranchMeshIsADataErrorNamingIt) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir / "trees");
+  test::writeText(dir / "trees" / "flat_s1.branches.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  test::writeText(dir / "trees" / "flat_s1.json", "{}");
+  std::string out;
+  EXPECT_EQ(test::runCli("evaluate --trees " + test::quoted(dir / "trees") + " --out " + test::quoted(dir / "out"), &out),
+            5)
+      << out;
+  EXPECT_NE(out.find("flat_s1.branches.obj: the branch mesh has zero area"), std::string::npos) << out;
+}
+
 }  // namespace
 }  // namespace treesketch

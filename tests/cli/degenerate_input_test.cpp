@@ -12,6 +12,7 @@
 #include <string>
 
 #include "cli_support.h"
+#include "io/io_test_util.h"
 #include "test_support.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/sketch/sketch.h"
@@ -202,6 +203,35 @@ TEST_F(DegenerateCli, ReconstructWithASketchOfADegenerateCloudIsAnError) {
     EXPECT_EQ(runCli("reconstruct " + q("c.xyz") + " --sketch " + q("s.json") + " -o " + q("m.obj"), &out), c.exitCode)
         << out;
     EXPECT_FALSE(exists("m.obj"));
+  }
+}
+
+// A LAS whose header scale factor is 1e298 (a corrupt header, or a unit gone wrong): its points
+// are read, 1e301 apart, and their bounding box's diagonal overflows to +inf. Every command that
+// models, sketches or draws a cloud calls it a data error naming the file (exit 5) and writes
+// nothing; it used to be "bad command line" (exit 2: a NaN camera, a non-finite node).
+TEST_F(DegenerateCli, ACloudTooWideToMeasureIsADataErrorNamingTheFile) {
+  io::testing::LasSpec las;
+  las.scale = {1e298, 1e298, 1e298};
+  for (int i = 0; i < 400; ++i) {
+    const double a = 0.37 * i;
+    las.points.push_back({static_cast<std::int32_t>(1000 * std::cos(a)), static_cast<std::int32_t>(1000 * std::sin(a)),
+                          100 * i});
+  }
+  writeText(dir / "wide.las", io::testing::buildLas(las));
+  const std::string cloud = q("wide.las");
+  const std::vector<std::pair<std::string, std::string>> runs = {
+      {"reconstruct " + cloud + " --auto -o " + q("m.obj"), "m.obj"},
+      {"sketch auto " + cloud + " -o " + q("s.json"), "s.json"},
+      {"sketch auto " + cloud + " --method skeleton -o " + q("s.json"), "s.json"},
+      {"render --cloud " + cloud + " -o " + q("p.png"), "p.png"},
+      {"classify " + cloud + " -o " + q("c.ply"), "c.ply"}};
+  for (const auto& [args, output] : runs) {
+    std::string out;
+    EXPECT_EQ(runCli(args, &out), kExitNoResult) << args << "\n" << out;
+    EXPECT_NE(out.find("wide.las"), std::string::npos) << out;
+    EXPECT_NE(out.find("too far for areas and volumes"), std::string::npos) << out;
+    EXPECT_FALSE(exists(output)) << args;
   }
 }
 

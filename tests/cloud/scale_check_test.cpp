@@ -51,5 +51,19 @@ TEST(ScaleCheck, CoordinatesThatLostTheirSpacingAreNamed) {
   EXPECT_TRUE(checkScale(geom::PointCloud{}, StrayPoints{}).warnings.empty());
 }
 
+// Coordinates past 1e10 with their spacing intact (doubles step by 0.12 mm at 1e12) are named too:
+// the automatic model was the same up to 1e10 from the origin, and drifted at 1e11 and 1e12.
+TEST(ScaleCheck, CoordinatesPastTheTestedRangeAreNamed) {
+  const ScaleCheck tested = check(trunk(1, geom::Vec3(9e9, 0, 0)));
+  EXPECT_FALSE(tested.beyondTestedOffset);
+  EXPECT_TRUE(tested.warnings.empty());
+  const ScaleCheck far = check(trunk(1, geom::Vec3(1e12, 0, 0)));
+  EXPECT_FALSE(far.precisionLost);
+  EXPECT_TRUE(far.beyondTestedOffset);
+  ASSERT_EQ(far.warnings.size(), 1u);
+  EXPECT_NE(far.warnings[0].find("recentre"), std::string::npos);
+  EXPECT_FALSE(check(trunk(1, geom::Vec3(1e15, 0, 0))).beyondTestedOffset);  // the spacing warning says it
+}
+
 }  // namespace
 }  // namespace treesketch::cloud

@@ -182,5 +182,24 @@ TEST(ConvexHull, SquareAndDegenerate) {
   EXPECT_EQ(a, 0);
 }
 
+// A crown far from the origin (projected coordinates, or a cloud moved 1e9): the same area and
+// spread as at the origin. The area's cross products of raw coordinates (1e18 at 1e9) rounded by
+// 128 and gave 64 m² for a 7 m² crown.
+TEST(ConvexHull, FarFromTheOriginTheSameFigures) {
+  std::vector<geom::Vec2> crown;
+  for (int k = 0; k < 40; ++k) crown.push_back({1.5 * std::cos(0.157 * k), 1.2 * std::sin(0.157 * k)});
+  double a0 = 0, s0 = 0;
+  convexHullFigures(crown, &a0, &s0);
+  ASSERT_GT(a0, 5);
+  for (double far : {5e5, 1e6, 1e9, 1e12}) {
+    std::vector<geom::Vec2> moved = crown;
+    for (auto& p : moved) p += geom::Vec2(far, -far);
+    double a = 0, s = 0;
+    convexHullFigures(moved, &a, &s);
+    EXPECT_NEAR(a, a0, 1e-3 * a0) << far;
+    EXPECT_NEAR(s, s0, 1e-3 * s0) << far;
+  }
+}
+
 }  // namespace
 }  // namespace treesketch::compare

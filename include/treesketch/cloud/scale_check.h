@@ -19,6 +19,12 @@ struct ScaleCheckOptions {
   /// The point spacing must be at least this many steps of a double at the cloud's coordinates:
   /// at fewer, neighbouring points merge or snap to a grid coarser than a tenth of their spacing.
   double minSpacingSteps = 10.0;
+  /// The farthest from its origin (cloud units) the automatic model was measured to be the model
+  /// of the same cloud at the origin: a real scan moved by 1e6 and 1e9 (tests/cli/
+  /// far_coordinates_test.cpp) and 1e10 gave the same volume. Farther it drifts before the
+  /// spacing check above fires: 1.6 % at 1e11, 16 % at 1e12 (where doubles step by 0.12 mm).
+  /// Projected coordinates (UTM, national grids, geocentric) stay below 1e7.
+  double maxTestedOffset = 1e10;
 };
 
 struct ScaleCheck {
@@ -29,6 +35,7 @@ struct ScaleCheck {
   double spacing = 0;       ///< the measured point spacing, cloud units (0: not measured)
   bool implausibleSize = false;
   bool precisionLost = false;
+  bool beyondTestedOffset = false;  ///< farther than maxTestedOffset, spacing still kept
   std::vector<std::string> warnings;  ///< each names the figure and the fix
 };
 
