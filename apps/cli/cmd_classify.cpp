@@ -107,8 +107,9 @@ void runClassifyCloud(const ClassifyArgs& a, const classify::BoostedTrees* model
   }();
   io::writeClassifiedCloud(a.output, cloud, classify::classCodes(c), c.woodProbability);
   std::printf("up axis: %s\n", up.reason.c_str());
-  std::printf("%zu points (%zu core points), spacing %.4g: %zu wood (%.1f %%), %zu leaf; threshold %.3f\n",
-              cloud.size(), c.cores, c.spacing, c.woodPoints, 100.0 * c.woodPoints / cloud.size(),
+  std::printf("%zu points (%zu core points), spacing %.4g (features at %.4g): %zu wood (%.1f %%), %zu leaf; "
+              "threshold %.3f\n",
+              cloud.size(), c.cores, c.measuredSpacing, c.spacing, c.woodPoints, 100.0 * c.woodPoints / cloud.size(),
               cloud.size() - c.woodPoints, c.threshold);
   if (!a.noGraph)
     std::printf("graph step: %zu wood points reached from %zu at the base, %zu in pieces of their own, %zu demoted\n",

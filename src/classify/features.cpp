@@ -47,6 +47,8 @@ void checkOptions(const FeatureOptions& o) {
     throw OptionsError("classify: graph neighbours must be between 1 and the largest scale");
   if (!(o.coreSpacings >= 0) || !std::isfinite(o.coreSpacings))
     throw OptionsError("classify: core spacings must be 0 or more");
+  if (!(o.minSpacingHeightFraction >= 0 && o.minSpacingHeightFraction < 1))
+    throw OptionsError("classify: the least spacing must be a fraction of the height from 0 to below 1");
   for (std::size_t s = 0; s < o.coarseScales.size(); ++s)
     if (o.coarseScales[s] < 3 || (s > 0 && o.coarseScales[s] <= o.coarseScales[s - 1]))
       throw OptionsError("classify: coarse scales must be increasing and at least 3 points");
@@ -158,6 +160,16 @@ double medianSpacing(const std::vector<geom::Vec3>& points) {
   return s > 0 ? s : 1e-6;
 }
 
+/// The extent of `points` along the up axis.
+double heightRange(const std::vector<geom::Vec3>& points, geom::UpAxis up) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& p : points) {
+    lo = std::min(lo, geom::height(p, up));
+    hi = std::max(hi, geom::height(p, up));
+  }
+  return points.empty() ? 0.0 : hi - lo;
+}
+
 /// Heights above the lowest core and the base's centre (the mean of the lowest 2 % of the height).
 geom::Vec3 heightsAndBase(const std::vector<geom::Vec3>& cores, geom::UpAxis up, FeatureTable& t) {
   const std::size_t n = cores.size();
@@ -206,7 +218,8 @@ FeatureTable computeFeatures(const geom::PointCloud& cloud, geom::UpAxis up, con
   FeatureTable t;
   t.names = featureNames(options);
   t.count = static_cast<int>(t.names.size());
-  t.spacing = medianSpacing(cloud.positions);
+  t.measuredSpacing = medianSpacing(cloud.positions);
+  t.spacing = std::max(t.measuredSpacing, options.minSpacingHeightFraction * heightRange(cloud.positions, up));
   const std::vector<geom::Vec3> cores =
       makeCores(cloud.positions, options.coreSpacings * t.spacing, t.coreOf, t.coreSize);
   const std::size_t n = cores.size();

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "treesketch/accel/ray_scene.h"
 #include "treesketch/gen/tree_generator.h"
 #include "treesketch/scan/sphere_scan.h"
@@ -47,6 +50,27 @@ TEST(Classify, BuiltInModelSeparatesWoodFromLeavesOnAnotherGeneratorsTree) {
     if (c.wood[i]) ASSERT_GE(c.woodProbability[i], c.threshold);
   const std::vector<std::uint8_t> codes = classCodes(c);
   for (std::size_t i = 0; i < cloud.size(); ++i) ASSERT_EQ(codes[i], c.wood[i] ? kWoodClass : kLeafClass);
+}
+
+TEST(Classify, BlockedPredictionGivesEveryRowsOwnProbability) {
+  // predictWood walks the trees over blocks of rows; each row must get exactly what the model
+  // gives it alone. 700 points: blocks of 256 and a partial block.
+  geom::PointCloud cloud;
+  for (int i = 0; i < 700; ++i)
+    cloud.positions.emplace_back(0.3 * std::sin(0.05 * i) + 0.001 * (i % 3), 0.01 * i, 0.3 * std::cos(0.07 * i));
+  const BoostedTrees& m = trainedModel();
+  FeatureOptions o = featureOptionsFor(m);
+  o.coreSpacings = 0;
+  const FeatureTable f = computeFeatures(cloud, geom::UpAxis::Y, o);
+  const std::vector<float> p = predictWood(f, m);
+  ASSERT_EQ(p.size(), f.points());
+  float lo = 1, hi = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    ASSERT_EQ(p[i], static_cast<float>(m.probability(f.row(i)))) << "row " << i;
+    lo = std::min(lo, p[i]);
+    hi = std::max(hi, p[i]);
+  }
+  EXPECT_LT(lo, hi);  // the rows differ, so a row given another's answer would show
 }
 
 TEST(Classify, ModelOfOtherFeaturesIsRefused) {

@@ -61,6 +61,26 @@ TEST(Features, CorePointsStandForEveryPoint) {
   EXPECT_GT(t.spacing, 0.0);
 }
 
+TEST(Features, ASpacingFinerThanTheFloorIsRaisedToIt) {
+  // The stick and square sampled 40 times more densely than the floor: the features work at the
+  // floor (a fraction of the 4 m height), on far fewer cores; without the floor, at the spacing.
+  const geom::PointCloud c = lineAndPlane(7);
+  FeatureOptions o;
+  o.minSpacingHeightFraction = 0.01;
+  const FeatureTable floored = computeFeatures(c, geom::UpAxis::Y, o);
+  EXPECT_NEAR(floored.spacing, 0.01 * floored.treeHeight, 1e-3 * floored.treeHeight);
+  EXPECT_LT(floored.measuredSpacing, 0.5 * floored.spacing);
+  o.minSpacingHeightFraction = 0;
+  const FeatureTable measured = computeFeatures(c, geom::UpAxis::Y, o);
+  EXPECT_EQ(measured.spacing, measured.measuredSpacing);
+  EXPECT_EQ(measured.measuredSpacing, floored.measuredSpacing);
+  EXPECT_LT(2 * floored.points(), measured.points());
+  // The stick is still linear and vertical at the coarser spacing.
+  const int lin = column(floored, "linearity_k16"), ax = column(floored, "axis_up_k16");
+  EXPECT_GT(floored.row(floored.coreOf[100])[lin], 0.9);
+  EXPECT_GT(floored.row(floored.coreOf[100])[ax], 0.95);
+}
+
 TEST(Features, BadOptionsAndTinyCloudsAreRefused) {
   geom::PointCloud c = lineAndPlane(1);
   FeatureOptions o;
@@ -70,6 +90,9 @@ TEST(Features, BadOptionsAndTinyCloudsAreRefused) {
   EXPECT_THROW(computeFeatures(c, geom::UpAxis::Y, o), OptionsError);
   o = {};
   o.coreSpacings = -1;
+  EXPECT_THROW(computeFeatures(c, geom::UpAxis::Y, o), OptionsError);
+  o = {};
+  o.minSpacingHeightFraction = 1.0;
   EXPECT_THROW(computeFeatures(c, geom::UpAxis::Y, o), OptionsError);
   c.positions.resize(20);
   EXPECT_THROW(computeFeatures(c, geom::UpAxis::Y), DegenerateInputError);

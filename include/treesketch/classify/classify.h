@@ -37,7 +37,8 @@ struct Classification {
   std::vector<std::uint8_t> wood;      ///< the class after the graph step: 1 wood, 0 leaf
   std::size_t woodPoints = 0;
   double threshold = 0.5;  ///< the threshold used
-  double spacing = 0;      ///< the cloud's median spacing (cloud units)
+  double spacing = 0;      ///< the spacing the features worked at (FeatureTable::spacing, cloud units)
+  double measuredSpacing = 0;  ///< the cloud's median spacing (cloud units)
   std::size_t cores = 0;   ///< core points the features, classifier and graph ran on
   WoodGraphResult graph;   ///< what the graph step did, in cores (its `wood` is moved to `wood` above)
   double featuresMs = 0, predictMs = 0, graphMs = 0;

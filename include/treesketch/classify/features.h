@@ -32,6 +32,14 @@ struct FeatureOptions {
   /// a million points within seconds, and finer than a twig's width at the scans' spacings
   /// (docs/classify.md). 0: every point is a core.
   double coreSpacings = 2.0;
+  /// The spacing the features work at is the cloud's measured spacing, but never finer than this
+  /// fraction of the tree's height (0.15 %: 7 mm on a 4.6 m tree; cores then at least 0.3 % of the
+  /// height). A scan denser than a terrestrial one, such as the thesis's sphere pattern whose rays
+  /// all cross near the crown's centre (spacing 0.03-0.09 % of the height there), adds no shape the
+  /// features can use, and at its own spacing the largest fine scale (32 cores) covers a 2 cm patch
+  /// of a thick limb, as flat as a leaf: such scans lost 60-80 % of their wood (docs/classify.md).
+  /// At this floor the 32 nearest cores span a limb's curvature. 0: the measured spacing alone.
+  double minSpacingHeightFraction = 0.0015;
   /// The coarse level: the same features over cubes of `coarseHeightFraction` of the tree's
   /// height, at these neighbourhood sizes (in cubes). On a dense scan the fine scales see only a
   /// patch of a thick stem, as flat as a leaf; at 1 % of the height (5 cm on a 5 m tree) a stem is
@@ -53,8 +61,12 @@ struct FeatureTable {
   std::vector<std::string> names;
   int count = 0;
   std::vector<float> values;
-  /// The cloud's spacing: the median distance from a point to its nearest neighbour (cloud units).
+  /// The spacing the features work at (cloud units): the cloud's measured spacing, raised to the
+  /// floor of FeatureOptions::minSpacingHeightFraction. Cores are cubes of coreSpacings of it, the
+  /// density features and the graph step's edges are measured in it.
   double spacing = 0;
+  /// The cloud's measured spacing: the median distance from a point to its nearest neighbour.
+  double measuredSpacing = 0;
   /// The core of every point of the cloud, and the number of cloud points each core stands for.
   std::vector<std::uint32_t> coreOf;
   std::vector<std::uint32_t> coreSize;
