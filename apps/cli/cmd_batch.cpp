@@ -49,7 +49,7 @@ struct BatchArgs {
   std::string input, out, up;
   int jobs = 1;
   int index = -1;
-  bool summarise = false, leafOn = false;
+  bool summarise = false, leafOn = false, woodOnly = false;
   double unitMetres = 1.0;
   std::uint64_t seed = 1;
   double treeTimeoutS = 0;  // --tree-timeout (0 = none)
@@ -60,7 +60,7 @@ struct BatchArgs {
 BatchRunOptions runOptions(const BatchArgs& a) {
   BatchRunOptions o;
   o.model = {
-      {"up", a.up.empty() ? "auto" : a.up}, {"leafOn", a.leafOn}, {"unitMetres", a.unitMetres}, {"seed", a.seed}};
+      {"up", a.up.empty() ? "auto" : a.up}, {"leafOn", a.leafOn}, {"woodOnly", a.woodOnly}, {"unitMetres", a.unitMetres}, {"seed", a.seed}};
   o.treeTimeoutS = a.treeTimeoutS;
   o.treeMemoryMb = a.treeMemoryMb;
   return o;
@@ -95,6 +95,7 @@ TreeJob treeJob(const BatchArgs& a, const BatchTree& t, const fs::path& dir) {
   job.out.report = (dir / "report.json").string();
   job.up = a.up;
   job.leafOn = a.leafOn;
+  job.woodOnly = a.woodOnly;
   job.seed = a.seed;
   job.unitMetres = a.unitMetres;
   return job;
@@ -189,6 +190,7 @@ std::vector<std::string> childArgs(const BatchArgs& a, std::size_t k) {
                                 std::to_string(a.seed)};
   if (!a.up.empty()) v.insert(v.end(), {"--up", a.up});
   if (a.leafOn) v.push_back("--leaf-on");
+  if (a.woodOnly) v.push_back("--wood-only");
   if (a.treeMemoryMb > 0) {
     char mb[64];
     std::snprintf(mb, sizeof mb, "%.17g", a.treeMemoryMb);
@@ -377,6 +379,8 @@ void registerBatch(CLI::App& app, Action& action) {
   sub->add_option("--up", a->up, "Up axis, y or z (default: what each file declares, else z)")
       ->check(CLI::IsMember({"y", "z", "Y", "Z"}));
   sub->add_flag("--leaf-on", a->leafOn, "The trees were scanned in leaf");
+  sub->add_flag("--wood-only", a->woodOnly,
+                "Model only the points the wood/leaf classification calls wood (see reconstruct --wood-only)");
   sub->add_option("--units-metres", a->unitMetres, "Metres per cloud unit (default 1)")->check(CLI::PositiveNumber);
   sub->add_option("--seed", a->seed, "Random seed of the circle fits (default 1)");
   sub->add_option("--tree-timeout", a->treeTimeoutS,

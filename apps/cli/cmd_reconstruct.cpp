@@ -32,6 +32,7 @@ struct ReconstructArgs {
   std::uint64_t seed = 1;
   bool autoSkeleton = false;        // --auto: sketch from the cloud's skeleton (skeleton module)
   bool leafOn = false;              // --leaf-on (with --auto): settings for trees in leaf
+  bool woodOnly = false;            // --wood-only (with --auto): model the points classified as wood
   bool refit = false;               // --refit: drop the sketch's kept circles, fit every node
   std::string up;                   // --up ("" = the rule of io/up_axis.h; with --auto)
   double unitMetres = 0.0;          // --units-metres (with --report; 0 = not given: metres)
@@ -94,6 +95,7 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   job.strays = a.outliers;
   job.up = a.up;
   job.leafOn = a.leafOn;
+  job.woodOnly = a.woodOnly;
   job.seed = a.seed;
   job.ring = a.ring;
   job.inlierThreshold = a.inlierThreshold;
@@ -117,6 +119,7 @@ void runReconstruct(const ReconstructArgs& a) {
   if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
   if (!a.up.empty()) throw OptionsError("--up needs --auto (a sketch file carries its own up axis)");
   if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");
+  if (a.woodOnly) throw OptionsError("--wood-only needs --auto (it chooses the points the automatic model uses)");
   if (!a.outliers.empty()) throw OptionsError("--outliers needs --auto (a sketch is fitted to every point)");
   const model::OutputPaths& outputs = a.out;
   model::checkOutputs(outputs, {a.cloud, a.sketch});
@@ -189,6 +192,9 @@ void registerReconstruct(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"y", "z", "Y", "Z"}));
   sub->add_flag("--leaf-on", a->leafOn,
                 "With --auto: the tree was scanned in leaf (finer voxels, weaker foliage rule)");
+  sub->add_flag("--wood-only", a->woodOnly,
+                "With --auto: model only the points the wood/leaf classification calls wood (as `classify` "
+                "does), with the leaf-off settings; for the volume of a tree in leaf");
   sub->add_option("--outliers", a->outliers,
                   "With --auto: write the stray points set aside before modelling (far from the tree or isolated) "
                   "to this cloud file (.ply, .xyz)");

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "treesketch/classify/classify.h"
 #include "treesketch/cloud/usable_extent.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
@@ -29,6 +30,8 @@ nlohmann::json reportHeader(const TreeJob& a, const TreeJobResult& r, const skel
   header["mesh"] = a.out.mesh;
   header["auto"] = true;
   header["leafOn"] = a.leafOn;
+  header["woodOnly"] = a.woodOnly;
+  if (a.woodOnly) header["woodPoints"] = r.woodPoints;
   header["up"] = r.up;
   header["upReason"] = r.upReason;
   header["points"] = r.points;
@@ -46,6 +49,21 @@ nlohmann::json reportHeader(const TreeJob& a, const TreeJobResult& r, const skel
                        {"sweepMs", r.sweepMs},
                        {"metricsMs", r.metricsMs}};
   return header;
+}
+
+/// The points of `cloud` the wood/leaf classification calls wood. Fewer than a hundred is no tree's
+/// wood: DegenerateInputError naming `source`.
+geom::PointCloud woodPoints(const geom::PointCloud& cloud, geom::UpAxis up, const std::string& source) {
+  constexpr std::size_t kMinWoodPoints = 100;
+  const classify::Classification c = classify::classifyWood(cloud, up);
+  std::vector<std::uint32_t> wood;
+  for (std::size_t i = 0; i < cloud.size() && i < c.wood.size(); ++i)
+    if (c.wood[i]) wood.push_back(static_cast<std::uint32_t>(i));
+  if (wood.size() < kMinWoodPoints)
+    throw DegenerateInputError(source + ": --wood-only: " + std::to_string(wood.size()) + " of " +
+                               std::to_string(cloud.size()) +
+                               " points classified as wood, too few to model (run without --wood-only)");
+  return cloud::selectPoints(cloud, wood);
 }
 
 }  // namespace
@@ -70,19 +88,27 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   r.up = geom::toString(up.up);
   r.upReason = up.reason;
 
-  skeleton::AutoSkeletonOptions opt =
-      skeleton::autoSkeletonPreset(a.leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, up.up);
+  // With --wood-only the wood points are modelled with the leaf-off settings (what is left is
+  // meant to be wood), and the model is measured against every point.
+  geom::PointCloud woodStore;
+  if (a.woodOnly) woodStore = woodPoints(cloud, up.up, a.cloud);
+  const geom::PointCloud& modelled = a.woodOnly ? woodStore : cloud;
+  r.woodPoints = a.woodOnly ? woodStore.size() : 0;
+  skeleton::AutoSkeletonOptions opt = skeleton::autoSkeletonPreset(
+      a.leafOn && !a.woodOnly ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, up.up);
   opt.seed = a.seed;
   opt.ringVertices = a.ring;
   if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;
-  const skeleton::AutoSkeletonResult s = skeleton::autoSkeletonSketch(cloud, opt);
-  // The model is made from, and measured against, the points kept (the strays are set aside).
+  const skeleton::AutoSkeletonResult s = skeleton::autoSkeletonSketch(modelled, opt);
+  // The model is made from, and measured against, the points kept (the strays are set aside);
+  // with --wood-only, against every point.
   geom::PointCloud keptStore;
-  const geom::PointCloud& kept = s.strays.empty() ? cloud : (keptStore = cloud::keptPoints(cloud, s.strays));
+  const geom::PointCloud& kept =
+      a.woodOnly || s.strays.empty() ? cloud : (keptStore = cloud::keptPoints(cloud, s.strays));
   r.strays = s.strays;
-  r.scale = cloud::checkScale(cloud, s.strays, a.unitMetres);
+  r.scale = cloud::checkScale(modelled, s.strays, a.unitMetres);
   printScaleWarnings(r.scale);
-  model::checkAutoModel(a.cloud, kept, s);
+  model::checkAutoModel(a.cloud, a.woodOnly ? modelled : kept, s);
   r.skeletonMs = s.skeletonMs;
   r.fitMs = s.fitMs;
   r.sweepMs = s.sweepMs;
@@ -98,6 +124,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   model::MeasureOptions mo;
   mo.unitMetres = a.unitMetres;
   mo.leafOn = a.leafOn;
+  mo.woodOnly = a.woodOnly;
   mo.noise = s.noiseMeasured ? s.noise : -1.0;
   mo.leafPieceShare = r.skeletonNodes ? static_cast<double>(r.leafPieces) / static_cast<double>(r.skeletonNodes) : 0.0;
   const model::ModelMeasures measures = model::measure(tree, kept, mo);
@@ -107,7 +134,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   // The sketch first; the model's outputs end with the report, after which a batch writes its
   // done marker, so their presence says the tree is complete.
   if (!a.sketch.empty()) io::writeSketch(std::filesystem::path(a.sketch), s.sketch);
-  if (!a.strays.empty()) io::writePointCloud(a.strays, cloud::selectPoints(cloud, s.strays.setAside));
+  if (!a.strays.empty()) io::writePointCloud(a.strays, cloud::selectPoints(modelled, s.strays.setAside));
   model::writeOutputs(tree, measures, a.out, header);
   r.measures = measures;
   r.totalMs = msSince(t0);

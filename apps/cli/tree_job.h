@@ -20,6 +20,10 @@ struct TreeJob {
   std::string strays;      ///< the points set aside as strays, a cloud file (optional; written even when none)
   std::string up;                 ///< --up ("" = the rule of io/up_axis.h)
   bool leafOn = false;
+  /// Model only the points the wood/leaf classification calls wood (classify/classify.h), with the
+  /// leaf-off settings (what is left is meant to be wood); the model is measured against every
+  /// point. For a tree in leaf whose volume matters more than its finest twigs.
+  bool woodOnly = false;
   std::uint64_t seed = 1;
   int ring = 16;
   double inlierThreshold = -1;  ///< < 0: library default
@@ -28,7 +32,8 @@ struct TreeJob {
 
 struct TreeJobResult {
   std::size_t points = 0;
-  cloud::StrayPoints strays;  ///< the points set aside before modelling
+  std::size_t woodPoints = 0;  ///< with woodOnly: the points classified as wood (the ones modelled)
+  cloud::StrayPoints strays;  ///< indices into the points modelled  ///< the points set aside before modelling
   cloud::ScaleCheck scale;    ///< the cloud's size and precision, with warnings and their fixes
   std::string up, upReason;
   std::size_t skeletonNodes = 0, forks = 0, fitsAccepted = 0, leafPieces = 0, vertices = 0, triangles = 0;

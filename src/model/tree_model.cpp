@@ -205,7 +205,9 @@ Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions&
       v.advice.push_back(std::move(advice));
   };
   using L = Verdict::Level;
-  const std::string leafOn = o.leafOn ? "" : "if the tree was in leaf, run with --leaf-on";
+  const std::string leafOn =
+      !o.leafOn ? "if the tree was in leaf, run with --leaf-on"
+                : (o.woodOnly ? "" : "for the wood's volume, run with --wood-only (models the points classified as wood)");
   if (m.hasFit && m.fit.insideDeeper2cm > kMaxInside)
     add(L::NotTrusted,
         percent(m.fit.insideDeeper2cm) + " of the points lie deeper than 2 cm inside the model: its tubes are "
@@ -223,7 +225,7 @@ Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions&
         "only " + percent(m.measuredVolumeShare) +
             " of the volume rests on circles fitted to the points; the rest follows the pipe model from the stem",
         "a denser or less noisy scan of the crown measures more of it");
-  if (m.hasFit && m.fit.outsideFarther5cm > kMaxMissed)
+  if (m.hasFit && m.fit.outsideFarther5cm > kMaxMissed && !o.woodOnly)
     add(L::Uncertain,
         percent(m.fit.outsideFarther5cm) +
             " of the points lie more than 5 cm outside the model (leaves, noise, other objects or branches it "

@@ -202,3 +202,48 @@ TEST(CmdAuto, AScanAsNoisyAsItsStemsIsModelledFromItsCrown) {
 
 }  // namespace
 }  // namespace treesketch
+
+namespace treesketch {
+namespace {
+
+TEST(CmdAuto, WoodOnlyNeedsAuto) {
+  test::TempDir dir;
+  std::string out;
+  EXPECT_EQ(test::runCli("reconstruct " + yTreeCloud(dir) + " --sketch s.json --wood-only -o " + quoted(dir / "m.ply"),
+                         &out),
+            2)
+      << out;
+  EXPECT_NE(out.find("--wood-only needs --auto"), std::string::npos) << out;
+}
+
+// Trees in leaf modelled from the points the wood/leaf classification calls wood (../shared/data/real;
+// skipped without it): a palm and a 22 m tropical tree. With every point, the palm's fronds became
+// 7.3 m³ of tubes (form factor 6.5) holding 8 % of its points deeper than 2 cm; its wood is its stem.
+// The tropical tree has a published TreeQSM model of its stem (263.7 L).
+TEST(CmdAuto, WoodOnlyModelsATreeInLeafFromItsWood) {
+  const auto real = test::sharedDataDir() / "real";
+  if (!std::filesystem::exists(real / "pytlidar_tree_1.las")) GTEST_SKIP() << "no " << real;
+  test::TempDir dir;
+  for (const char* file : {"pytlidar_tree_1.las", "itsme_tree_1_pc.txt"}) {
+    std::string out;
+    ASSERT_EQ(test::runCli("reconstruct " + quoted(real / file) + " --auto --leaf-on --wood-only --up z -o " +
+                               quoted(dir / "m.ply") + " --report " + quoted(dir / "r.json"),
+                           &out),
+              0)
+        << out;
+    const auto report = nlohmann::json::parse(test::readText(dir / "r.json"));
+    EXPECT_TRUE(report["woodOnly"].get<bool>());
+    EXPECT_LT(report["woodPoints"].get<double>(), 0.5 * report["points"].get<double>()) << file;
+    EXPECT_LE(report["model"]["fit"]["insideDeeper2cm"].get<double>(), 0.05) << file;
+    const double volume = report["metrics"]["volumeM3"].get<double>();
+    const double dbh = report["metrics"]["dbhModelM"].get<double>(), height = report["metrics"]["heightM"].get<double>();
+    EXPECT_LE(volume / (M_PI / 4 * dbh * dbh * height), 4.0) << file;
+    if (std::string(file) == "itsme_tree_1_pc.txt") {
+      EXPECT_GT(volume, 0.75 * 0.2637) << out;
+      EXPECT_LT(volume, 1.33 * 0.2637) << out;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace treesketch

@@ -81,6 +81,9 @@ struct MeasureOptions {
   double unitMetres = 1.0;  ///< metres per cloud unit (> 0)
   bool fit = true;          ///< measure the cloud's points against the model (the report and the verdict need it)
   bool leafOn = false;      ///< the model was made with the leaf-on settings (the verdict's advice)
+  /// The model was made from the points classified as wood only (the verdict's advice; the points
+  /// far outside it are then the leaves, not a fault of the model).
+  bool woodOnly = false;
   /// Share of the automatic skeleton's pieces that looked like leaves (flat), or < 0 when unknown.
   double leafPieceShare = -1;
   /// The scan's noise measured while modelling (cloud units; the automatic model's median circle
