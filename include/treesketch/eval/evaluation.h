@@ -2,7 +2,8 @@
 // 5.12-5.14) as one library call, extended into a robustness evaluation: scan each
 // test tree under each scan condition (condition_matrix.h: the former favourable setting and a
 // matrix of realistic ones), leaf-on and leaf-off, reconstruct it with several sketch methods,
-// compare each result with the branch mesh both ways, and write a Markdown table, a summary per
+// compare each result with the branch mesh both ways (and the automatic model's wood volume with
+// the tree's exact volume, TreeCase::woodVolume), and write a Markdown table, a summary per
 // condition (mean and worst case, tuning and held-out trees apart), CSVs and SVG plots.
 //
 // Methods (each a name in EvalOptions::methods):
