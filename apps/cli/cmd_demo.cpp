@@ -187,12 +187,14 @@ void writeAutoOutputs(DemoState& s, const model::TreeModel& tree, const geom::Po
   const model::ModelMeasures m = model::measure(tree, cloud);
   model::writeOutputs(tree, m, out, {{"cloud", "cloud.ply (wood points)"}, {"auto", true}});
   s.summary << "automatic model (wood points): " << tree.cylinders.size() << " cylinders; " << m.summary() << "\n";
-  char line[240];
+  char line[300];
+  // The scan sees the branch mesh, whose rings are polygons inscribed in the skeleton's circles.
   std::snprintf(line, sizeof line,
-                "  height %.2f m, DBH %.1f cm, volume %.4f m^3 (the tree's true wood volume %.4f), stem %.4f, "
-                "branches %.4f m^3 in %zu branches\n",
+                "  height %.2f m, DBH %.1f cm, volume %.4f m^3 (the branch mesh holds %.4f, its round sections "
+                "%.4f), stem %.4f, branches %.4f m^3 in %zu branches\n",
                 m.metrics.height, 100.0 * m.metrics.figures.trunkDiameter, m.metrics.figures.volume,
-                gen::woodVolume(s.tree.skeleton), m.metrics.stemVolume, m.metrics.branchVolume, m.metrics.branches);
+                gen::branchMeshVolume(s.tree.skeleton, s.tree.branches), gen::woodVolume(s.tree.skeleton),
+                m.metrics.stemVolume, m.metrics.branchVolume, m.metrics.branches);
   s.summary << line;
 
   render::RenderScene scene;

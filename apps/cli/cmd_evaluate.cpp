@@ -167,7 +167,8 @@ void registerEvaluate(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "evaluate",
       "Scan test trees (with and without leaves), reconstruct them with several sketch methods and compare each "
-      "result with the branch mesh (Hausdorff, both directions); writes table.md, summary.md, results.csv, "
+      "result with the branch mesh (Hausdorff, both directions) and the automatic model's wood volume with the "
+      "tree's exact volume; writes table.md, summary.md, results.csv, "
       "summary.csv and SVG plots. --matrix runs the scan-condition matrix");
   auto o = std::make_shared<EvaluateOpts>();
   addScanOptions(*cmd, *o);

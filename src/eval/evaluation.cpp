@@ -380,6 +380,26 @@ EvalRow caseRow(const EvalCase& k, const std::string& method, bool sweep) {
   return row;
 }
 
+// The model's volume against the tree's (a method with no cylinder model leaves them NaN).
+void setVolumes(EvalRow& row, const TreeCase& tree, const model::TreeModel& m) {
+  row.trueVolume = tree.woodVolume;
+  if (m.empty()) return;
+  double volume = 0;
+  for (const auto& c : m.cylinders.cylinders) volume += c.volume();
+  row.modelVolume = volume;
+  row.measuredVolumeShare = model::measuredVolumeShare(m);
+  if (row.trueVolume > 0) row.volumeError = row.modelVolume / row.trueVolume - 1.0;
+}
+
+// "  volume +3.2 % (81 % measured)" for the log, or nothing without a volume error.
+std::string volumeText(const EvalRow& row) {
+  if (!std::isfinite(row.volumeError)) return "";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "  volume %+6.1f %% (%.0f %% measured)", 100.0 * row.volumeError,
+                100.0 * row.measuredVolumeShare);
+  return buf;
+}
+
 // Runs one method on the case and measures its model against the reference.
 EvalRow evaluateMethod(const EvalCase& k, const EvalOptions& o, const std::string& method, int nodes, bool sweep) {
   const TreeCase& tree = k.tree;
@@ -408,12 +428,13 @@ EvalRow evaluateMethod(const EvalCase& k, const EvalOptions& o, const std::strin
   row.backwardMax = pct(bwd.max);
   row.backwardMean = pct(bwd.mean);
   row.backwardRms = pct(bwd.rms);
+  setVolumes(row, tree, out.model);
   if (o.log) {
-    char buf[320];
+    char buf[360];
     std::snprintf(buf, sizeof buf,
-                  "%s %s %s %-8s nodes %3d/%3d  back RMS %6.3f %%  fwd RMS %6.3f %%  root %6.2f %%  %7.0f ms",
+                  "%s %s %s %-8s nodes %3d/%3d  back RMS %6.3f %%  fwd RMS %6.3f %%  root %6.2f %%  %7.0f ms%s",
                   tree.name.c_str(), k.c.name.c_str(), row.leaf.c_str(), method.c_str(), row.fitted, row.nodes,
-                  row.backwardRms, row.forwardRms, row.rootOffsetPct, row.reconstructMs);
+                  row.backwardRms, row.forwardRms, row.rootOffsetPct, row.reconstructMs, volumeText(row).c_str());
     o.log(buf);
   }
   return row;
@@ -454,6 +475,60 @@ std::vector<EvalRow> runEvaluation(const std::vector<TreeCase>& trees, const Eva
 
 // -- summaries -------------------------------------------------------------------------------------
 
+namespace {
+
+// Running sums of one summary's judged cases.
+struct SummarySums {
+  double backward = 0, forward = 0, volumeAbs = 0, measuredShare = 0;
+};
+
+// One judged case (not sparse, with a mesh) into its summary.
+void addJudgedRow(ConditionSummary& s, const EvalRow& r, SummarySums& sums) {
+  ++s.judged;
+  sums.backward += r.backwardRms;
+  sums.forward += r.forwardRms;
+  if (!(r.backwardRms <= s.backwardWorst)) {  // also replaces the initial NaN
+    s.backwardWorst = r.backwardRms;
+    s.backwardWorstTree = r.tree;
+  }
+  if (!(r.forwardRms <= s.forwardWorst)) {
+    s.forwardWorst = r.forwardRms;
+    s.forwardWorstTree = r.tree;
+  }
+  if (r.referenceLimbs > 0) {
+    double ratio = static_cast<double>(r.tips) / r.referenceLimbs;
+    s.tipsRatioMin = std::isfinite(s.tipsRatioMin) ? std::min(s.tipsRatioMin, ratio) : ratio;
+    s.tipsRatioMax = std::isfinite(s.tipsRatioMax) ? std::max(s.tipsRatioMax, ratio) : ratio;
+    s.tipsRatioInBand += ratio >= kTipsRatioMin && ratio <= kTipsRatioMax;
+  }
+  s.rootAtBase += r.rootAtBase;
+  double offset = std::isfinite(r.rootOffsetPct) ? r.rootOffsetPct : INFINITY;
+  s.rootOffsetWorst = std::isnan(s.rootOffsetWorst) ? offset : std::max(s.rootOffsetWorst, offset);
+  if (std::isfinite(r.volumeError)) {
+    ++s.volumeJudged;
+    sums.volumeAbs += std::abs(r.volumeError);
+    sums.measuredShare += r.measuredVolumeShare;
+    if (!(std::abs(r.volumeError) <= std::abs(s.volumeErrorWorst))) {
+      s.volumeErrorWorst = r.volumeError;
+      s.volumeWorstTree = r.tree;
+    }
+  }
+}
+
+// The means, once every case is in.
+void finishSummary(ConditionSummary& s, const SummarySums& sums) {
+  if (s.judged > 0) {
+    s.backwardMean = sums.backward / s.judged;
+    s.forwardMean = sums.forward / s.judged;
+  }
+  if (s.volumeJudged > 0) {
+    s.volumeErrorMeanAbs = sums.volumeAbs / s.volumeJudged;
+    s.measuredVolumeShareMean = sums.measuredShare / s.volumeJudged;
+  }
+}
+
+}  // namespace
+
 std::vector<ConditionSummary> summarize(const std::vector<EvalRow>& rows) {
   // Groups (condition, leaf, method) in first-seen order.
   std::vector<std::tuple<std::string, std::string, std::string>> keys;
@@ -478,7 +553,7 @@ std::vector<ConditionSummary> summarize(const std::vector<EvalRow>& rows) {
       s.leaf = leaf;
       s.method = method;
       s.half = half;
-      double bSum = 0, fSum = 0;
+      SummarySums sums;
       for (const auto& r : rows) {
         if (r.sweep || r.condition != condition || r.leaf != leaf || r.method != method) continue;
         if (half != "all" && r.half != half) continue;
@@ -487,39 +562,14 @@ std::vector<ConditionSummary> summarize(const std::vector<EvalRow>& rows) {
         s.woodPointsMin = s.cases == 0 ? r.woodPoints : std::min(s.woodPointsMin, r.woodPoints);
         s.woodPointsMax = std::max(s.woodPointsMax, r.woodPoints);
         ++s.cases;
-        if (r.sparse) {
+        if (r.sparse)
           ++s.sparse;
-          continue;
-        }
-        if (!std::isfinite(r.backwardRms) || !std::isfinite(r.forwardRms)) {
+        else if (!std::isfinite(r.backwardRms) || !std::isfinite(r.forwardRms))
           ++s.noMesh;
-          continue;
-        }
-        ++s.judged;
-        bSum += r.backwardRms;
-        fSum += r.forwardRms;
-        if (!(r.backwardRms <= s.backwardWorst)) {  // also replaces the initial NaN
-          s.backwardWorst = r.backwardRms;
-          s.backwardWorstTree = r.tree;
-        }
-        if (!(r.forwardRms <= s.forwardWorst)) {
-          s.forwardWorst = r.forwardRms;
-          s.forwardWorstTree = r.tree;
-        }
-        if (r.referenceLimbs > 0) {
-          double ratio = static_cast<double>(r.tips) / r.referenceLimbs;
-          s.tipsRatioMin = std::isfinite(s.tipsRatioMin) ? std::min(s.tipsRatioMin, ratio) : ratio;
-          s.tipsRatioMax = std::isfinite(s.tipsRatioMax) ? std::max(s.tipsRatioMax, ratio) : ratio;
-          s.tipsRatioInBand += ratio >= kTipsRatioMin && ratio <= kTipsRatioMax;
-        }
-        s.rootAtBase += r.rootAtBase;
-        double offset = std::isfinite(r.rootOffsetPct) ? r.rootOffsetPct : INFINITY;
-        s.rootOffsetWorst = std::isnan(s.rootOffsetWorst) ? offset : std::max(s.rootOffsetWorst, offset);
+        else
+          addJudgedRow(s, r, sums);
       }
-      if (s.judged > 0) {
-        s.backwardMean = bSum / s.judged;
-        s.forwardMean = fSum / s.judged;
-      }
+      finishSummary(s, sums);
       out.push_back(s);
     }
   }

@@ -33,6 +33,27 @@ std::string f3(double v) {
   return buf;
 }
 
+/// A fraction as a percentage with one decimal ("12.3"), "—" when unknown.
+std::string pct1(double fraction) {
+  if (!std::isfinite(fraction)) return "—";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", 100.0 * fraction);
+  return buf;
+}
+/// The same with its sign ("+12.3", "-4.0").
+std::string signedPct1(double fraction) {
+  if (!std::isfinite(fraction)) return "—";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%+.1f", 100.0 * fraction);
+  return buf;
+}
+
+/// "+3.2 (81)": the model's volume error and its measured share, % ("—" without a volume error).
+std::string volumeCell(const EvalRow& r) {
+  if (!std::isfinite(r.volumeError)) return "—";
+  return signedPct1(r.volumeError) + " (" + pct1(r.measuredVolumeShare) + ")";
+}
+
 std::string flagsOf(const EvalRow& r) {
   std::string f;
   if (r.sparse) f = "sparse";
@@ -74,27 +95,28 @@ std::string markdownTable(const std::vector<EvalRow>& rows) {
     s << "| tree | half | method | nodes (fitted) | tips (limbs) | root offset % | reconstruct ms | points | wood "
          "points "
          "| wood % | samples | bbox diag | back max % | back mean % | back RMS % | fwd max % | fwd mean % | fwd RMS % "
-         "| flags |\n";
-    s << "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+         "| volume error % (measured %) | flags |\n";
+    s << "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const auto& r : rows) {
       if (r.condition != condition || r.leaf != leaf || r.sweep) continue;
       s << "| " << r.tree << " | " << r.half << " | " << r.method << " | " << r.nodes << " (" << r.fitted << ") | "
         << r.tips << " (" << r.referenceLimbs << ") | " << f2(r.rootOffsetPct) << " | " << f2(r.reconstructMs) << " | "
         << r.points << " | " << r.woodPoints << " | " << f2(100.0 * r.woodFraction) << " | " << r.samples << " | "
         << f2(r.bboxDiagonal) << " | " << f3(r.backwardMax) << " | " << f3(r.backwardMean) << " | " << f3(r.backwardRms)
-        << " | " << f3(r.forwardMax) << " | " << f3(r.forwardMean) << " | " << f3(r.forwardRms) << " | " << flagsOf(r)
-        << " |\n";
+        << " | " << f3(r.forwardMax) << " | " << f3(r.forwardMean) << " | " << f3(r.forwardRms) << " | "
+        << volumeCell(r) << " | " << flagsOf(r) << " |\n";
     }
     s << "\nMean and worst case over the judged trees of each half (sparse cases and cases without a mesh left out, "
          "counted):\n\n| method | half | judged (sparse, no mesh) | back RMS mean % | back RMS worst % | fwd RMS mean "
          "% "
-         "| fwd RMS worst % |\n|---|---|---:|---:|---:|---:|---:|\n";
+         "| fwd RMS worst % | volume error mean abs. % | volume error worst % |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& m : summaries) {
       if (m.condition != condition || m.leaf != leaf) continue;
       std::string open = m.forwardJudged ? "" : "(", close = m.forwardJudged ? "" : ")";
       s << "| " << m.method << " | " << m.half << " | " << m.judged << " of " << m.cases << " (" << m.sparse << ", "
         << m.noMesh << ") | " << f3(m.backwardMean) << " | " << f3(m.backwardWorst) << " | " << open
-        << f3(m.forwardMean) << close << " | " << open << f3(m.forwardWorst) << close << " |\n";
+        << f3(m.forwardMean) << close << " | " << open << f3(m.forwardWorst) << close << " | "
+        << pct1(m.volumeErrorMeanAbs) << " | " << signedPct1(m.volumeErrorWorst) << " |\n";
     }
     s << "\n";
   }
@@ -210,6 +232,38 @@ void writeMethodTable(std::ostream& s, const std::vector<ConditionSummary>& summ
   s << "\n";
 }
 
+// The volume table of one method and leaf state (methods with a cylinder model and trees with a
+// known volume only): a row per condition.
+void writeVolumeTable(std::ostream& s, const std::vector<ConditionSummary>& summaries,
+                      const std::vector<std::string>& halves, const std::string& leaf, const std::string& method) {
+  std::vector<std::string> conds;
+  for (const auto& m : summaries)
+    if (m.leaf == leaf && m.method == method && m.volumeJudged > 0 &&
+        std::find(conds.begin(), conds.end(), m.condition) == conds.end())
+      conds.push_back(m.condition);
+  if (conds.empty()) return;
+  auto cell = [&](const std::string& condition, const std::function<std::string(const ConditionSummary&)>& f) {
+    return summaryCell(summaries, halves, condition, leaf, method, f);
+  };
+  s << "## Volume, " << method << ", " << leaf << "\n\n";
+  s << "The model's wood volume against the tree's (its branch mesh's exact volume), judged cases: mean of the "
+       "absolute relative error, the worst case with its tree, and the mean share of the model's volume on "
+       "fitted circles.\n\n";
+  s << "| condition | judged | volume error mean abs. % | volume error worst % (tree) | measured share % |\n";
+  s << "|---|---:|---:|---:|---:|\n";
+  for (const auto& cond : conds) {
+    s << "| " << cond << " | " << cell(cond, [](const ConditionSummary& m) { return std::to_string(m.volumeJudged); })
+      << " | " << cell(cond, [](const ConditionSummary& m) { return pct1(m.volumeErrorMeanAbs); }) << " | "
+      << cell(cond,
+              [](const ConditionSummary& m) {
+                return m.volumeJudged == 0 ? std::string("—")
+                                           : signedPct1(m.volumeErrorWorst) + " (" + m.volumeWorstTree + ")";
+              })
+      << " | " << cell(cond, [](const ConditionSummary& m) { return pct1(m.measuredVolumeShareMean); }) << " |\n";
+  }
+  s << "\n";
+}
+
 }  // namespace
 
 std::string markdownSummary(const std::vector<EvalRow>& rows, const std::vector<ScanCondition>& conditions) {
@@ -231,6 +285,8 @@ std::string markdownSummary(const std::vector<EvalRow>& rows, const std::vector<
   writeSummaryNotes(s, rows, tune, held, cellHalves, conditions);
   for (const auto& leaf : {std::string("leaf-off"), std::string("leaf-on")})
     for (const auto& method : methods) writeMethodTable(s, summaries, halves, leaf, method);
+  for (const auto& leaf : {std::string("leaf-off"), std::string("leaf-on")})
+    for (const auto& method : methods) writeVolumeTable(s, summaries, halves, leaf, method);
   return s.str();
 }
 
@@ -239,7 +295,8 @@ std::string csvTable(const std::vector<EvalRow>& rows) {
   s << "tree,half,condition,factor,pattern,leaf,method,sweep,nodes,fitted,points,wood_points,wood_fraction,rays,"
        "stations,step_deg,range_noise_mm,metres_per_unit,reconstruct_ms,samples,bbox_diagonal,backward_max_pct,"
        "backward_mean_pct,backward_rms_pct,forward_max_pct,forward_mean_pct,forward_rms_pct,mesh_triangles,tips,"
-       "reference_limbs,root_offset_pct,root_at_base,sparse,backward_only\n";
+       "reference_limbs,root_offset_pct,root_at_base,sparse,backward_only,true_volume,model_volume,volume_error,"
+       "measured_volume_share\n";
   s.precision(9);
   for (const auto& r : rows) {
     s << r.tree << "," << r.half << "," << r.condition << "," << r.factor << "," << r.pattern << "," << r.leaf << ","
@@ -249,7 +306,8 @@ std::string csvTable(const std::vector<EvalRow>& rows) {
       << "," << r.backwardMax << "," << r.backwardMean << "," << r.backwardRms << "," << r.forwardMax << ","
       << r.forwardMean << "," << r.forwardRms << "," << r.meshTriangles << "," << r.tips << "," << r.referenceLimbs
       << "," << r.rootOffsetPct << "," << (r.rootAtBase ? 1 : 0) << "," << (r.sparse ? 1 : 0) << ","
-      << (r.backwardOnly ? 1 : 0) << "\n";
+      << (r.backwardOnly ? 1 : 0) << "," << r.trueVolume << "," << r.modelVolume << "," << r.volumeError << ","
+      << r.measuredVolumeShare << "\n";
   }
   return s.str();
 }
@@ -258,14 +316,17 @@ std::string csvSummary(const std::vector<ConditionSummary>& summaries) {
   std::ostringstream s;
   s << "condition,factor,leaf,method,half,cases,sparse,no_mesh,judged,forward_judged,wood_points_min,wood_points_max,"
        "backward_rms_mean_pct,backward_rms_worst_pct,backward_worst_tree,forward_rms_mean_pct,forward_rms_worst_pct,"
-       "forward_worst_tree,tips_ratio_min,tips_ratio_max,tips_ratio_in_band,root_at_base,root_offset_worst_pct\n";
+       "forward_worst_tree,tips_ratio_min,tips_ratio_max,tips_ratio_in_band,root_at_base,root_offset_worst_pct,"
+       "volume_judged,volume_error_mean_abs_pct,volume_error_worst_pct,volume_worst_tree,measured_volume_share_mean\n";
   s.precision(9);
   for (const auto& m : summaries) {
     s << m.condition << "," << m.factor << "," << m.leaf << "," << m.method << "," << m.half << "," << m.cases << ","
       << m.sparse << "," << m.noMesh << "," << m.judged << "," << (m.forwardJudged ? 1 : 0) << "," << m.woodPointsMin
       << "," << m.woodPointsMax << "," << m.backwardMean << "," << m.backwardWorst << "," << m.backwardWorstTree << ","
       << m.forwardMean << "," << m.forwardWorst << "," << m.forwardWorstTree << "," << m.tipsRatioMin << ","
-      << m.tipsRatioMax << "," << m.tipsRatioInBand << "," << m.rootAtBase << "," << m.rootOffsetWorst << "\n";
+      << m.tipsRatioMax << "," << m.tipsRatioInBand << "," << m.rootAtBase << "," << m.rootOffsetWorst << ","
+      << m.volumeJudged << "," << 100.0 * m.volumeErrorMeanAbs << "," << 100.0 * m.volumeErrorWorst << ","
+      << m.volumeWorstTree << "," << m.measuredVolumeShareMean << "\n";
   }
   return s.str();
 }

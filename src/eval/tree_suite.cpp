@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
+#include "treesketch/gen/branch_mesh.h"
+#include "treesketch/gen/skeleton.h"
 #include "treesketch/gen/tree_generator.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/util/error.h"
@@ -20,6 +23,7 @@ TreeCase treeCaseFromGenerated(const std::string& name, const gen::GeneratedTree
   tc.branches = tree.branches.mesh;
   tc.leaves = tree.leaves;
   tc.up = tree.skeleton.up;
+  tc.woodVolume = gen::branchMeshVolume(tree.skeleton, tree.branches);
   for (const auto& b : tree.skeleton.branches) {
     sketch::BranchPolyline pl;
     std::vector<double> radii;
@@ -58,19 +62,64 @@ Vec3 readVec3(const nlohmann::json& j, const std::string& source, const std::str
   return v;
 }
 
-}  // namespace
-
-void readEzTreeAxes(const fs::path& jsonPath, std::vector<sketch::BranchPolyline>& axes,
-                    std::vector<std::vector<double>>& radii) {
-  const std::string source = jsonPath.string();
-  std::ifstream in(jsonPath);
-  if (!in) throw InputError(source + ": cannot open");
+nlohmann::json readJsonFile(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string() + ": cannot open");
   nlohmann::json doc;
   try {
     in >> doc;
   } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(source + ": byte offset " + std::to_string(e.byte) + ": malformed JSON");
+    throw InputError(path.string() + ": byte offset " + std::to_string(e.byte) + ": malformed JSON");
   }
+  return doc;
+}
+
+/// One ez-tree branch's wood: its frustums times its polygon's share of the circle.
+double ezTreeBranchVolume(const nlohmann::json& branch, const std::string& source, const std::string& where) {
+  const nlohmann::json sides = branch.value("segment_count", nlohmann::json());
+  if (!sides.is_number_integer() || sides.get<long long>() < 3 || sides.get<long long>() > 65536)
+    throw InputError(source + ": " + where + ".segment_count: expected an integer from 3 to 65536");
+  const nlohmann::json sections = branch.value("sections", nlohmann::json());
+  if (!sections.is_array()) throw InputError(source + ": " + where + ": expected a 'sections' array");
+  double volume = 0, previousRadius = 0;
+  Vec3 previousCentre = Vec3::Zero();
+  for (std::size_t s = 0; s < sections.size(); ++s) {
+    const std::string at = where + ".sections[" + std::to_string(s) + "]";
+    if (!sections[s].is_object()) throw InputError(source + ": " + at + ": expected an object");
+    const Vec3 centre = readVec3(sections[s].value("center", nlohmann::json()), source, at + ".center");
+    const nlohmann::json r = sections[s].value("radius", nlohmann::json());
+    if (!r.is_number() || !std::isfinite(r.get<double>()) || r.get<double>() < 0)
+      throw InputError(source + ": " + at + ".radius: expected a finite number of at least 0");
+    if (s > 0) volume += gen::frustumVolume((centre - previousCentre).norm(), previousRadius, r.get<double>());
+    previousCentre = centre;
+    previousRadius = r.get<double>();
+  }
+  return gen::inscribedPolygonShare(static_cast<int>(sides.get<long long>())) * volume;
+}
+
+}  // namespace
+
+double readEzTreeWoodVolume(const fs::path& jsonPath) {
+  const std::string source = jsonPath.string();
+  const nlohmann::json doc = readJsonFile(jsonPath);
+  if (!doc.is_object() || !doc.contains("skeleton") || !doc["skeleton"].is_object() ||
+      !doc["skeleton"].contains("branches"))
+    return std::numeric_limits<double>::quiet_NaN();
+  const auto& branches = doc["skeleton"]["branches"];
+  if (!branches.is_array()) throw InputError(source + ": skeleton.branches: expected an array");
+  double volume = 0;
+  for (std::size_t i = 0; i < branches.size(); ++i) {
+    const std::string where = "skeleton.branches[" + std::to_string(i) + "]";
+    if (!branches[i].is_object()) throw InputError(source + ": " + where + ": expected an object");
+    volume += ezTreeBranchVolume(branches[i], source, where);
+  }
+  return volume;
+}
+
+void readEzTreeAxes(const fs::path& jsonPath, std::vector<sketch::BranchPolyline>& axes,
+                    std::vector<std::vector<double>>& radii) {
+  const std::string source = jsonPath.string();
+  const nlohmann::json doc = readJsonFile(jsonPath);
   if (!doc.contains("skeleton") || !doc["skeleton"].contains("limbs") || !doc["skeleton"]["limbs"].is_array())
     throw InputError(source + ": expected an object with skeleton.limbs (ez-tree layout)");
   const auto& limbs = doc["skeleton"]["limbs"];
@@ -162,6 +211,7 @@ std::vector<TreeCase> loadTreeFolder(const fs::path& folder, double metresPerUni
     tc.up = geom::UpAxis::Y;
     tc.metresPerUnit = metresPerUnit;
     readEzTreeAxes(j, tc.axes, tc.axisRadii);
+    tc.woodVolume = readEzTreeWoodVolume(j);
     trees.push_back(std::move(tc));
   }
   return trees;

@@ -56,6 +56,7 @@ BranchMesh buildBranchMesh(const Skeleton& skeleton, const BranchMeshOptions& op
     const std::vector<Vec3> u = ringFrames(b);
     const auto base = static_cast<std::uint32_t>(verts.size());
     out.branchFirstTriangle.push_back(static_cast<std::uint32_t>(tris.size()));
+    out.branchRingVertices.push_back(n);
     for (std::size_t i = 0; i < b.sections.size(); ++i) {
       const Section& s = b.sections[i];
       const Vec3 v = s.axis.cross(u[i]);
@@ -79,6 +80,23 @@ BranchMesh buildBranchMesh(const Skeleton& skeleton, const BranchMeshOptions& op
     out.branchTriangleCount.push_back(static_cast<std::uint32_t>(tris.size()) - out.branchFirstTriangle.back());
   }
   return out;
+}
+
+double inscribedPolygonShare(int sides) {
+  if (sides < 3) throw OptionsError("a polygon needs at least 3 sides, got " + std::to_string(sides));
+  const double angle = 2.0 * std::numbers::pi / sides;
+  return sides * std::sin(angle) / (2.0 * std::numbers::pi);
+}
+
+double branchMeshVolume(const Skeleton& skeleton, const BranchMesh& mesh) {
+  if (mesh.branchRingVertices.size() != skeleton.branches.size())
+    throw OptionsError("branch mesh volume: the mesh has ring counts for " +
+                       std::to_string(mesh.branchRingVertices.size()) + " branches, the skeleton has " +
+                       std::to_string(skeleton.branches.size()));
+  double volume = 0;
+  for (std::size_t i = 0; i < skeleton.branches.size(); ++i)
+    volume += inscribedPolygonShare(mesh.branchRingVertices[i]) * branchWoodVolume(skeleton.branches[i]);
+  return volume;
 }
 
 }  // namespace treesketch::gen

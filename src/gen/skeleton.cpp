@@ -46,14 +46,21 @@ geom::BBox bounds(const Skeleton& skeleton) {
   return box;
 }
 
+double frustumVolume(double length, double r0, double r1) {
+  return std::numbers::pi * length * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
+}
+
+double branchWoodVolume(const SkeletonBranch& b) {
+  double volume = 0;
+  for (std::size_t i = 1; i < b.sections.size(); ++i)
+    volume += frustumVolume((b.sections[i].centre - b.sections[i - 1].centre).norm(), b.sections[i - 1].radius,
+                            b.sections[i].radius);
+  return volume;
+}
+
 double woodVolume(const Skeleton& skeleton) {
   double volume = 0;
-  for (const auto& b : skeleton.branches)
-    for (std::size_t i = 1; i < b.sections.size(); ++i) {
-      double h = (b.sections[i].centre - b.sections[i - 1].centre).norm();
-      double r0 = b.sections[i - 1].radius, r1 = b.sections[i].radius;
-      volume += std::numbers::pi * h * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
-    }
+  for (const auto& b : skeleton.branches) volume += branchWoodVolume(b);
   return volume;
 }
 

@@ -116,6 +116,21 @@ TEST(EvaluateMatrix, QuickMatrixReportsEveryCase) {
     }
     EXPECT_GE(num(r, "tips"), 1) << key;
     EXPECT_GT(num(r, "reference_limbs"), 1) << key;
+    // Volume: every row knows the tree's; the automatic model's rows have its model's and error.
+    const double truth = num(r, "true_volume"), modelVolume = num(r, "model_volume");
+    EXPECT_GT(truth, 0) << key;
+    if (r.at("method") == "skeleton" && std::isfinite(back)) {
+      EXPECT_GT(modelVolume, 0) << key;
+      EXPECT_NEAR(num(r, "volume_error"), modelVolume / truth - 1.0, 1e-6) << key;
+      EXPECT_GE(num(r, "measured_volume_share"), 0) << key;
+      EXPECT_LE(num(r, "measured_volume_share"), 1) << key;
+      // The leaf-off model of a built-in tree's scan is not off by half (measured: within 10 %; leaf-on
+      // scans reach +300 %, the leaves' shells taken for wood).
+      if (r.at("sparse") == "0" && r.at("leaf") == "leaf-off") EXPECT_LT(std::abs(num(r, "volume_error")), 0.5) << key;
+    } else if (r.at("method") != "skeleton") {
+      EXPECT_TRUE(std::isnan(modelVolume)) << key << ": a sketch method has no cylinder model";
+      EXPECT_TRUE(std::isnan(num(r, "volume_error"))) << key;
+    }
   }
   EXPECT_EQ(seen, expected);
   EXPECT_EQ(halves, (std::set<std::string>{"tune", "held-out"}));
@@ -132,6 +147,12 @@ TEST(EvaluateMatrix, QuickMatrixReportsEveryCase) {
       EXPECT_GE(num(r, "forward_rms_worst_pct"), num(r, "forward_rms_mean_pct") - 1e-9);
     }
     EXPECT_EQ(r.at("forward_judged") == "0", r.at("condition") == "tls-1-station");
+    // The volume is judged on the automatic model's judged cases only.
+    EXPECT_EQ(num(r, "volume_judged"), r.at("method") == "skeleton" ? num(r, "judged") : 0.0);
+    if (num(r, "volume_judged") > 0) {
+      EXPECT_GE(std::abs(num(r, "volume_error_worst_pct")), num(r, "volume_error_mean_abs_pct") - 1e-9);
+      EXPECT_FALSE(r.at("volume_worst_tree").empty());
+    }
   }
   std::size_t expectedSummaries = 0;
   for (const auto& c : matrix) expectedSummaries += (c.leafOn + c.leafOff) * methods.size() * 3;

@@ -262,6 +262,49 @@ TEST(Evaluation, SummaryHasMeanAndWorstPerHalf) {
   EXPECT_TRUE(std::isinf(summarize(rows)[1].rootOffsetWorst));
 }
 
+TEST(Evaluation, SummaryHasVolumeMeanAndWorstPerHalf) {
+  std::vector<EvalRow> rows;
+  auto withVolume = [](EvalRow r, double error, double share) {
+    r.trueVolume = 10.0;
+    r.modelVolume = 10.0 * (1.0 + error);
+    r.volumeError = error;
+    r.measuredVolumeShare = share;
+    return r;
+  };
+  rows.push_back(withVolume(caseRow("a", "tune", 0.1, 0.2), 0.10, 0.8));
+  rows.push_back(withVolume(caseRow("b", "tune", 0.1, 0.2), -0.30, 0.6));
+  rows.push_back(withVolume(caseRow("c", "tune", 0.1, 0.2), 0.20, 0.7));
+  rows.push_back(caseRow("d", "tune", 0.1, 0.2));  // truth unknown: judged for distances, not volume
+  rows.push_back(withVolume(caseRow("e", "held-out", 0.1, 0.2), 0.05, 0.9));
+  rows.push_back(withVolume(caseRow("f", "held-out", 0.1, 0.2), 5.0, 0.1));  // sparse: left out
+  rows.back().sparse = true;
+
+  auto s = summarize(rows);
+  ASSERT_EQ(s.size(), 3u);
+  const ConditionSummary& tune = s[0];
+  EXPECT_EQ(tune.judged, 4);
+  EXPECT_EQ(tune.volumeJudged, 3);
+  EXPECT_NEAR(tune.volumeErrorMeanAbs, 0.2, 1e-12);
+  EXPECT_DOUBLE_EQ(tune.volumeErrorWorst, -0.30);  // the largest magnitude, with its sign
+  EXPECT_EQ(tune.volumeWorstTree, "b");
+  EXPECT_NEAR(tune.measuredVolumeShareMean, 0.7, 1e-12);
+  const ConditionSummary& held = s[1];
+  EXPECT_EQ(held.volumeJudged, 1);
+  EXPECT_DOUBLE_EQ(held.volumeErrorWorst, 0.05);  // not the sparse case's +500 %
+  EXPECT_EQ(s[2].volumeJudged, 4);
+  EXPECT_NEAR(s[2].volumeErrorMeanAbs, 0.65 / 4, 1e-12);
+
+  const std::string md = markdownSummary(rows);
+  EXPECT_NE(md.find("## Volume, skeleton, leaf-off"), std::string::npos) << md;
+  EXPECT_NE(md.find("| tls-base | 3 / 1 | 20.0 / 5.0 | -30.0 (b) / +5.0 (e) | 70.0 / 90.0 |"), std::string::npos)
+      << md;
+  const std::string table = markdownTable(rows);
+  EXPECT_NE(table.find("| -30.0 (60.0) |"), std::string::npos) << table;
+  // Rows with no volume at all: no volume table.
+  for (auto& r : rows) r.volumeError = NAN;
+  EXPECT_EQ(markdownSummary(rows).find("## Volume"), std::string::npos);
+}
+
 TEST(Evaluation, CsvHasTheMatrixColumns) {
   EvalRow r = caseRow("t", "held-out", 0.25, 0.5);
   r.rangeNoiseMm = 5;
@@ -306,8 +349,24 @@ TEST(Evaluation, CsvHasTheMatrixColumns) {
   EXPECT_EQ(col("root_at_base"), "1");
   EXPECT_EQ(col("sparse"), "0");
   EXPECT_EQ(col("backward_only"), "0");
+  EXPECT_EQ(col("true_volume"), "nan");  // not given: unknown
+  r.trueVolume = 8;
+  r.modelVolume = 10;
+  r.volumeError = 0.25;
+  r.measuredVolumeShare = 0.75;
+  {
+    std::istringstream again(csvTable({r}));
+    std::getline(again, header);
+    std::getline(again, line);
+    cells = split(line);
+  }
+  EXPECT_EQ(col("true_volume"), "8");
+  EXPECT_EQ(col("model_volume"), "10");
+  EXPECT_EQ(col("volume_error"), "0.25");
+  EXPECT_EQ(col("measured_volume_share"), "0.75");
   std::string sum = csvSummary(summarize({r}));
   EXPECT_EQ(sum.substr(0, sum.find('\n')).find("backward_rms_worst_pct") != std::string::npos, true);
+  EXPECT_NE(sum.find(",1,25,25,t,0.75\n"), std::string::npos) << sum;  // volume judged, mean, worst, tree, share
   EXPECT_EQ(std::count(sum.begin(), sum.end(), '\n'), 3);  // header + held-out + all
 }
 

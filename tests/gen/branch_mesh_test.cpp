@@ -6,6 +6,7 @@
 #include <map>
 #include <numbers>
 
+#include "treesketch/gen/tree_generator.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::gen {
@@ -94,6 +95,58 @@ TEST(BranchMesh, RingsLieOnTheirSectionsAndDoNotTwist) {
     Vec3 e = (bm.mesh.vertices[t[1]] - bm.mesh.vertices[t[0]]).cross(bm.mesh.vertices[t[2]] - bm.mesh.vertices[t[0]]);
     EXPECT_GT(e.norm(), 1e-8);
   }
+}
+
+/// Volume enclosed by one branch's triangles, from the divergence theorem with the origin at the
+/// branch's first section centre: a child's tube is open at its base, and that missing cap lies in
+/// a plane through the origin, where it would add nothing.
+double branchDivergenceVolume(const BranchMesh& bm, const SkeletonBranch& b) {
+  const Vec3 o = b.sections.front().centre;
+  double v = 0;
+  const std::uint32_t first = bm.branchFirstTriangle[b.id], count = bm.branchTriangleCount[b.id];
+  for (std::uint32_t t = first; t < first + count; ++t) {
+    const auto& tri = bm.mesh.triangles[t];
+    const Vec3 a = bm.mesh.vertices[tri[0]] - o, c = bm.mesh.vertices[tri[1]] - o, d = bm.mesh.vertices[tri[2]] - o;
+    v += a.dot(c.cross(d)) / 6.0;
+  }
+  return v;
+}
+
+TEST(BranchMesh, InscribedPolygonShareIsThePolygonsArea) {
+  // A square inscribed in the unit circle has area 2 (diagonal 2), a hexagon six triangles of side 1.
+  EXPECT_NEAR(inscribedPolygonShare(4) * std::numbers::pi, 2.0, 1e-12);
+  EXPECT_NEAR(inscribedPolygonShare(6) * std::numbers::pi, 6.0 * std::sqrt(3.0) / 4.0, 1e-12);
+  EXPECT_LT(inscribedPolygonShare(3), inscribedPolygonShare(8));
+  EXPECT_NEAR(inscribedPolygonShare(100000), 1.0, 1e-8);
+  EXPECT_THROW(inscribedPolygonShare(2), OptionsError);
+}
+
+TEST(BranchMesh, VolumeOfATaperedTubeIsItsPolygonFrustums) {
+  // A straight tapered trunk, closed at both ends: the divergence theorem over the whole mesh.
+  Skeleton s = straightTrunk(5, 0.4, 3.0);
+  for (std::size_t i = 0; i < s.branches[0].sections.size(); ++i) s.branches[0].sections[i].radius = 0.4 - 0.07 * i;
+  for (int n : {3, 4, 7, 12}) {
+    BranchMesh bm = buildBranchMesh(s, BranchMeshOptions{{n}});
+    ASSERT_EQ(bm.branchRingVertices, std::vector<int>{n});
+    EXPECT_NEAR(branchMeshVolume(s, bm), signedVolume(bm.mesh), 1e-9) << n << " sides";
+    EXPECT_LT(branchMeshVolume(s, bm), woodVolume(s));  // the polygon is inside its circle
+  }
+}
+
+TEST(BranchMesh, VolumeOfAGeneratedTreeMatchesItsMesh) {
+  // Bent branches of several levels and ring counts: each tube's own enclosed volume.
+  TreeOptions options = presetOptions("default");
+  options.leaves = false;
+  GeneratedTree tree = generateTree(options);
+  const BranchMesh& bm = tree.branches;
+  ASSERT_EQ(bm.branchRingVertices.size(), tree.skeleton.branches.size());
+  double meshVolume = 0;
+  for (const auto& b : tree.skeleton.branches) meshVolume += branchDivergenceVolume(bm, b);
+  const double volume = branchMeshVolume(tree.skeleton, bm);
+  EXPECT_NEAR(volume, meshVolume, 0.002 * meshVolume);  // measured: 0.06 %
+  EXPECT_LT(volume, woodVolume(tree.skeleton));
+  EXPECT_GT(volume, 0.75 * woodVolume(tree.skeleton));  // rings of 6-12 vertices hold 83-95 % of the circles
+  EXPECT_THROW(branchMeshVolume(tree.skeleton, BranchMesh{}), OptionsError);
 }
 
 TEST(BranchMesh, EmptySkeletonGivesEmptyMesh) {

@@ -2,7 +2,8 @@
 // 5.12-5.14) as one library call, extended into a robustness evaluation: scan each
 // test tree under each scan condition (condition_matrix.h: the former favourable setting and a
 // matrix of realistic ones), leaf-on and leaf-off, reconstruct it with several sketch methods,
-// compare each result with the branch mesh both ways, and write a Markdown table, a summary per
+// compare each result with the branch mesh both ways (and the automatic model's wood volume with
+// the tree's exact volume, TreeCase::woodVolume), and write a Markdown table, a summary per
 // condition (mean and worst case, tuning and held-out trees apart), CSVs and SVG plots.
 //
 // Methods (each a name in EvalOptions::methods):
@@ -132,6 +133,13 @@ struct EvalRow {
   /// trunk base (trunkBase), % of bboxDiagonal; NaN when the sketch has no located root.
   double rootOffsetPct = 0.0;
   bool rootAtBase = false;  ///< rootOffsetPct <= kRootAtBasePct
+  /// Wood volume, scene units³: the tree's (TreeCase::woodVolume, NaN when unknown) and the
+  /// method's cylinder model's (the sum of its frustums; NaN for the methods that give only a mesh:
+  /// uniform, user, ideal). volumeError = modelVolume / trueVolume − 1 (NaN when either is unknown).
+  double trueVolume = NAN, modelVolume = NAN, volumeError = NAN;
+  /// Share of the model's volume whose pieces rest on a fitted circle (model::measuredVolumeShare;
+  /// NaN without a cylinder model).
+  double measuredVolumeShare = NAN;
 };
 
 /// What a method returns: the reconstructed mesh, the sketch node counts and its time.
@@ -212,6 +220,13 @@ struct ConditionSummary {
   int tipsRatioInBand = 0;                        ///< within [kTipsRatioMin, kTipsRatioMax]
   int rootAtBase = 0;                             ///< judged cases whose root is at the trunk base
   double rootOffsetWorst = NAN;                   ///< % of the diagonal; inf when a root was not located
+  /// Volume: judged cases with a volume error (a cylinder model and a known true volume), the mean
+  /// of |volumeError| and the signed error of the largest magnitude with its tree (fractions), and
+  /// the mean measured share of the models' volume. NaN when no case has a volume error.
+  int volumeJudged = 0;
+  double volumeErrorMeanAbs = NAN, volumeErrorWorst = NAN;
+  std::string volumeWorstTree;
+  double measuredVolumeShareMean = NAN;
 };
 /// Summaries in the rows' order of conditions, leaf states and methods; for each, the halves
 /// present ("tune" first, then "held-out") and then "all".

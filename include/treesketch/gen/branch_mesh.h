@@ -27,6 +27,8 @@ struct BranchMesh {
   /// Per branch: its first triangle index and triangle count in `mesh` (contiguous).
   std::vector<std::uint32_t> branchFirstTriangle;
   std::vector<std::uint32_t> branchTriangleCount;
+  /// Per branch: the vertices of each of its rings (the sides of its polygonal cross-sections).
+  std::vector<int> branchRingVertices;
 };
 
 /// Builds the tube mesh of `skeleton` (world frame and metres of the skeleton). Ring vertex j of a
@@ -36,5 +38,19 @@ struct BranchMesh {
 /// and no triangle has zero area. An empty skeleton gives an empty mesh. Throws OptionsError when
 /// the skeleton is malformed (see findSkeletonProblem) or a segment count is below 3.
 BranchMesh buildBranchMesh(const Skeleton& skeleton, const BranchMeshOptions& options = {});
+
+/// Share of a circle's area covered by the regular polygon of `sides` vertices inscribed in it:
+/// n/(2*pi)*sin(2*pi/n) (0.41 for 3 sides, 0.64 for 4, 0.83 for 6, 0.90 for 8, 1 in the limit).
+/// Throws OptionsError for fewer than 3 sides.
+double inscribedPolygonShare(int sides);
+
+/// The wood the tube mesh of `skeleton` holds (the skeleton's units cubed): per branch, its
+/// frustums (branchWoodVolume) scaled by inscribedPolygonShare of its ring vertex count, summed
+/// (tubes overlapping at joints counted twice, as woodVolume does). This is what a scan of the mesh
+/// can see: a ring of n vertices is a polygon inscribed in its section's circle. Exact for a
+/// straight branch (a stack of regular-polygon frusta); where consecutive rings tilt against each
+/// other the mesh's own volume differs by the tilt's second order. Throws OptionsError when `mesh`
+/// has no ring count for some branch of `skeleton` (it was not built from it).
+double branchMeshVolume(const Skeleton& skeleton, const BranchMesh& mesh);
 
 }  // namespace treesketch::gen

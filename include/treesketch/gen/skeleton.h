@@ -43,6 +43,12 @@ double totalLength(const Skeleton& skeleton);
 /// Bounding box of the swept tubes (every section's centre padded by its radius); empty box for an
 /// empty skeleton.
 geom::BBox bounds(const Skeleton& skeleton);
+/// Volume of a conical frustum of circular ends of radii r0 and r1 (m) a `length` (m) apart, m^3:
+/// pi·length·(r0² + r0·r1 + r1²)/3.
+double frustumVolume(double length, double r0, double r1);
+/// Volume of one branch's tube as the frustums between consecutive sections, m^3 (0 for fewer than
+/// 2 sections).
+double branchWoodVolume(const SkeletonBranch& branch);
 /// Volume of the tubes as a sum of conical frustums, m^3 (joint overlaps counted twice).
 double woodVolume(const Skeleton& skeleton);
 
