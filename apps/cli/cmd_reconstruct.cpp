@@ -34,6 +34,7 @@ struct ReconstructArgs {
   bool refit = false;               // --refit: drop the sketch's kept circles, fit every node
   std::string up;                   // --up ("" = the rule of io/up_axis.h; with --auto)
   double unitMetres = 0.0;          // --units-metres (with --report; 0 = not given: metres)
+  std::vector<std::string> settings;  // --set NAME=VALUE (with --auto)
 };
 
 nlohmann::json vec(const geom::Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
@@ -97,6 +98,7 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   job.ring = a.ring;
   job.inlierThreshold = a.inlierThreshold;
   job.unitMetres = a.unitMetres == 0.0 ? 1.0 : a.unitMetres;
+  job.settings = a.settings;
   const TreeJobResult r = runTreeJob(job);
   std::printf("up axis: %s\n", r.upReason.c_str());
   std::printf("%s of %zu%s\n", cloud::strayPointsLine(r.strays).c_str(), r.points,
@@ -116,6 +118,7 @@ void runReconstruct(const ReconstructArgs& a) {
   if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
   if (!a.up.empty()) throw OptionsError("--up needs --auto (a sketch file carries its own up axis)");
   if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");
+  if (!a.settings.empty()) throw OptionsError("--set needs --auto (it changes the automatic model's settings)");
   if (!a.outliers.empty()) throw OptionsError("--outliers needs --auto (a sketch is fitted to every point)");
   const model::OutputPaths& outputs = a.out;
   model::checkOutputs(outputs, {a.cloud, a.sketch});
@@ -209,6 +212,7 @@ void registerReconstruct(CLI::App& app, Action& action) {
                   "RANSAC inlier threshold on |distance to centre - radius|, cloud units (default 0.01)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--seed", a->seed, "Random seed of the circle fits (default 1)");
+  addSettingOptions(sub, a->settings);
   sub->callback([a, &action] { action = [a] { runReconstruct(*a); }; });
 }
 
