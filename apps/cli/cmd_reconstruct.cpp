@@ -113,7 +113,8 @@ void runAutoReconstruct(const ReconstructArgs& a) {
 
 void runReconstruct(const ReconstructArgs& a) {
   if (a.unitMetres != 0.0 && a.out.report.empty() && a.out.metrics.empty())
-    throw OptionsError("--units-metres applies to the report's and the metrics' figures: it needs --report or --metrics");
+    throw OptionsError(
+        "--units-metres applies to the report's and the metrics' figures: it needs --report or --metrics");
   if (a.autoSkeleton) return runAutoReconstruct(a);
   if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
   if (!a.up.empty()) throw OptionsError("--up needs --auto (a sketch file carries its own up axis)");

@@ -26,11 +26,11 @@ struct SettingRow {
 };
 
 // One row: the field path is both the name and the member access.
-#define TS_SETTING(path, type, lo, hi, help)                                                     \
-  SettingRow {                                                                                    \
-    SettingInfo{#path, SettingType::type, lo, hi, help},                                          \
-        [](const AutoSkeletonOptions& o) { return static_cast<double>(o.path); },                 \
-        [](AutoSkeletonOptions& o, double v) { o.path = static_cast<decltype(o.path)>(v); }       \
+#define TS_SETTING(path, type, lo, hi, help)                                                \
+  SettingRow {                                                                              \
+    SettingInfo{#path, SettingType::type, lo, hi, help},                                    \
+        [](const AutoSkeletonOptions& o) { return static_cast<double>(o.path); },           \
+        [](AutoSkeletonOptions& o, double v) { o.path = static_cast<decltype(o.path)>(v); } \
   }
 
 std::vector<SettingRow> graphRows() {
@@ -40,7 +40,8 @@ std::vector<SettingRow> graphRows() {
       TS_SETTING(skeleton.graph.autoSpacingFactor, Real, 1e-3, 1e3, "automatic voxel: multiple of the point spacing"),
       TS_SETTING(skeleton.graph.maxVoxels, Integer, 1, 1e9, "most occupied voxels for the automatic size"),
       TS_SETTING(skeleton.graph.reach, Integer, 1, 3, "edges join voxels this many steps apart per axis"),
-      TS_SETTING(skeleton.graph.sparseLinkNeighbours, Integer, 0, 26, "links to nearest voxels of other pieces (0 = off)"),
+      TS_SETTING(skeleton.graph.sparseLinkNeighbours, Integer, 0, 26,
+                 "links to nearest voxels of other pieces (0 = off)"),
       TS_SETTING(skeleton.graph.shapeCellVoxels, Real, 1e-3, 1e3, "cell of the local shape (PCA), voxels"),
       TS_SETTING(skeleton.graph.maxGapVoxels, Real, 0, 1e6, "longest occlusion gap bridged, voxels"),
       TS_SETTING(skeleton.graph.coneAngleDeg, Real, 1e-3, 180, "bridge cone about the piece's axis, degrees"),
@@ -91,9 +92,11 @@ std::vector<SettingRow> leafRows() {
       TS_SETTING(skeleton.leafPlaneMinSpread, Real, 0, 1e3, "in-plane spread of a flat voxel, radii"),
       TS_SETTING(skeleton.leafPlaneMaxAngleDeg, Real, 0, 90, "planes of one patch within this angle, degrees"),
       TS_SETTING(skeleton.leafPatchMaxOffsetVoxels, Real, 0, 1e3, "step off a patch's plane, voxels"),
-      TS_SETTING(skeleton.leafPlaneMaxPointsPerVoxel, Integer, 0, 1e9, "points per voxel the plane test reads (0 = all)"),
+      TS_SETTING(skeleton.leafPlaneMaxPointsPerVoxel, Integer, 0, 1e9,
+                 "points per voxel the plane test reads (0 = all)"),
       TS_SETTING(skeleton.leafConvergenceWeight, Real, 0, 1, "plane convergence weight (0 = off)"),
-      TS_SETTING(skeleton.leafConvergenceRadiusVoxels, Real, 0, 1e3, "plane convergence radius, voxels (0 = automatic)"),
+      TS_SETTING(skeleton.leafConvergenceRadiusVoxels, Real, 0, 1e3,
+                 "plane convergence radius, voxels (0 = automatic)"),
       TS_SETTING(skeleton.leafConvergenceAutoScale, Real, 1e-3, 1e3, "automatic convergence radius scale"),
       TS_SETTING(skeleton.leafConvergenceMinRadiusVoxels, Real, 1e-3, 1e3, "automatic convergence radius, lowest"),
       TS_SETTING(skeleton.leafConvergenceMaxRadiusVoxels, Real, 1e-3, 1e3, "automatic convergence radius, highest"),
@@ -124,7 +127,8 @@ std::vector<SettingRow> modelRows() {
       TS_SETTING(radii.allometryMaxRatio, Real, 0, 1e6, "pipe-model bound factor (0 = off, else >= 1)"),
       TS_SETTING(radii.surfaceBound, Boolean, 0, 1, "no tube thicker than its points allow"),
       TS_SETTING(axes.halfWindowNodes, Integer, 0, 1000, "axis smoothing half-window, nodes (0 = off)"),
-      TS_SETTING(axes.unfittedWeight, Real, 1e-6, 1, "weight of a node without a fit"),
+      TS_SETTING(axes.unfittedWeight, Real, 1e-6, 1,
+                 "weight of a node without a fit (1: such nodes stay, no smoothing)"),
       TS_SETTING(axes.maxShiftRadii, Real, 0, 1e6, "largest axis move, radii"),
       TS_SETTING(axes.centroidPrecisionVoxels, Real, 0, 1e6, "a centroid's precision, voxels"),
       TS_SETTING(bridgeUnfittedForks, Boolean, 0, 1, "bridge forks without an accepted fit"),
@@ -226,9 +230,7 @@ const std::vector<SettingInfo>& settingTable() {
   return table;
 }
 
-double settingValue(const AutoSkeletonOptions& options, const std::string& name) {
-  return findRow(name).get(options);
-}
+double settingValue(const AutoSkeletonOptions& options, const std::string& name) { return findRow(name).get(options); }
 
 void applySetting(AutoSkeletonOptions& options, const std::string& assignment) {
   const std::size_t eq = assignment.find('=');
@@ -262,9 +264,8 @@ std::string formatSettingTable(const AutoSkeletonOptions& options) {
   for (const SettingRow& r : rows()) width = std::max(width, r.info.name.size());
   for (const SettingRow& r : rows()) {
     const SettingInfo& i = r.info;
-    const std::string range = i.type == SettingType::Boolean
-                                  ? "true/false"
-                                  : "[" + formatNumber(i.min) + ", " + formatNumber(i.max) + "]";
+    const std::string range =
+        i.type == SettingType::Boolean ? "true/false" : "[" + formatNumber(i.min) + ", " + formatNumber(i.max) + "]";
     char line[512];
     std::snprintf(line, sizeof line, "%-*s  %-7s  %-18s  = %-8s  %s\n", static_cast<int>(width), i.name.c_str(),
                   typeName(i.type), range.c_str(), formatSettingValue(i, r.get(options)).c_str(), i.help.c_str());

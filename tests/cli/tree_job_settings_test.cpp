@@ -1,10 +1,9 @@
 // `--set NAME=VALUE` and `--list-settings` on `reconstruct --auto` and `batch`, run as processes.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_support.h"
@@ -44,9 +43,9 @@ TEST(CmdSettings, UnknownNamesAndBadValuesAreUsageErrorsBeforeAnyOutput) {
     const char* set;
     const char* says;
   };
-  for (const Case c : {Case{"radii.medianWindw=3", "nearest: radii.medianWindow"},
-                       Case{"radii.medianWindow=0", "outside"}, Case{"radii.surfaceBound=2", "not a boolean"},
-                       Case{"radii.medianWindow", "NAME=VALUE"}}) {
+  for (const Case c :
+       {Case{"radii.medianWindw=3", "nearest: radii.medianWindow"}, Case{"radii.medianWindow=0", "outside"},
+        Case{"radii.surfaceBound=2", "not a boolean"}, Case{"radii.medianWindow", "NAME=VALUE"}}) {
     std::string out;
     EXPECT_EQ(test::runCli("reconstruct " + cloud + " --auto -o " + quoted(dir / "m.ply") + " --set " + c.set, &out), 2)
         << c.set << ": " << out;
@@ -54,7 +53,8 @@ TEST(CmdSettings, UnknownNamesAndBadValuesAreUsageErrorsBeforeAnyOutput) {
     EXPECT_FALSE(std::filesystem::exists(dir / "m.ply")) << c.set;
   }
   std::string out;
-  EXPECT_EQ(test::runCli("batch " + quoted(dir / "c.ply") + " --out " + quoted(dir / "out") + " --set nonsense=1", &out), 2)
+  EXPECT_EQ(
+      test::runCli("batch " + quoted(dir / "c.ply") + " --out " + quoted(dir / "out") + " --set nonsense=1", &out), 2)
       << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.csv"));
   EXPECT_EQ(test::runCli("reconstruct " + cloud + " --sketch " + quoted(dir / "s.json") + " -o " +
@@ -89,6 +89,24 @@ TEST(CmdSettings, SettingsChangeTheModelAndAreReported) {
   std::ifstream fa(dir / "a.csv"), fb(dir / "b.csv");
   const std::string ta((std::istreambuf_iterator<char>(fa)), {}), tb((std::istreambuf_iterator<char>(fb)), {});
   EXPECT_NE(ta, tb);  // no fit passes a radius ratio of 0.01: every radius is interpolated
+}
+
+// batch hands the settings to each tree's process, records them in done.json, and runs a tree
+// again when they change.
+TEST(CmdSettings, BatchPassesSettingsToEveryTreeAndKeepsThem) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir / "in");
+  io::writePointCloud(dir / "in" / "t.ply", test::sampleCylinders(test::yTree(), 0.02, 0.003, 7));
+  const std::string base = "batch " + quoted(dir / "in") + " --up y --out " + quoted(dir / "out");
+  std::string out;
+  ASSERT_EQ(test::runCli(base + " --set completion.enabled=off", &out), 0) << out;
+  EXPECT_EQ(readJson(dir / "out" / "t" / "report.json")["settings"][0], "completion.enabled=off");
+  EXPECT_EQ(readJson(dir / "out" / "t" / "done.json")["options"]["settings"][0], "completion.enabled=off");
+  ASSERT_EQ(test::runCli(base + " --set completion.enabled=off", &out), 0) << out;
+  EXPECT_NE(out.find("0 to run"), std::string::npos) << out;
+  ASSERT_EQ(test::runCli(base, &out), 0) << out;
+  EXPECT_NE(out.find("runs again"), std::string::npos) << out;
+  EXPECT_TRUE(readJson(dir / "out" / "t" / "report.json")["settings"].empty());
 }
 
 }  // namespace

@@ -82,9 +82,10 @@ TEST(OptionTable, RefusesUnknownNamesWithTheNearest) {
 
 TEST(OptionTable, RefusesBadValuesAndLeavesOptionsUnchanged) {
   const AutoSkeletonOptions base = leafOff();
-  for (const char* bad : {"radii.medianWindow=0", "radii.medianWindow=2.5", "radii.medianWindow=", "radii.medianWindow",
-                          "=3", "skeleton.binWidthVoxels=nan", "skeleton.binWidthVoxels=inf", "skeleton.binWidthVoxels=2x",
-                          "radii.surfaceBound=maybe", "skeleton.graph.reach=4", "maxFitFlatFraction=1.5"}) {
+  for (const char* bad :
+       {"radii.medianWindow=0", "radii.medianWindow=2.5", "radii.medianWindow=", "radii.medianWindow", "=3",
+        "skeleton.binWidthVoxels=nan", "skeleton.binWidthVoxels=inf", "skeleton.binWidthVoxels=2x",
+        "radii.surfaceBound=maybe", "skeleton.graph.reach=4", "maxFitFlatFraction=1.5"}) {
     AutoSkeletonOptions o = base;
     EXPECT_THROW(applySetting(o, bad), OptionsError) << bad;
     for (const SettingInfo& s : settingTable()) EXPECT_EQ(settingValue(o, s.name), settingValue(base, s.name)) << bad;

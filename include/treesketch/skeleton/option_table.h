@@ -18,7 +18,7 @@ enum class SettingType { Real, Integer, Boolean };
 struct SettingInfo {
   std::string name;  ///< the field's path, e.g. "radii.medianWindow", "skeleton.graph.maxGapVoxels"
   SettingType type = SettingType::Real;
-  double min = 0;    ///< allowed range, inclusive (booleans: 0 and 1)
+  double min = 0;  ///< allowed range, inclusive (booleans: 0 and 1)
   double max = 0;
   std::string help;  ///< what the setting does, one line
 };
