@@ -54,6 +54,7 @@ struct BatchArgs {
   std::uint64_t seed = 1;
   double treeTimeoutS = 0;  // --tree-timeout (0 = none)
   double treeMemoryMb = 0;  // --tree-memory (0 = none): the address space of each tree's process
+  std::vector<std::string> settings;  // --set NAME=VALUE: the automatic model's settings
 };
 
 /// The options recorded in each tree's markers: those that shape the model.
@@ -61,6 +62,7 @@ BatchRunOptions runOptions(const BatchArgs& a) {
   BatchRunOptions o;
   o.model = {
       {"up", a.up.empty() ? "auto" : a.up}, {"leafOn", a.leafOn}, {"woodOnly", a.woodOnly}, {"unitMetres", a.unitMetres}, {"seed", a.seed}};
+  if (!a.settings.empty()) o.model["settings"] = a.settings;  // absent when none: older markers stay valid
   o.treeTimeoutS = a.treeTimeoutS;
   o.treeMemoryMb = a.treeMemoryMb;
   return o;
@@ -98,6 +100,7 @@ TreeJob treeJob(const BatchArgs& a, const BatchTree& t, const fs::path& dir) {
   job.woodOnly = a.woodOnly;
   job.seed = a.seed;
   job.unitMetres = a.unitMetres;
+  job.settings = a.settings;
   return job;
 }
 
@@ -191,6 +194,7 @@ std::vector<std::string> childArgs(const BatchArgs& a, std::size_t k) {
   if (!a.up.empty()) v.insert(v.end(), {"--up", a.up});
   if (a.leafOn) v.push_back("--leaf-on");
   if (a.woodOnly) v.push_back("--wood-only");
+  for (const std::string& s : a.settings) v.insert(v.end(), {"--set", s});
   if (a.treeMemoryMb > 0) {
     char mb[64];
     std::snprintf(mb, sizeof mb, "%.17g", a.treeMemoryMb);
@@ -339,6 +343,7 @@ void runBatch(const BatchArgs& a) {
     throw OptionsError("--tree-memory must be a number of megabytes >= 0 (0 = no limit)");
   if (!(a.treeTimeoutS >= 0) || !std::isfinite(a.treeTimeoutS))
     throw OptionsError("--tree-timeout must be a number of seconds >= 0 (0 = no limit)");
+  checkSettings(a.settings);
   if (a.index < 0) checkOutputWritable((fs::path(a.out) / "summary.csv").string());  // exit 4 before any work
   const BatchPlan plan = planBatch(a.input, a.out);
   if (a.index >= 0) {
@@ -389,6 +394,7 @@ void registerBatch(CLI::App& app, Action& action) {
   sub->add_option("--tree-memory", a->treeMemoryMb,
                   "Limit each tree's process to this many MB of address space and record a tree that needs more in "
                   "failed.json (default 0: no limit; a rerun with a larger limit runs it again)");
+  addSettingOptions(sub, a->settings);
   sub->callback([a, &action] { action = [a] { runBatch(*a); }; });
 }
 

@@ -36,6 +36,7 @@ struct ReconstructArgs {
   bool refit = false;               // --refit: drop the sketch's kept circles, fit every node
   std::string up;                   // --up ("" = the rule of io/up_axis.h; with --auto)
   double unitMetres = 0.0;          // --units-metres (with --report; 0 = not given: metres)
+  std::vector<std::string> settings;  // --set NAME=VALUE (with --auto)
 };
 
 nlohmann::json vec(const geom::Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
@@ -100,6 +101,7 @@ void runAutoReconstruct(const ReconstructArgs& a) {
   job.ring = a.ring;
   job.inlierThreshold = a.inlierThreshold;
   job.unitMetres = a.unitMetres == 0.0 ? 1.0 : a.unitMetres;
+  job.settings = a.settings;
   const TreeJobResult r = runTreeJob(job);
   std::printf("up axis: %s\n", r.upReason.c_str());
   std::printf("%s of %zu%s\n", cloud::strayPointsLine(r.strays).c_str(), r.points,
@@ -114,12 +116,14 @@ void runAutoReconstruct(const ReconstructArgs& a) {
 
 void runReconstruct(const ReconstructArgs& a) {
   if (a.unitMetres != 0.0 && a.out.report.empty() && a.out.metrics.empty())
-    throw OptionsError("--units-metres applies to the report's and the metrics' figures: it needs --report or --metrics");
+    throw OptionsError(
+        "--units-metres applies to the report's and the metrics' figures: it needs --report or --metrics");
   if (a.autoSkeleton) return runAutoReconstruct(a);
   if (a.sketch.empty()) throw OptionsError("--sketch is required (or --auto)");
   if (!a.up.empty()) throw OptionsError("--up needs --auto (a sketch file carries its own up axis)");
   if (a.leafOn) throw OptionsError("--leaf-on needs --auto (it sets the automatic skeleton's options)");
   if (a.woodOnly) throw OptionsError("--wood-only needs --auto (it chooses the points the automatic model uses)");
+  if (!a.settings.empty()) throw OptionsError("--set needs --auto (it changes the automatic model's settings)");
   if (!a.outliers.empty()) throw OptionsError("--outliers needs --auto (a sketch is fitted to every point)");
   const model::OutputPaths& outputs = a.out;
   model::checkOutputs(outputs, {a.cloud, a.sketch});
@@ -217,6 +221,7 @@ void registerReconstruct(CLI::App& app, Action& action) {
                   "RANSAC inlier threshold on |distance to centre - radius|, cloud units (default 0.01)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--seed", a->seed, "Random seed of the circle fits (default 1)");
+  addSettingOptions(sub, a->settings);
   sub->callback([a, &action] { action = [a] { runReconstruct(*a); }; });
 }
 

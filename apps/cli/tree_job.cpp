@@ -11,6 +11,7 @@
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/io/up_axis.h"
 #include "treesketch/model/tree_model.h"
+#include "treesketch/skeleton/option_table.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
@@ -38,6 +39,7 @@ nlohmann::json reportHeader(const TreeJob& a, const TreeJobResult& r, const skel
   header["strayPoints"] = model::strayPointsJson(s.strays);
   header["warnings"] = r.scale.warnings;
   header["seed"] = a.seed;
+  header["settings"] = a.settings;
   header["skeletonNodes"] = r.skeletonNodes;
   header["forks"] = r.forks;
   header["thinnedBySurface"] = s.thinnedBySurface;
@@ -70,6 +72,7 @@ geom::PointCloud woodPoints(const geom::PointCloud& cloud, geom::UpAxis up, cons
 
 TreeJobResult runTreeJob(const TreeJob& a) {
   const auto t0 = std::chrono::steady_clock::now();
+  checkSettings(a.settings);
   model::checkOutputs(a.out, {a.cloud});
   if (!a.sketch.empty()) {
     checkNotAnInput(a.sketch, {a.cloud});
@@ -99,6 +102,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   opt.seed = a.seed;
   opt.ringVertices = a.ring;
   if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;
+  for (const std::string& s : a.settings) skeleton::applySetting(opt, s);
   const skeleton::AutoSkeletonResult s = skeleton::autoSkeletonSketch(modelled, opt);
   // The model is made from, and measured against, the points kept (the strays are set aside);
   // with --wood-only, against every point.
@@ -144,6 +148,54 @@ TreeJobResult runTreeJob(const TreeJob& a) {
 void printScaleWarnings(const cloud::ScaleCheck& scale) {
   for (const std::string& w : scale.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::fflush(stderr);
+}
+
+void checkSettings(const std::vector<std::string>& settings) {
+  skeleton::AutoSkeletonOptions probe = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOff);
+  for (const std::string& s : settings) skeleton::applySetting(probe, s);
+}
+
+namespace {
+
+void printSettingTable() {
+  using skeleton::Foliage;
+  const skeleton::AutoSkeletonOptions off = skeleton::autoSkeletonPreset(Foliage::LeafOff);
+  const skeleton::AutoSkeletonOptions on = skeleton::autoSkeletonPreset(Foliage::LeafOn);
+  std::printf("settings of the automatic model (--set NAME=VALUE), with the leaf-off defaults:\n%s",
+              skeleton::formatSettingTable(off).c_str());
+  std::string diff;
+  for (const skeleton::SettingInfo& s : skeleton::settingTable()) {
+    const double v = skeleton::settingValue(on, s.name);
+    if (v == skeleton::settingValue(off, s.name)) continue;
+    diff += "\n  " + s.name + "=" + skeleton::formatSettingValue(s, v);
+  }
+  std::printf("--leaf-on starts from these instead:%s\n", diff.c_str());
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+void addSettingOptions(CLI::App* command, std::vector<std::string>& settings) {
+  command->add_option_function<std::vector<std::string>>(
+      "--set",
+      [&settings](const std::vector<std::string>& values) {
+        for (const std::string& v : values) {
+          if (v == "help") {
+            printSettingTable();
+            throw CLI::Success();
+          }
+          settings.push_back(v);
+        }
+      },
+      "Change one setting of the automatic model, NAME=VALUE (repeatable; --set help lists them with their "
+      "defaults and ranges)");
+  command->add_flag_callback(
+      "--list-settings",
+      [] {
+        printSettingTable();
+        throw CLI::Success();
+      },
+      "Print the automatic model's settings (names, types, ranges, defaults) and exit");
 }
 
 void printModelSummary(const model::ModelMeasures& m, const model::OutputPaths& outputs) {

@@ -3,9 +3,11 @@
 // requested outputs through the one model writer (model/tree_model.h), each atomically.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "treesketch/cloud/scale_check.h"
 #include "treesketch/cloud/stray_points.h"
@@ -28,6 +30,8 @@ struct TreeJob {
   int ring = 16;
   double inlierThreshold = -1;  ///< < 0: library default
   double unitMetres = 1.0;
+  /// --set NAME=VALUE assignments (skeleton/option_table.h), applied over the preset in order.
+  std::vector<std::string> settings;
 };
 
 struct TreeJobResult {
@@ -49,6 +53,15 @@ TreeJobResult runTreeJob(const TreeJob& job);
 /// was written).
 /// Prints each warning of `scale` on stderr ("warning: ...").
 void printScaleWarnings(const cloud::ScaleCheck& scale);
+
+/// Adds `--set NAME=VALUE` (repeatable, into `settings`) and `--list-settings` to a command that
+/// makes the automatic model. `--set help` and `--list-settings` print the settings table with the
+/// leaf-off defaults and the leaf-on preset's differences, and end the command (exit 0).
+void addSettingOptions(CLI::App* command, std::vector<std::string>& settings);
+
+/// Checks `settings` against the settings table before any file is read: an unknown name, a value
+/// of the wrong type or out of range throws OptionsError naming the setting.
+void checkSettings(const std::vector<std::string>& settings);
 
 void printModelSummary(const model::ModelMeasures& measures, const model::OutputPaths& outputs);
 
