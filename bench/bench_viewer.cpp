@@ -45,11 +45,11 @@ const treesketch::geom::PointCloud& cloud() {
 /// in the middle of the chain (the one edited).
 std::unique_ptr<viewer::ViewerState> sketchedState(treesketch::sketch::NodeId* node) {
   auto s = std::make_unique<viewer::ViewerState>();
-  s->setViewport({340, 0, 940, 774});
+  s->view().setViewport({340, 0, 940, 774});
   s->setCloud(cloud(), treesketch::geom::UpAxis::Y);
   s->setTool(viewer::ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   double top = cloud().bounds().max.y();
-  for (int i = 1; i <= 8; ++i) s->clickAt(s->camera().project(Vec3(0, top * 0.05 * i, 0)).head<2>());
+  for (int i = 1; i <= 8; ++i) s->clickAt(s->view().camera().project(Vec3(0, top * 0.05 * i, 0)).head<2>());
   *node = treesketch::sketch::kNoNode;
   for (treesketch::sketch::NodeId id : {3, 4, 2, 5, 1})
     if (s->nodeFit(id).status == viewer::NodeStatus::Fitted) {
@@ -64,7 +64,7 @@ void reportCounters(benchmark::State& st, const viewer::ViewerState& s) {
   st.counters["nodes"] = static_cast<double>(s.sketch().size());
   st.counters["fitted"] = static_cast<double>(s.fittedCount());
   st.counters["rebuild_ms"] = s.lastRebuildMs();
-  st.counters["errors"] = static_cast<double>(s.errorCount());
+  st.counters["errors"] = static_cast<double>(s.status().errorCount());
 }
 
 /// Drag a node by one pixel (alternating up/down): one undoable edit, re-fit of the node and its
@@ -113,7 +113,7 @@ BENCHMARK(BM_SliderSliceThickness)->Unit(benchmark::kMillisecond);
 void BM_AddNodeThenUndo(benchmark::State& st) {
   treesketch::sketch::NodeId id;
   auto s = sketchedState(&id);
-  Vec2 at = s->camera().project(Vec3(0, cloud().bounds().max.y() * 0.45, 0)).head<2>();
+  Vec2 at = s->view().camera().project(Vec3(0, cloud().bounds().max.y() * 0.45, 0)).head<2>();
   for (auto _ : st) {
     s->addNodeAt(at);
     s->undo();
@@ -129,7 +129,7 @@ void BM_FrameOverlayData(benchmark::State& st) {
   if (id != treesketch::sketch::kNoNode) s->selectNode(id);
   int k = 0;
   for (auto _ : st) {
-    s->orbit().rotate(Vec2(700, 400), Vec2(700 + ((k++ & 1) ? 2 : -2), 400));
+    s->view().orbit().rotate(Vec2(700, 400), Vec2(700 + ((k++ & 1) ? 2 : -2), 400));
     benchmark::DoNotOptimize(s->nodeMarkers());
     benchmark::DoNotOptimize(s->sceneLines());
     benchmark::DoNotOptimize(s->highlightedSlicePoints());
@@ -148,7 +148,7 @@ void BM_EditRebuildsFrameData(benchmark::State& st) {
     st.SkipWithError("no fitted node to edit");
     return;
   }
-  s->setColorMode(st.range(0) ? viewer::ColorMode::CircleDistance : viewer::ColorMode::Height);
+  s->view().setColorMode(st.range(0) ? viewer::ColorMode::CircleDistance : viewer::ColorMode::Height);
   viewer::PointLod lod;
   lod.build(s->cloud().size());
   const std::uint8_t* upload = nullptr;

@@ -151,11 +151,11 @@ class App {
     const auto t0 = std::chrono::steady_clock::now();
     // Level of detail: while the view moves, a subsample within the adaptive budget; the whole
     // cloud when still and in screenshots.
-    const bool moving = !loading() && !shot && state_.viewMoving(t0);
+    const bool moving = !loading() && !shot && state_.view().viewMoving(t0);
     int ww, wh, fbw, fbh;
     glfwGetWindowSize(window_, &ww, &wh);
     glfwGetFramebufferSize(window_, &fbw, &fbh);
-    state_.setViewport(gui::Layout::sceneViewport(ww, wh));
+    state_.view().setViewport(gui::Layout::sceneViewport(ww, wh));
     if (!loading()) {
       state_.pollJob();  // a finished background job's result comes in here
       actions_->beforeFrame();
@@ -189,9 +189,9 @@ class App {
       panel_.screenshotRequested = false;
       try {
         gui::writeScreenshot(panel_.screenshotPath, fbw, fbh);
-        state_.info("screenshot written to " + panel_.screenshotPath);
+        state_.status().info("screenshot written to " + panel_.screenshotPath);
       } catch (const std::exception& e) {
-        state_.error(std::string("screenshot: ") + e.what());
+        state_.status().error(std::string("screenshot: ") + e.what());
       }
     }
     glfwSwapBuffers(window_);
@@ -216,7 +216,7 @@ class App {
   /// message expiring; the moving view settling into the full cloud); negative: nothing will, wait
   /// for an event.
   double nextWakeSeconds() const {
-    if (loading() || state_.busy()) return 0.1;
+    if (loading() || state_.jobs().busy()) return 0.1;
     if (actions_ && actions_->hasPendingWork()) return 0.0;  // the next frame opens the cloud
     const auto now = std::chrono::steady_clock::now();
     double t = -1.0;
@@ -225,8 +225,8 @@ class App {
       double s = std::chrono::duration<double>(when - now).count() + 0.005;
       t = t < 0 ? s : std::min(t, s);
     };
-    if (auto expiry = state_.statusExpiry()) consider(*expiry);
-    if (state_.viewMoving(now)) consider(state_.viewSettles());
+    if (auto expiry = state_.status().expiry()) consider(*expiry);
+    if (state_.view().viewMoving(now)) consider(state_.view().viewSettles());
     return t;
   }
   std::uint64_t framesDrawn() const { return framesDrawn_; }
@@ -260,7 +260,7 @@ class App {
     loader_.thread.join();
     loaded_ = true;
     if (!loader_.error.empty()) {
-      state_.error("open: " + loader_.error);
+      state_.status().error("open: " + loader_.error);
       *failed = true;
       return true;
     }
@@ -270,7 +270,7 @@ class App {
     const std::string upReason = up.reason;
     state_.setCloud(std::move(loader_.cloud), up.axis, args_.input.empty() ? fs::path() : fs::path(args_.input));
     if (up.view != viewer::toUpDirection(up.axis)) state_.setUpDirection(up.view);
-    std::cerr << "treesketch-gui: up " << viewer::toString(state_.upDirection()) << " (" << upReason << ")\n";
+    std::cerr << "treesketch-gui: up " << viewer::toString(state_.view().upDirection()) << " (" << upReason << ")\n";
     // The demo tree has no file: its sketch and autosave are named after it in the current folder.
     if (args_.input.empty()) {
       state_.setAutosavePath("treesketch_demo.autosave.sketch.json");
@@ -280,9 +280,10 @@ class App {
     // --sketch, else the cloud's own sketch file (tree.las -> tree.las.sketch.json), loaded when
     // it is there; one made for another cloud asks first.
     if (!args_.sketchPath.empty()) state_.setSketchPath(args_.sketchPath);
-    panel_.sketchPath = state_.sketchPath().string();
+    panel_.sketchPath = state_.document().sketchPath().string();
     std::error_code ec;
-    if (!state_.sketchPath().empty() && fs::exists(state_.sketchPath(), ec)) state_.loadSketch(state_.sketchPath());
+    if (!state_.document().sketchPath().empty() && fs::exists(state_.document().sketchPath(), ec))
+      state_.loadSketch(state_.document().sketchPath());
     return true;
   }
 
@@ -531,7 +532,7 @@ int run(const Args& args) {
     }
     if (!args.scriptPath.empty()) {
       if (failed) {
-        std::cerr << "treesketch-gui: error: " << app.state().lastMessage().text << "\n";
+        std::cerr << "treesketch-gui: error: " << app.state().status().lastMessage().text << "\n";
         code = kExitInput;
       } else {
         code = runScript(app, args, script);
@@ -542,7 +543,7 @@ int run(const Args& args) {
       runInteractive(app, window);
     }
     if (!args.scriptPath.empty()) std::cerr << "treesketch-gui: " << app.frameStatsLine() << "\n";
-    app.state().cancelJob();  // closing the window stops a background job (its result is dropped)
+    app.state().jobs().cancel();  // closing the window stops a background job (its result is dropped)
     app.state().waitForJob();
     // A clean end: the autosave goes when it holds nothing unsaved; else it is offered next time.
     // Scripted sessions keep it: their tests inspect it afterwards.

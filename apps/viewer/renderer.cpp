@@ -193,9 +193,9 @@ void Renderer::uploadMesh(const viewer::ViewerState& state) {
 }
 
 void Renderer::uploadHighlights(const viewer::ViewerState& state) {
-  if (hlVersion_ == state.sceneVersion() && hlNode_ == state.selected()) return;
+  if (hlVersion_ == state.sceneVersion() && hlNode_ == state.tools().selected()) return;
   hlVersion_ = state.sceneVersion();
-  hlNode_ = state.selected();
+  hlNode_ = state.tools().selected();
   std::vector<std::uint32_t> slice = state.highlightedSlicePoints();
   std::vector<std::uint32_t> inliers = state.highlightedInliers();
   const geom::PointCloud& cloud = state.cloud();
@@ -237,7 +237,7 @@ void Renderer::drawSceneLines(const std::vector<viewer::Line3>& lines, GLint tin
 }
 
 void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale, std::size_t maxPoints) {
-  geom::Camera cam = state.camera();
+  geom::Camera cam = state.view().camera();
   const geom::Viewport& vp = cam.viewport;
   double k = pixelScale > 0 ? pixelScale : 1.0;
   glViewport(static_cast<GLint>(vp.x * k), static_cast<GLint>(framebufferHeight - (vp.y + vp.height) * k),
@@ -255,7 +255,7 @@ void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pi
   model.block<3, 1>(0, 3) = origin_;
   Eigen::Matrix4f mvp = toFloat(cam.projection * cam.view * model);
   Eigen::Matrix3f normalMatrix = cam.view.block<3, 3>(0, 0).cast<float>();
-  const viewer::DisplayOptions& d = state.display();
+  const viewer::DisplayOptions& d = state.view().display();
 
   glUseProgram(pointProgram_);
   glUniformMatrix4fv(glGetUniformLocation(pointProgram_, "uMvp"), 1, GL_FALSE, mvp.data());

@@ -76,7 +76,7 @@ std::vector<Rgb> attributeColors(const geom::PointCloud& cloud, ColorMode mode) 
 
 Legend colorLegend(const ViewerState& state) {
   const geom::PointCloud& cloud = state.cloud();
-  const ColorMode mode = state.display().colorMode;
+  const ColorMode mode = state.view().display().colorMode;
   if (cloud.empty()) return {};
   if (!colorModeAvailable(mode, cloud)) {
     Legend l;
@@ -86,11 +86,12 @@ Legend colorLegend(const ViewerState& state) {
   switch (mode) {
     case ColorMode::Height: {
       // The colours run along the view's up direction (heightColorsAlong), from the lowest point.
-      const geom::Vec3 u = upDirectionVector(state.upDirection());
+      const geom::Vec3 u = upDirectionVector(state.view().upDirection());
       const geom::BBox& b = state.bounds();
       const double span = std::abs((b.max - b.min).dot(u));
-      return scaleLegend(std::string("height along ") + toString(state.upDirection()) + " above the lowest point (m)",
-                         {0.0, span}, render::viridis);
+      return scaleLegend(
+          std::string("height along ") + toString(state.view().upDirection()) + " above the lowest point (m)",
+          {0.0, span}, render::viridis);
     }
     case ColorMode::CircleDistance: {
       const double diagonal = std::max(state.bounds().diagonal(), 1e-12);

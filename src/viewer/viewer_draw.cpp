@@ -1,7 +1,6 @@
-// ViewerState, part 3 of 3: what is drawn — display option names, point colours, node markers
-// (and picking them), 3D lines for circles and the selected node's sampling region, highlighted
-// points, the mesh, counts and status messages. See viewer_state.cpp for the map of the three
-// parts.
+// ViewerState's "what is drawn": display option names, point colours, node markers (and picking
+// them), 3D lines for circles and the selected node's sampling region, highlighted points, the
+// mesh and counts. See viewer_state.h for the map of the files that implement ViewerState.
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -127,8 +126,6 @@ const char* toString(NodeStatus status) {
 
 // ---- display and status --------------------------------------------------------------------------
 
-void ViewerState::setColorMode(ColorMode mode) { display_.colorMode = mode; }
-
 LabelMode parseLabelMode(const std::string& s) {
   std::string k = lowercase(s);
   if (k == "auto") return LabelMode::Auto;
@@ -150,7 +147,7 @@ const char* toString(LabelMode mode) {
 }
 
 bool ViewerState::labelsShown() const {
-  switch (display_.labels) {
+  switch (view_.display_.labels) {
     case LabelMode::On:
       return true;
     case LabelMode::Off:
@@ -161,41 +158,16 @@ bool ViewerState::labelsShown() const {
   return sketch_.size() <= options_.autoLabelMaxNodes;
 }
 
-void ViewerState::info(const std::string& text) {
-  messages_.push_back(StatusMessage{false, text, std::chrono::steady_clock::now()});
-  statusDismissed_ = false;
-}
-
-void ViewerState::error(const std::string& text) {
-  messages_.push_back(StatusMessage{true, text, std::chrono::steady_clock::now()});
-  statusDismissed_ = false;
-  ++errorCount_;
-}
-
-std::optional<StatusMessage> ViewerState::statusLine(std::chrono::steady_clock::time_point now) const {
-  if (messages_.empty() || statusDismissed_) return std::nullopt;
-  const StatusMessage& last = messages_.back();
-  if (last.error) return last;  // until dismissed or replaced by a newer message
-  if (now - last.time < std::chrono::duration<double>(options_.statusInfoSeconds)) return last;
-  return std::nullopt;
-}
-
-std::optional<std::chrono::steady_clock::time_point> ViewerState::statusExpiry() const {
-  if (messages_.empty() || statusDismissed_ || messages_.back().error) return std::nullopt;
-  return messages_.back().time + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                     std::chrono::duration<double>(options_.statusInfoSeconds));
-}
-
 // ---- what to draw --------------------------------------------------------------------------------
 
 const std::vector<Rgb>& ViewerState::pointColors() {
-  if (colorsStale_ || colorsMode_ != display_.colorMode || colors_.size() != cloud_.size() ||
+  if (colorsStale_ || colorsMode_ != view_.display_.colorMode || colors_.size() != cloud_.size() ||
       colorsNotWood_ != sketch_.notWood()) {
-    colorsMode_ = display_.colorMode;
+    colorsMode_ = view_.display_.colorMode;
     colorsNotWood_ = sketch_.notWood();
     switch (colorsMode_) {
       case ColorMode::Height:
-        colors_ = heightColorsAlong(cloud_, viewUp_);
+        colors_ = heightColorsAlong(cloud_, view_.up_);
         break;
       case ColorMode::Plain:
         colors_ = plainColors(cloud_, options_.plainColor);
@@ -248,7 +220,7 @@ NodeFitView ViewerState::nodeFit(NodeId id) const { return recon_->nodeFit(id); 
 
 std::vector<NodeMarker> ViewerState::nodeMarkers() const {
   std::vector<NodeMarker> markers;
-  geom::Camera cur = orbit_.camera();
+  geom::Camera cur = view_.orbit_.camera();
   markers.reserve(sketch_.size());
   const bool currentView = !sketch_.cameras().empty();
   std::vector<bool> sameCamera(sketch_.cameras().size());
@@ -257,8 +229,8 @@ std::vector<NodeMarker> ViewerState::nodeMarkers() const {
     NodeMarker m;
     m.id = id;
     m.parent = node.parent;
-    m.selected = id == selected_;
-    m.active = id == active_;
+    m.selected = id == tools_.selected_;
+    m.active = id == tools_.active_;
     m.status = recon_->nodeFit(id).status;
     // A node goes with a pending Delete subtree when the path to the root meets its root.
     m.doomed = pendingDelete_ != kNoNode && sketch_.contains(pendingDelete_);
@@ -329,12 +301,12 @@ NodeId ViewerState::nearestMarker(const Vec2& screen) const {
 
 SamplingRegion ViewerState::samplingRegion() const {
   SamplingRegion r;
-  if (selected_ == kNoNode || !sketch_.contains(selected_)) return r;
+  if (tools_.selected_ == kNoNode || !sketch_.contains(tools_.selected_)) return r;
   try {
-    const sketch::Node& node = sketch_.node(selected_);
-    r.geometry = sketch_.geometry(selected_);
+    const sketch::Node& node = sketch_.node(tools_.selected_);
+    r.geometry = sketch_.geometry(tools_.selected_);
     r.sliceHalfThickness = node.params.sliceHalfThickness;
-    NodeFitView f = recon_->nodeFit(selected_);
+    NodeFitView f = recon_->nodeFit(tools_.selected_);
     r.lineEpsilon = f.finalLineEpsilon > 0 ? f.finalLineEpsilon : node.params.lineEpsilon;
     r.valid = true;
   } catch (const std::exception&) {
@@ -345,19 +317,19 @@ SamplingRegion ViewerState::samplingRegion() const {
 
 std::vector<Line3> ViewerState::sceneLines() const {
   std::vector<Line3> lines;
-  if (display_.showCircles) {
+  if (view_.display_.showCircles) {
     for (NodeId id : sketch_.ids()) {
       NodeFitView f = recon_->nodeFit(id);
       if (f.status != NodeStatus::Fitted) continue;
       addRing(lines, f.circle.centre, f.circle.normal, f.circle.radius, options_.circleSegments,
-              id == selected_ ? kSelectedCircleColor : kCircleColor);
+              id == tools_.selected_ ? kSelectedCircleColor : kCircleColor);
     }
   }
   SamplingRegion r = samplingRegion();
-  if (!display_.showSamplingRegion || !r.valid) return lines;
+  if (!view_.display_.showSamplingRegion || !r.valid) return lines;
   const sketch::NodeGeometry& g = r.geometry;
   Vec3 n = g.planeNormal.normalized();
-  Vec3 centre = anchor(selected_);
+  Vec3 centre = anchor(tools_.selected_);
   // The slab: two squares at ±ε around the node's region, joined at the corners.
   Vec3 u = g.hasLine ? g.lineDir.normalized() : geom::anyPerpendicular(n);
   Vec3 v = n.cross(u).normalized();
@@ -394,13 +366,13 @@ std::vector<Line3> ViewerState::sceneLines() const {
 }
 
 std::vector<std::uint32_t> ViewerState::highlightedSlicePoints() const {
-  if (!display_.showSamplingRegion || selected_ == kNoNode) return {};
-  return recon_->slicePoints(selected_);
+  if (!view_.display_.showSamplingRegion || tools_.selected_ == kNoNode) return {};
+  return recon_->slicePoints(tools_.selected_);
 }
 
 std::vector<std::uint32_t> ViewerState::highlightedInliers() const {
-  if (!display_.showSamplingRegion || selected_ == kNoNode) return {};
-  return recon_->inlierPoints(selected_);
+  if (!view_.display_.showSamplingRegion || tools_.selected_ == kNoNode) return {};
+  return recon_->inlierPoints(tools_.selected_);
 }
 
 const geom::TriMesh& ViewerState::mesh() const { return recon_ ? recon_->mesh() : emptyMesh_; }

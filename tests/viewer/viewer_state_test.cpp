@@ -33,18 +33,18 @@ geom::PointCloud trunk(int n = 20000, std::uint64_t seed = 7) {
 struct Fixture {
   ViewerState state;
   Fixture() {
-    state.setViewport(geom::Viewport{0, 0, 800, 600});
+    state.view().setViewport(geom::Viewport{0, 0, 800, 600});
     EXPECT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
     state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   }
-  Vec2 screenOf(const Vec3& p) const { return state.camera().project(p).head<2>(); }
+  Vec2 screenOf(const Vec3& p) const { return state.view().camera().project(p).head<2>(); }
 };
 
 TEST(ViewerState, EmptyCloudIsAnErrorNotAnException) {
   ViewerState s;
   EXPECT_FALSE(s.setCloud(geom::PointCloud{}, geom::UpAxis::Y));
-  EXPECT_EQ(s.errorCount(), 1u);
-  EXPECT_TRUE(s.lastMessage().error);
+  EXPECT_EQ(s.status().errorCount(), 1u);
+  EXPECT_TRUE(s.status().lastMessage().error);
   EXPECT_FALSE(s.addNodeAt(Vec2(10, 10)));
   EXPECT_FALSE(s.autoSketchUniform());
 }
@@ -61,8 +61,8 @@ TEST(ViewerState, ClicksAddAChainOfNodesThatFitTheTrunk) {
   EXPECT_EQ(sk.node(1).parent, 0);
   EXPECT_EQ(sk.node(2).parent, 1);
   EXPECT_NEAR((sk.node(1).screen - b).norm(), 0.0, 1e-12);
-  EXPECT_EQ(f.state.active(), 2);
-  EXPECT_EQ(f.state.selected(), 2);
+  EXPECT_EQ(f.state.tools().active(), 2);
+  EXPECT_EQ(f.state.tools().selected(), 2);
   EXPECT_EQ(sk.cameras().size(), 1u);
   EXPECT_EQ(f.state.fittedCount(), 3u);
   NodeFitView fit = f.state.nodeFit(1);
@@ -72,7 +72,7 @@ TEST(ViewerState, ClicksAddAChainOfNodesThatFitTheTrunk) {
   EXPECT_NEAR(std::hypot(fit.circle.centre.x(), fit.circle.centre.z()), 0.0, 0.03);
   EXPECT_FALSE(f.state.mesh().empty());
   EXPECT_GE(f.state.lastRebuildMs(), 0.0);
-  EXPECT_EQ(f.state.errorCount(), 0u);
+  EXPECT_EQ(f.state.status().errorCount(), 0u);
 }
 
 TEST(ViewerState, ClickOnANodeSelectsItAndMakesItActive) {
@@ -82,11 +82,11 @@ TEST(ViewerState, ClickOnANodeSelectsItAndMakesItActive) {
   f.state.clickAt(b);
   f.state.clickAt(a + Vec2(3, 0));  // within the pick radius of node 0
   EXPECT_EQ(f.state.sketch().size(), 2u);
-  EXPECT_EQ(f.state.selected(), 0);
-  EXPECT_EQ(f.state.active(), 0);
+  EXPECT_EQ(f.state.tools().selected(), 0);
+  EXPECT_EQ(f.state.tools().active(), 0);
   f.state.clickAt(b, MouseButton::Left, kModCtrl);  // Ctrl: select node 1, node 0 stays active
-  EXPECT_EQ(f.state.selected(), 1);
-  EXPECT_EQ(f.state.active(), 0);
+  EXPECT_EQ(f.state.tools().selected(), 1);
+  EXPECT_EQ(f.state.tools().active(), 0);
   f.state.clickAt(f.screenOf(Vec3(0, 3, 0)));  // a branch from node 0
   EXPECT_EQ(f.state.sketch().node(2).parent, 0);
   EXPECT_EQ(f.state.nodeAt(Vec2(700, 20)), kNoNode);
@@ -99,7 +99,7 @@ TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
   EXPECT_TRUE(f.state.deleteSelected(false));
   EXPECT_EQ(f.state.sketch().size(), 3u);
   EXPECT_EQ(f.state.sketch().node(2).parent, 0);
-  EXPECT_EQ(f.state.selected(), 0);
+  EXPECT_EQ(f.state.tools().selected(), 0);
   EXPECT_TRUE(f.state.undo());
   EXPECT_EQ(f.state.sketch().size(), 4u);
   EXPECT_EQ(f.state.sketch().node(2).parent, 1);
@@ -120,10 +120,10 @@ TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
   EXPECT_TRUE(f.state.keyPress("y", kModCtrl));
   EXPECT_EQ(f.state.sketch().size(), 1u);
   EXPECT_TRUE(f.state.redo() == false);  // nothing left to redo: an info message, no error
-  EXPECT_EQ(f.state.errorCount(), 0u);
+  EXPECT_EQ(f.state.status().errorCount(), 0u);
   f.state.selectNode(kNoNode);
   EXPECT_FALSE(f.state.deleteSelected(false));  // nothing selected: an error message
-  EXPECT_EQ(f.state.errorCount(), 1u);
+  EXPECT_EQ(f.state.status().errorCount(), 1u);
   EXPECT_EQ(f.state.sketch().size(), 1u);
 }
 
@@ -158,7 +158,7 @@ TEST(ViewerState, SliderChangesMergeAndBadValuesAreRejected) {
   EXPECT_FALSE(f.state.setSliceHalfThickness(-1));
   EXPECT_FALSE(f.state.setLineEpsilon(std::nan("")));
   EXPECT_DOUBLE_EQ(f.state.sketch().node(0).params.sliceHalfThickness, 0.05);
-  EXPECT_EQ(f.state.errorCount(), 2u);
+  EXPECT_EQ(f.state.status().errorCount(), 2u);
   // No selection: the sizes of new nodes.
   f.state.selectNode(kNoNode);
   EXPECT_TRUE(f.state.setSliceHalfThickness(0.02));
@@ -169,7 +169,7 @@ TEST(ViewerState, NodesKeepTheirCameraAcrossViews) {
   Fixture f;
   Vec2 a = f.screenOf(Vec3(0, 1, 0));
   f.state.clickAt(a);
-  f.state.presetView(geom::PresetView::Side);
+  f.state.view().presetView(geom::PresetView::Side);
   f.state.clickAt(f.screenOf(Vec3(0, 2.5, 0)));
   const sketch::Sketch& sk = f.state.sketch();
   ASSERT_EQ(sk.size(), 2u);
@@ -214,11 +214,11 @@ TEST(ViewerState, ColourModes) {
   // Height colours are the renderer's (one colour module for pictures and the window).
   EXPECT_EQ(f.state.pointColors(), render::heightColors(f.state.cloud().positions, f.state.up()));
   std::uint64_t v = f.state.colorsVersion();
-  f.state.setColorMode(ColorMode::Plain);
+  f.state.view().setColorMode(ColorMode::Plain);
   EXPECT_EQ(f.state.pointColors()[0], f.state.options().plainColor);
   EXPECT_GT(f.state.colorsVersion(), v);
   f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
-  f.state.setColorMode(ColorMode::CircleDistance);
+  f.state.view().setColorMode(ColorMode::CircleDistance);
   const auto& colors = f.state.pointColors();
   // Trunk points near y = 2 lie on the fitted circle: the ramp's start; the ends are far.
   int near = 0, onCircle = 0;
@@ -241,10 +241,10 @@ TEST(ViewerState, FailingActionsReportAndKeepTheSketch) {
   test::writeText(dir / "bad.json", "{not json");
   EXPECT_FALSE(f.state.loadSketch(dir / "bad.json"));
   EXPECT_EQ(f.state.sketch().size(), 1u);
-  EXPECT_EQ(f.state.errorCount(), 3u);
+  EXPECT_EQ(f.state.status().errorCount(), 3u);
   EXPECT_TRUE(f.state.exportMesh(dir / "m.obj"));
   EXPECT_FALSE(f.state.exportMesh(dir / "m.xyz"));  // unsupported extension
-  EXPECT_EQ(f.state.errorCount(), 4u);
+  EXPECT_EQ(f.state.status().errorCount(), 4u);
   EXPECT_TRUE(std::filesystem::exists(dir / "m.obj"));
   // Save and load round trip.
   EXPECT_TRUE(f.state.saveSketch(dir / "s.json"));
@@ -272,48 +272,48 @@ TEST(ViewerState, ReconstructionFailureBecomesAMessage) {
     const geom::TriMesh& mesh() const override { return m; }
   };
   ViewerState s({}, [](const geom::PointCloud&) { return std::make_unique<Throwing>(); });
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   s.setCloud(trunk(500), geom::UpAxis::Y);
   s.setTool(ViewerState::Tool::AddNodes);
-  std::size_t before = s.errorCount();
+  std::size_t before = s.status().errorCount();
   EXPECT_NO_THROW(s.clickAt(Vec2(400, 300)));
   EXPECT_EQ(s.sketch().size(), 1u);
-  EXPECT_GT(s.errorCount(), before);
-  EXPECT_NE(s.lastMessage().text.find("boom"), std::string::npos);
+  EXPECT_GT(s.status().errorCount(), before);
+  EXPECT_NE(s.status().lastMessage().text.find("boom"), std::string::npos);
 }
 
 TEST(ViewerState, AutosavesBesideTheCloudOnEveryEdit) {
   test::TempDir dir;
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(2000), geom::UpAxis::Y, dir / "tree.xyz"));
   s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
-  EXPECT_EQ(s.autosavePath(), dir / "tree.xyz.autosave.sketch.json");
-  s.clickAt(s.camera().project(Vec3(0, 1, 0)).head<2>());
-  s.clickAt(s.camera().project(Vec3(0, 2, 0)).head<2>());
-  sketch::Sketch saved = io::readSketch(s.autosavePath());
+  EXPECT_EQ(s.document().autosavePath(), dir / "tree.xyz.autosave.sketch.json");
+  s.clickAt(s.view().camera().project(Vec3(0, 1, 0)).head<2>());
+  s.clickAt(s.view().camera().project(Vec3(0, 2, 0)).head<2>());
+  sketch::Sketch saved = io::readSketch(s.document().autosavePath());
   EXPECT_EQ(saved.size(), 2u);
   s.undo();
-  EXPECT_EQ(io::readSketch(s.autosavePath()).size(), 1u);
+  EXPECT_EQ(io::readSketch(s.document().autosavePath()).size(), 1u);
   // Ctrl+S saves to the sketch path: the cloud's own sketch file unless another is set; a save
   // removes the autosave (the work is in its file), the next edit writes it again.
-  EXPECT_EQ(s.sketchPath(), dir / "tree.xyz.sketch.json");
+  EXPECT_EQ(s.document().sketchPath(), dir / "tree.xyz.sketch.json");
   EXPECT_TRUE(s.keyPress("ctrl+s"));
-  EXPECT_FALSE(s.lastMessage().error);
+  EXPECT_FALSE(s.status().lastMessage().error);
   EXPECT_EQ(io::readSketch(dir / "tree.xyz.sketch.json").size(), 1u);
-  EXPECT_FALSE(std::filesystem::exists(s.autosavePath()));
+  EXPECT_FALSE(std::filesystem::exists(s.document().autosavePath()));
   s.setSketchPath(dir / "mine.json");
   EXPECT_TRUE(s.keyPress("s", kModCtrl));
   EXPECT_EQ(io::readSketch(dir / "mine.json").size(), 1u);
-  s.clickAt(s.camera().project(Vec3(0, 3, 0)).head<2>());
-  EXPECT_EQ(io::readSketch(s.autosavePath()).size(), 2u);
+  s.clickAt(s.view().camera().project(Vec3(0, 3, 0)).head<2>());
+  EXPECT_EQ(io::readSketch(s.document().autosavePath()).size(), 2u);
   // A drag is saved when the button is released.
   Vec2 from = s.sketch().node(0).screen, to = from + Vec2(0, -20);
   s.mouseDown(from, MouseButton::Left);
   s.mouseMove(from + Vec2(0, -10));
-  EXPECT_NEAR((io::readSketch(s.autosavePath()).node(0).screen - from).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((io::readSketch(s.document().autosavePath()).node(0).screen - from).norm(), 0.0, 1e-9);
   s.mouseUp(to, MouseButton::Left);
-  EXPECT_NEAR((io::readSketch(s.autosavePath()).node(0).screen - to).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((io::readSketch(s.document().autosavePath()).node(0).screen - to).norm(), 0.0, 1e-9);
 }
 
 TEST(ViewerState, UniformAutoSketchAndViewKeys) {
@@ -322,9 +322,9 @@ TEST(ViewerState, UniformAutoSketchAndViewKeys) {
   EXPECT_EQ(f.state.sketch().size(), 5u);
   EXPECT_GE(f.state.fittedCount(), 3u);
   EXPECT_TRUE(f.state.keyPress("o"));
-  EXPECT_TRUE(f.state.orbit().orthographic());
+  EXPECT_TRUE(f.state.view().orbit().orthographic());
   EXPECT_TRUE(f.state.keyPress("3"));
-  EXPECT_NEAR((f.state.camera().forward() - Vec3(0, -1, 0)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((f.state.view().camera().forward() - Vec3(0, -1, 0)).norm(), 0.0, 1e-9);
   EXPECT_FALSE(f.state.keyPress("q"));
   EXPECT_TRUE(f.state.undo());
   EXPECT_TRUE(f.state.sketch().empty());
@@ -332,7 +332,7 @@ TEST(ViewerState, UniformAutoSketchAndViewKeys) {
 
 TEST(ViewerState, SkeletonAutoSketchGivesPointNodesAlongTheTrunk) {
   Fixture f;
-  ASSERT_TRUE(f.state.autoSketchSkeleton()) << f.state.lastMessage().text;
+  ASSERT_TRUE(f.state.autoSketchSkeleton()) << f.state.status().lastMessage().text;
   const sketch::Sketch& sk = f.state.sketch();
   ASSERT_GE(sk.size(), 2u);
   for (const auto& [id, node] : sk.nodes()) {
@@ -351,7 +351,7 @@ TEST(ViewerState, SkeletonAutoSketchGivesPointNodesAlongTheTrunk) {
 // sizes, Refit or Refit all fit from the cloud, each one undo step.
 TEST(ViewerState, SkeletonAutoSketchKeepsItsModelUntilRefit) {
   Fixture f;
-  ASSERT_TRUE(f.state.autoSketchSkeleton()) << f.state.lastMessage().text;
+  ASSERT_TRUE(f.state.autoSketchSkeleton()) << f.state.status().lastMessage().text;
   const std::size_t n = f.state.sketch().size();
   ASSERT_GE(n, 3u);
   const std::size_t kept = f.state.sketch().keptCircleCount();
@@ -360,7 +360,7 @@ TEST(ViewerState, SkeletonAutoSketchKeepsItsModelUntilRefit) {
   ASSERT_TRUE(f.state.nodeFit(id).kept);
   EXPECT_EQ(f.state.nodeFit(id).status, NodeStatus::Fitted);
   EXPECT_FALSE(f.state.refitSelected());  // nothing selected: an error, no change
-  EXPECT_TRUE(f.state.lastMessage().error);
+  EXPECT_TRUE(f.state.status().lastMessage().error);
   ASSERT_TRUE(f.state.selectNode(id));
   ASSERT_TRUE(f.state.refitSelected());
   EXPECT_FALSE(f.state.nodeFit(id).kept);
@@ -386,14 +386,14 @@ TEST(ViewerState, SkeletonAutoSketchInLeafIsOneUndoStep) {
   // A sparse trunk: on dense, randomly sampled surfaces the leaf-on settings' fine voxels split
   // rings into arcs and make thousands of nodes (see skeleton::leafOnSkeletonOptions).
   ViewerState state;
-  state.setViewport(geom::Viewport{0, 0, 800, 600});
+  state.view().setViewport(geom::Viewport{0, 0, 800, 600});
   // Bent, so that the chains' simplification (tolerances in voxels) keeps nodes: a straight trunk
   // is one straight chain in both settings.
   geom::PointCloud bent = trunk(3000);
   for (auto& p : bent.positions) p.x() += 0.4 * std::sin(p.y() * M_PI / 4);
   ASSERT_TRUE(state.setCloud(bent, geom::UpAxis::Y));
   state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
-  ASSERT_TRUE(state.autoSketchSkeleton(true)) << state.lastMessage().text;
+  ASSERT_TRUE(state.autoSketchSkeleton(true)) << state.status().lastMessage().text;
   const sketch::Sketch& sk = state.sketch();
   ASSERT_GE(sk.size(), 2u);
   const std::size_t leafOnNodes = sk.size();
@@ -407,9 +407,9 @@ TEST(ViewerState, SkeletonAutoSketchInLeafIsOneUndoStep) {
 TEST(ViewerState, OrbitAndPanGesturesDoNotEditTheSketch) {
   Fixture f;
   f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
-  geom::Mat4 view = f.state.camera().view;
+  geom::Mat4 view = f.state.view().camera().view;
   f.state.dragTo(Vec2(400, 300), Vec2(500, 320), MouseButton::Right);
-  EXPECT_FALSE(f.state.camera().view.isApprox(view));
+  EXPECT_FALSE(f.state.view().camera().view.isApprox(view));
   f.state.dragTo(Vec2(400, 300), Vec2(450, 300), MouseButton::Middle);
   f.state.scroll(2);
   EXPECT_EQ(f.state.sketch().size(), 1u);
@@ -427,12 +427,12 @@ namespace {
 
 TEST(ViewerState, OrthographicViewSketchesToo) {
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
   s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
-  s.setOrthographic(true);
-  s.presetView(geom::PresetView::Front);
-  for (double y : {1.0, 2.0, 3.0}) s.clickAt(s.camera().project(Vec3(0, y, 0)).head<2>());
+  s.view().setOrthographic(true);
+  s.view().presetView(geom::PresetView::Front);
+  for (double y : {1.0, 2.0, 3.0}) s.clickAt(s.view().camera().project(Vec3(0, y, 0)).head<2>());
   ASSERT_EQ(s.sketch().size(), 3u);
   EXPECT_TRUE(s.sketch().cameras()[0].isOrthographic());
   EXPECT_EQ(s.fittedCount(), 3u);

@@ -100,9 +100,9 @@ int main() {
   io.Fonts->SetTexID(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(1)));
 
   viewer::ViewerState state;
-  state.setViewport(gui::Layout::sceneViewport(width, height));
+  state.view().setViewport(gui::Layout::sceneViewport(width, height));
   if (!state.setCloud(trunk(), geom::UpAxis::Y)) return 2;
-  for (int i = 1; i <= 3; ++i) state.clickAt(state.camera().project(geom::Vec3(0, i, 0)).head<2>());
+  for (int i = 1; i <= 3; ++i) state.clickAt(state.view().camera().project(geom::Vec3(0, i, 0)).head<2>());
   gui::PanelState panel;
   panel.sketchPath = "unused.sketch.json";
   int bad = clashes(state, panel, width, height);  // node 2 selected: the Node section's widgets
