@@ -68,9 +68,11 @@ void drawJobProgress(viewer::ViewerState& state) {
   const geom::Viewport vp = state.view().orbit().viewport();
   ImGui::SetNextWindowPos(ImVec2(float(vp.x + vp.width * 0.5), float(vp.y + vp.height - 100)), 0, ImVec2(0.5f, 1.0f));
   ImGui::SetNextWindowSize(ImVec2(440, 0));
+  // NoFocusOnAppearing: the job may start while a modal question is open (a script, or a key);
+  // Dear ImGui 1.86 asserts when a window that takes the focus appears under an open modal.
   ImGui::Begin("Working##job", nullptr,
                ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
-                   ImGuiWindowFlags_NoSavedSettings);
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
   ImGui::TextUnformatted(p.what.c_str());
   char overlay[32];
   std::snprintf(overlay, sizeof overlay, "step %d of %d", p.step, p.steps);

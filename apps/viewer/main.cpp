@@ -9,7 +9,6 @@
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
@@ -23,10 +22,12 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <tuple>
 
 #include "build_info.h"
 #include "dialogs.h"
 #include "gui_args.h"
+#include "measure_window.h"
 #include "panels.h"
 #include "renderer.h"
 #include "screenshot.h"
@@ -138,6 +139,7 @@ class App {
     hooks.close = [this] { glfwSetWindowShouldClose(window_, GLFW_TRUE); };
     hooks.closing = [this] { return glfwWindowShouldClose(window_) != 0; };
     hooks.moveCursor = [this](const geom::Vec2& p) { glfwSetCursorPos(window_, p.x(), p.y()); };
+    hooks.sceneDraws = [this] { return renderer_->sceneDraws(); };
     actions_ = std::make_unique<gui::WindowActions>(state_, panel_, hooks);
   }
 
@@ -166,7 +168,8 @@ class App {
     if (loading())
       drawLoading(ww, wh);
     else {
-      gui::drawPanels(state_, panel_, ww, wh, [this] { actions_->drawMenuBar(); });
+      gui::drawPanels(
+          state_, panel_, ww, wh, [this] { actions_->drawMenuBar(); }, panelFiles_);
       gui::drawMarkers(state_);
       gui::drawToolOverlay(state_);
       gui::drawRecoveryDialog(state_);
@@ -178,7 +181,7 @@ class App {
     }
     ImGui::Render();
     glViewport(0, 0, fbw, fbh);
-    glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
+    glClearColor(gui::Renderer::kBackground[0], gui::Renderer::kBackground[1], gui::Renderer::kBackground[2], 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     if (!loading())
       renderer_->draw(state_, fbh, ww > 0 ? static_cast<double>(fbw) / ww : 1.0, moving ? pointBudget_ : SIZE_MAX);
@@ -204,7 +207,13 @@ class App {
     if (moving)
       pointBudget_ =
           viewer::adaptPointBudget(pointBudget_, ms, kMovingFrameMs, kMinLodPoints, renderer_->cloudPoints());
-    if (pendingFrames_ > 0) --pendingFrames_;
+    // A change since the last frame (a cloud taken in, a job's result, a question) is shown at
+    // once, not at the next mouse move.
+    if (shown() != shownLast_)
+      wake();
+    else if (pendingFrames_ > 0)
+      --pendingFrames_;
+    shownLast_ = shown();
   }
 
   // ---- redraw on change -------------------------------------------------------------------------
@@ -212,6 +221,14 @@ class App {
   /// three), then sleep until the next event.
   void wake() { pendingFrames_ = 3; }
   int pendingFrames() const { return pendingFrames_; }
+  /// What a frame shows that may change without an input event (Dear ImGui lays a new window out
+  /// or opens a popup over the next two or three frames).
+  using Shown = std::tuple<std::uint64_t, std::uint64_t, std::uint64_t, bool, bool, bool>;
+  Shown shown() const {
+    return {state_.cloudVersion(),        state_.sceneVersion(),
+            state_.colorsVersion(),       state_.document().recoveryPending(),
+            state_.confirmationPending(), loading()};
+  }
   /// Seconds until something changes by itself (a job's or the loading's progress: 10 Hz; an info
   /// message expiring; the moving view settling into the full cloud); negative: nothing will, wait
   /// for an event.
@@ -230,6 +247,7 @@ class App {
     return t;
   }
   std::uint64_t framesDrawn() const { return framesDrawn_; }
+  std::uint64_t sceneDraws() const { return renderer_->sceneDraws(); }
   struct FrameStats {
     std::uint64_t count = 0;
     double sumMs = 0, maxMs = 0;
@@ -259,6 +277,7 @@ class App {
     if (!loader_.finished) return false;
     loader_.thread.join();
     loaded_ = true;
+    wake();  // the cloud, its legend and any restore offer are drawn now, not at the next mouse move
     if (!loader_.error.empty()) {
       state_.status().error("open: " + loader_.error);
       *failed = true;
@@ -343,6 +362,10 @@ class App {
   gui::PanelState panel_;
   std::unique_ptr<gui::Renderer> renderer_;
   std::unique_ptr<gui::WindowActions> actions_;
+  /// The panel's Files buttons: the File menu's actions.
+  const gui::PanelFileActions panelFiles_{[this] { actions_->openSketchDialog(); }, [this] { actions_->save(); },
+                                          [this] { actions_->saveAsDialog(); },
+                                          [this] { actions_->exportMeshDialog(); }};
   Loader loader_;
   bool loaded_ = false;
   bool sceneButton_[3] = {false, false, false};
@@ -352,52 +375,13 @@ class App {
   static constexpr std::size_t kMinLodPoints = 20000;
   std::size_t pointBudget_ = 200000;
   int pendingFrames_ = 3;
+  Shown shownLast_{};
   bool renderedOnce_ = false;
   std::uint64_t framesDrawn_ = 0;
   FrameStats movingStats_, stillStats_;
 };
 
 App* appOf(GLFWwindow* w) { return static_cast<App*>(glfwGetWindowUserPointer(w)); }
-
-/// --measure-idle S: the interactive loop with no input for 1 s (settling), then S seconds
-/// measured: frames drawn and process CPU time (getrusage), printed on stderr. The window's idle
-/// cost, for bench/README.md.
-int measureIdle(App& app, GLFWwindow* window, double seconds) {
-  auto cpuSeconds = [] {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-  };
-  using Clock = std::chrono::steady_clock;
-  auto loopUntil = [&](Clock::time_point deadline) {
-    while (!glfwWindowShouldClose(window)) {
-      const auto now = Clock::now();
-      if (now >= deadline) return;
-      const double left = std::chrono::duration<double>(deadline - now).count();
-      if (app.pendingFrames() > 0) {
-        glfwPollEvents();
-      } else {
-        const double t = app.nextWakeSeconds();
-        glfwWaitEventsTimeout(t < 0 ? left : std::min(t, left));
-        if (Clock::now() >= deadline) return;  // woken only by the end of the measure
-      }
-      app.frame();
-    }
-  };
-  loopUntil(Clock::now() + std::chrono::seconds(1));
-  const std::uint64_t frames0 = app.framesDrawn();
-  const double cpu0 = cpuSeconds();
-  const Stopwatch measure;
-  const auto t0 = Clock::now();
-  loopUntil(t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)));
-  const double wall = measure.seconds();
-  const double cpu = cpuSeconds() - cpu0;
-  const std::uint64_t frames = app.framesDrawn() - frames0;
-  std::fprintf(stderr,
-               "treesketch-gui: idle %.2f s: %llu frames drawn (%.2f per second), CPU %.3f s (%.2f %% of a core)\n",
-               wall, static_cast<unsigned long long>(frames), double(frames) / wall, cpu, 100.0 * cpu / wall);
-  return kExitOk;
-}
 
 // The GLFW window with an OpenGL 3.3 core context and GLEW loaded; nullptr (after saying why on
 // stderr) when there is none.
@@ -537,8 +521,12 @@ int run(const Args& args) {
       } else {
         code = runScript(app, args, script);
       }
-    } else if (args.measureIdleSeconds > 0) {
-      code = measureIdle(app, window, args.measureIdleSeconds);
+    } else if (args.measureIdleSeconds > 0 || args.measureHoverMoves > 0) {
+      const gui::MeasuredWindow m{[&] { return app.pendingFrames(); }, [&] { return app.nextWakeSeconds(); },
+                                  [&] { app.frame(); }, [&] { return app.framesDrawn(); },
+                                  [&] { return app.sceneDraws(); }};
+      code = args.measureHoverMoves > 0 ? gui::measureHover(window, m, args.measureHoverMoves)
+                                        : gui::measureIdle(window, m, args.measureIdleSeconds);
     } else {
       runInteractive(app, window);
     }

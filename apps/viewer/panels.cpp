@@ -173,7 +173,7 @@ void statusBar(viewer::ViewerState& state, int width, int height) {
 }  // namespace
 
 void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height,
-                const std::function<void()>& menuBar) {
+                const std::function<void()>& menuBar, const PanelFileActions& files) {
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(Layout::kPanelWidth, height - Layout::kStatusHeight));
   ImGui::Begin("treesketch", nullptr,
@@ -186,12 +186,18 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   ImGui::Text("%zu points, %zu nodes", state.cloud().size(), state.sketch().size());
 
   if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (ImGui::InputText("sketch", &panel.sketchPath)) state.setSketchPath(panel.sketchPath);
-    if (ImGui::Button("Load sketch")) state.loadSketch(panel.sketchPath);
+    // The File menu's own actions (with their dialogs and overwrite questions): one way to save.
+    const std::string& file = state.document().sketchPath().string();
+    ImGui::TextDisabled("sketch file: %s", file.empty() ? "(none yet)" : file.c_str());
+    auto fileButton = [&](const char* label, const std::function<void()>& action) {
+      if ((ImGui::Button(label) || panel.press == label) && action) action();
+    };
+    fileButton("Open sketch...", files.openSketch);
     ImGui::SameLine();
-    if (ImGui::Button("Save sketch")) state.saveSketch(panel.sketchPath);
-    ImGui::InputText("mesh", &panel.meshPath);
-    if (ImGui::Button("Export mesh (OBJ/PLY)")) state.exportMesh(panel.meshPath);
+    fileButton("Save sketch", files.save);
+    ImGui::SameLine();
+    fileButton("Save as...", files.saveAs);
+    fileButton("Export mesh...", files.exportMesh);
     ImGui::InputText("png", &panel.screenshotPath);
     if (ImGui::Button("Screenshot")) panel.screenshotRequested = true;
   }
@@ -221,7 +227,15 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
       ImGui::TextDisabled("(%s)", state.history().undoLabel().c_str());
     }
   }
-  if (ImGui::CollapsingHeader("Node", ImGuiTreeNodeFlags_DefaultOpen)) selectedNodeSection(state);
+  if (ImGui::CollapsingHeader("Node", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // The section keeps one height whether a node is selected or not, so that selecting a node
+    // never moves the controls below it (a click meant for one would hit another).
+    const float top = ImGui::GetCursorPosY();
+    selectedNodeSection(state);
+    const float used = ImGui::GetCursorPosY() - top;
+    const float keep = Layout::kNodeSectionRows * ImGui::GetFrameHeightWithSpacing();
+    if (used < keep) ImGui::Dummy(ImVec2(1.0f, keep - used - ImGui::GetStyle().ItemSpacing.y));
+  }
   if (ImGui::CollapsingHeader("Correction tools", ImGuiTreeNodeFlags_DefaultOpen)) toolsSection(state);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) displaySection(state);
   if (ImGui::CollapsingHeader("Help", panel.showHelp ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
@@ -235,6 +249,7 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   panelTooltips();
   ImGui::PopItemWidth();
   ImGui::End();
+  panel.press.clear();
 
   statusBar(state, width, height);
 }

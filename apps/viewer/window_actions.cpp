@@ -316,6 +316,12 @@ double WindowActions::windowReading(const std::string& key) {
     got = dialog_.isOpen() && !dialog_.error().empty();
   else if (key == "tooltip")
     got = tooltipShown();
+  else if (key == "sceneRedrawn") {
+    // Drawn anew since the last reading: a frame drawn for the panel alone reuses the scene's image.
+    const std::uint64_t draws = hooks_.sceneDraws ? hooks_.sceneDraws() : 0;
+    got = draws > sceneDrawsRead_;
+    sceneDrawsRead_ = draws;
+  }
   return got;
 }
 
@@ -418,6 +424,8 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
   } else if (a.name == "hover") {
     if (!hooks_.moveCursor) return "hover needs a window";
     hooks_.moveCursor(a.from);
+  } else if (a.name == "panel") {
+    panel_.press = a.text;  // the next frame's panel presses it
   } else if (a.name == "showMenu") {
     forcedMenu_ = a.text == "none" ? std::string() : a.text;
   } else if (a.name == "closeWindow") {

@@ -156,13 +156,14 @@ inline const WindowVerb kWindowVerbs[] = {
     {"prompt", {"save", "discard", "cancel"}},
     {"pick", {}},
     {"hover", {}},
+    {"panel", {"Open sketch...", "Save sketch", "Save as...", "Export mesh..."}},
     {"closeWindow", {}},
     {"showMenu", {"File", "View", "Tools", "Help", "none"}},
     {"expectWindow", {}},
 };
-inline const char* const kWindowExpectations[] = {"dialogOpen",  "dialogEntries", "promptOpen",  "picks",
-                                                  "distanceMin", "distanceMax",   "recent",      "quitting",
-                                                  "helpOpen",    "legendClasses", "dialogError", "tooltip"};
+inline const char* const kWindowExpectations[] = {
+    "dialogOpen", "dialogEntries", "promptOpen",    "picks",       "distanceMin", "distanceMax", "recent",
+    "quitting",   "helpOpen",      "legendClasses", "dialogError", "tooltip",     "sceneRedrawn"};
 
 /// The entry of `table` called `name`, or nullptr.
 template <class Entry, std::size_t N>

@@ -148,12 +148,21 @@ std::string SketchDocument::findRecovery(bool& readable) {
   readable = true;
   std::error_code ec;
   if (autosavePath_.empty() || !fs::is_regular_file(autosavePath_, ec)) return {};
-  recoveryPending_ = true;
   try {
-    recoveryNodes_ = io::readSketch(autosavePath_).size();
+    io::SketchFile found = io::readSketchFile(autosavePath_);
+    if (found.cloud && !found.cloud->sameCloud(cloud_)) {
+      // Work for another cloud (the file at this path was replaced, or the autosave was named by
+      // hand): not offered here, and kept aside so that this cloud's autosave does not replace it.
+      const fs::path kept = keepAutosave();
+      return "an autosave made for " + describeRecord(*found.cloud) + ", not for this cloud, was kept as " +
+             kept.string() + " (load it with Load sketch onto its own cloud)";
+    }
+    recoveryPending_ = true;
+    recoveryNodes_ = found.sketch.size();
     return "found unsaved work from an earlier session: " + autosavePath_.string() + " (" +
            std::to_string(recoveryNodes_) + " nodes): restore, discard or keep it";
   } catch (const std::exception& e) {
+    recoveryPending_ = true;
     readable = false;
     recoveryError_ = e.what();
     return "the earlier session's autosave cannot be read: " + recoveryError_ + " (discard it or keep it)";

@@ -26,12 +26,13 @@ geom::PointCloud trunk(int n = 3000) {
   return cloud;
 }
 
-/// A session on `file` (the cloud is the same whatever the name) with `clicks` nodes up the trunk.
-std::unique_ptr<ViewerState> session(const std::filesystem::path& file, int clicks) {
+/// A session on `file` (the cloud is the same whatever the name, for one `points`) with `clicks`
+/// nodes up the trunk.
+std::unique_ptr<ViewerState> session(const std::filesystem::path& file, int clicks, int points = 3000) {
   auto s = std::make_unique<ViewerState>();
   s->view().setViewport(geom::Viewport{0, 0, 800, 600});
   s->setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
-  EXPECT_TRUE(s->setCloud(trunk(), geom::UpAxis::Y, file));
+  EXPECT_TRUE(s->setCloud(trunk(points), geom::UpAxis::Y, file));
   for (int i = 1; i <= clicks; ++i) s->clickAt(s->view().camera().project(Vec3(0, 0.8 * i, 0)).head<2>());
   return s;
 }
@@ -64,6 +65,30 @@ TEST(Recovery, AnAutosaveIsOfferedAndNotOverwrittenBeforeTheChoice) {
   ASSERT_TRUE(s->undo());  // the restore is one undoable edit
   EXPECT_EQ(s->sketch().size(), 1u);
   EXPECT_FALSE(s->resolveRecovery(Choice::Restore));  // nothing pending any more
+}
+
+TEST(Recovery, AnAutosaveOfAnotherCloudIsNotOfferedAndIsKept) {
+  test::TempDir dir;
+  { auto crashed = session(dir / "tree.las", 3); }  // its autosave records the 3000-point cloud
+  // Another cloud under the same name (the file was replaced): the autosave is not its work.
+  auto s = session(dir / "tree.las", 0, 2500);
+  EXPECT_FALSE(s->document().recoveryPending());
+  EXPECT_EQ(s->document().recoveryNodes(), 0u);
+  EXPECT_NE(s->status().lastMessage().text.find("not for this cloud"), std::string::npos)
+      << s->status().lastMessage().text;
+  // Kept aside under a name of its own, whole; this cloud's edits autosave to the usual name.
+  std::vector<std::filesystem::path> kept;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path()))
+    if (e.path().filename().string().find(".kept-") != std::string::npos) kept.push_back(e.path());
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(io::readSketch(kept[0]).size(), 3u);
+  s->clickAt(s->view().camera().project(Vec3(0, 1, 0)).head<2>());
+  EXPECT_EQ(io::readSketch(s->document().autosavePath()).size(), 1u);
+  EXPECT_EQ(io::readSketch(kept[0]).size(), 3u);
+  // The same cloud again is offered its own autosave.
+  auto again = session(dir / "tree.las", 0, 2500);
+  EXPECT_TRUE(again->document().recoveryPending());
+  EXPECT_EQ(again->document().recoveryNodes(), 1u);
 }
 
 TEST(Recovery, DiscardDeletesAndKeepRenames) {

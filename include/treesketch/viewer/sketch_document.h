@@ -76,7 +76,9 @@ class SketchDocument {
   /// or a window closed with unsaved edits). findRecovery() looks for one and, when found, holds it
   /// as an offer (recoveryPending()) until endRecovery(): meanwhile the autosave is never written.
   /// Returns the status text to show ("" when there is nothing to offer); `readable` is false when
-  /// the file cannot be read (recoveryError() says why).
+  /// the file cannot be read (recoveryError() says why). An autosave whose cloud record names
+  /// another cloud (point count or hash differ) is not offered: it is renamed as keepAutosave()
+  /// does, so that it is neither restored onto this cloud nor replaced by this cloud's autosave.
   std::string findRecovery(bool& readable);
   bool recoveryPending() const { return recoveryPending_; }
   /// Nodes in the waiting autosave (0 when it cannot be read; recoveryError() says why).
