@@ -53,7 +53,7 @@ std::unique_ptr<viewer::ViewerState> sketchedState(treesketch::sketch::NodeId* n
   for (int i = 1; i <= 8; ++i) s->clickAt(s->view().camera().project(Vec3(0, top * 0.05 * i, 0)).head<2>());
   *node = treesketch::sketch::kNoNode;
   for (treesketch::sketch::NodeId id : {3, 4, 2, 5, 1})
-    if (s->nodeFit(id).status == viewer::NodeStatus::Fitted) {
+    if (s->scene().nodeFit(id).status == viewer::NodeStatus::Fitted) {
       *node = id;
       break;
     }
@@ -63,7 +63,7 @@ std::unique_ptr<viewer::ViewerState> sketchedState(treesketch::sketch::NodeId* n
 void reportCounters(benchmark::State& st, const viewer::ViewerState& s) {
   st.counters["points"] = static_cast<double>(s.cloud().size());
   st.counters["nodes"] = static_cast<double>(s.sketch().size());
-  st.counters["fitted"] = static_cast<double>(s.fittedCount());
+  st.counters["fitted"] = static_cast<double>(s.scene().fittedCount());
   st.counters["rebuild_ms"] = s.lastRebuildMs();
   st.counters["errors"] = static_cast<double>(s.status().errorCount());
 }
@@ -82,9 +82,9 @@ void BM_DragNodeOnePixel(benchmark::State& st) {
   int k = 0;
   for (auto _ : st) {
     s->moveNodeTo(id, base + Vec2(0, (k++ & 1) ? 1.0 : 0.0));
-    benchmark::DoNotOptimize(s->nodeMarkers());
-    benchmark::DoNotOptimize(s->sceneLines());
-    benchmark::DoNotOptimize(s->highlightedSlicePoints());
+    benchmark::DoNotOptimize(s->scene().nodeMarkers());
+    benchmark::DoNotOptimize(s->scene().sceneLines());
+    benchmark::DoNotOptimize(s->scene().highlightedSlicePoints());
   }
   reportCounters(st, *s);
 }
@@ -103,8 +103,8 @@ void BM_SliderSliceThickness(benchmark::State& st) {
   int k = 0;
   for (auto _ : st) {
     s->setSliceHalfThickness(eps * ((k++ & 1) ? 1.1 : 1.0));
-    benchmark::DoNotOptimize(s->sceneLines());
-    benchmark::DoNotOptimize(s->highlightedSlicePoints());
+    benchmark::DoNotOptimize(s->scene().sceneLines());
+    benchmark::DoNotOptimize(s->scene().highlightedSlicePoints());
   }
   reportCounters(st, *s);
 }
@@ -131,9 +131,9 @@ void BM_FrameOverlayData(benchmark::State& st) {
   int k = 0;
   for (auto _ : st) {
     s->view().orbit().rotate(Vec2(700, 400), Vec2(700 + ((k++ & 1) ? 2 : -2), 400));
-    benchmark::DoNotOptimize(s->nodeMarkers());
-    benchmark::DoNotOptimize(s->sceneLines());
-    benchmark::DoNotOptimize(s->highlightedSlicePoints());
+    benchmark::DoNotOptimize(s->scene().nodeMarkers());
+    benchmark::DoNotOptimize(s->scene().sceneLines());
+    benchmark::DoNotOptimize(s->scene().highlightedSlicePoints());
   }
   reportCounters(st, *s);
 }
@@ -159,11 +159,11 @@ void BM_EditRebuildsFrameData(benchmark::State& st) {
   std::uint64_t colourUploads = 0;
   for (auto _ : st) {
     s->moveNodeTo(id, base + Vec2(0, (k++ & 1) ? 1.0 : 0.0));
-    benchmark::DoNotOptimize(s->nodeMarkers());
-    benchmark::DoNotOptimize(s->sceneLines());
-    std::uint64_t before = s->colorsVersion();
-    const auto& colors = s->pointColors();
-    if (s->colorsVersion() != before) {
+    benchmark::DoNotOptimize(s->scene().nodeMarkers());
+    benchmark::DoNotOptimize(s->scene().sceneLines());
+    std::uint64_t before = s->scene().colorsVersion();
+    const auto& colors = s->scene().pointColors();
+    if (s->scene().colorsVersion() != before) {
       upload = lod.keptColors(colors).data();  // as the window: only the changed points rewritten
       ++colourUploads;
     }
@@ -191,7 +191,7 @@ void BM_SurfaceColoursAfterEdit(benchmark::State& st) {
   kept.build(s->cloud(), scale);
   full.build(s->cloud(), scale);
   std::vector<viewer::Rgb> keptColours, fullColours;
-  kept.surfaceColors(s->treeModel().cylinders, keptColours);
+  kept.surfaceColors(s->scene().treeModel().cylinders, keptColours);
   s->selectNode(id);
   const Vec2 base = s->sketch().node(id).screen;
   int k = 0;
@@ -200,7 +200,7 @@ void BM_SurfaceColoursAfterEdit(benchmark::State& st) {
   auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
   for (auto _ : st) {
     s->moveNodeTo(id, base + Vec2(0, (k & 1) ? 1.0 : 0.0));
-    const treesketch::geom::CylinderModel model = s->treeModel().cylinders;
+    const treesketch::geom::CylinderModel model = s->scene().treeModel().cylinders;
     auto runKept = [&] {
       const auto t = Clock::now();
       kept.surfaceColors(model, keptColours);

@@ -225,9 +225,9 @@ class App {
   /// or opens a popup over the next two or three frames).
   using Shown = std::tuple<std::uint64_t, std::uint64_t, std::uint64_t, bool, bool, bool>;
   Shown shown() const {
-    return {state_.cloudVersion(),        state_.sceneVersion(),
-            state_.colorsVersion(),       state_.document().recoveryPending(),
-            state_.confirmationPending(), loading()};
+    return {state_.cloudVersion(),          state_.sceneVersion(),
+            state_.scene().colorsVersion(), state_.document().recoveryPending(),
+            state_.confirmationPending(),   loading()};
   }
   /// Seconds until something changes by itself (a job's or the loading's progress: 10 Hz; an info
   /// message expiring; the moving view settling into the full cloud); negative: nothing will, wait

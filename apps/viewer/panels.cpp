@@ -62,7 +62,7 @@ void selectedNodeSection(viewer::ViewerState& state) {
     return;
   }
   const sketch::Node& node = sk.node(id);
-  viewer::NodeFitView fit = state.nodeFit(id);
+  viewer::NodeFitView fit = state.scene().nodeFit(id);
   ImGui::Text("Node %d  (parent %d, %zu children)", id, node.parent, node.children.size());
   ImVec4 statusColor = fit.status == NodeStatus::Fitted    ? ImVec4(0.3f, 0.9f, 0.4f, 1)
                        : fit.status == NodeStatus::Skipped ? ImVec4(1.0f, 0.4f, 0.2f, 1)
@@ -153,8 +153,8 @@ void statusBar(viewer::ViewerState& state, int width, int height) {
                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoSavedSettings);
   std::optional<viewer::StatusMessage> last = state.status().statusLine();
   ImGui::Text("%zu points | %zu nodes: %zu fitted (%zu kept circles), %zu skipped | last rebuild %.2f ms | %s |",
-              state.cloud().size(), state.sketch().size(), state.fittedCount(), state.sketch().keptCircleCount(),
-              state.skippedCount(), state.lastRebuildMs(),
+              state.cloud().size(), state.sketch().size(), state.scene().fittedCount(),
+              state.sketch().keptCircleCount(), state.scene().skippedCount(), state.lastRebuildMs(),
               state.view().orbit().orthographic() ? "orthographic" : "perspective");
   // Infos expire (ViewerOptions::statusInfoSeconds); an error stays until dismissed or replaced.
   if (last) {
@@ -260,8 +260,8 @@ void drawMarkers(const viewer::ViewerState& state) {
   geom::Viewport vp = state.view().orbit().viewport();
   dl->PushClipRect(ImVec2(static_cast<float>(vp.x), static_cast<float>(vp.y)),
                    ImVec2(static_cast<float>(vp.x + vp.width), static_cast<float>(vp.y + vp.height)));
-  std::vector<viewer::NodeMarker> markers = state.nodeMarkers();
-  const bool labels = state.labelsShown();
+  std::vector<viewer::NodeMarker> markers = state.scene().nodeMarkers();
+  const bool labels = state.scene().labelsShown();
   auto find = [&](sketch::NodeId id) -> const viewer::NodeMarker* {
     for (const auto& m : markers)
       if (m.id == id) return &m;

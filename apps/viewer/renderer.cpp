@@ -160,9 +160,9 @@ void Renderer::uploadCloud(viewer::ViewerState& state) {
     hlVersion_ = 0;
     meshVersion_ = 0;
   }
-  const std::vector<viewer::Rgb>& colors = state.pointColors();
-  if (colorsVersion_ != state.colorsVersion()) {
-    colorsVersion_ = state.colorsVersion();
+  const std::vector<viewer::Rgb>& colors = state.scene().pointColors();
+  if (colorsVersion_ != state.scene().colorsVersion()) {
+    colorsVersion_ = state.scene().colorsVersion();
     const std::vector<std::uint8_t>& ordered = lod_.keptColors(colors);  // the positions' upload order
     glBindBuffer(GL_ARRAY_BUFFER, cloudCol_);
     glBufferData(GL_ARRAY_BUFFER, ordered.size(), ordered.data(), GL_DYNAMIC_DRAW);
@@ -172,7 +172,7 @@ void Renderer::uploadCloud(viewer::ViewerState& state) {
 void Renderer::uploadMesh(const viewer::ViewerState& state) {
   if (meshVersion_ == state.sceneVersion()) return;
   meshVersion_ = state.sceneVersion();
-  const geom::TriMesh& mesh = state.mesh();
+  const geom::TriMesh& mesh = state.scene().mesh();
   // Per-vertex normals: area-weighted sums of the face normals.
   std::vector<Vec3> normals(mesh.vertices.size(), Vec3::Zero());
   for (const auto& t : mesh.triangles) {
@@ -201,8 +201,8 @@ void Renderer::uploadHighlights(const viewer::ViewerState& state) {
   if (hlVersion_ == state.sceneVersion() && hlNode_ == state.tools().selected()) return;
   hlVersion_ = state.sceneVersion();
   hlNode_ = state.tools().selected();
-  std::vector<std::uint32_t> slice = state.highlightedSlicePoints();
-  std::vector<std::uint32_t> inliers = state.highlightedInliers();
+  std::vector<std::uint32_t> slice = state.scene().highlightedSlicePoints();
+  std::vector<std::uint32_t> inliers = state.scene().highlightedInliers();
   const geom::PointCloud& cloud = state.cloud();
   std::vector<float> pos;
   pos.reserve(3 * (slice.size() + inliers.size()));
@@ -308,7 +308,7 @@ void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pi
   uploadCloud(state);
   uploadMesh(state);
   uploadHighlights(state);
-  const std::vector<viewer::Line3> lines = state.sceneLines();
+  const std::vector<viewer::Line3> lines = state.scene().sceneLines();
   const std::size_t points = std::min<std::size_t>(cloudCount_, maxPoints);
   ensureTarget(w, h);
   std::string key = sceneKey(state, lines, framebufferHeight, k, points);

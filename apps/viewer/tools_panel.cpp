@@ -37,7 +37,7 @@ void toolsSection(viewer::ViewerState& state) {
   const double depth = state.selectedDepth();
   if (std::isfinite(depth)) ImGui::Text("selected circle: %.3f from the eye", depth);
   if (state.tools().selected() != sketch::kNoNode) {
-    const viewer::NodeFitView fit = state.nodeFit(state.tools().selected());
+    const viewer::NodeFitView fit = state.scene().nodeFit(state.tools().selected());
     if (std::isfinite(fit.depth)) ImGui::Text("depth along its view ray: %.3f", fit.depth);
     if (!fit.warning.empty()) {
       ImGui::PushTextWrapPos(0.0f);

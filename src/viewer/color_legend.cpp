@@ -103,9 +103,9 @@ Legend colorLegend(const ViewerState& state) {
       char note[160];
       std::snprintf(note, sizeof note, "0 on the tubes; the top colour: %.3g m (%.3g %% of the cloud's %.3g m diagonal) "
                     "or farther", scale, 100.0 * state.options().distanceColorScale, diagonal);
-      l.note = state.fittedCount() == 0 ? "no fitted circle yet: every point is at the far end"
-               : state.fittedCount() == 1 ? "one fitted circle, no tube yet: the distance to the circle"
-                                          : std::string(note);
+      l.note = state.scene().fittedCount() == 0   ? "no fitted circle yet: every point is at the far end"
+               : state.scene().fittedCount() == 1 ? "one fitted circle, no tube yet: the distance to the circle"
+                                                  : std::string(note);
       return l;
     }
     case ColorMode::Intensity: {

@@ -73,7 +73,7 @@ bool ViewerState::exportModel(ModelFile what, const std::filesystem::path& path,
     if (!recon_) throw OptionsError("no cloud is open");
     if (what == ModelFile::Mesh ? recon_->mesh().empty() : false)
       throw OptionsError("no mesh to export: no node has been fitted yet");
-    const model::TreeModel tree = treeModel();
+    const model::TreeModel tree = scene_.treeModel();
     if (what != ModelFile::Mesh && tree.empty())
       throw OptionsError(std::string("no ") + name + " to export: no two linked nodes are fitted yet");
     model::OutputPaths out;

@@ -41,7 +41,7 @@ void ViewerState::mouseDown(const Vec2& pos, MouseButton button, int mods) {
   tools_.gestureMods_ = mods;
   if (toolMouseDown(pos, button, mods)) return;
   if (button == MouseButton::Left && !(mods & kModAlt)) {
-    tools_.gestureNode_ = nodeAt(pos);
+    tools_.gestureNode_ = scene_.nodeAt(pos);
     // Clicks select by default: adding is the AddNodes tool's, or Shift's, so that a click that
     // misses a marker by a few pixels never makes a stray node.
     const bool adds = tools_.tool_ == Tool::AddNodes || (mods & kModShift);
@@ -101,7 +101,7 @@ void ViewerState::mouseUp(const Vec2& pos, MouseButton button, int mods) {
     } else {
       selectNode(tools_.gestureNode_);
     }
-    if (const std::size_t under = markersAt(pos); under > 1)
+    if (const std::size_t under = scene_.markersAt(pos); under > 1)
       info("selected node " + std::to_string(tools_.gestureNode_) + ", the nearest to the eye of " +
            std::to_string(under) + " markers under the click");
   } else if (g == Gesture::PendingAdd) {

@@ -121,7 +121,7 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
 
     view_.orbit_.setSceneBounds(bounds_);
     view_.orbit_.preset(geom::PresetView::Front, upDirectionVector(view_.up_));
-    colorsStale_ = true;
+    scene_.colorsStale_ = true;
     resetReconstruction();
     rebuild();
     info("opened " + (sourcePath.empty() ? std::string("cloud") : sourcePath.string()) + ": " +
@@ -185,7 +185,7 @@ void ViewerState::rebuild() {
   runAction("rebuild", [&] { recon_->update(sketch_); });
   lastRebuildMs_ = timer.ms();
   ++sceneVersion_;
-  if (view_.display_.colorMode == ColorMode::CircleDistance) colorsStale_ = true;
+  if (view_.display_.colorMode == ColorMode::CircleDistance) scene_.colorsStale_ = true;
 }
 
 void ViewerState::autosave() {
@@ -240,7 +240,7 @@ bool ViewerState::addNodeAt(const Vec2& screen) {
       if (tools_.activeChosen_ && tools_.active_ != kNoNode && sketch_.contains(tools_.active_)) {
         parent = tools_.active_;
       } else {
-        parent = nearestMarker(screen);
+        parent = scene_.nearestMarker(screen);
         how = parent != kNoNode ? " (the nearest node; select a node to attach elsewhere)"
                                 : " (the root: no node is visible in this view)";
         if (parent == kNoNode) parent = sketch_.root();

@@ -97,7 +97,7 @@ bool ViewerState::lassoNotWood(const std::vector<Vec2>& polygon) {
     refit = edit::refitNotWoodCircles(sketch_);  // a model circle inside the lasso is fitted again
   });
   if (ok) {
-    colorsStale_ = true;
+    scene_.colorsStale_ = true;
     info("lasso: " + std::to_string(marked) + " points marked not-wood (left out of fits and the automatic skeleton)" +
          (refit ? "; " + std::to_string(refit) + " model circles inside it are fitted again from the other points"
                 : std::string()));
@@ -111,7 +111,7 @@ bool ViewerState::clearNotWood() {
     return false;
   }
   bool ok = edit("clear not-wood", "clear not-wood lassos", "", [&] { sketch_.clearNotWood(); });
-  if (ok) colorsStale_ = true;
+  if (ok) scene_.colorsStale_ = true;
   return ok;
 }
 
@@ -214,7 +214,7 @@ bool ViewerState::toolMouseDown(const Vec2& pos, MouseButton button, int mods) {
   if (tools_.tool_ == Tool::Select || tools_.tool_ == Tool::AddNodes || button != MouseButton::Left || (mods & kModAlt))
     return false;
   tools_.gesture_ = Gesture::ToolPath;
-  tools_.gestureNode_ = tools_.tool_ == Tool::Reattach ? nodeAt(pos) : kNoNode;
+  tools_.gestureNode_ = tools_.tool_ == Tool::Reattach ? scene_.nodeAt(pos) : kNoNode;
   tools_.toolPath_ = {pos};
   return true;
 }

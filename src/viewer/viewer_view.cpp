@@ -11,7 +11,7 @@ void ViewerState::setUpDirection(UpDirection up) {
     sketch_.up = *axis;  // metadata of the sketch file; no node moves
   }
   view_.presetView(geom::PresetView::Front);
-  colorsStale_ = true;
+  scene_.colorsStale_ = true;
   ++sceneVersion_;
   view_.upWarningDismissed_ = false;
   std::string w = lyingDownWarning();

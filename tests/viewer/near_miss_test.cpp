@@ -32,7 +32,7 @@ struct Fixture {
     EXPECT_TRUE(state.autoSketchUniform(12));  // the active node is a default, not the person's
   }
   Vec2 markerOf(sketch::NodeId id) const {
-    for (const NodeMarker& m : state.nodeMarkers())
+    for (const NodeMarker& m : state.scene().nodeMarkers())
       if (m.id == id) return m.screen;
     ADD_FAILURE() << "no marker for node " << id;
     return Vec2::Zero();
@@ -50,7 +50,7 @@ TEST(NearMiss, AClickBesideAMarkerAttachesToThatNodeNotTheDefault) {
   const sketch::NodeId target = 5;
   // Just outside the pick radius, to the right of node 5's marker.
   Vec2 at = f.markerOf(target) + Vec2(f.state.options().pickRadiusPx + 5.0, 0.0);
-  ASSERT_EQ(f.state.nodeAt(at), sketch::kNoNode);
+  ASSERT_EQ(f.state.scene().nodeAt(at), sketch::kNoNode);
   f.state.clickAt(at);
   ASSERT_EQ(f.state.sketch().size(), before + 1);
   EXPECT_EQ(f.state.sketch().node(f.lastAdded()).parent, target);

@@ -254,7 +254,7 @@ TEST(SketchDocument, ACloudWithNoExtentIsRefusedNotACrash) {
     EXPECT_EQ(s.cloud().size(), 6000u);
     s.clickAt(s.view().camera().project(Vec3(0, 2, 0)).head<2>(), MouseButton::Left, kModShift);
     EXPECT_EQ(s.sketch().size(), 2u);
-    EXPECT_EQ(s.fittedCount(), 2u);
+    EXPECT_EQ(s.scene().fittedCount(), 2u);
   }
 }
 
@@ -298,8 +298,8 @@ TEST(SketchDocument, APickAmongOverlappingMarkersTakesTheNearestInDepth) {
   sk.setKeptCircle(nearId, sketch::KeptCircle{nearP, 0.1});
   io::writeSketch(dir / "two.json", sk);
   ASSERT_TRUE(s.loadSketch(dir / "two.json"));
-  EXPECT_EQ(s.nodeAt(at + Vec2(1, 0)), nearId);
-  EXPECT_EQ(s.markersAt(at), 2u);
+  EXPECT_EQ(s.scene().nodeAt(at + Vec2(1, 0)), nearId);
+  EXPECT_EQ(s.scene().markersAt(at), 2u);
   s.clickAt(at + Vec2(1, 0));
   EXPECT_EQ(s.tools().selected(), nearId);
   EXPECT_NE(s.status().lastMessage().text.find("nearest to the eye of 2 markers"), std::string::npos)
@@ -332,8 +332,8 @@ TEST(SketchDocument, TheDistanceColouringIsZeroOnTheModelsSurface) {
   s.view().setColorMode(ColorMode::CircleDistance);
   for (double y : {1.0, 3.0})
     s.clickAt(s.view().camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
-  ASSERT_EQ(s.fittedCount(), 2u);
-  const std::vector<Rgb>& colors = s.pointColors();
+  ASSERT_EQ(s.scene().fittedCount(), 2u);
+  const std::vector<Rgb>& colors = s.scene().pointColors();
   const double scale = s.options().distanceColorScale * s.bounds().diagonal();
   int between = 0, onSurface = 0;
   for (std::size_t i = 0; i < colors.size(); ++i) {
@@ -358,21 +358,21 @@ TEST(SketchDocument, TheDistanceColouringAfterEditsIsTheFullMeasure) {
   s.view().setColorMode(ColorMode::CircleDistance);
   for (double y : {0.5, 1.5, 2.5})
     s.clickAt(s.view().camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
-  ASSERT_EQ(s.fittedCount(), 3u);
+  ASSERT_EQ(s.scene().fittedCount(), 3u);
   const double scale = s.options().distanceColorScale * s.bounds().diagonal();
   auto check = [&](const char* what) {
-    const std::vector<Rgb> colors = s.pointColors();
-    const geom::CylinderModel model = s.treeModel().cylinders;
+    const std::vector<Rgb> colors = s.scene().pointColors();
+    const geom::CylinderModel model = s.scene().treeModel().cylinders;
     ASSERT_FALSE(model.empty()) << what;
     EXPECT_EQ(colors, surfaceDistanceColors(s.cloud(), model, scale)) << what;
   };
   check("three nodes");
-  const sketch::NodeId middle = s.nodeAt(s.view().camera().project(Vec3(0, 1.5, 0)).head<2>());
+  const sketch::NodeId middle = s.scene().nodeAt(s.view().camera().project(Vec3(0, 1.5, 0)).head<2>());
   ASSERT_NE(middle, sketch::kNoNode);
   const Vec2 at = s.sketch().node(middle).screen;
   ASSERT_TRUE(s.moveNodeTo(middle, at + Vec2(6, -4)));
   check("middle node dragged");
-  EXPECT_GT(s.distanceColorGrid().lastPointsMeasured(), 0u);
+  EXPECT_GT(s.scene().distanceColorGrid().lastPointsMeasured(), 0u);
   s.clickAt(s.view().camera().project(Vec3(0, 3.5, 0)).head<2>(), MouseButton::Left, kModShift);
   check("a node added on top");
   ASSERT_TRUE(s.undo());
@@ -394,7 +394,7 @@ TEST(SketchDocument, ReattachsFirstClickNamesTheNodeAndShiftTurnsTheLimbRound) {
   io::writeSketch(dir / "hung.json", sk);
   ASSERT_TRUE(s.loadSketch(dir / "hung.json"));
   auto at = [&](sketch::NodeId id) {
-    for (const NodeMarker& m : s.nodeMarkers())
+    for (const NodeMarker& m : s.scene().nodeMarkers())
       if (m.id == id) return m.screen;
     return Vec2(-1, -1);
   };
@@ -435,7 +435,8 @@ TEST(SketchDocument, AStrokeSaysHowManyNodesFittedAndWhyOthersDidNot) {
     if (m.text.rfind("drew a limb", 0) == 0) said = m.text;
   EXPECT_NE(said.find(" of " + std::to_string(added) + " fitted"), std::string::npos) << said;
   std::size_t fitted = 0;
-  for (const auto& [id, node] : s.sketch().nodes()) fitted += id >= 3 && s.nodeFit(id).status == NodeStatus::Fitted;
+  for (const auto& [id, node] : s.sketch().nodes())
+    fitted += id >= 3 && s.scene().nodeFit(id).status == NodeStatus::Fitted;
   EXPECT_NE(said.find(std::to_string(fitted) + " of "), std::string::npos) << said;
   if (fitted < added) EXPECT_NE(said.find(" not: "), std::string::npos) << said;
 }

@@ -65,13 +65,13 @@ TEST(Labels, AutoHidesThemOnLargeSketchesAndTheKeyCycles) {
   s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   ASSERT_TRUE(s.autoSketchUniform(12));
   EXPECT_EQ(s.view().display().labels, LabelMode::Auto);
-  EXPECT_TRUE(s.labelsShown());
+  EXPECT_TRUE(s.scene().labelsShown());
   ASSERT_TRUE(s.autoSketchUniform(int(s.options().autoLabelMaxNodes) + 1));
-  EXPECT_FALSE(s.labelsShown());
+  EXPECT_FALSE(s.scene().labelsShown());
   EXPECT_TRUE(s.keyPress("l"));  // auto -> on
-  EXPECT_TRUE(s.labelsShown());
+  EXPECT_TRUE(s.scene().labelsShown());
   EXPECT_TRUE(s.keyPress("l"));  // on -> off
-  EXPECT_FALSE(s.labelsShown());
+  EXPECT_FALSE(s.scene().labelsShown());
   EXPECT_EQ(parseLabelMode("auto"), LabelMode::Auto);
   EXPECT_THROW(parseLabelMode("maybe"), OptionsError);
 }

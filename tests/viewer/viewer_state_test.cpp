@@ -64,13 +64,13 @@ TEST(ViewerState, ClicksAddAChainOfNodesThatFitTheTrunk) {
   EXPECT_EQ(f.state.tools().active(), 2);
   EXPECT_EQ(f.state.tools().selected(), 2);
   EXPECT_EQ(sk.cameras().size(), 1u);
-  EXPECT_EQ(f.state.fittedCount(), 3u);
-  NodeFitView fit = f.state.nodeFit(1);
+  EXPECT_EQ(f.state.scene().fittedCount(), 3u);
+  NodeFitView fit = f.state.scene().nodeFit(1);
   ASSERT_EQ(fit.status, NodeStatus::Fitted);
   EXPECT_NEAR(fit.circle.radius, kRadius, 0.02);
   EXPECT_NEAR(fit.circle.centre.y(), 2.0, 0.05);
   EXPECT_NEAR(std::hypot(fit.circle.centre.x(), fit.circle.centre.z()), 0.0, 0.03);
-  EXPECT_FALSE(f.state.mesh().empty());
+  EXPECT_FALSE(f.state.scene().mesh().empty());
   EXPECT_GE(f.state.lastRebuildMs(), 0.0);
   EXPECT_EQ(f.state.status().errorCount(), 0u);
 }
@@ -89,7 +89,7 @@ TEST(ViewerState, ClickOnANodeSelectsItAndMakesItActive) {
   EXPECT_EQ(f.state.tools().active(), 0);
   f.state.clickAt(f.screenOf(Vec3(0, 3, 0)));  // a branch from node 0
   EXPECT_EQ(f.state.sketch().node(2).parent, 0);
-  EXPECT_EQ(f.state.nodeAt(Vec2(700, 20)), kNoNode);
+  EXPECT_EQ(f.state.scene().nodeAt(Vec2(700, 20)), kNoNode);
 }
 
 TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
@@ -108,10 +108,10 @@ TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
   EXPECT_TRUE(f.state.keyPress("shift+delete"));
   ASSERT_TRUE(f.state.confirmationPending());
   EXPECT_EQ(f.state.sketch().size(), 4u);
-  for (const NodeMarker& m : f.state.nodeMarkers()) EXPECT_EQ(m.doomed, m.id != 0) << m.id;
+  for (const NodeMarker& m : f.state.scene().nodeMarkers()) EXPECT_EQ(m.doomed, m.id != 0) << m.id;
   EXPECT_FALSE(f.state.answerConfirmation(false));
   EXPECT_EQ(f.state.sketch().size(), 4u);
-  for (const NodeMarker& m : f.state.nodeMarkers()) EXPECT_FALSE(m.doomed) << m.id;
+  for (const NodeMarker& m : f.state.scene().nodeMarkers()) EXPECT_FALSE(m.doomed) << m.id;
   EXPECT_TRUE(f.state.keyPress("shift+delete"));
   EXPECT_TRUE(f.state.answerConfirmation(true));
   EXPECT_EQ(f.state.sketch().size(), 1u);
@@ -138,7 +138,7 @@ TEST(ViewerState, DragMovesANodeAsOneUndoStep) {
   EXPECT_EQ(f.state.sketch().size(), 2u);
   EXPECT_NEAR((f.state.sketch().node(1).screen - to).norm(), 0.0, 1e-9);
   EXPECT_EQ(f.state.history().undoCount(), undoBefore + 1);
-  EXPECT_NEAR(f.state.nodeFit(1).circle.centre.y(), 2.5, 0.05);
+  EXPECT_NEAR(f.state.scene().nodeFit(1).circle.centre.y(), 2.5, 0.05);
   f.state.undo();
   EXPECT_NEAR((f.state.sketch().node(1).screen - b).norm(), 0.0, 1e-9);
 }
@@ -176,50 +176,50 @@ TEST(ViewerState, NodesKeepTheirCameraAcrossViews) {
   EXPECT_EQ(sk.cameras().size(), 2u);
   EXPECT_NE(sk.node(0).camera, sk.node(1).camera);
   EXPECT_NEAR((sk.node(0).screen - a).norm(), 0.0, 1e-12);  // unchanged by the view change
-  std::vector<NodeMarker> markers = f.state.nodeMarkers();
+  std::vector<NodeMarker> markers = f.state.scene().nodeMarkers();
   ASSERT_EQ(markers.size(), 2u);
   EXPECT_FALSE(markers[0].inCurrentView);
   EXPECT_TRUE(markers[1].inCurrentView);
   // Node 0's marker sits where its fitted centre projects in the side view.
-  Vec2 expected = f.screenOf(f.state.nodeFit(0).circle.centre);
+  Vec2 expected = f.screenOf(f.state.scene().nodeFit(0).circle.centre);
   EXPECT_NEAR((markers[0].screen - expected).norm(), 0.0, 1e-6);
-  EXPECT_EQ(f.state.fittedCount(), 2u);
+  EXPECT_EQ(f.state.scene().fittedCount(), 2u);
   // Moving node 0 in the side view keeps its own camera.
   EXPECT_TRUE(f.state.moveNodeTo(0, f.screenOf(Vec3(0, 1.5, 0))));
   EXPECT_EQ(f.state.sketch().node(0).camera, sk.node(0).camera);
-  EXPECT_NEAR(f.state.nodeFit(0).circle.centre.y(), 1.5, 0.05);
+  EXPECT_NEAR(f.state.scene().nodeFit(0).circle.centre.y(), 1.5, 0.05);
 }
 
 TEST(ViewerState, SelectedNodeShowsItsSamplingRegionAndSlice) {
   Fixture f;
   f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
-  SamplingRegion r = f.state.samplingRegion();
+  SamplingRegion r = f.state.scene().samplingRegion();
   ASSERT_TRUE(r.valid);
   EXPECT_TRUE(r.geometry.hasLine);
-  std::vector<std::uint32_t> slice = f.state.highlightedSlicePoints();
+  std::vector<std::uint32_t> slice = f.state.scene().highlightedSlicePoints();
   ASSERT_FALSE(slice.empty());
   for (std::uint32_t i : slice) {
     double d = std::abs((f.state.cloud().positions[i] - r.geometry.planePoint).dot(r.geometry.planeNormal));
     EXPECT_LT(d, r.sliceHalfThickness);
   }
-  EXPECT_FALSE(f.state.highlightedInliers().empty());
-  EXPECT_GT(f.state.sceneLines().size(), 20u);  // circle + slab + cylinder
+  EXPECT_FALSE(f.state.scene().highlightedInliers().empty());
+  EXPECT_GT(f.state.scene().sceneLines().size(), 20u);  // circle + slab + cylinder
   f.state.selectNode(kNoNode);
-  EXPECT_FALSE(f.state.samplingRegion().valid);
-  EXPECT_TRUE(f.state.highlightedSlicePoints().empty());
+  EXPECT_FALSE(f.state.scene().samplingRegion().valid);
+  EXPECT_TRUE(f.state.scene().highlightedSlicePoints().empty());
 }
 
 TEST(ViewerState, ColourModes) {
   Fixture f;
   // Height colours are the renderer's (one colour module for pictures and the window).
-  EXPECT_EQ(f.state.pointColors(), render::heightColors(f.state.cloud().positions, f.state.up()));
-  std::uint64_t v = f.state.colorsVersion();
+  EXPECT_EQ(f.state.scene().pointColors(), render::heightColors(f.state.cloud().positions, f.state.up()));
+  std::uint64_t v = f.state.scene().colorsVersion();
   f.state.view().setColorMode(ColorMode::Plain);
-  EXPECT_EQ(f.state.pointColors()[0], f.state.options().plainColor);
-  EXPECT_GT(f.state.colorsVersion(), v);
+  EXPECT_EQ(f.state.scene().pointColors()[0], f.state.options().plainColor);
+  EXPECT_GT(f.state.scene().colorsVersion(), v);
   f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
   f.state.view().setColorMode(ColorMode::CircleDistance);
-  const auto& colors = f.state.pointColors();
+  const auto& colors = f.state.scene().pointColors();
   // Trunk points near y = 2 lie on the fitted circle: the ramp's start; the ends are far.
   int near = 0, onCircle = 0;
   for (std::size_t i = 0; i < colors.size(); ++i) {
@@ -320,7 +320,7 @@ TEST(ViewerState, UniformAutoSketchAndViewKeys) {
   Fixture f;
   EXPECT_TRUE(f.state.autoSketchUniform(5));
   EXPECT_EQ(f.state.sketch().size(), 5u);
-  EXPECT_GE(f.state.fittedCount(), 3u);
+  EXPECT_GE(f.state.scene().fittedCount(), 3u);
   EXPECT_TRUE(f.state.keyPress("o"));
   EXPECT_TRUE(f.state.view().orbit().orthographic());
   EXPECT_TRUE(f.state.keyPress("3"));
@@ -339,7 +339,7 @@ TEST(ViewerState, SkeletonAutoSketchGivesPointNodesAlongTheTrunk) {
     EXPECT_FALSE(node.isScreenNode());
     EXPECT_NEAR(std::hypot(node.point.x(), node.point.z()), 0.0, 0.1);  // on the trunk's axis
   }
-  EXPECT_GE(f.state.fittedCount(), sk.size() / 2);
+  EXPECT_GE(f.state.scene().fittedCount(), sk.size() / 2);
   // Point nodes can be dragged in the view too.
   sketch::NodeId id = sk.root();
   Vec3 before = sk.node(id).point;
@@ -357,26 +357,26 @@ TEST(ViewerState, SkeletonAutoSketchKeepsItsModelUntilRefit) {
   const std::size_t kept = f.state.sketch().keptCircleCount();
   EXPECT_GE(kept, n - 1);  // all but bridged forks (a trunk has none)
   const sketch::NodeId id = f.state.sketch().root();
-  ASSERT_TRUE(f.state.nodeFit(id).kept);
-  EXPECT_EQ(f.state.nodeFit(id).status, NodeStatus::Fitted);
+  ASSERT_TRUE(f.state.scene().nodeFit(id).kept);
+  EXPECT_EQ(f.state.scene().nodeFit(id).status, NodeStatus::Fitted);
   EXPECT_FALSE(f.state.refitSelected());  // nothing selected: an error, no change
   EXPECT_TRUE(f.state.status().lastMessage().error);
   ASSERT_TRUE(f.state.selectNode(id));
   ASSERT_TRUE(f.state.refitSelected());
-  EXPECT_FALSE(f.state.nodeFit(id).kept);
+  EXPECT_FALSE(f.state.scene().nodeFit(id).kept);
   EXPECT_EQ(f.state.sketch().keptCircleCount(), kept - 1);
   EXPECT_FALSE(f.state.refitSelected());  // fitted from the cloud already
   ASSERT_TRUE(f.state.undo());
-  EXPECT_TRUE(f.state.nodeFit(id).kept);
+  EXPECT_TRUE(f.state.scene().nodeFit(id).kept);
   // Editing a node's sizes refits that node.
   const sketch::NodeId other = f.state.sketch().node(id).children.at(0);
   ASSERT_TRUE(f.state.selectNode(other));
   ASSERT_TRUE(f.state.setLineEpsilon(f.state.sketch().node(other).params.lineEpsilon * 1.5));
-  EXPECT_FALSE(f.state.nodeFit(other).kept);
-  EXPECT_TRUE(f.state.nodeFit(id).kept);
+  EXPECT_FALSE(f.state.scene().nodeFit(other).kept);
+  EXPECT_TRUE(f.state.scene().nodeFit(id).kept);
   ASSERT_TRUE(f.state.refitAll());
   EXPECT_EQ(f.state.sketch().keptCircleCount(), 0u);
-  EXPECT_FALSE(f.state.nodeFit(id).kept);
+  EXPECT_FALSE(f.state.scene().nodeFit(id).kept);
   EXPECT_FALSE(f.state.refitAll());
   ASSERT_TRUE(f.state.undo());
   EXPECT_EQ(f.state.sketch().keptCircleCount(), kept - 1);
@@ -435,8 +435,8 @@ TEST(ViewerState, OrthographicViewSketchesToo) {
   for (double y : {1.0, 2.0, 3.0}) s.clickAt(s.view().camera().project(Vec3(0, y, 0)).head<2>());
   ASSERT_EQ(s.sketch().size(), 3u);
   EXPECT_TRUE(s.sketch().cameras()[0].isOrthographic());
-  EXPECT_EQ(s.fittedCount(), 3u);
-  EXPECT_NEAR(s.nodeFit(2).circle.radius, kRadius, 0.02);
+  EXPECT_EQ(s.scene().fittedCount(), 3u);
+  EXPECT_NEAR(s.scene().nodeFit(2).circle.radius, kRadius, 0.02);
 }
 
 }  // namespace

@@ -300,15 +300,15 @@ TEST(ColorLegend, LegendsMatchTheColouring) {
   EXPECT_EQ(cl.classes[0].code, 2);
   EXPECT_EQ(cl.classes[0].count, 10u);
   EXPECT_EQ(cl.classes[1].name, "high vegetation");
-  EXPECT_EQ(s.pointColors()[0], classificationColor(2));
-  EXPECT_EQ(s.pointColors()[50], classificationColor(5));
+  EXPECT_EQ(s.scene().pointColors()[0], classificationColor(2));
+  EXPECT_EQ(s.scene().pointColors()[50], classificationColor(5));
 
   s.view().setColorMode(ColorMode::Intensity);
   Legend in = colorLegend(s);
   EXPECT_NEAR(in.range.min, 1.0, 1.0);
   EXPECT_NEAR(in.range.max, 98.0, 1.0);
-  EXPECT_EQ(s.pointColors()[0], (Rgb{0, 0, 0}));  // below the 1 % value
-  EXPECT_EQ(s.pointColors()[99], (Rgb{255, 255, 255}));
+  EXPECT_EQ(s.scene().pointColors()[0], (Rgb{0, 0, 0}));  // below the 1 % value
+  EXPECT_EQ(s.scene().pointColors()[99], (Rgb{255, 255, 255}));
 
   s.view().setColorMode(ColorMode::CircleDistance);
   Legend d = colorLegend(s);
@@ -318,7 +318,7 @@ TEST(ColorLegend, LegendsMatchTheColouring) {
   s.view().setColorMode(ColorMode::FileColor);  // the cloud has none: plain, and the legend says so
   EXPECT_EQ(colorLegend(s).kind, Legend::Kind::None);
   EXPECT_NE(colorLegend(s).note.find("no rgb"), std::string::npos);
-  EXPECT_EQ(s.pointColors()[0], s.options().plainColor);
+  EXPECT_EQ(s.scene().pointColors()[0], s.options().plainColor);
 }
 
 TEST(ColorLegend, ColourModeNamesParse) {

@@ -122,7 +122,7 @@ int steady(viewer::ViewerState& state, gui::PanelState& panel, int width, int he
   for (sketch::NodeId id : state.sketch().ids()) {
     if (!state.selectNode(id)) return 1;
     const int y = toolsHeaderY(state, panel, width, height);
-    std::printf("node %d (%s) selected: at y = %d\n", id, viewer::toString(state.nodeFit(id).status), y);
+    std::printf("node %d (%s) selected: at y = %d\n", id, viewer::toString(state.scene().nodeFit(id).status), y);
     if (y != none) ++bad;
   }
   return bad;

@@ -6,18 +6,16 @@
 //   tools()     the active tool, the path being dragged, the selected and active node
 //               (viewer/tool_state.h);
 //   jobs()      the automatic model on a worker thread, its progress and cancel (viewer/jobs.h);
-//   status()    the messages and the status line (viewer/status_log.h).
+//   status()    the messages and the status line (viewer/status_log.h);
+//   scene()     what the window draws of it: colours, markers, lines, the mesh (viewer/scene.h).
 // ViewerState itself keeps the cloud, the sketch with its undo history and live reconstruction,
 // and the operations that cross parts: opening a cloud, every edit (undoable, rebuilt, autosaved),
-// mouse and keys, saving and loading, and "what to draw" (point colours, node markers, lines, the
-// tube mesh). The desktop window (apps/viewer) only draws this and forwards input; tests and the
-// script runner drive it directly. No action ever throws: a failure becomes an error status
-// message and the sketch is kept.
-// Implemented in several files by concern: src/viewer/viewer_state.cpp (the cloud, the edit
-// protocol, sketch edits, undo), viewer_files.cpp (save, load, export, through SketchDocument),
-// viewer_input.cpp (mouse, wheel, keys), viewer_draw.cpp (what is drawn), viewer_tools.cpp (the
-// correction tools), viewer_view.cpp (the up direction), recovery.cpp (the earlier session's
-// autosave offered back), background_job.cpp (the automatic skeleton through Jobs).
+// mouse and keys, saving and loading. The desktop window (apps/viewer) only draws this and forwards input; tests and
+// the script runner drive it directly. No action ever throws: a failure becomes an error status message and the sketch
+// is kept. Implemented in several files by concern: src/viewer/viewer_state.cpp (the cloud, the edit protocol, sketch
+// edits, undo), viewer_files.cpp (save, load, export, through SketchDocument), viewer_input.cpp (mouse, wheel, keys),
+// viewer_draw.cpp (the Scene part), viewer_tools.cpp (the correction tools), viewer_view.cpp (the up direction),
+// recovery.cpp (the earlier session's autosave offered back), background_job.cpp (the automatic skeleton through Jobs).
 #pragma once
 
 #include <array>
@@ -41,6 +39,7 @@
 #include "treesketch/util/progress.h"
 #include "treesketch/viewer/jobs.h"
 #include "treesketch/viewer/point_colors.h"
+#include "treesketch/viewer/scene.h"
 #include "treesketch/viewer/scene_items.h"
 #include "treesketch/viewer/sketch_document.h"
 #include "treesketch/viewer/status_log.h"
@@ -150,8 +149,6 @@ class ViewerState {
   void discardUnsavedWork();
 
   // ---- view (what crosses from view() to the cloud and the sketch) ---------------------------------
-  /// Node numbers are drawn (display().labels and the node count).
-  bool labelsShown() const;
   /// The view's up direction (initially the cloud's up axis). Setting it re-orients the view
   /// (front preset) and the height colouring; the cloud and the sketch are untouched, and for +Y
   /// or +Z the library's up axis (automatic sketches, the sketch file's "up") follows. Other
@@ -297,37 +294,12 @@ class ViewerState {
   bool canRedo() const { return undo_.canRedo(); }
   const UndoStack& history() const { return undo_; }
 
-  // ---- what to draw -----------------------------------------------------------------------------
-  /// Per-point colours for the current colour mode (recomputed only when stale).
-  const std::vector<Rgb>& pointColors();
-  /// Increases whenever pointColors() would change.
-  std::uint64_t colorsVersion() const { return colorsVersion_; }
-  /// The model the fitted sketch makes (model::fromReconstruction): what the exports write and
-  /// the distance colouring measures against. Empty with no cloud or no two linked fitted nodes.
-  model::TreeModel treeModel() const;
-  /// The distance colouring's grid (its last call's counts; for tests and benchmarks).
-  const DistanceColorGrid& distanceColorGrid() const { return distanceGrid_; }
-  /// Markers of all nodes under the current camera.
-  std::vector<NodeMarker> nodeMarkers() const;
-  /// The node a click at `screen` picks: of the markers within the pick radius, the nearest to
-  /// the eye (NodeMarker::depth), then the nearest on screen (kNoNode if none).
-  sketch::NodeId nodeAt(const geom::Vec2& screen) const;
-  /// How many visible markers lie within the pick radius of `screen` (a pick among several says
-  /// which it took).
-  std::size_t markersAt(const geom::Vec2& screen) const;
-  /// 3D lines: fitted circles (selected one highlighted) and the selected node's sampling region.
-  std::vector<Line3> sceneLines() const;
-  SamplingRegion samplingRegion() const;
-  /// Cloud indices of the selected node's slice points and circle inliers (empty when none).
-  std::vector<std::uint32_t> highlightedSlicePoints() const;
-  std::vector<std::uint32_t> highlightedInliers() const;
-  NodeFitView nodeFit(sketch::NodeId id) const;
-  const geom::TriMesh& mesh() const;
+  // ---- what to draw ------------------------------------------------------------------------------
+  /// What the window draws of this state (viewer/scene.h): colours, markers, lines, the mesh.
+  Scene& scene() { return scene_; }
+  const Scene& scene() const { return scene_; }
   /// Increases whenever the mesh, the markers or the lines may have changed.
   std::uint64_t sceneVersion() const { return sceneVersion_; }
-  /// Counts of fitted and skipped nodes.
-  std::size_t fittedCount() const;
-  std::size_t skippedCount() const;
 
   // ---- status ------------------------------------------------------------------------------------
   double lastRebuildMs() const { return lastRebuildMs_; }
@@ -385,8 +357,6 @@ class ViewerState {
   std::string lastEditKey_;
   bool autosavePending_ = false;
   bool untouchedAuto_ = false;
-  /// The visible node whose marker is nearest to `screen`, at any distance (kNoNode if none).
-  sketch::NodeId nearestMarker(const geom::Vec2& screen) const;
   std::function<bool()> pendingAction_;
   sketch::NodeId pendingDelete_ = sketch::kNoNode;  ///< the subtree a waiting question would delete
   std::string pendingQuestion_;
@@ -399,21 +369,15 @@ class ViewerState {
   bool refuseWhileBusy(const std::string& name);
   bool dirty_ = false;
 
-  std::vector<Rgb> colors_;
-  DistanceColorGrid distanceGrid_;  ///< binned once per cloud for the distance colouring
-  std::uint64_t distanceGridVersion_ = 0;
-  ColorMode colorsMode_ = ColorMode::Height;
-  bool colorsStale_ = true;
-  std::uint64_t colorsVersion_ = 1;
   std::uint64_t cloudVersion_ = 0;
   std::uint64_t sceneVersion_ = 1;
-  geom::TriMesh emptyMesh_;
   double lastRebuildMs_ = 0.0;
   void viewMoved() {
     view_.lastViewChange_ = std::chrono::steady_clock::now();
     ++sceneVersion_;
   }
-  std::vector<sketch::NotWoodLasso> colorsNotWood_;  ///< the lassos pointColors() last drew
+  friend class Scene;
+  Scene scene_{*this};
   Jobs jobs_;  // last: destroyed first, so that a running job stops before the cloud it reads goes
 };
 
