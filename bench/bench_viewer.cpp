@@ -8,7 +8,8 @@
 // BM_EditRebuildsFrameData adds the CPU side of re-uploading the cloud's GPU buffers after an
 // edit (point colours recomputed in the distance colouring, put in the level-of-detail order).
 // BM_IdleWindow runs the real window (treesketch-gui --measure-idle, under xvfb-run when there is
-// no display) and reports the frames it draws and the CPU it takes while nobody touches it.
+// no display) and reports the frames it draws and the CPU it takes while nobody touches it;
+// BM_HoverPanel the same window while the mouse moves over its side panel (--measure-hover).
 //
 //   build-xxx/bench_viewer --benchmark_min_time=2
 #include <benchmark/benchmark.h>
@@ -45,14 +46,14 @@ const treesketch::geom::PointCloud& cloud() {
 /// in the middle of the chain (the one edited).
 std::unique_ptr<viewer::ViewerState> sketchedState(treesketch::sketch::NodeId* node) {
   auto s = std::make_unique<viewer::ViewerState>();
-  s->setViewport({340, 0, 940, 774});
+  s->view().setViewport({340, 0, 940, 774});
   s->setCloud(cloud(), treesketch::geom::UpAxis::Y);
   s->setTool(viewer::ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   double top = cloud().bounds().max.y();
-  for (int i = 1; i <= 8; ++i) s->clickAt(s->camera().project(Vec3(0, top * 0.05 * i, 0)).head<2>());
+  for (int i = 1; i <= 8; ++i) s->clickAt(s->view().camera().project(Vec3(0, top * 0.05 * i, 0)).head<2>());
   *node = treesketch::sketch::kNoNode;
   for (treesketch::sketch::NodeId id : {3, 4, 2, 5, 1})
-    if (s->nodeFit(id).status == viewer::NodeStatus::Fitted) {
+    if (s->scene().nodeFit(id).status == viewer::NodeStatus::Fitted) {
       *node = id;
       break;
     }
@@ -62,9 +63,9 @@ std::unique_ptr<viewer::ViewerState> sketchedState(treesketch::sketch::NodeId* n
 void reportCounters(benchmark::State& st, const viewer::ViewerState& s) {
   st.counters["points"] = static_cast<double>(s.cloud().size());
   st.counters["nodes"] = static_cast<double>(s.sketch().size());
-  st.counters["fitted"] = static_cast<double>(s.fittedCount());
+  st.counters["fitted"] = static_cast<double>(s.scene().fittedCount());
   st.counters["rebuild_ms"] = s.lastRebuildMs();
-  st.counters["errors"] = static_cast<double>(s.errorCount());
+  st.counters["errors"] = static_cast<double>(s.status().errorCount());
 }
 
 /// Drag a node by one pixel (alternating up/down): one undoable edit, re-fit of the node and its
@@ -81,9 +82,9 @@ void BM_DragNodeOnePixel(benchmark::State& st) {
   int k = 0;
   for (auto _ : st) {
     s->moveNodeTo(id, base + Vec2(0, (k++ & 1) ? 1.0 : 0.0));
-    benchmark::DoNotOptimize(s->nodeMarkers());
-    benchmark::DoNotOptimize(s->sceneLines());
-    benchmark::DoNotOptimize(s->highlightedSlicePoints());
+    benchmark::DoNotOptimize(s->scene().nodeMarkers());
+    benchmark::DoNotOptimize(s->scene().sceneLines());
+    benchmark::DoNotOptimize(s->scene().highlightedSlicePoints());
   }
   reportCounters(st, *s);
 }
@@ -102,8 +103,8 @@ void BM_SliderSliceThickness(benchmark::State& st) {
   int k = 0;
   for (auto _ : st) {
     s->setSliceHalfThickness(eps * ((k++ & 1) ? 1.1 : 1.0));
-    benchmark::DoNotOptimize(s->sceneLines());
-    benchmark::DoNotOptimize(s->highlightedSlicePoints());
+    benchmark::DoNotOptimize(s->scene().sceneLines());
+    benchmark::DoNotOptimize(s->scene().highlightedSlicePoints());
   }
   reportCounters(st, *s);
 }
@@ -113,7 +114,7 @@ BENCHMARK(BM_SliderSliceThickness)->Unit(benchmark::kMillisecond);
 void BM_AddNodeThenUndo(benchmark::State& st) {
   treesketch::sketch::NodeId id;
   auto s = sketchedState(&id);
-  Vec2 at = s->camera().project(Vec3(0, cloud().bounds().max.y() * 0.45, 0)).head<2>();
+  Vec2 at = s->view().camera().project(Vec3(0, cloud().bounds().max.y() * 0.45, 0)).head<2>();
   for (auto _ : st) {
     s->addNodeAt(at);
     s->undo();
@@ -129,10 +130,10 @@ void BM_FrameOverlayData(benchmark::State& st) {
   if (id != treesketch::sketch::kNoNode) s->selectNode(id);
   int k = 0;
   for (auto _ : st) {
-    s->orbit().rotate(Vec2(700, 400), Vec2(700 + ((k++ & 1) ? 2 : -2), 400));
-    benchmark::DoNotOptimize(s->nodeMarkers());
-    benchmark::DoNotOptimize(s->sceneLines());
-    benchmark::DoNotOptimize(s->highlightedSlicePoints());
+    s->view().orbit().rotate(Vec2(700, 400), Vec2(700 + ((k++ & 1) ? 2 : -2), 400));
+    benchmark::DoNotOptimize(s->scene().nodeMarkers());
+    benchmark::DoNotOptimize(s->scene().sceneLines());
+    benchmark::DoNotOptimize(s->scene().highlightedSlicePoints());
   }
   reportCounters(st, *s);
 }
@@ -148,7 +149,7 @@ void BM_EditRebuildsFrameData(benchmark::State& st) {
     st.SkipWithError("no fitted node to edit");
     return;
   }
-  s->setColorMode(st.range(0) ? viewer::ColorMode::CircleDistance : viewer::ColorMode::Height);
+  s->view().setColorMode(st.range(0) ? viewer::ColorMode::CircleDistance : viewer::ColorMode::Height);
   viewer::PointLod lod;
   lod.build(s->cloud().size());
   const std::uint8_t* upload = nullptr;
@@ -158,11 +159,11 @@ void BM_EditRebuildsFrameData(benchmark::State& st) {
   std::uint64_t colourUploads = 0;
   for (auto _ : st) {
     s->moveNodeTo(id, base + Vec2(0, (k++ & 1) ? 1.0 : 0.0));
-    benchmark::DoNotOptimize(s->nodeMarkers());
-    benchmark::DoNotOptimize(s->sceneLines());
-    std::uint64_t before = s->colorsVersion();
-    const auto& colors = s->pointColors();
-    if (s->colorsVersion() != before) {
+    benchmark::DoNotOptimize(s->scene().nodeMarkers());
+    benchmark::DoNotOptimize(s->scene().sceneLines());
+    std::uint64_t before = s->scene().colorsVersion();
+    const auto& colors = s->scene().pointColors();
+    if (s->scene().colorsVersion() != before) {
       upload = lod.keptColors(colors).data();  // as the window: only the changed points rewritten
       ++colourUploads;
     }
@@ -190,7 +191,7 @@ void BM_SurfaceColoursAfterEdit(benchmark::State& st) {
   kept.build(s->cloud(), scale);
   full.build(s->cloud(), scale);
   std::vector<viewer::Rgb> keptColours, fullColours;
-  kept.surfaceColors(s->treeModel().cylinders, keptColours);
+  kept.surfaceColors(s->scene().treeModel().cylinders, keptColours);
   s->selectNode(id);
   const Vec2 base = s->sketch().node(id).screen;
   int k = 0;
@@ -199,7 +200,7 @@ void BM_SurfaceColoursAfterEdit(benchmark::State& st) {
   auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
   for (auto _ : st) {
     s->moveNodeTo(id, base + Vec2(0, (k & 1) ? 1.0 : 0.0));
-    const treesketch::geom::CylinderModel model = s->treeModel().cylinders;
+    const treesketch::geom::CylinderModel model = s->scene().treeModel().cylinders;
     auto runKept = [&] {
       const auto t = Clock::now();
       kept.surfaceColors(model, keptColours);
@@ -271,6 +272,47 @@ void BM_IdleWindow(benchmark::State& st) {
   }
 }
 BENCHMARK(BM_IdleWindow)->Iterations(1)->Unit(benchmark::kSecond);
+
+/// The real window with the mouse moving over its side panel (40 moves, 50 ms apart) on a ~1.1 M
+/// point cloud: frames drawn, scene draws (the cloud drawn anew) and CPU per move. A frame drawn for
+/// the panel alone shows the scene's kept image.
+void BM_HoverPanel(benchmark::State& st) {
+  const std::string gui = TS_GUI_PATH;
+  if (!std::filesystem::exists(gui)) {
+    st.SkipWithError("treesketch-gui is not built");
+    return;
+  }
+  const std::string run = gui + " --demo-rays 2000000 --measure-hover 40 2>&1";
+  const std::string cmd = std::string("LIBGL_ALWAYS_SOFTWARE=1 ") +
+                          (std::getenv("DISPLAY") ? "" : "xvfb-run -a -s '-screen 0 1280x800x24' ") + run;
+  for (auto _ : st) {
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) {
+      st.SkipWithError("cannot run treesketch-gui");
+      return;
+    }
+    char line[512];
+    int moves = 0;
+    double wall = 0, framesPerMove = -1, scenesPerMove = -1, cpu = 0, cpuMsPerMove = 0;
+    unsigned long long frames = 0, scenes = 0;
+    while (std::fgets(line, sizeof line, p)) {
+      if (std::sscanf(line,
+                      "treesketch-gui: hover %d moves over the panel in %lf s: %llu frames (%lf per move), %llu scene "
+                      "draws (%lf per move), CPU %lf s (%lf",
+                      &moves, &wall, &frames, &framesPerMove, &scenes, &scenesPerMove, &cpu, &cpuMsPerMove) == 8)
+        break;
+    }
+    pclose(p);
+    if (scenesPerMove < 0) {
+      st.SkipWithError("no hover measure from treesketch-gui (no display and no xvfb-run?)");
+      return;
+    }
+    st.counters["frames_per_move"] = framesPerMove;
+    st.counters["scene_draws_per_move"] = scenesPerMove;
+    st.counters["cpu_ms_per_move"] = cpuMsPerMove;
+  }
+}
+BENCHMARK(BM_HoverPanel)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 

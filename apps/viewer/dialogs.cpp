@@ -10,22 +10,22 @@ namespace treesketch::gui {
 
 void drawRecoveryDialog(viewer::ViewerState& state) {
   const char* title = "Restore earlier work?##recovery";
-  if (state.recoveryPending() && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  if (state.document().recoveryPending() && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
   ImGui::SetNextWindowSize(ImVec2(460, 0));
   if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove)) return;
   ImGui::PushTextWrapPos(0.0f);
   ImGui::Text(
       "An earlier session of this cloud ended without saving its sketch (a crash, or the window was "
       "closed). Its autosave is:");
-  ImGui::TextDisabled("%s", state.autosavePath().string().c_str());
-  if (state.recoveryError().empty())
-    ImGui::Text("%zu nodes. It will not be overwritten until you choose.", state.recoveryNodes());
+  ImGui::TextDisabled("%s", state.document().autosavePath().string().c_str());
+  if (state.document().recoveryError().empty())
+    ImGui::Text("%zu nodes. It will not be overwritten until you choose.", state.document().recoveryNodes());
   else
-    ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "It cannot be read: %s", state.recoveryError().c_str());
+    ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "It cannot be read: %s", state.document().recoveryError().c_str());
   ImGui::PopTextWrapPos();
   ImGui::Separator();
   using Choice = viewer::ViewerState::RecoveryChoice;
-  ImGui::BeginDisabled(!state.recoveryError().empty());
+  ImGui::BeginDisabled(!state.document().recoveryError().empty());
   if (ImGui::Button("Restore")) state.resolveRecovery(Choice::Restore);
   ImGui::EndDisabled();
   ImGui::SameLine();
@@ -33,13 +33,13 @@ void drawRecoveryDialog(viewer::ViewerState& state) {
   ImGui::SameLine();
   if (ImGui::Button("Keep for later")) state.resolveRecovery(Choice::Keep);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Renames the file (kept-<date>); load it later with Load sketch");
-  if (!state.recoveryPending()) ImGui::CloseCurrentPopup();
+  if (!state.document().recoveryPending()) ImGui::CloseCurrentPopup();
   ImGui::EndPopup();
 }
 
 void drawUpWarning(viewer::ViewerState& state) {
   if (!state.upWarningShown()) return;
-  const geom::Viewport vp = state.orbit().viewport();
+  const geom::Viewport vp = state.view().orbit().viewport();
   ImGui::SetNextWindowPos(ImVec2(float(vp.x + 10), float(vp.y + 10)));
   ImGui::SetNextWindowSize(ImVec2(float(std::min(vp.width - 20, 620.0)), 0));
   ImGui::SetNextWindowBgAlpha(0.85f);
@@ -58,25 +58,27 @@ void drawUpWarning(viewer::ViewerState& state) {
     if (ImGui::Button(label.c_str())) state.setUpDirection(d);
   }
   ImGui::SameLine();
-  if (ImGui::Button("Dismiss##upWarning")) state.dismissUpWarning();
+  if (ImGui::Button("Dismiss##upWarning")) state.view().dismissUpWarning();
   ImGui::End();
 }
 
 void drawJobProgress(viewer::ViewerState& state) {
-  if (!state.busy()) return;
-  viewer::ViewerState::JobProgress p = state.jobProgress();
-  const geom::Viewport vp = state.orbit().viewport();
+  if (!state.jobs().busy()) return;
+  viewer::JobProgress p = state.jobs().progress();
+  const geom::Viewport vp = state.view().orbit().viewport();
   ImGui::SetNextWindowPos(ImVec2(float(vp.x + vp.width * 0.5), float(vp.y + vp.height - 100)), 0, ImVec2(0.5f, 1.0f));
   ImGui::SetNextWindowSize(ImVec2(440, 0));
+  // NoFocusOnAppearing: the job may start while a modal question is open (a script, or a key);
+  // Dear ImGui 1.86 asserts when a window that takes the focus appears under an open modal.
   ImGui::Begin("Working##job", nullptr,
                ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
-                   ImGuiWindowFlags_NoSavedSettings);
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
   ImGui::TextUnformatted(p.what.c_str());
   char overlay[32];
   std::snprintf(overlay, sizeof overlay, "step %d of %d", p.step, p.steps);
   ImGui::ProgressBar(static_cast<float>(p.fraction), ImVec2(-1, 0), overlay);
   ImGui::BeginDisabled(p.cancelling);
-  if (ImGui::Button("Cancel##job")) state.cancelJob();
+  if (ImGui::Button("Cancel##job")) state.jobs().cancel();
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::TextDisabled("the view still moves; edits wait");
@@ -91,7 +93,7 @@ void drawConfirmDialog(viewer::ViewerState& state) {
   ImGui::SetNextWindowSize(ImVec2(420, 0));
   // In the view's corner, so that what the question is about (the nodes a Delete subtree would
   // remove, drawn in red) stays in sight.
-  const geom::Viewport vp = state.orbit().viewport();
+  const geom::Viewport vp = state.view().orbit().viewport();
   ImGui::SetNextWindowPos(ImVec2(float(vp.x + 10), float(vp.y + 10)));
   if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove)) return;
   ImGui::PushTextWrapPos(0.0f);

@@ -8,7 +8,7 @@
 
 namespace treesketch::gui {
 
-/// While state.recoveryPending(): a modal "Restore earlier work?" with Restore / Discard / Keep for
+/// While state.document().recoveryPending(): a modal "Restore earlier work?" with Restore / Discard / Keep for
 /// later. Call between ImGui::NewFrame and Render, after the panels.
 void drawRecoveryDialog(viewer::ViewerState& state);
 
@@ -16,7 +16,7 @@ void drawRecoveryDialog(viewer::ViewerState& state);
 /// choice and Dismiss.
 void drawUpWarning(viewer::ViewerState& state);
 
-/// While state.busy(): a small window over the view with the job's progress bar and Cancel.
+/// While state.jobs().busy(): a small window over the view with the job's progress bar and Cancel.
 void drawJobProgress(viewer::ViewerState& state);
 
 /// While state.confirmationPending(): a modal with the question, Replace and Keep my sketch.

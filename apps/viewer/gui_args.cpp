@@ -13,6 +13,7 @@ void usage(std::ostream& out) {
   out << "usage: treesketch-gui [CLOUD | MESH] [--sketch SKETCH.json] [--script ACTIONS.json]\n"
          "                      [--up y|z|+x|-x|+y|-y|+z|-z] [--autosave PATH] [--demo PRESET] [--demo-rays N]\n"
          "                      [--width W] [--height H] [--measure-idle SECONDS]\n"
+         "                      [--measure-hover MOVES]\n"
          "Opens the interactive sketching tool on a point cloud (.ply .xyz .txt .csv .pts .asc .las .laz) or on a\n"
          "mesh (.obj, PLY with faces; scanned first with the sphere scanner's defaults). Without an input\n"
          "it opens the built-in demo tree. --script runs a scripted session and exits (0: every action\n"
@@ -55,6 +56,8 @@ Args parseArgs(int argc, char** argv) {
       a.demo.rays = static_cast<std::uint64_t>(integer("--demo-rays"));
     else if (s == "--measure-idle")
       a.measureIdleSeconds = static_cast<double>(integer("--measure-idle"));
+    else if (s == "--measure-hover")
+      a.measureHoverMoves = static_cast<int>(integer("--measure-hover"));
     else if (s == "--width")
       a.width = static_cast<int>(integer("--width"));
     else if (s == "--height")

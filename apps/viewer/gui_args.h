@@ -19,6 +19,7 @@ struct Args {
   viewer::DemoSceneOptions demo;
   int width = 1280, height = 800;
   double measureIdleSeconds = 0;  ///< --measure-idle: measure the idle window's cost and exit
+  int measureHoverMoves = 0;      ///< --measure-hover: measure mouse moves over the panel and exit
 };
 
 /// The usage text.

@@ -9,7 +9,6 @@
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
@@ -23,10 +22,12 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <tuple>
 
 #include "build_info.h"
 #include "dialogs.h"
 #include "gui_args.h"
+#include "measure_window.h"
 #include "panels.h"
 #include "renderer.h"
 #include "screenshot.h"
@@ -138,6 +139,7 @@ class App {
     hooks.close = [this] { glfwSetWindowShouldClose(window_, GLFW_TRUE); };
     hooks.closing = [this] { return glfwWindowShouldClose(window_) != 0; };
     hooks.moveCursor = [this](const geom::Vec2& p) { glfwSetCursorPos(window_, p.x(), p.y()); };
+    hooks.sceneDraws = [this] { return renderer_->sceneDraws(); };
     actions_ = std::make_unique<gui::WindowActions>(state_, panel_, hooks);
   }
 
@@ -151,11 +153,11 @@ class App {
     const auto t0 = std::chrono::steady_clock::now();
     // Level of detail: while the view moves, a subsample within the adaptive budget; the whole
     // cloud when still and in screenshots.
-    const bool moving = !loading() && !shot && state_.viewMoving(t0);
+    const bool moving = !loading() && !shot && state_.view().viewMoving(t0);
     int ww, wh, fbw, fbh;
     glfwGetWindowSize(window_, &ww, &wh);
     glfwGetFramebufferSize(window_, &fbw, &fbh);
-    state_.setViewport(gui::Layout::sceneViewport(ww, wh));
+    state_.view().setViewport(gui::Layout::sceneViewport(ww, wh));
     if (!loading()) {
       state_.pollJob();  // a finished background job's result comes in here
       actions_->beforeFrame();
@@ -166,7 +168,8 @@ class App {
     if (loading())
       drawLoading(ww, wh);
     else {
-      gui::drawPanels(state_, panel_, ww, wh, [this] { actions_->drawMenuBar(); });
+      gui::drawPanels(
+          state_, panel_, ww, wh, [this] { actions_->drawMenuBar(); }, panelFiles_);
       gui::drawMarkers(state_);
       gui::drawToolOverlay(state_);
       gui::drawRecoveryDialog(state_);
@@ -178,7 +181,7 @@ class App {
     }
     ImGui::Render();
     glViewport(0, 0, fbw, fbh);
-    glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
+    glClearColor(gui::Renderer::kBackground[0], gui::Renderer::kBackground[1], gui::Renderer::kBackground[2], 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     if (!loading())
       renderer_->draw(state_, fbh, ww > 0 ? static_cast<double>(fbw) / ww : 1.0, moving ? pointBudget_ : SIZE_MAX);
@@ -189,9 +192,9 @@ class App {
       panel_.screenshotRequested = false;
       try {
         gui::writeScreenshot(panel_.screenshotPath, fbw, fbh);
-        state_.info("screenshot written to " + panel_.screenshotPath);
+        state_.status().info("screenshot written to " + panel_.screenshotPath);
       } catch (const std::exception& e) {
-        state_.error(std::string("screenshot: ") + e.what());
+        state_.status().error(std::string("screenshot: ") + e.what());
       }
     }
     glfwSwapBuffers(window_);
@@ -204,7 +207,13 @@ class App {
     if (moving)
       pointBudget_ =
           viewer::adaptPointBudget(pointBudget_, ms, kMovingFrameMs, kMinLodPoints, renderer_->cloudPoints());
-    if (pendingFrames_ > 0) --pendingFrames_;
+    // A change since the last frame (a cloud taken in, a job's result, a question) is shown at
+    // once, not at the next mouse move.
+    if (shown() != shownLast_)
+      wake();
+    else if (pendingFrames_ > 0)
+      --pendingFrames_;
+    shownLast_ = shown();
   }
 
   // ---- redraw on change -------------------------------------------------------------------------
@@ -212,11 +221,19 @@ class App {
   /// three), then sleep until the next event.
   void wake() { pendingFrames_ = 3; }
   int pendingFrames() const { return pendingFrames_; }
+  /// What a frame shows that may change without an input event (Dear ImGui lays a new window out
+  /// or opens a popup over the next two or three frames).
+  using Shown = std::tuple<std::uint64_t, std::uint64_t, std::uint64_t, bool, bool, bool>;
+  Shown shown() const {
+    return {state_.cloudVersion(),          state_.sceneVersion(),
+            state_.scene().colorsVersion(), state_.document().recoveryPending(),
+            state_.confirmationPending(),   loading()};
+  }
   /// Seconds until something changes by itself (a job's or the loading's progress: 10 Hz; an info
   /// message expiring; the moving view settling into the full cloud); negative: nothing will, wait
   /// for an event.
   double nextWakeSeconds() const {
-    if (loading() || state_.busy()) return 0.1;
+    if (loading() || state_.jobs().busy()) return 0.1;
     if (actions_ && actions_->hasPendingWork()) return 0.0;  // the next frame opens the cloud
     const auto now = std::chrono::steady_clock::now();
     double t = -1.0;
@@ -225,11 +242,12 @@ class App {
       double s = std::chrono::duration<double>(when - now).count() + 0.005;
       t = t < 0 ? s : std::min(t, s);
     };
-    if (auto expiry = state_.statusExpiry()) consider(*expiry);
-    if (state_.viewMoving(now)) consider(state_.viewSettles());
+    if (auto expiry = state_.status().expiry()) consider(*expiry);
+    if (state_.view().viewMoving(now)) consider(state_.view().viewSettles());
     return t;
   }
   std::uint64_t framesDrawn() const { return framesDrawn_; }
+  std::uint64_t sceneDraws() const { return renderer_->sceneDraws(); }
   struct FrameStats {
     std::uint64_t count = 0;
     double sumMs = 0, maxMs = 0;
@@ -259,8 +277,9 @@ class App {
     if (!loader_.finished) return false;
     loader_.thread.join();
     loaded_ = true;
+    wake();  // the cloud, its legend and any restore offer are drawn now, not at the next mouse move
     if (!loader_.error.empty()) {
-      state_.error("open: " + loader_.error);
+      state_.status().error("open: " + loader_.error);
       *failed = true;
       return true;
     }
@@ -270,7 +289,7 @@ class App {
     const std::string upReason = up.reason;
     state_.setCloud(std::move(loader_.cloud), up.axis, args_.input.empty() ? fs::path() : fs::path(args_.input));
     if (up.view != viewer::toUpDirection(up.axis)) state_.setUpDirection(up.view);
-    std::cerr << "treesketch-gui: up " << viewer::toString(state_.upDirection()) << " (" << upReason << ")\n";
+    std::cerr << "treesketch-gui: up " << viewer::toString(state_.view().upDirection()) << " (" << upReason << ")\n";
     // The demo tree has no file: its sketch and autosave are named after it in the current folder.
     if (args_.input.empty()) {
       state_.setAutosavePath("treesketch_demo.autosave.sketch.json");
@@ -280,9 +299,10 @@ class App {
     // --sketch, else the cloud's own sketch file (tree.las -> tree.las.sketch.json), loaded when
     // it is there; one made for another cloud asks first.
     if (!args_.sketchPath.empty()) state_.setSketchPath(args_.sketchPath);
-    panel_.sketchPath = state_.sketchPath().string();
+    panel_.sketchPath = state_.document().sketchPath().string();
     std::error_code ec;
-    if (!state_.sketchPath().empty() && fs::exists(state_.sketchPath(), ec)) state_.loadSketch(state_.sketchPath());
+    if (!state_.document().sketchPath().empty() && fs::exists(state_.document().sketchPath(), ec))
+      state_.loadSketch(state_.document().sketchPath());
     return true;
   }
 
@@ -342,6 +362,10 @@ class App {
   gui::PanelState panel_;
   std::unique_ptr<gui::Renderer> renderer_;
   std::unique_ptr<gui::WindowActions> actions_;
+  /// The panel's Files buttons: the File menu's actions.
+  const gui::PanelFileActions panelFiles_{[this] { actions_->openSketchDialog(); }, [this] { actions_->save(); },
+                                          [this] { actions_->saveAsDialog(); },
+                                          [this] { actions_->exportMeshDialog(); }};
   Loader loader_;
   bool loaded_ = false;
   bool sceneButton_[3] = {false, false, false};
@@ -351,52 +375,13 @@ class App {
   static constexpr std::size_t kMinLodPoints = 20000;
   std::size_t pointBudget_ = 200000;
   int pendingFrames_ = 3;
+  Shown shownLast_{};
   bool renderedOnce_ = false;
   std::uint64_t framesDrawn_ = 0;
   FrameStats movingStats_, stillStats_;
 };
 
 App* appOf(GLFWwindow* w) { return static_cast<App*>(glfwGetWindowUserPointer(w)); }
-
-/// --measure-idle S: the interactive loop with no input for 1 s (settling), then S seconds
-/// measured: frames drawn and process CPU time (getrusage), printed on stderr. The window's idle
-/// cost, for bench/README.md.
-int measureIdle(App& app, GLFWwindow* window, double seconds) {
-  auto cpuSeconds = [] {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-  };
-  using Clock = std::chrono::steady_clock;
-  auto loopUntil = [&](Clock::time_point deadline) {
-    while (!glfwWindowShouldClose(window)) {
-      const auto now = Clock::now();
-      if (now >= deadline) return;
-      const double left = std::chrono::duration<double>(deadline - now).count();
-      if (app.pendingFrames() > 0) {
-        glfwPollEvents();
-      } else {
-        const double t = app.nextWakeSeconds();
-        glfwWaitEventsTimeout(t < 0 ? left : std::min(t, left));
-        if (Clock::now() >= deadline) return;  // woken only by the end of the measure
-      }
-      app.frame();
-    }
-  };
-  loopUntil(Clock::now() + std::chrono::seconds(1));
-  const std::uint64_t frames0 = app.framesDrawn();
-  const double cpu0 = cpuSeconds();
-  const Stopwatch measure;
-  const auto t0 = Clock::now();
-  loopUntil(t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)));
-  const double wall = measure.seconds();
-  const double cpu = cpuSeconds() - cpu0;
-  const std::uint64_t frames = app.framesDrawn() - frames0;
-  std::fprintf(stderr,
-               "treesketch-gui: idle %.2f s: %llu frames drawn (%.2f per second), CPU %.3f s (%.2f %% of a core)\n",
-               wall, static_cast<unsigned long long>(frames), double(frames) / wall, cpu, 100.0 * cpu / wall);
-  return kExitOk;
-}
 
 // The GLFW window with an OpenGL 3.3 core context and GLEW loaded; nullptr (after saying why on
 // stderr) when there is none.
@@ -531,18 +516,22 @@ int run(const Args& args) {
     }
     if (!args.scriptPath.empty()) {
       if (failed) {
-        std::cerr << "treesketch-gui: error: " << app.state().lastMessage().text << "\n";
+        std::cerr << "treesketch-gui: error: " << app.state().status().lastMessage().text << "\n";
         code = kExitInput;
       } else {
         code = runScript(app, args, script);
       }
-    } else if (args.measureIdleSeconds > 0) {
-      code = measureIdle(app, window, args.measureIdleSeconds);
+    } else if (args.measureIdleSeconds > 0 || args.measureHoverMoves > 0) {
+      const gui::MeasuredWindow m{[&] { return app.pendingFrames(); }, [&] { return app.nextWakeSeconds(); },
+                                  [&] { app.frame(); }, [&] { return app.framesDrawn(); },
+                                  [&] { return app.sceneDraws(); }};
+      code = args.measureHoverMoves > 0 ? gui::measureHover(window, m, args.measureHoverMoves)
+                                        : gui::measureIdle(window, m, args.measureIdleSeconds);
     } else {
       runInteractive(app, window);
     }
     if (!args.scriptPath.empty()) std::cerr << "treesketch-gui: " << app.frameStatsLine() << "\n";
-    app.state().cancelJob();  // closing the window stops a background job (its result is dropped)
+    app.state().jobs().cancel();  // closing the window stops a background job (its result is dropped)
     app.state().waitForJob();
     // A clean end: the autosave goes when it holds nothing unsaved; else it is offered next time.
     // Scripted sessions keep it: their tests inspect it afterwards.

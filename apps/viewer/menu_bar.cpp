@@ -59,10 +59,10 @@ void WindowActions::drawFileMenu() {
 
 // The View menu's items (its BeginMenu is open; ends it).
 void WindowActions::drawViewMenu() {
-  viewer::DisplayOptions& d = state_.display();
+  viewer::DisplayOptions& d = state_.view().display();
   if (ImGui::BeginMenu("Colour points by")) {
     for (viewer::ColorMode m : viewer::availableColorModes(state_.cloud()))
-      if (ImGui::MenuItem(viewer::colorModeLabel(m), nullptr, d.colorMode == m)) state_.setColorMode(m);
+      if (ImGui::MenuItem(viewer::colorModeLabel(m), nullptr, d.colorMode == m)) state_.view().setColorMode(m);
     ImGui::EndMenu();
   }
   tip("Height, distance to the fitted circles, plain, or the file's intensity / RGB / classification (C cycles)");
@@ -89,20 +89,20 @@ void WindowActions::drawViewMenu() {
   ImGui::MenuItem("Scale bar", nullptr, &showScaleBar_);
   tip("A round length at the centre of rotation's depth, bottom right");
   ImGui::Separator();
-  bool ortho = state_.orbit().orthographic();
-  if (ImGui::MenuItem("Orthographic", "O", ortho)) state_.setOrthographic(!ortho);
+  bool ortho = state_.view().orbit().orthographic();
+  if (ImGui::MenuItem("Orthographic", "O", ortho)) state_.view().setOrthographic(!ortho);
   tip("Orthographic or perspective projection");
-  if (ImGui::MenuItem("Front", "1")) state_.presetView(geom::PresetView::Front);
-  if (ImGui::MenuItem("Side", "2")) state_.presetView(geom::PresetView::Side);
-  if (ImGui::MenuItem("Top", "3")) state_.presetView(geom::PresetView::Top);
-  if (ImGui::MenuItem("Reset camera")) state_.presetView(geom::PresetView::Front);
+  if (ImGui::MenuItem("Front", "1")) state_.view().presetView(geom::PresetView::Front);
+  if (ImGui::MenuItem("Side", "2")) state_.view().presetView(geom::PresetView::Side);
+  if (ImGui::MenuItem("Top", "3")) state_.view().presetView(geom::PresetView::Top);
+  if (ImGui::MenuItem("Reset camera")) state_.view().presetView(geom::PresetView::Front);
   tip("Back to the start view: from the front, the whole cloud framed (F frames it keeping the direction)");
   if (ImGui::BeginMenu("Up axis")) {
     // The same six directions as the View panel's combo and the lying-down banner.
     const char* ups[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
     for (int i = 0; i < 6; ++i) {
       const auto d = static_cast<viewer::UpDirection>(i);
-      if (ImGui::MenuItem(ups[i], nullptr, state_.upDirection() == d)) state_.setUpDirection(d);
+      if (ImGui::MenuItem(ups[i], nullptr, state_.view().upDirection() == d)) state_.setUpDirection(d);
     }
     ImGui::EndMenu();
   }
@@ -124,10 +124,10 @@ void WindowActions::drawMenuBar() {
                                                           {Tool::Stroke, "G"},   {Tool::Lasso, "X"},
                                                           {Tool::Region, "R"},   {Tool::Reattach, "P"}};
     for (const auto& [tool, key] : kTools)
-      if (ImGui::MenuItem(viewer::ViewerState::toolLabel(tool), key, state_.tool() == tool)) state_.setTool(tool);
+      if (ImGui::MenuItem(viewer::toolLabel(tool), key, state_.tools().tool() == tool)) state_.setTool(tool);
     if (ImGui::MenuItem("Delete subtree of the selected node", "Shift+Del", false,
-                        state_.selected() != sketch::kNoNode))
-      state_.requestDeleteSubtree(state_.selected());
+                        state_.tools().selected() != sketch::kNoNode))
+      state_.requestDeleteSubtree(state_.tools().selected());
     ImGui::Separator();
     bool pick = pickMode_;
     if (ImGui::MenuItem("Pick points / measure", "M", pick)) setPickMode(!pick);

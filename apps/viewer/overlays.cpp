@@ -101,7 +101,7 @@ void drawGizmo(const geom::Camera& cam, const geom::Viewport& vp) {
 
 /// The scale bar at the 3D view's bottom right.
 void drawScaleBar(const viewer::ViewerState& state, const geom::Viewport& vp) {
-  viewer::ScaleBar bar = viewer::scaleBarFor(state.orbit().worldPerPixel(), 160.0);
+  viewer::ScaleBar bar = viewer::scaleBarFor(state.view().orbit().worldPerPixel(), 160.0);
   if (!bar.valid()) return;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
   float x1 = float(vp.x + vp.width - 24), x0 = x1 - float(bar.pixels), y = float(vp.y + vp.height - 24);
@@ -118,7 +118,7 @@ void drawScaleBar(const viewer::ViewerState& state, const geom::Viewport& vp) {
 
 void WindowActions::drawOverlays() {
   if (state_.cloud().empty()) return;
-  const geom::Camera cam = state_.camera();
+  const geom::Camera cam = state_.view().camera();
   const geom::Viewport& vp = cam.viewport;
   if (showLegend_) drawLegend(legend(), vp);
   if (showGizmo_) drawGizmo(cam, vp);
@@ -212,7 +212,8 @@ void WindowActions::drawWindows() {
       ImGui::CloseCurrentPopup();
     } else {
       ImGui::Text("The sketch (%zu nodes) has changes that are not in", state_.sketch().size());
-      ImGui::Text("%s.", state_.sketchPath().empty() ? "any file" : state_.sketchPath().string().c_str());
+      ImGui::Text(
+          "%s.", state_.document().sketchPath().empty() ? "any file" : state_.document().sketchPath().string().c_str());
       ImGui::Text("Save them before %s?", promptWhat_.c_str());
       ImGui::Spacing();
       if (ImGui::Button("Save", ImVec2(100, 0))) answerPrompt("save");

@@ -39,8 +39,8 @@ bool sizeSlider(const char* label, double* value, double lo, double hi) {
 
 void samplingControls(viewer::ViewerState& state) {
   const sketch::Sketch& sk = state.sketch();
-  bool haveNode = state.selected() != sketch::kNoNode && sk.contains(state.selected());
-  sketch::SamplingParams p = haveNode ? sk.node(state.selected()).params : sk.defaults;
+  bool haveNode = state.tools().selected() != sketch::kNoNode && sk.contains(state.tools().selected());
+  sketch::SamplingParams p = haveNode ? sk.node(state.tools().selected()).params : sk.defaults;
   double diag = std::max(state.bounds().diagonal(), 1e-6);
   double slice = p.sliceHalfThickness, line = p.lineEpsilon;
   if (sizeSlider("slice half-thickness", &slice, 1e-4 * diag, 0.1 * diag)) state.setSliceHalfThickness(slice);
@@ -55,14 +55,14 @@ void samplingControls(viewer::ViewerState& state) {
 
 void selectedNodeSection(viewer::ViewerState& state) {
   const sketch::Sketch& sk = state.sketch();
-  sketch::NodeId id = state.selected();
+  sketch::NodeId id = state.tools().selected();
   if (id == sketch::kNoNode || !sk.contains(id)) {
     ImGui::TextDisabled("No node selected: sizes for new nodes");
     samplingControls(state);
     return;
   }
   const sketch::Node& node = sk.node(id);
-  viewer::NodeFitView fit = state.nodeFit(id);
+  viewer::NodeFitView fit = state.scene().nodeFit(id);
   ImGui::Text("Node %d  (parent %d, %zu children)", id, node.parent, node.children.size());
   ImVec4 statusColor = fit.status == NodeStatus::Fitted    ? ImVec4(0.3f, 0.9f, 0.4f, 1)
                        : fit.status == NodeStatus::Skipped ? ImVec4(1.0f, 0.4f, 0.2f, 1)
@@ -92,7 +92,7 @@ void selectedNodeSection(viewer::ViewerState& state) {
 }
 
 void displaySection(viewer::ViewerState& state) {
-  viewer::DisplayOptions& d = state.display();
+  viewer::DisplayOptions& d = state.view().display();
   if (ImGui::BeginCombo("colour", viewer::colorModeLabel(d.colorMode))) {
     for (viewer::ColorMode m : viewer::availableColorModes(state.cloud()))  // the file's attributes too
       if (ImGui::Selectable(viewer::colorModeLabel(m), m == d.colorMode)) d.colorMode = m;
@@ -118,21 +118,21 @@ void displaySection(viewer::ViewerState& state) {
   int lm = static_cast<int>(d.labels);
   if (ImGui::Combo("node labels##labels", &lm, labelModes, 3)) d.labels = static_cast<viewer::LabelMode>(lm);
   const char* ups[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
-  int up = static_cast<int>(state.upDirection());
+  int up = static_cast<int>(state.view().upDirection());
   if (ImGui::Combo("up axis##upAxis", &up, ups, 6)) state.setUpDirection(static_cast<viewer::UpDirection>(up));
-  bool ortho = state.orbit().orthographic();
-  if (ImGui::Checkbox("orthographic", &ortho)) state.setOrthographic(ortho);
-  if (ImGui::Button("Front")) state.presetView(geom::PresetView::Front);
+  bool ortho = state.view().orbit().orthographic();
+  if (ImGui::Checkbox("orthographic", &ortho)) state.view().setOrthographic(ortho);
+  if (ImGui::Button("Front")) state.view().presetView(geom::PresetView::Front);
   ImGui::SameLine();
-  if (ImGui::Button("Side")) state.presetView(geom::PresetView::Side);
+  if (ImGui::Button("Side")) state.view().presetView(geom::PresetView::Side);
   ImGui::SameLine();
-  if (ImGui::Button("Top")) state.presetView(geom::PresetView::Top);
+  if (ImGui::Button("Top")) state.view().presetView(geom::PresetView::Top);
   ImGui::SameLine();
-  if (ImGui::Button("Fit")) state.fitView();
+  if (ImGui::Button("Fit")) state.view().fitView();
 }
 
 void messagesSection(const viewer::ViewerState& state) {
-  const auto& msgs = state.messages();
+  const auto& msgs = state.status().messages();
   std::size_t first = msgs.size() > 6 ? msgs.size() - 6 : 0;
   ImGui::PushTextWrapPos(0.0f);
   for (std::size_t i = first; i < msgs.size(); ++i) {
@@ -151,16 +151,16 @@ void statusBar(viewer::ViewerState& state, int width, int height) {
   ImGui::Begin("status", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar |
                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoSavedSettings);
-  std::optional<viewer::StatusMessage> last = state.statusLine();
+  std::optional<viewer::StatusMessage> last = state.status().statusLine();
   ImGui::Text("%zu points | %zu nodes: %zu fitted (%zu kept circles), %zu skipped | last rebuild %.2f ms | %s |",
-              state.cloud().size(), state.sketch().size(), state.fittedCount(), state.sketch().keptCircleCount(),
-              state.skippedCount(), state.lastRebuildMs(),
-              state.orbit().orthographic() ? "orthographic" : "perspective");
+              state.cloud().size(), state.sketch().size(), state.scene().fittedCount(),
+              state.sketch().keptCircleCount(), state.scene().skippedCount(), state.lastRebuildMs(),
+              state.view().orbit().orthographic() ? "orthographic" : "perspective");
   // Infos expire (ViewerOptions::statusInfoSeconds); an error stays until dismissed or replaced.
   if (last) {
     ImGui::SameLine();
     if (last->error) {
-      if (ImGui::SmallButton("x##dismissStatus")) state.dismissStatus();
+      if (ImGui::SmallButton("x##dismissStatus")) state.status().dismiss();
       ImGui::SameLine();
       ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1), "%s", last->text.c_str());
     } else {
@@ -173,7 +173,7 @@ void statusBar(viewer::ViewerState& state, int width, int height) {
 }  // namespace
 
 void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height,
-                const std::function<void()>& menuBar) {
+                const std::function<void()>& menuBar, const PanelFileActions& files) {
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(Layout::kPanelWidth, height - Layout::kStatusHeight));
   ImGui::Begin("treesketch", nullptr,
@@ -186,12 +186,18 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   ImGui::Text("%zu points, %zu nodes", state.cloud().size(), state.sketch().size());
 
   if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (ImGui::InputText("sketch", &panel.sketchPath)) state.setSketchPath(panel.sketchPath);
-    if (ImGui::Button("Load sketch")) state.loadSketch(panel.sketchPath);
+    // The File menu's own actions (with their dialogs and overwrite questions): one way to save.
+    const std::string& file = state.document().sketchPath().string();
+    ImGui::TextDisabled("sketch file: %s", file.empty() ? "(none yet)" : file.c_str());
+    auto fileButton = [&](const char* label, const std::function<void()>& action) {
+      if ((ImGui::Button(label) || panel.press == label) && action) action();
+    };
+    fileButton("Open sketch...", files.openSketch);
     ImGui::SameLine();
-    if (ImGui::Button("Save sketch")) state.saveSketch(panel.sketchPath);
-    ImGui::InputText("mesh", &panel.meshPath);
-    if (ImGui::Button("Export mesh (OBJ/PLY)")) state.exportMesh(panel.meshPath);
+    fileButton("Save sketch", files.save);
+    ImGui::SameLine();
+    fileButton("Save as...", files.saveAs);
+    fileButton("Export mesh...", files.exportMesh);
     ImGui::InputText("png", &panel.screenshotPath);
     if (ImGui::Button("Screenshot")) panel.screenshotRequested = true;
   }
@@ -221,7 +227,15 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
       ImGui::TextDisabled("(%s)", state.history().undoLabel().c_str());
     }
   }
-  if (ImGui::CollapsingHeader("Node", ImGuiTreeNodeFlags_DefaultOpen)) selectedNodeSection(state);
+  if (ImGui::CollapsingHeader("Node", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // The section keeps one height whether a node is selected or not, so that selecting a node
+    // never moves the controls below it (a click meant for one would hit another).
+    const float top = ImGui::GetCursorPosY();
+    selectedNodeSection(state);
+    const float used = ImGui::GetCursorPosY() - top;
+    const float keep = Layout::kNodeSectionRows * ImGui::GetFrameHeightWithSpacing();
+    if (used < keep) ImGui::Dummy(ImVec2(1.0f, keep - used - ImGui::GetStyle().ItemSpacing.y));
+  }
   if (ImGui::CollapsingHeader("Correction tools", ImGuiTreeNodeFlags_DefaultOpen)) toolsSection(state);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) displaySection(state);
   if (ImGui::CollapsingHeader("Help", panel.showHelp ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
@@ -235,18 +249,19 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
   panelTooltips();
   ImGui::PopItemWidth();
   ImGui::End();
+  panel.press.clear();
 
   statusBar(state, width, height);
 }
 
 void drawMarkers(const viewer::ViewerState& state) {
-  if (!state.display().showNodes) return;
+  if (!state.view().display().showNodes) return;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  geom::Viewport vp = state.orbit().viewport();
+  geom::Viewport vp = state.view().orbit().viewport();
   dl->PushClipRect(ImVec2(static_cast<float>(vp.x), static_cast<float>(vp.y)),
                    ImVec2(static_cast<float>(vp.x + vp.width), static_cast<float>(vp.y + vp.height)));
-  std::vector<viewer::NodeMarker> markers = state.nodeMarkers();
-  const bool labels = state.labelsShown();
+  std::vector<viewer::NodeMarker> markers = state.scene().nodeMarkers();
+  const bool labels = state.scene().labelsShown();
   auto find = [&](sketch::NodeId id) -> const viewer::NodeMarker* {
     for (const auto& m : markers)
       if (m.id == id) return &m;
@@ -295,22 +310,23 @@ void drawMarkers(const viewer::ViewerState& state) {
 
 void drawToolOverlay(const viewer::ViewerState& state) {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
-  const geom::Viewport vp = state.orbit().viewport();
+  const geom::Viewport vp = state.view().orbit().viewport();
   dl->PushClipRect(ImVec2(float(vp.x), float(vp.y)), ImVec2(float(vp.x + vp.width), float(vp.y + vp.height)));
   // The path of the drag being drawn (stroke, lasso, region), closed for the polygon tools.
-  const std::vector<geom::Vec2>& path = state.toolPath();
+  const std::vector<geom::Vec2>& path = state.tools().toolPath();
   if (path.size() >= 2) {
     using Tool = viewer::ViewerState::Tool;
     std::vector<ImVec2> pts;
     pts.reserve(path.size());
     for (const geom::Vec2& p : path) pts.emplace_back(float(p.x()), float(p.y()));
-    const bool closed = state.tool() == Tool::Lasso || state.tool() == Tool::Region;
-    const ImU32 colour = state.tool() == Tool::Lasso ? IM_COL32(255, 90, 200, 255) : IM_COL32(90, 220, 255, 255);
+    const bool closed = state.tools().tool() == Tool::Lasso || state.tools().tool() == Tool::Region;
+    const ImU32 colour =
+        state.tools().tool() == Tool::Lasso ? IM_COL32(255, 90, 200, 255) : IM_COL32(90, 220, 255, 255);
     dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), colour, closed ? ImDrawFlags_Closed : 0, 2.0f);
   }
   // The active tool, always on the canvas (the panel's buttons may be scrolled away).
   char text[96];
-  std::snprintf(text, sizeof text, "tool: %s", viewer::ViewerState::toolLabel(state.tool()));
+  std::snprintf(text, sizeof text, "tool: %s", viewer::toolLabel(state.tools().tool()));
   const ImVec2 size = ImGui::CalcTextSize(text);
   const ImVec2 at(float(vp.x) + 0.5f * (float(vp.width) - size.x), float(vp.y + vp.height) - size.y - 10.0f);
   dl->AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + size.x + 4, at.y + size.y + 2), IM_COL32(0, 0, 0, 150), 3.0f);

@@ -139,6 +139,11 @@ Renderer::~Renderer() {
   glDeleteBuffers(7, bufs);
   glDeleteProgram(pointProgram_);
   glDeleteProgram(meshProgram_);
+  if (fbo_) {
+    glDeleteFramebuffers(1, &fbo_);
+    glDeleteTextures(1, &fboColor_);
+    glDeleteRenderbuffers(1, &fboDepth_);
+  }
 }
 
 void Renderer::uploadCloud(viewer::ViewerState& state) {
@@ -155,9 +160,9 @@ void Renderer::uploadCloud(viewer::ViewerState& state) {
     hlVersion_ = 0;
     meshVersion_ = 0;
   }
-  const std::vector<viewer::Rgb>& colors = state.pointColors();
-  if (colorsVersion_ != state.colorsVersion()) {
-    colorsVersion_ = state.colorsVersion();
+  const std::vector<viewer::Rgb>& colors = state.scene().pointColors();
+  if (colorsVersion_ != state.scene().colorsVersion()) {
+    colorsVersion_ = state.scene().colorsVersion();
     const std::vector<std::uint8_t>& ordered = lod_.keptColors(colors);  // the positions' upload order
     glBindBuffer(GL_ARRAY_BUFFER, cloudCol_);
     glBufferData(GL_ARRAY_BUFFER, ordered.size(), ordered.data(), GL_DYNAMIC_DRAW);
@@ -167,7 +172,7 @@ void Renderer::uploadCloud(viewer::ViewerState& state) {
 void Renderer::uploadMesh(const viewer::ViewerState& state) {
   if (meshVersion_ == state.sceneVersion()) return;
   meshVersion_ = state.sceneVersion();
-  const geom::TriMesh& mesh = state.mesh();
+  const geom::TriMesh& mesh = state.scene().mesh();
   // Per-vertex normals: area-weighted sums of the face normals.
   std::vector<Vec3> normals(mesh.vertices.size(), Vec3::Zero());
   for (const auto& t : mesh.triangles) {
@@ -193,11 +198,11 @@ void Renderer::uploadMesh(const viewer::ViewerState& state) {
 }
 
 void Renderer::uploadHighlights(const viewer::ViewerState& state) {
-  if (hlVersion_ == state.sceneVersion() && hlNode_ == state.selected()) return;
+  if (hlVersion_ == state.sceneVersion() && hlNode_ == state.tools().selected()) return;
   hlVersion_ = state.sceneVersion();
-  hlNode_ = state.selected();
-  std::vector<std::uint32_t> slice = state.highlightedSlicePoints();
-  std::vector<std::uint32_t> inliers = state.highlightedInliers();
+  hlNode_ = state.tools().selected();
+  std::vector<std::uint32_t> slice = state.scene().highlightedSlicePoints();
+  std::vector<std::uint32_t> inliers = state.scene().highlightedInliers();
   const geom::PointCloud& cloud = state.cloud();
   std::vector<float> pos;
   pos.reserve(3 * (slice.size() + inliers.size()));
@@ -236,26 +241,103 @@ void Renderer::drawSceneLines(const std::vector<viewer::Line3>& lines, GLint tin
   glEnable(GL_DEPTH_TEST);
 }
 
-void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale, std::size_t maxPoints) {
-  geom::Camera cam = state.camera();
-  const geom::Viewport& vp = cam.viewport;
-  double k = pixelScale > 0 ? pixelScale : 1.0;
-  glViewport(static_cast<GLint>(vp.x * k), static_cast<GLint>(framebufferHeight - (vp.y + vp.height) * k),
-             static_cast<GLsizei>(vp.width * k), static_cast<GLsizei>(vp.height * k));
-  glEnable(GL_DEPTH_TEST);
-  glEnable(GL_PROGRAM_POINT_SIZE);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  if (state.cloud().empty()) return;
+namespace {
 
+template <class T>
+void append(std::string& key, const T& value) {
+  key.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+}  // namespace
+
+std::string Renderer::sceneKey(const viewer::ViewerState& state, const std::vector<viewer::Line3>& lines,
+                               int framebufferHeight, double pixelScale, std::size_t points) const {
+  const geom::Camera cam = state.view().camera();
+  const viewer::DisplayOptions& d = state.view().display();
+  std::string key;
+  key.reserve(512 + lines.size() * sizeof(viewer::Line3));
+  key.append(reinterpret_cast<const char*>(cam.view.data()), sizeof(double) * 16);
+  key.append(reinterpret_cast<const char*>(cam.projection.data()), sizeof(double) * 16);
+  for (double v : {cam.viewport.x, cam.viewport.y, cam.viewport.width, cam.viewport.height, pixelScale}) append(key, v);
+  for (std::uint64_t v : {cloudVersion_, colorsVersion_, meshVersion_, hlVersion_, std::uint64_t(points)})
+    append(key, v);
+  for (int v : {framebufferHeight, int(hlNode_), int(cloudCount_), int(meshIndexCount_), int(sliceCount_),
+                int(inlierCount_), int(d.meshStyle), int(d.showCloud)})
+    append(key, v);
+  append(key, d.pointSize);
+  for (const viewer::Line3& l : lines) {
+    append(key, l.a);
+    append(key, l.b);
+    for (std::uint8_t c : {l.color.r, l.color.g, l.color.b}) append(key, c);
+  }
+  return key;
+}
+
+void Renderer::ensureTarget(int width, int height) {
+  if (fbo_ && width == fboWidth_ && height == fboHeight_) return;
+  if (!fbo_) {
+    glGenFramebuffers(1, &fbo_);
+    glGenTextures(1, &fboColor_);
+    glGenRenderbuffers(1, &fboDepth_);
+  }
+  glBindTexture(GL_TEXTURE_2D, fboColor_);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glBindRenderbuffer(GL_RENDERBUFFER, fboDepth_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, fboColor_, 0);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, fboDepth_);
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (status != GL_FRAMEBUFFER_COMPLETE) throw std::runtime_error("the scene's offscreen framebuffer is incomplete");
+  fboWidth_ = width;
+  fboHeight_ = height;
+  lastKey_.clear();
+}
+
+void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale, std::size_t maxPoints) {
+  const geom::Viewport vp = state.view().camera().viewport;
+  const double k = pixelScale > 0 ? pixelScale : 1.0;
+  const GLint x = static_cast<GLint>(vp.x * k), y = static_cast<GLint>(framebufferHeight - (vp.y + vp.height) * k);
+  const GLsizei w = static_cast<GLsizei>(vp.width * k), h = static_cast<GLsizei>(vp.height * k);
+  if (state.cloud().empty() || w <= 0 || h <= 0) return;
   uploadCloud(state);
   uploadMesh(state);
   uploadHighlights(state);
+  const std::vector<viewer::Line3> lines = state.scene().sceneLines();
+  const std::size_t points = std::min<std::size_t>(cloudCount_, maxPoints);
+  ensureTarget(w, h);
+  std::string key = sceneKey(state, lines, framebufferHeight, k, points);
+  if (key != lastKey_) {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glViewport(0, 0, w, h);
+    glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    drawScene(state, lines, k, points);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    lastKey_ = std::move(key);
+    ++sceneDraws_;
+  }
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glBlitFramebuffer(0, 0, w, h, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
 
+void Renderer::drawScene(const viewer::ViewerState& state, const std::vector<viewer::Line3>& lines, double k,
+                         std::size_t points) {
+  const geom::Camera cam = state.view().camera();
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_PROGRAM_POINT_SIZE);
   geom::Mat4 model = geom::Mat4::Identity();
   model.block<3, 1>(0, 3) = origin_;
   Eigen::Matrix4f mvp = toFloat(cam.projection * cam.view * model);
   Eigen::Matrix3f normalMatrix = cam.view.block<3, 3>(0, 0).cast<float>();
-  const viewer::DisplayOptions& d = state.display();
+  const viewer::DisplayOptions& d = state.view().display();
 
   glUseProgram(pointProgram_);
   glUniformMatrix4fv(glGetUniformLocation(pointProgram_, "uMvp"), 1, GL_FALSE, mvp.data());
@@ -265,7 +347,7 @@ void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pi
     glUniform4f(tint, 0, 0, 0, 0);
     glUniform1f(size, static_cast<float>(d.pointSize * k));
     glBindVertexArray(cloudVao_);
-    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(std::min<std::size_t>(cloudCount_, maxPoints)));
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(points));
   }
   if (sliceCount_ + inlierCount_ > 0) {
     glBindVertexArray(hlVao_);
@@ -293,7 +375,7 @@ void Renderer::draw(viewer::ViewerState& state, int framebufferHeight, double pi
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   }
 
-  drawSceneLines(state.sceneLines(), tint);
+  drawSceneLines(lines, tint);
   glBindVertexArray(0);
   glUseProgram(0);
 }

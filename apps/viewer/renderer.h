@@ -1,11 +1,15 @@
 // OpenGL 3.3 core drawing of a ViewerState: the cloud as points (one VBO, re-uploaded only when
 // the cloud or its colours change), the selected node's slice points, 3D lines (circles, sampling
 // region) and the tube mesh (solid or wireframe). Node markers are drawn by the panels (ImGui).
+// The scene is drawn into an offscreen image that is copied to the window each frame and drawn
+// anew only when what it shows changes (SceneKey): a frame drawn for the panel alone (the mouse
+// moving over it, a tooltip) does not draw the cloud again.
 #pragma once
 
 #include <GL/glew.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "treesketch/viewer/point_lod.h"
@@ -29,8 +33,20 @@ class Renderer {
   void draw(viewer::ViewerState& state, int framebufferHeight, double pixelScale = 1.0,
             std::size_t maxPoints = SIZE_MAX);
   std::size_t cloudPoints() const { return static_cast<std::size_t>(cloudCount_); }
+  /// Draws that drew the 3D scene (the cloud, mesh and lines) anew.
+  std::uint64_t sceneDraws() const { return sceneDraws_; }
+  /// The window's background, behind the scene.
+  static constexpr float kBackground[3] = {0.11f, 0.12f, 0.14f};
 
  private:
+  /// Everything the scene's image depends on, as bytes: the camera, the viewport, what was
+  /// uploaded (versions), the display options, the points drawn and the 3D lines.
+  std::string sceneKey(const viewer::ViewerState& state, const std::vector<viewer::Line3>& lines, int framebufferHeight,
+                       double pixelScale, std::size_t points) const;
+  void drawScene(const viewer::ViewerState& state, const std::vector<viewer::Line3>& lines, double pixelScale,
+                 std::size_t points);
+  /// The offscreen image of `width` x `height` framebuffer pixels (made again when the size changes).
+  void ensureTarget(int width, int height);
   void drawSceneLines(const std::vector<viewer::Line3>& lines, GLint tint);
   void uploadCloud(viewer::ViewerState& state);
   void uploadMesh(const viewer::ViewerState& state);
@@ -47,6 +63,10 @@ class Renderer {
   geom::Vec3 origin_ = geom::Vec3::Zero();  ///< subtracted from positions (float precision)
   viewer::PointLod lod_;                    ///< the upload order
   std::vector<float> posScratch_;
+  std::uint64_t sceneDraws_ = 0;
+  GLuint fbo_ = 0, fboColor_ = 0, fboDepth_ = 0;
+  int fboWidth_ = 0, fboHeight_ = 0;
+  std::string lastKey_;  ///< the key of the image in fbo_ ("" when there is none)
 };
 
 }  // namespace treesketch::gui

@@ -13,7 +13,7 @@ void toolsSection(viewer::ViewerState& state) {
   using Tool = viewer::ViewerState::Tool;
   // Tooltips: tooltips.cpp's table, like every panel control.
   auto toolButton = [&](const char* label, Tool tool) {
-    const bool on = state.tool() == tool;
+    const bool on = state.tools().tool() == tool;
     if (on) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.2f, 0.5f, 0.3f, 1));
     if (ImGui::Button(label)) state.setTool(on ? Tool::Select : tool);
     if (on) ImGui::PopStyleColor();
@@ -26,8 +26,8 @@ void toolsSection(viewer::ViewerState& state) {
   toolButton("Region (R)", Tool::Region);
   ImGui::SameLine();
   toolButton("Re-attach (P)", Tool::Reattach);
-  ImGui::BeginDisabled(state.selected() == sketch::kNoNode);
-  if (ImGui::Button("Automatic below selected (H)")) state.automaticBelow(state.selected());
+  ImGui::BeginDisabled(state.tools().selected() == sketch::kNoNode);
+  if (ImGui::Button("Automatic below selected (H)")) state.automaticBelow(state.tools().selected());
   ImGui::EndDisabled();
   ImGui::Text("%zu not-wood lasso(s)", state.sketch().notWood().size());
   ImGui::SameLine();
@@ -36,8 +36,8 @@ void toolsSection(viewer::ViewerState& state) {
   ImGui::EndDisabled();
   const double depth = state.selectedDepth();
   if (std::isfinite(depth)) ImGui::Text("selected circle: %.3f from the eye", depth);
-  if (state.selected() != sketch::kNoNode) {
-    const viewer::NodeFitView fit = state.nodeFit(state.selected());
+  if (state.tools().selected() != sketch::kNoNode) {
+    const viewer::NodeFitView fit = state.scene().nodeFit(state.tools().selected());
     if (std::isfinite(fit.depth)) ImGui::Text("depth along its view ray: %.3f", fit.depth);
     if (!fit.warning.empty()) {
       ImGui::PushTextWrapPos(0.0f);

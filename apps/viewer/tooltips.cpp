@@ -16,11 +16,10 @@ struct Tip {
 // ImGui ID is what is matched; gui.panels_unique_ids checks that no two controls share one).
 const Tip kTips[] = {
     {"Files", "Sketch, mesh and screenshot files (also in the File menu)"},
-    {"sketch", "The sketch file: Save / Ctrl+S write it, Load reads it"},
-    {"Load sketch", "Read the sketch file named above (undoable)"},
-    {"Save sketch", "Write the sketch to the file named above (Ctrl+S)"},
-    {"mesh", "Where Export mesh writes (.obj or .ply)"},
-    {"Export mesh (OBJ/PLY)", "Write the reconstructed tubes to the mesh file named above"},
+    {"Open sketch...", "Choose a sketch file to load (undoable; asks when it was made for another cloud)"},
+    {"Save sketch", "Write the sketch to its file (Ctrl+S; asks for a name when it has none)"},
+    {"Save as...", "Save the sketch to another file, which becomes its file (Ctrl+Shift+S)"},
+    {"Export mesh...", "Write the tube mesh as OBJ or PLY (Ctrl+E)"},
     {"png", "Where Screenshot writes"},
     {"Screenshot", "Save the window as a PNG"},
     {"Sketch", "Automatic sketches, clearing, undo and redo"},

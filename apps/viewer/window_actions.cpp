@@ -21,17 +21,18 @@ WindowActions::WindowActions(viewer::ViewerState& state, PanelState& panel, Wind
     : state_(state), panel_(panel), hooks_(std::move(hooks)) {
   recentPath_ = viewer::recentFilesPath(viewer::configDirectory());
   std::string message = recent_.load(recentPath_);
-  if (!message.empty()) state_.info(message);
+  if (!message.empty()) state_.status().info(message);
 }
 
 void WindowActions::remember(viewer::RecentKind kind, const fs::path& path) {
   recent_.add(kind, path);
   std::string message = recent_.save(recentPath_);
-  if (!message.empty()) state_.info(message);
+  if (!message.empty()) state_.status().info(message);
 }
 
 fs::path WindowActions::dialogFolder() const {
-  fs::path p = state_.sketchPath().empty() ? fs::path() : fs::absolute(state_.sketchPath()).parent_path();
+  fs::path p =
+      state_.document().sketchPath().empty() ? fs::path() : fs::absolute(state_.document().sketchPath()).parent_path();
   return p;
 }
 
@@ -54,21 +55,21 @@ void WindowActions::openSketchDialog() {
 }
 
 bool WindowActions::save() {
-  if (state_.sketchPath().empty()) {
+  if (state_.document().sketchPath().empty()) {
     saveAsDialog();
     return false;
   }
-  if (!state_.saveSketch(state_.sketchPath())) return false;
-  remember(viewer::RecentKind::Sketch, state_.sketchPath());
+  if (!state_.saveSketch(state_.document().sketchPath())) return false;
+  remember(viewer::RecentKind::Sketch, state_.document().sketchPath());
   return true;
 }
 
 void WindowActions::saveAsDialog() {
-  fs::path current = state_.sketchPath();
+  fs::path current = state_.document().sketchPath();
   dialog_.open(FileDialog::Mode::Save, "Save the sketch as", viewer::sketchFileFilter(), dialogFolder(),
                current.filename().string(), [this](const fs::path& p) {
                  // The dialog asked before replacing a file: no second question.
-                 if (!state_.saveSketch(p, true)) return state_.lastMessage().text;
+                 if (!state_.saveSketch(p, true)) return state_.status().lastMessage().text;
                  state_.setSketchPath(p);
                  panel_.sketchPath = p.string();
                  remember(viewer::RecentKind::Sketch, p);
@@ -81,7 +82,7 @@ void WindowActions::exportMeshDialog() {
   dialog_.open(FileDialog::Mode::Save, "Export the mesh (OBJ or PLY)", viewer::meshFileFilter(),
                current.has_parent_path() ? fs::absolute(current).parent_path() : dialogFolder(),
                current.filename().string(), [this](const fs::path& p) {
-                 if (!state_.exportMesh(p)) return state_.lastMessage().text;
+                 if (!state_.exportMesh(p)) return state_.status().lastMessage().text;
                  panel_.meshPath = p.string();
                  return std::string();
                });
@@ -98,10 +99,12 @@ void WindowActions::exportModelDialog(viewer::ViewerState::ModelFile what) {
                     : what == F::Qsm     ? Kind{"Export the cylinders in TreeQSM's layout", {"Text", {".txt"}}, "_qsm.txt"}
                     : what == F::Metrics ? Kind{"Export the tree metrics (JSON)", {"JSON", {".json"}}, "_metrics.json"}
                                          : Kind{"Export the fit report (JSON)", {"JSON", {".json"}}, "_report.json"};
-  const fs::path source = state_.sketchPath().empty() ? fs::path(panel_.meshPath) : state_.sketchPath();
+  const fs::path source =
+      state_.document().sketchPath().empty() ? fs::path(panel_.meshPath) : state_.document().sketchPath();
   const std::string name = (source.empty() ? std::string("tree") : source.stem().string()) + kind.suffix;
-  dialog_.open(FileDialog::Mode::Save, kind.title, kind.filter, dialogFolder(), name,
-               [this, what](const fs::path& p) { return state_.exportModel(what, p) ? std::string() : state_.lastMessage().text; });
+  dialog_.open(FileDialog::Mode::Save, kind.title, kind.filter, dialogFolder(), name, [this, what](const fs::path& p) {
+    return state_.exportModel(what, p) ? std::string() : state_.status().lastMessage().text;
+  });
 }
 
 void WindowActions::requestOpenCloud(const fs::path& path) {
@@ -122,13 +125,13 @@ void WindowActions::requestOpenSketch(const fs::path& path) {
 
 void WindowActions::openRecent(std::size_t index) {
   if (index >= recent_.entries().size()) {
-    state_.error("recent files: there is no entry " + std::to_string(index));
+    state_.status().error("recent files: there is no entry " + std::to_string(index));
     return;
   }
   viewer::RecentFile e = recent_.entries()[index];
   std::error_code ec;
   if (!fs::exists(e.path, ec)) {
-    state_.error(e.path.string() + ": no longer exists (removed from the recent files)");
+    state_.status().error(e.path.string() + ": no longer exists (removed from the recent files)");
     recent_.remove(e);
     recent_.save(recentPath_);
     return;
@@ -144,29 +147,29 @@ void WindowActions::openCloudNow(const fs::path& path) {
   try {
     io::FileInfo info = io::inspectFile(path);
     if (info.isMesh) {
-      state_.info("scanning mesh " + path.string());
+      state_.status().info("scanning mesh " + path.string());
       cloud = scan::sphereScan(std::vector<geom::TriMesh>{info.mesh}, {}).cloud;
       if (cloud.empty()) throw InputError(path.string() + ": the scan of this mesh hit nothing");
     } else {
       cloud = std::move(info.cloud);
     }
   } catch (const std::exception& e) {
-    state_.error(std::string("open: ") + e.what());  // the current cloud and sketch stay
+    state_.status().error(std::string("open: ") + e.what());  // the current cloud and sketch stay
     return;
   }
   // The up-axis rule of the CLI (io/up_axis.h): the file's declaration, else Z (field scans).
   io::UpAxisChoice up = io::chooseUpAxis("", cloud);
   if (!state_.setCloud(std::move(cloud), up.up, path)) return;
-  state_.info("up axis: " + up.reason);
+  state_.status().info("up axis: " + up.reason);
   panel_.inputName = path.string();
   // The cloud's own sketch file (tree.las -> tree.las.sketch.json), set by setCloud.
-  const fs::path sketch = state_.sketchPath();
+  const fs::path sketch = state_.document().sketchPath();
   panel_.sketchPath = sketch.string();
   picks_.clear();
   remember(viewer::RecentKind::Cloud, path);
   std::error_code ec;
   if (!sketch.empty() && fs::exists(sketch, ec) && state_.loadSketch(sketch))
-    state_.info("loaded the sketch saved beside it, " + sketch.filename().string());
+    state_.status().info("loaded the sketch saved beside it, " + sketch.filename().string());
 }
 
 void WindowActions::requestQuit() {
@@ -192,9 +195,9 @@ void WindowActions::answerPrompt(const std::string& answer) {
     afterPrompt_ = nullptr;
     return;
   }
-  if (answer == "save" && state_.sketchPath().empty()) {
+  if (answer == "save" && state_.document().sketchPath().empty()) {
     // The Save dialog cannot open over the prompt (one modal at a time): say what to do instead.
-    state_.error("save: the sketch has no file; type one in Files (or Cancel and use Save sketch as...)");
+    state_.status().error("save: the sketch has no file; type one in Files (or Cancel and use Save sketch as...)");
     return;
   }
   if (answer == "save" && !save()) return;  // the prompt stays; the error is in the status bar
@@ -209,16 +212,17 @@ void WindowActions::answerPrompt(const std::string& answer) {
 
 void WindowActions::setPickMode(bool on) {
   pickMode_ = on;
-  state_.info(on ? "pick mode: left click picks a point; a second pick measures the distance (M or Esc to leave)"
-                 : "pick mode off: left click sketches again");
+  state_.status().info(
+      on ? "pick mode: left click picks a point; a second pick measures the distance (M or Esc to leave)"
+         : "pick mode off: left click sketches again");
 }
 
 bool WindowActions::pickAt(const geom::Vec2& screen) {
   // Within the point's drawn size, and never less than a few pixels (design choice: 6 px).
-  double radius = std::max(6.0, 1.5 * static_cast<double>(state_.display().pointSize));
-  viewer::PickedPoint p = viewer::pickPoint(state_.cloud(), state_.camera(), screen, radius);
+  double radius = std::max(6.0, 1.5 * static_cast<double>(state_.view().display().pointSize));
+  viewer::PickedPoint p = viewer::pickPoint(state_.cloud(), state_.view().camera(), screen, radius);
   if (!picks_.add(p)) {
-    state_.info("pick: no point within " + std::to_string(static_cast<int>(radius)) + " px");
+    state_.status().info("pick: no point within " + std::to_string(static_cast<int>(radius)) + " px");
     return false;
   }
   std::vector<std::string> lines = viewer::describePoint(state_.cloud(), p.index);
@@ -230,7 +234,7 @@ bool WindowActions::pickAt(const geom::Vec2& screen) {
                   m.horizontal);
     text += buf;
   }
-  state_.info(text);
+  state_.status().info(text);
   return true;
 }
 
@@ -253,12 +257,12 @@ const viewer::Legend& WindowActions::legend() {
   // Only the attribute legends cost O(points) (quantiles, class counts): those are cached per cloud
   // and mode. Height and distance legends follow the view's up, the colour scale and the fits,
   // and are O(1): made afresh every frame so they never go stale.
-  const viewer::ColorMode mode = state_.display().colorMode;
+  const viewer::ColorMode mode = state_.view().display().colorMode;
   const bool perPoint = mode == viewer::ColorMode::Intensity || mode == viewer::ColorMode::Classification;
   if (!perPoint || legendCloud_ != state_.cloudVersion() || legendMode_ != mode) {
     legend_ = viewer::colorLegend(state_);
     legendCloud_ = state_.cloudVersion();
-    legendMode_ = state_.display().colorMode;
+    legendMode_ = state_.view().display().colorMode;
   }
   return legend_;
 }
@@ -312,6 +316,12 @@ double WindowActions::windowReading(const std::string& key) {
     got = dialog_.isOpen() && !dialog_.error().empty();
   else if (key == "tooltip")
     got = tooltipShown();
+  else if (key == "sceneRedrawn") {
+    // Drawn anew since the last reading: a frame drawn for the panel alone reuses the scene's image.
+    const std::uint64_t draws = hooks_.sceneDraws ? hooks_.sceneDraws() : 0;
+    got = draws > sceneDrawsRead_;
+    sceneDrawsRead_ = draws;
+  }
   return got;
 }
 
@@ -373,7 +383,7 @@ std::string WindowActions::runMenuVerb(const viewer::ScriptAction& a) {
   else if (m == "about")
     showAbout_ = !showAbout_;
   else if (m == "reset-camera")
-    state_.presetView(geom::PresetView::Front);
+    state_.view().presetView(geom::PresetView::Front);
   else if (m == "pick-mode")
     setPickMode(!pickMode_);
   else if (m == "recent") {
@@ -392,7 +402,7 @@ void WindowActions::flushPendingOpen() {
 }
 
 std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
-  const std::size_t errorsBefore = state_.errorCount();
+  const std::size_t errorsBefore = state_.status().errorCount();
   if (a.name == "menu") {
     if (std::string failure = runMenuVerb(a); !failure.empty()) return failure;
     flushPendingOpen();
@@ -410,10 +420,12 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
     flushPendingOpen();
   } else if (a.name == "pick") {
     if (!pickMode_) setPickMode(true);
-    if (!pickAt(a.from)) return state_.lastMessage().text;
+    if (!pickAt(a.from)) return state_.status().lastMessage().text;
   } else if (a.name == "hover") {
     if (!hooks_.moveCursor) return "hover needs a window";
     hooks_.moveCursor(a.from);
+  } else if (a.name == "panel") {
+    panel_.press = a.text;  // the next frame's panel presses it
   } else if (a.name == "showMenu") {
     forcedMenu_ = a.text == "none" ? std::string() : a.text;
   } else if (a.name == "closeWindow") {
@@ -421,7 +433,7 @@ std::string WindowActions::runScriptVerb(const viewer::ScriptAction& a) {
   } else if (a.name == "expectWindow") {
     return expectWindow(a);
   }
-  if (state_.errorCount() > errorsBefore) return state_.lastMessage().text;
+  if (state_.status().errorCount() > errorsBefore) return state_.status().lastMessage().text;
   return {};
 }
 

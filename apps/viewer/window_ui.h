@@ -5,6 +5,7 @@
 // disagree; main.cpp only forwards to it.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -27,6 +28,8 @@ struct WindowHooks {
   std::function<bool()> closing;
   /// Moves the mouse pointer to window pixels (the script verb hover).
   std::function<void(const geom::Vec2&)> moveCursor;
+  /// How many frames drew the 3D scene anew (the others showed the renderer's kept image).
+  std::function<std::uint64_t()> sceneDraws;
 };
 
 class WindowActions {
@@ -119,6 +122,7 @@ class WindowActions {
   viewer::PickSession picks_;
   bool showHelp_ = false, showAbout_ = false;
   std::string forcedMenu_;  ///< a menu kept open by the script verb showMenu (screenshots)
+  std::uint64_t sceneDrawsRead_ = 0;  ///< the scene draws at the last "sceneRedrawn" reading
   bool showLegend_ = true, showGizmo_ = true, showScaleBar_ = true;
   viewer::Legend legend_;
   std::uint64_t legendCloud_ = ~0ull;

@@ -152,9 +152,9 @@ std::optional<std::string> performInput(ViewerState& state, const ScriptAction& 
       break;
     case Kind::View:
       if (a.name == "fit")
-        state.fitView();
+        state.view().fitView();
       else
-        state.presetView(geom::parsePresetView(a.name));
+        state.view().presetView(geom::parsePresetView(a.name));
       break;
     case Kind::Select:
       state.selectNode(static_cast<sketch::NodeId>(a.value));
@@ -196,9 +196,9 @@ std::string performAction(ViewerState& state, const ScriptAction& a, const Scrip
   switch (a.kind) {
     case Kind::Save:
     case Kind::Load: {
-      std::filesystem::path p = !a.path.empty()              ? a.path
-                                : !state.sketchPath().empty() ? state.sketchPath()
-                                                              : hooks.sketchPath;
+      std::filesystem::path p = !a.path.empty()                          ? a.path
+                                : !state.document().sketchPath().empty() ? state.document().sketchPath()
+                                                                         : hooks.sketchPath;
       if (p.empty()) throw OptionsError("no sketch path: give one (\"save PATH\") or start with --sketch");
       if (a.kind == Kind::Save)
         state.saveSketch(p);
@@ -213,7 +213,7 @@ std::string performAction(ViewerState& state, const ScriptAction& a, const Scrip
       if (!hooks.screenshot) throw OptionsError("screenshots need a window");
       if (hooks.frame) hooks.frame();
       hooks.screenshot(a.path);
-      state.info("screenshot written to " + a.path.string());
+      state.status().info("screenshot written to " + a.path.string());
       break;
     case Kind::Wait:
       for (int i = 0; i < a.steps && hooks.frame; ++i) hooks.frame();
@@ -259,12 +259,12 @@ std::string performAction(ViewerState& state, const ScriptAction& a, const Scrip
 // {"wait": "job"} waits for it.
 void waitForActionJob(ViewerState& state, const ScriptAction& a, bool busyBefore, const ScriptHooks& hooks) {
   const bool waitForJob = a.kind == Kind::Wait ? a.name == "job" : a.kind != Kind::Start && !busyBefore;
-  if (waitForJob && state.busy()) {
+  if (waitForJob && state.jobs().busy()) {
     if (hooks.frame) {
       // The frame takes a finished job in itself (the window's own pollJob), so the loop ends
       // when the state is no longer busy, whoever took the result: waiting for pollJob() alone
       // to return true hung when a frame took it first (CI: gui.background_job timed out).
-      while (state.busy() && !state.pollJob()) {
+      while (state.jobs().busy() && !state.pollJob()) {
         hooks.frame();
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
       }
@@ -281,27 +281,28 @@ ScriptReport runActionScript(ViewerState& state, const ActionScript& script, con
   for (const ScriptAction& a : script.actions) {
     std::string what = describe(a);
     if (hooks.log) hooks.log(a, what);
-    std::size_t errorsBefore = state.errorCount();
-    const bool busyBefore = state.busy();
+    std::size_t errorsBefore = state.status().errorCount();
+    const bool busyBefore = state.jobs().busy();
     std::string failure;
     try {
       failure = performAction(state, a, hooks);
     } catch (const std::exception& e) {
       failure = e.what();
-      state.error(what + ": " + e.what());
+      state.status().error(what + ": " + e.what());
     }
     waitForActionJob(state, a, busyBefore, hooks);
-    if (failure.empty() && state.errorCount() > errorsBefore) failure = state.lastMessage().text;
+    if (failure.empty() && state.status().errorCount() > errorsBefore) failure = state.status().lastMessage().text;
     if (a.expectError) {
       if (hooks.log) hooks.log(a, failure.empty() ? "no error (one was expected)" : "refused as expected: " + failure);
       failure = failure.empty() ? "expected this action to fail, it did not" : std::string();
     }
     if (!failure.empty()) {
       report.failures.push_back("action " + std::to_string(a.index) + " (" + what + "): " + failure);
-      if (a.kind == Kind::Expect || a.kind == Kind::Key || a.kind == Kind::Window) state.error(report.failures.back());
+      if (a.kind == Kind::Expect || a.kind == Kind::Key || a.kind == Kind::Window)
+        state.status().error(report.failures.back());
     }
     ++report.actionsRun;
-    if (&a == &script.actions.back() && state.busy()) state.waitForJob();  // a script ends with its work done
+    if (&a == &script.actions.back() && state.jobs().busy()) state.waitForJob();  // a script ends with its work done
     if (hooks.frame && a.kind != Kind::Wait && a.kind != Kind::Screenshot) hooks.frame();
   }
   return report;

@@ -76,7 +76,7 @@ std::vector<Rgb> attributeColors(const geom::PointCloud& cloud, ColorMode mode) 
 
 Legend colorLegend(const ViewerState& state) {
   const geom::PointCloud& cloud = state.cloud();
-  const ColorMode mode = state.display().colorMode;
+  const ColorMode mode = state.view().display().colorMode;
   if (cloud.empty()) return {};
   if (!colorModeAvailable(mode, cloud)) {
     Legend l;
@@ -86,11 +86,12 @@ Legend colorLegend(const ViewerState& state) {
   switch (mode) {
     case ColorMode::Height: {
       // The colours run along the view's up direction (heightColorsAlong), from the lowest point.
-      const geom::Vec3 u = upDirectionVector(state.upDirection());
+      const geom::Vec3 u = upDirectionVector(state.view().upDirection());
       const geom::BBox& b = state.bounds();
       const double span = std::abs((b.max - b.min).dot(u));
-      return scaleLegend(std::string("height along ") + toString(state.upDirection()) + " above the lowest point (m)",
-                         {0.0, span}, render::viridis);
+      return scaleLegend(
+          std::string("height along ") + toString(state.view().upDirection()) + " above the lowest point (m)",
+          {0.0, span}, render::viridis);
     }
     case ColorMode::CircleDistance: {
       const double diagonal = std::max(state.bounds().diagonal(), 1e-12);
@@ -102,9 +103,9 @@ Legend colorLegend(const ViewerState& state) {
       char note[160];
       std::snprintf(note, sizeof note, "0 on the tubes; the top colour: %.3g m (%.3g %% of the cloud's %.3g m diagonal) "
                     "or farther", scale, 100.0 * state.options().distanceColorScale, diagonal);
-      l.note = state.fittedCount() == 0 ? "no fitted circle yet: every point is at the far end"
-               : state.fittedCount() == 1 ? "one fitted circle, no tube yet: the distance to the circle"
-                                          : std::string(note);
+      l.note = state.scene().fittedCount() == 0   ? "no fitted circle yet: every point is at the far end"
+               : state.scene().fittedCount() == 1 ? "one fitted circle, no tube yet: the distance to the circle"
+                                                  : std::string(note);
       return l;
     }
     case ColorMode::Intensity: {

@@ -24,7 +24,7 @@ struct Button {
 inline const Button kButtons[] = {
     {"undo", [](ViewerState& s) { s.undo(); }},
     {"redo", [](ViewerState& s) { s.redo(); }},
-    {"fit", [](ViewerState& s) { s.fitView(); }},
+    {"fit", [](ViewerState& s) { s.view().fitView(); }},
     {"clear", [](ViewerState& s) { s.clearSketch(); }},
     {"autoSketch", [](ViewerState& s) { s.requestAutoSketchUniform(); }},
     {"autoSkeleton", [](ViewerState& s) { s.requestAutoSketchSkeleton(); }},
@@ -33,7 +33,7 @@ inline const Button kButtons[] = {
     {"refit", [](ViewerState& s) { s.refitSelected(); }},
     {"refitAll", [](ViewerState& s) { s.refitAll(); }},
     {"clearNotWood", [](ViewerState& s) { s.clearNotWood(); }},
-    {"cancel", [](ViewerState& s) { s.cancelJob(); }},
+    {"cancel", [](ViewerState& s) { s.jobs().cancel(); }},
 };
 
 /// {"tool": NAME}.
@@ -59,7 +59,7 @@ inline const Slider kSliders[] = {
     {"pointSize",
      [](ViewerState& s, double v) {
        if (!(v > 0)) throw OptionsError("pointSize must be positive");
-       s.display().pointSize = static_cast<float>(v);
+       s.view().display().pointSize = static_cast<float>(v);
      }},
 };
 
@@ -75,21 +75,21 @@ struct Option {
   void (*apply)(ViewerState&, const std::string&);
 };
 inline const Option kOptions[] = {
-    {"colorMode", [](ViewerState& s, const std::string& v) { s.display().colorMode = parseColorMode(v); }},
-    {"meshStyle", [](ViewerState& s, const std::string& v) { s.display().meshStyle = parseMeshStyle(v); }},
+    {"colorMode", [](ViewerState& s, const std::string& v) { s.view().display().colorMode = parseColorMode(v); }},
+    {"meshStyle", [](ViewerState& s, const std::string& v) { s.view().display().meshStyle = parseMeshStyle(v); }},
     {"projection",
      [](ViewerState& s, const std::string& v) {
        if (v != "ortho" && v != "orthographic" && v != "perspective")
          throw OptionsError("projection must be 'ortho' or 'perspective', got '" + v + "'");
-       s.setOrthographic(v != "perspective");
+       s.view().setOrthographic(v != "perspective");
      }},
-    {"showCloud", [](ViewerState& s, const std::string& v) { s.display().showCloud = parseBool(v); }},
-    {"showNodes", [](ViewerState& s, const std::string& v) { s.display().showNodes = parseBool(v); }},
-    {"showCircles", [](ViewerState& s, const std::string& v) { s.display().showCircles = parseBool(v); }},
-    {"showRegion", [](ViewerState& s, const std::string& v) { s.display().showSamplingRegion = parseBool(v); }},
-    {"labels", [](ViewerState& s, const std::string& v) { s.display().labels = parseLabelMode(v); }},
+    {"showCloud", [](ViewerState& s, const std::string& v) { s.view().display().showCloud = parseBool(v); }},
+    {"showNodes", [](ViewerState& s, const std::string& v) { s.view().display().showNodes = parseBool(v); }},
+    {"showCircles", [](ViewerState& s, const std::string& v) { s.view().display().showCircles = parseBool(v); }},
+    {"showRegion", [](ViewerState& s, const std::string& v) { s.view().display().showSamplingRegion = parseBool(v); }},
+    {"labels", [](ViewerState& s, const std::string& v) { s.view().display().labels = parseLabelMode(v); }},
     {"upAxis", [](ViewerState& s, const std::string& v) { s.setUpDirection(parseUpDirection(v)); }},
-    {"holdJobs", [](ViewerState& s, const std::string& v) { s.holdJobs(parseBool(v)); }},
+    {"holdJobs", [](ViewerState& s, const std::string& v) { s.jobs().hold(parseBool(v)); }},
 };
 
 /// {"expect": {NAME: n, ...}}: what each name reads from the state; `atLeast` keys pass with any
@@ -101,22 +101,22 @@ struct Expectation {
 };
 inline const Expectation kExpectations[] = {
     {"nodes", [](const ViewerState& s) { return double(s.sketch().size()); }, false},
-    {"fitted", [](const ViewerState& s) { return double(s.fittedCount()); }, false},
-    {"skipped", [](const ViewerState& s) { return double(s.skippedCount()); }, false},
-    {"selected", [](const ViewerState& s) { return double(s.selected()); }, false},
-    {"active", [](const ViewerState& s) { return double(s.active()); }, false},
-    {"errors", [](const ViewerState& s) { return double(s.errorCount()); }, false},
-    {"meshTriangles", [](const ViewerState& s) { return double(s.mesh().triangles.size()); }, true},
+    {"fitted", [](const ViewerState& s) { return double(s.scene().fittedCount()); }, false},
+    {"skipped", [](const ViewerState& s) { return double(s.scene().skippedCount()); }, false},
+    {"selected", [](const ViewerState& s) { return double(s.tools().selected()); }, false},
+    {"active", [](const ViewerState& s) { return double(s.tools().active()); }, false},
+    {"errors", [](const ViewerState& s) { return double(s.status().errorCount()); }, false},
+    {"meshTriangles", [](const ViewerState& s) { return double(s.scene().mesh().triangles.size()); }, true},
     {"kept", [](const ViewerState& s) { return double(s.sketch().keptCircleCount()); }, false},
     {"notWood", [](const ViewerState& s) { return double(s.sketch().notWood().size()); }, false},
-    {"recoveryOffered", [](const ViewerState& s) { return double(s.recoveryPending()); }, false},
+    {"recoveryOffered", [](const ViewerState& s) { return double(s.document().recoveryPending()); }, false},
     {"confirmPending", [](const ViewerState& s) { return double(s.confirmationPending()); }, false},
     {"handEdits", [](const ViewerState& s) { return double(s.hasHandEdits()); }, false},
-    {"labelsShown", [](const ViewerState& s) { return double(s.labelsShown()); }, false},
-    {"statusShown", [](const ViewerState& s) { return double(s.statusLine().has_value()); }, false},
+    {"labelsShown", [](const ViewerState& s) { return double(s.scene().labelsShown()); }, false},
+    {"statusShown", [](const ViewerState& s) { return double(s.status().statusLine().has_value()); }, false},
     {"lyingDown", [](const ViewerState& s) { return double(s.upWarningShown()); }, false},
     {"legend", [](const ViewerState& s) { return double(colorLegend(s).kind != Legend::Kind::None); }, false},
-    {"busy", [](const ViewerState& s) { return double(s.busy()); }, false},
+    {"busy", [](const ViewerState& s) { return double(s.jobs().busy()); }, false},
     {"points", [](const ViewerState& s) { return double(s.cloud().size()); }, false},
 };
 
@@ -156,13 +156,14 @@ inline const WindowVerb kWindowVerbs[] = {
     {"prompt", {"save", "discard", "cancel"}},
     {"pick", {}},
     {"hover", {}},
+    {"panel", {"Open sketch...", "Save sketch", "Save as...", "Export mesh..."}},
     {"closeWindow", {}},
     {"showMenu", {"File", "View", "Tools", "Help", "none"}},
     {"expectWindow", {}},
 };
-inline const char* const kWindowExpectations[] = {"dialogOpen",  "dialogEntries", "promptOpen",  "picks",
-                                                  "distanceMin", "distanceMax",   "recent",      "quitting",
-                                                  "helpOpen",    "legendClasses", "dialogError", "tooltip"};
+inline const char* const kWindowExpectations[] = {
+    "dialogOpen", "dialogEntries", "promptOpen",    "picks",       "distanceMin", "distanceMax", "recent",
+    "quitting",   "helpOpen",      "legendClasses", "dialogError", "tooltip",     "sceneRedrawn"};
 
 /// The entry of `table` called `name`, or nullptr.
 template <class Entry, std::size_t N>

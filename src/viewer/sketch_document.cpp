@@ -1,6 +1,8 @@
 // SketchDocument: a sketch tied to its cloud. See include/treesketch/viewer/sketch_document.h.
 #include "treesketch/viewer/sketch_document.h"
 
+#include <chrono>
+#include <ctime>
 #include <system_error>
 
 #include "treesketch/util/error.h"
@@ -36,6 +38,7 @@ void SketchDocument::setCloud(const fs::path& cloudPath, const geom::PointCloud&
   autosavePath_ = autosavePathFor(cloudPath);
   ownFile_.clear();
   failedLoads_.clear();
+  endRecovery();
 }
 
 void SketchDocument::setAutosavePath(const fs::path& path) {
@@ -111,6 +114,65 @@ bool SketchDocument::removeAutosave() {
   if (autosavePath_.empty() || !protectedReason(autosavePath_).empty()) return false;
   std::error_code ec;
   return fs::remove(autosavePath_, ec);
+}
+
+namespace {
+
+/// "<autosave stem>.kept-YYYYmmdd-HHMMSS.sketch.json" beside `autosave`, not yet existing.
+fs::path keptName(const fs::path& autosave) {
+  std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  localtime_r(&now, &tm);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tm);
+  std::string base = autosave.filename().string();
+  const std::string suffix = ".sketch.json";
+  if (base.size() > suffix.size() && base.compare(base.size() - suffix.size(), suffix.size(), suffix) == 0)
+    base.resize(base.size() - suffix.size());
+  fs::path p = autosave.parent_path() / (base + ".kept-" + stamp + suffix);
+  for (int i = 2; fs::exists(p); ++i)
+    p = autosave.parent_path() / (base + ".kept-" + stamp + "-" + std::to_string(i) + suffix);
+  return p;
+}
+
+}  // namespace
+
+fs::path SketchDocument::keepAutosave() {
+  fs::path kept = keptName(autosavePath_);
+  fs::rename(autosavePath_, kept);
+  return kept;
+}
+
+std::string SketchDocument::findRecovery(bool& readable) {
+  endRecovery();
+  readable = true;
+  std::error_code ec;
+  if (autosavePath_.empty() || !fs::is_regular_file(autosavePath_, ec)) return {};
+  try {
+    io::SketchFile found = io::readSketchFile(autosavePath_);
+    if (found.cloud && !found.cloud->sameCloud(cloud_)) {
+      // Work for another cloud (the file at this path was replaced, or the autosave was named by
+      // hand): not offered here, and kept aside so that this cloud's autosave does not replace it.
+      const fs::path kept = keepAutosave();
+      return "an autosave made for " + describeRecord(*found.cloud) + ", not for this cloud, was kept as " +
+             kept.string() + " (load it with Load sketch onto its own cloud)";
+    }
+    recoveryPending_ = true;
+    recoveryNodes_ = found.sketch.size();
+    return "found unsaved work from an earlier session: " + autosavePath_.string() + " (" +
+           std::to_string(recoveryNodes_) + " nodes): restore, discard or keep it";
+  } catch (const std::exception& e) {
+    recoveryPending_ = true;
+    readable = false;
+    recoveryError_ = e.what();
+    return "the earlier session's autosave cannot be read: " + recoveryError_ + " (discard it or keep it)";
+  }
+}
+
+void SketchDocument::endRecovery() {
+  recoveryPending_ = false;
+  recoveryNodes_ = 0;
+  recoveryError_.clear();
 }
 
 }  // namespace treesketch::viewer

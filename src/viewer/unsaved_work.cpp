@@ -9,13 +9,13 @@ namespace treesketch::viewer {
 
 bool hasUnsavedWork(const ViewerState& state) {
   if (state.sketch().empty()) return false;
-  if (state.sketchPath().empty()) return true;
+  if (state.document().sketchPath().empty()) return true;
   try {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(state.sketchPath(), ec)) return true;
+    if (!std::filesystem::is_regular_file(state.document().sketchPath(), ec)) return true;
     std::ostringstream current, saved;
     io::writeSketch(current, state.sketch());
-    io::writeSketch(saved, io::readSketch(state.sketchPath()));
+    io::writeSketch(saved, io::readSketch(state.document().sketchPath()));
     return current.str() != saved.str();
   } catch (const std::exception&) {
     return true;  // an unreadable file does not hold this sketch

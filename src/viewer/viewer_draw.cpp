@@ -1,7 +1,6 @@
-// ViewerState, part 3 of 3: what is drawn — display option names, point colours, node markers
-// (and picking them), 3D lines for circles and the selected node's sampling region, highlighted
-// points, the mesh, counts and status messages. See viewer_state.cpp for the map of the three
-// parts.
+// Scene, what the window draws of a ViewerState (viewer/scene.h): display option names, point
+// colours, node markers (and picking them), 3D lines for circles and the selected node's sampling
+// region, highlighted points, the mesh and counts. See viewer_state.h for the map of the files.
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -12,6 +11,7 @@
 #include "treesketch/util/error.h"
 #include "treesketch/util/text.h"
 #include "treesketch/viewer/color_legend.h"
+#include "treesketch/viewer/scene.h"
 #include "treesketch/viewer/viewer_state.h"
 
 namespace treesketch::viewer {
@@ -127,8 +127,6 @@ const char* toString(NodeStatus status) {
 
 // ---- display and status --------------------------------------------------------------------------
 
-void ViewerState::setColorMode(ColorMode mode) { display_.colorMode = mode; }
-
 LabelMode parseLabelMode(const std::string& s) {
   std::string k = lowercase(s);
   if (k == "auto") return LabelMode::Auto;
@@ -149,8 +147,8 @@ const char* toString(LabelMode mode) {
   return "?";
 }
 
-bool ViewerState::labelsShown() const {
-  switch (display_.labels) {
+bool Scene::labelsShown() const {
+  switch (s_.view_.display().labels) {
     case LabelMode::On:
       return true;
     case LabelMode::Off:
@@ -158,53 +156,28 @@ bool ViewerState::labelsShown() const {
     case LabelMode::Auto:
       break;
   }
-  return sketch_.size() <= options_.autoLabelMaxNodes;
-}
-
-void ViewerState::info(const std::string& text) {
-  messages_.push_back(StatusMessage{false, text, std::chrono::steady_clock::now()});
-  statusDismissed_ = false;
-}
-
-void ViewerState::error(const std::string& text) {
-  messages_.push_back(StatusMessage{true, text, std::chrono::steady_clock::now()});
-  statusDismissed_ = false;
-  ++errorCount_;
-}
-
-std::optional<StatusMessage> ViewerState::statusLine(std::chrono::steady_clock::time_point now) const {
-  if (messages_.empty() || statusDismissed_) return std::nullopt;
-  const StatusMessage& last = messages_.back();
-  if (last.error) return last;  // until dismissed or replaced by a newer message
-  if (now - last.time < std::chrono::duration<double>(options_.statusInfoSeconds)) return last;
-  return std::nullopt;
-}
-
-std::optional<std::chrono::steady_clock::time_point> ViewerState::statusExpiry() const {
-  if (messages_.empty() || statusDismissed_ || messages_.back().error) return std::nullopt;
-  return messages_.back().time + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                     std::chrono::duration<double>(options_.statusInfoSeconds));
+  return s_.sketch_.size() <= s_.options_.autoLabelMaxNodes;
 }
 
 // ---- what to draw --------------------------------------------------------------------------------
 
-const std::vector<Rgb>& ViewerState::pointColors() {
-  if (colorsStale_ || colorsMode_ != display_.colorMode || colors_.size() != cloud_.size() ||
-      colorsNotWood_ != sketch_.notWood()) {
-    colorsMode_ = display_.colorMode;
-    colorsNotWood_ = sketch_.notWood();
+const std::vector<Rgb>& Scene::pointColors() {
+  if (colorsStale_ || colorsMode_ != s_.view_.display().colorMode || colors_.size() != s_.cloud_.size() ||
+      colorsNotWood_ != s_.sketch_.notWood()) {
+    colorsMode_ = s_.view_.display().colorMode;
+    colorsNotWood_ = s_.sketch_.notWood();
     switch (colorsMode_) {
       case ColorMode::Height:
-        colors_ = heightColorsAlong(cloud_, viewUp_);
+        colors_ = heightColorsAlong(s_.cloud_, s_.view_.upDirection());
         break;
       case ColorMode::Plain:
-        colors_ = plainColors(cloud_, options_.plainColor);
+        colors_ = plainColors(s_.cloud_, s_.options_.plainColor);
         break;
       case ColorMode::CircleDistance: {
-        const double scale = options_.distanceColorScale * std::max(bounds_.diagonal(), 1e-12);
-        if (distanceGridVersion_ != cloudVersion_ || !distanceGrid_.builtFor(cloud_, scale)) {
-          distanceGrid_.build(cloud_, scale);  // once per cloud
-          distanceGridVersion_ = cloudVersion_;
+        const double scale = s_.options_.distanceColorScale * std::max(s_.bounds_.diagonal(), 1e-12);
+        if (distanceGridVersion_ != s_.cloudVersion_ || !distanceGrid_.builtFor(s_.cloud_, scale)) {
+          distanceGrid_.build(s_.cloud_, scale);  // once per cloud
+          distanceGridVersion_ = s_.cloudVersion_;
         }
         // The distance to the model's surface (its frustums, what fit-report measures): zero on
         // the tubes, also between two circles. A sketch with no two linked fitted nodes has no
@@ -215,8 +188,8 @@ const std::vector<Rgb>& ViewerState::pointColors() {
           break;
         }
         std::vector<Circle3> circles;
-        for (NodeId id : sketch_.ids()) {
-          NodeFitView f = recon_->nodeFit(id);
+        for (NodeId id : s_.sketch_.ids()) {
+          NodeFitView f = s_.recon_->nodeFit(id);
           if (f.status == NodeStatus::Fitted) circles.push_back(f.circle);
         }
         distanceGrid_.colors(circles, colors_);
@@ -225,47 +198,48 @@ const std::vector<Rgb>& ViewerState::pointColors() {
       case ColorMode::Intensity:
       case ColorMode::FileColor:
       case ColorMode::Classification:
-        colors_ = attributeColors(cloud_, colorsMode_);
-        if (colors_.size() != cloud_.size()) colors_ = plainColors(cloud_, options_.plainColor);
+        colors_ = attributeColors(s_.cloud_, colorsMode_);
+        if (colors_.size() != s_.cloud_.size()) colors_ = plainColors(s_.cloud_, s_.options_.plainColor);
         break;
     }
     // Not-wood points (the sketch's lassos) are drawn dark, whatever the colour mode.
-    if (!sketch_.notWood().empty())
-      for (std::size_t i = 0; i < cloud_.size(); ++i)
-        if (sketch_.isNotWood(cloud_.positions[i])) colors_[i] = Rgb{60, 50, 70};
+    if (!s_.sketch_.notWood().empty())
+      for (std::size_t i = 0; i < s_.cloud_.size(); ++i)
+        if (s_.sketch_.isNotWood(s_.cloud_.positions[i])) colors_[i] = Rgb{60, 50, 70};
     colorsStale_ = false;
     ++colorsVersion_;
   }
   return colors_;
 }
 
-model::TreeModel ViewerState::treeModel() const {
-  if (!recon_) return {};
-  return model::fromReconstruction(recon_->result(), sketch_.up);
+model::TreeModel Scene::treeModel() const {
+  if (!s_.recon_) return {};
+  return model::fromReconstruction(s_.recon_->result(), s_.sketch_.up);
 }
 
-NodeFitView ViewerState::nodeFit(NodeId id) const { return recon_->nodeFit(id); }
+NodeFitView Scene::nodeFit(NodeId id) const { return s_.recon_->nodeFit(id); }
 
-std::vector<NodeMarker> ViewerState::nodeMarkers() const {
+std::vector<NodeMarker> Scene::nodeMarkers() const {
   std::vector<NodeMarker> markers;
-  geom::Camera cur = orbit_.camera();
-  markers.reserve(sketch_.size());
-  const bool currentView = !sketch_.cameras().empty();
-  std::vector<bool> sameCamera(sketch_.cameras().size());
-  for (std::size_t c = 0; currentView && c < sameCamera.size(); ++c) sameCamera[c] = sameAsCurrent(sketch_.cameras()[c]);
-  for (const auto& [id, node] : sketch_.nodes()) {
+  geom::Camera cur = s_.view_.camera();
+  markers.reserve(s_.sketch_.size());
+  const bool currentView = !s_.sketch_.cameras().empty();
+  std::vector<bool> sameCamera(s_.sketch_.cameras().size());
+  for (std::size_t c = 0; currentView && c < sameCamera.size(); ++c)
+    sameCamera[c] = s_.sameAsCurrent(s_.sketch_.cameras()[c]);
+  for (const auto& [id, node] : s_.sketch_.nodes()) {
     NodeMarker m;
     m.id = id;
     m.parent = node.parent;
-    m.selected = id == selected_;
-    m.active = id == active_;
-    m.status = recon_->nodeFit(id).status;
+    m.selected = id == s_.tools_.selected();
+    m.active = id == s_.tools_.active();
+    m.status = s_.recon_->nodeFit(id).status;
     // A node goes with a pending Delete subtree when the path to the root meets its root.
-    m.doomed = pendingDelete_ != kNoNode && sketch_.contains(pendingDelete_);
-    for (NodeId a = id; m.doomed && a != pendingDelete_; a = sketch_.node(a).parent)
-      if (a == kNoNode || sketch_.node(a).parent == kNoNode) m.doomed = false;
+    m.doomed = s_.pendingDelete_ != kNoNode && s_.sketch_.contains(s_.pendingDelete_);
+    for (NodeId a = id; m.doomed && a != s_.pendingDelete_; a = s_.sketch_.node(a).parent)
+      if (a == kNoNode || s_.sketch_.node(a).parent == kNoNode) m.doomed = false;
     try {
-      const Vec3 s = cur.project(anchor(id));
+      const Vec3 s = cur.project(s_.anchor(id));
       if (s.allFinite()) m.depth = s.z();
     } catch (const std::exception&) {
     }
@@ -276,7 +250,7 @@ std::vector<NodeMarker> ViewerState::nodeMarkers() const {
     } else {
       m.inCurrentView = false;
       try {
-        Vec3 s = cur.project(anchor(id));
+        Vec3 s = cur.project(s_.anchor(id));
         m.screen = s.head<2>();
         m.visible = s.allFinite() && s.z() >= 0.0 && s.z() <= 1.0;
       } catch (const std::exception&) {
@@ -288,15 +262,15 @@ std::vector<NodeMarker> ViewerState::nodeMarkers() const {
   return markers;
 }
 
-NodeId ViewerState::nodeAt(const Vec2& screen) const {
+NodeId Scene::nodeAt(const Vec2& screen) const {
   // Of the markers under the click (within the pick radius), the nearest to the eye: the node the
   // person sees in front, not one hidden behind it; ties in depth go to the nearer marker.
   NodeId best = kNoNode;
-  double bestDepth = std::numeric_limits<double>::infinity(), bestD = options_.pickRadiusPx;
+  double bestDepth = std::numeric_limits<double>::infinity(), bestD = s_.options_.pickRadiusPx;
   for (const NodeMarker& m : nodeMarkers()) {
     if (!m.visible) continue;
     const double d = (m.screen - screen).norm();
-    if (d > options_.pickRadiusPx) continue;
+    if (d > s_.options_.pickRadiusPx) continue;
     const double depth = std::isfinite(m.depth) ? m.depth : 2.0;
     if (depth < bestDepth || (depth == bestDepth && d < bestD)) {
       bestDepth = depth;
@@ -307,13 +281,13 @@ NodeId ViewerState::nodeAt(const Vec2& screen) const {
   return best;
 }
 
-std::size_t ViewerState::markersAt(const Vec2& screen) const {
+std::size_t Scene::markersAt(const Vec2& screen) const {
   std::size_t n = 0;
-  for (const NodeMarker& m : nodeMarkers()) n += m.visible && (m.screen - screen).norm() <= options_.pickRadiusPx;
+  for (const NodeMarker& m : nodeMarkers()) n += m.visible && (m.screen - screen).norm() <= s_.options_.pickRadiusPx;
   return n;
 }
 
-NodeId ViewerState::nearestMarker(const Vec2& screen) const {
+NodeId Scene::nearestMarker(const Vec2& screen) const {
   NodeId best = kNoNode;
   double bestD = std::numeric_limits<double>::infinity();
   for (const NodeMarker& m : nodeMarkers()) {
@@ -327,14 +301,14 @@ NodeId ViewerState::nearestMarker(const Vec2& screen) const {
   return best;
 }
 
-SamplingRegion ViewerState::samplingRegion() const {
+SamplingRegion Scene::samplingRegion() const {
   SamplingRegion r;
-  if (selected_ == kNoNode || !sketch_.contains(selected_)) return r;
+  if (s_.tools_.selected() == kNoNode || !s_.sketch_.contains(s_.tools_.selected())) return r;
   try {
-    const sketch::Node& node = sketch_.node(selected_);
-    r.geometry = sketch_.geometry(selected_);
+    const sketch::Node& node = s_.sketch_.node(s_.tools_.selected());
+    r.geometry = s_.sketch_.geometry(s_.tools_.selected());
     r.sliceHalfThickness = node.params.sliceHalfThickness;
-    NodeFitView f = recon_->nodeFit(selected_);
+    NodeFitView f = s_.recon_->nodeFit(s_.tools_.selected());
     r.lineEpsilon = f.finalLineEpsilon > 0 ? f.finalLineEpsilon : node.params.lineEpsilon;
     r.valid = true;
   } catch (const std::exception&) {
@@ -343,25 +317,25 @@ SamplingRegion ViewerState::samplingRegion() const {
   return r;
 }
 
-std::vector<Line3> ViewerState::sceneLines() const {
+std::vector<Line3> Scene::sceneLines() const {
   std::vector<Line3> lines;
-  if (display_.showCircles) {
-    for (NodeId id : sketch_.ids()) {
-      NodeFitView f = recon_->nodeFit(id);
+  if (s_.view_.display().showCircles) {
+    for (NodeId id : s_.sketch_.ids()) {
+      NodeFitView f = s_.recon_->nodeFit(id);
       if (f.status != NodeStatus::Fitted) continue;
-      addRing(lines, f.circle.centre, f.circle.normal, f.circle.radius, options_.circleSegments,
-              id == selected_ ? kSelectedCircleColor : kCircleColor);
+      addRing(lines, f.circle.centre, f.circle.normal, f.circle.radius, s_.options_.circleSegments,
+              id == s_.tools_.selected() ? kSelectedCircleColor : kCircleColor);
     }
   }
   SamplingRegion r = samplingRegion();
-  if (!display_.showSamplingRegion || !r.valid) return lines;
+  if (!s_.view_.display().showSamplingRegion || !r.valid) return lines;
   const sketch::NodeGeometry& g = r.geometry;
   Vec3 n = g.planeNormal.normalized();
-  Vec3 centre = anchor(selected_);
+  Vec3 centre = s_.anchor(s_.tools_.selected());
   // The slab: two squares at ±ε around the node's region, joined at the corners.
   Vec3 u = g.hasLine ? g.lineDir.normalized() : geom::anyPerpendicular(n);
   Vec3 v = n.cross(u).normalized();
-  const geom::BBox& box = bounds_;
+  const geom::BBox& box = s_.bounds_;
   double half = std::max(1.5 * r.lineEpsilon, 0.05 * box.diagonal());
   Vec3 corners[4] = {centre + half * (u + v), centre + half * (-u + v), centre + half * (-u - v),
                      centre + half * (u - v)};
@@ -378,8 +352,8 @@ std::vector<Line3> ViewerState::sceneLines() const {
     double t0, t1;
     if (clipLineToBox(g.linePoint, d, box, r.lineEpsilon, &t0, &t1)) {
       Vec3 a = g.linePoint + t0 * d, b = g.linePoint + t1 * d;
-      addRing(lines, a, d, r.lineEpsilon, options_.circleSegments, kCylinderColor);
-      addRing(lines, b, d, r.lineEpsilon, options_.circleSegments, kCylinderColor);
+      addRing(lines, a, d, r.lineEpsilon, s_.options_.circleSegments, kCylinderColor);
+      addRing(lines, b, d, r.lineEpsilon, s_.options_.circleSegments, kCylinderColor);
       Vec3 p = geom::anyPerpendicular(d), q = d.cross(p);
       for (int i = 0; i < 8; ++i) {
         double ang = 2.0 * M_PI * i / 8;
@@ -388,32 +362,32 @@ std::vector<Line3> ViewerState::sceneLines() const {
       }
     }
   } else {
-    addRing(lines, g.planePoint, n, r.lineEpsilon, options_.circleSegments, kCylinderColor);
+    addRing(lines, g.planePoint, n, r.lineEpsilon, s_.options_.circleSegments, kCylinderColor);
   }
   return lines;
 }
 
-std::vector<std::uint32_t> ViewerState::highlightedSlicePoints() const {
-  if (!display_.showSamplingRegion || selected_ == kNoNode) return {};
-  return recon_->slicePoints(selected_);
+std::vector<std::uint32_t> Scene::highlightedSlicePoints() const {
+  if (!s_.view_.display().showSamplingRegion || s_.tools_.selected() == kNoNode) return {};
+  return s_.recon_->slicePoints(s_.tools_.selected());
 }
 
-std::vector<std::uint32_t> ViewerState::highlightedInliers() const {
-  if (!display_.showSamplingRegion || selected_ == kNoNode) return {};
-  return recon_->inlierPoints(selected_);
+std::vector<std::uint32_t> Scene::highlightedInliers() const {
+  if (!s_.view_.display().showSamplingRegion || s_.tools_.selected() == kNoNode) return {};
+  return s_.recon_->inlierPoints(s_.tools_.selected());
 }
 
-const geom::TriMesh& ViewerState::mesh() const { return recon_ ? recon_->mesh() : emptyMesh_; }
+const geom::TriMesh& Scene::mesh() const { return s_.recon_ ? s_.recon_->mesh() : emptyMesh_; }
 
-std::size_t ViewerState::fittedCount() const {
+std::size_t Scene::fittedCount() const {
   std::size_t n = 0;
-  for (NodeId id : sketch_.ids()) n += recon_->nodeFit(id).status == NodeStatus::Fitted;
+  for (NodeId id : s_.sketch_.ids()) n += s_.recon_->nodeFit(id).status == NodeStatus::Fitted;
   return n;
 }
 
-std::size_t ViewerState::skippedCount() const {
+std::size_t Scene::skippedCount() const {
   std::size_t n = 0;
-  for (NodeId id : sketch_.ids()) n += recon_->nodeFit(id).status == NodeStatus::Skipped;
+  for (NodeId id : s_.sketch_.ids()) n += s_.recon_->nodeFit(id).status == NodeStatus::Skipped;
   return n;
 }
 

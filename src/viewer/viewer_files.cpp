@@ -1,6 +1,6 @@
 // ViewerState's files: saving and loading the sketch through its SketchDocument (the cloud's
 // record, the questions before loading another cloud's sketch or replacing another file, the
-// files never written) and exporting the model's outputs. See viewer_state.cpp for the map of the
+// files never written) and exporting the model's outputs. See viewer_state.h for the map of the
 // files that implement ViewerState.
 #include <memory>
 
@@ -31,7 +31,7 @@ bool ViewerState::writeSketchFile(const std::filesystem::path& path) {
     doc_.save(path, sketch_);
     dirty_ = false;
     // The work is in its file now: the autosave has nothing more to bring back.
-    if (!recoveryPending_) doc_.removeAutosave();
+    if (!doc_.recoveryPending()) doc_.removeAutosave();
     info("saved sketch to " + path.string() + " (" + std::to_string(sketch_.size()) + " nodes)");
   });
 }
@@ -51,11 +51,11 @@ bool ViewerState::loadSketch(const std::filesystem::path& path) {
 bool ViewerState::takeLoadedSketch(const std::filesystem::path& path, sketch::Sketch loaded, bool ownCloud) {
   bool ok = edit("load sketch", "load sketch " + path.filename().string(), "", [&] {
     sketch_ = std::move(loaded);
-    selected_ = kNoNode;
-    active_ = kNoNode;
+    tools_.selected_ = kNoNode;
+    tools_.active_ = kNoNode;
   });
   if (!ok) return false;
-  activeChosen_ = false;
+  tools_.activeChosen_ = false;
   // A sketch made for this cloud is this document's file; another cloud's stays untouched (a
   // save goes to this cloud's own sketch path, and replacing that other file asks first).
   if (ownCloud) doc_.noteLoaded(path), dirty_ = false;
@@ -73,7 +73,7 @@ bool ViewerState::exportModel(ModelFile what, const std::filesystem::path& path,
     if (!recon_) throw OptionsError("no cloud is open");
     if (what == ModelFile::Mesh ? recon_->mesh().empty() : false)
       throw OptionsError("no mesh to export: no node has been fitted yet");
-    const model::TreeModel tree = treeModel();
+    const model::TreeModel tree = scene_.treeModel();
     if (what != ModelFile::Mesh && tree.empty())
       throw OptionsError(std::string("no ") + name + " to export: no two linked nodes are fitted yet");
     model::OutputPaths out;

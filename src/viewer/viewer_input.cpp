@@ -1,6 +1,6 @@
-// ViewerState, part 2 of 3: input handling — mouse gestures (pick, drag a node, add a node,
-// orbit, pan), the wheel, key bindings, and the view they steer. See viewer_state.cpp for the
-// map of the three parts.
+// ViewerState's input handling: mouse gestures (pick, drag a node, add a node, orbit, pan), the
+// wheel and key bindings, steering the view part and the tool part. See viewer_state.h for the
+// map of the files that implement ViewerState.
 #include <algorithm>
 
 #include "treesketch/util/text.h"
@@ -24,16 +24,8 @@ bool sameMatrix(const geom::Mat4& a, const geom::Mat4& b) {
 
 // ---- view ----------------------------------------------------------------------------------------
 
-void ViewerState::setViewport(const geom::Viewport& viewport) { orbit_.setViewport(viewport); }
-
-void ViewerState::fitView() { orbit_.fit(); }
-
-void ViewerState::presetView(geom::PresetView view) { orbit_.preset(view, upDirectionVector(viewUp_)); }
-
-void ViewerState::setOrthographic(bool ortho) { orbit_.setOrthographic(ortho); }
-
 bool ViewerState::sameAsCurrent(const geom::Camera& cam) const {
-  geom::Camera cur = orbit_.camera();
+  geom::Camera cur = view_.orbit_.camera();
   return sameMatrix(cam.view, cur.view) && sameMatrix(cam.projection, cur.projection) &&
          cam.viewport.x == cur.viewport.x && cam.viewport.y == cur.viewport.y &&
          cam.viewport.width == cur.viewport.width && cam.viewport.height == cur.viewport.height;
@@ -42,78 +34,80 @@ bool ViewerState::sameAsCurrent(const geom::Camera& cam) const {
 // ---- input ---------------------------------------------------------------------------------------
 
 void ViewerState::mouseDown(const Vec2& pos, MouseButton button, int mods) {
-  gesture_ = Gesture::None;
-  if (!orbit_.viewport().contains(pos)) return;
-  pressPos_ = lastPos_ = pos;
-  gestureButton_ = button;
-  gestureMods_ = mods;
+  tools_.gesture_ = Gesture::None;
+  if (!view_.orbit_.viewport().contains(pos)) return;
+  tools_.pressPos_ = tools_.lastPos_ = pos;
+  tools_.gestureButton_ = button;
+  tools_.gestureMods_ = mods;
   if (toolMouseDown(pos, button, mods)) return;
   if (button == MouseButton::Left && !(mods & kModAlt)) {
-    gestureNode_ = nodeAt(pos);
+    tools_.gestureNode_ = scene_.nodeAt(pos);
     // Clicks select by default: adding is the AddNodes tool's, or Shift's, so that a click that
     // misses a marker by a few pixels never makes a stray node.
-    const bool adds = tool_ == Tool::AddNodes || (mods & kModShift);
-    gesture_ = gestureNode_ != kNoNode ? Gesture::PendingNode : adds ? Gesture::PendingAdd : Gesture::PendingEmpty;
+    const bool adds = tools_.tool_ == Tool::AddNodes || (mods & kModShift);
+    tools_.gesture_ = tools_.gestureNode_ != kNoNode ? Gesture::PendingNode
+                      : adds                         ? Gesture::PendingAdd
+                                                     : Gesture::PendingEmpty;
   } else if ((button == MouseButton::Right && !(mods & kModShift)) || button == MouseButton::Left) {
-    gesture_ = Gesture::Orbit;
+    tools_.gesture_ = Gesture::Orbit;
   } else {
-    gesture_ = Gesture::Pan;
+    tools_.gesture_ = Gesture::Pan;
   }
 }
 
 void ViewerState::mouseMove(const Vec2& pos) {
-  switch (gesture_) {
+  switch (tools_.gesture_) {
     case Gesture::PendingNode:
-      if ((pos - pressPos_).norm() < options_.dragThresholdPx) break;
-      gesture_ = Gesture::DragNode;
-      ++dragSerial_;
-      selected_ = active_ = gestureNode_;
-      activeChosen_ = true;
+      if ((pos - tools_.pressPos_).norm() < options_.dragThresholdPx) break;
+      tools_.gesture_ = Gesture::DragNode;
+      ++tools_.dragSerial_;
+      tools_.selected_ = tools_.active_ = tools_.gestureNode_;
+      tools_.activeChosen_ = true;
       [[fallthrough]];
     case Gesture::DragNode:
-      moveNodeImpl(gestureNode_, pos, "drag:" + std::to_string(dragSerial_));
+      moveNodeImpl(tools_.gestureNode_, pos, "drag:" + std::to_string(tools_.dragSerial_));
       break;
     case Gesture::Orbit:
-      orbit_.rotate(lastPos_, pos);
+      view_.orbit_.rotate(tools_.lastPos_, pos);
       viewMoved();
       break;
     case Gesture::Pan:
-      orbit_.pan(pos - lastPos_);
+      view_.orbit_.pan(pos - tools_.lastPos_);
       viewMoved();
       break;
     case Gesture::ToolPath:
-      toolPath_.push_back(pos);
+      tools_.toolPath_.push_back(pos);
       ++sceneVersion_;
       break;
     default:
       break;
   }
-  lastPos_ = pos;
+  tools_.lastPos_ = pos;
 }
 
 void ViewerState::mouseUp(const Vec2& pos, MouseButton button, int mods) {
   (void)mods;
-  if (gesture_ == Gesture::None || button != gestureButton_) return;
-  if (pos != lastPos_) mouseMove(pos);
-  Gesture g = gesture_;
-  gesture_ = Gesture::None;
+  if (tools_.gesture_ == Gesture::None || button != tools_.gestureButton_) return;
+  if (pos != tools_.lastPos_) mouseMove(pos);
+  Gesture g = tools_.gesture_;
+  tools_.gesture_ = Gesture::None;
   if (g == Gesture::ToolPath) {
     toolMouseUp(pos);
   } else if (g == Gesture::PendingNode) {
-    if (gestureMods_ & kModCtrl) {
+    if (tools_.gestureMods_ & kModCtrl) {
       // Ctrl+click: inspect a node without changing where new nodes attach.
-      selected_ = gestureNode_;
+      tools_.selected_ = tools_.gestureNode_;
       ++sceneVersion_;
     } else {
-      selectNode(gestureNode_);
+      selectNode(tools_.gestureNode_);
     }
-    if (const std::size_t under = markersAt(pos); under > 1)
-      info("selected node " + std::to_string(gestureNode_) + ", the nearest to the eye of " + std::to_string(under) +
-           " markers under the click");
+    if (const std::size_t under = scene_.markersAt(pos); under > 1)
+      info("selected node " + std::to_string(tools_.gestureNode_) + ", the nearest to the eye of " +
+           std::to_string(under) + " markers under the click");
   } else if (g == Gesture::PendingAdd) {
-    if ((pos - pressPos_).norm() < options_.dragThresholdPx) addNodeAt(pos);
+    if ((pos - tools_.pressPos_).norm() < options_.dragThresholdPx) addNodeAt(pos);
   } else if (g == Gesture::PendingEmpty) {
-    if ((pos - pressPos_).norm() < options_.dragThresholdPx) {
+    if ((pos - tools_.pressPos_).norm() < options_.dragThresholdPx) {
       selectNode(kNoNode);
       info("no node here (nothing added): N or Tools > Add nodes adds nodes with a click, Shift+click adds one");
     }
@@ -127,7 +121,7 @@ void ViewerState::mouseUp(const Vec2& pos, MouseButton button, int mods) {
 }
 
 void ViewerState::scroll(double steps) {
-  orbit_.zoom(steps);
+  view_.orbit_.zoom(steps);
   viewMoved();
 }
 
@@ -171,32 +165,32 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
   } else if (key == "y" && ctrl) {
     redo();
   } else if (key == "s" && ctrl) {
-    if (sketchPath().empty())
+    if (doc_.sketchPath().empty())
       error("save: no sketch path (type one in the panel and use Save)");
     else
-      saveSketch(sketchPath());
+      saveSketch(doc_.sketchPath());
   } else if (key == "escape") {
     selectNode(kNoNode);
-    dismissStatus();
+    status_.dismiss();
   } else if (key == "f") {
-    fitView();
+    view_.fitView();
   } else if (key == "o") {
-    setOrthographic(!orbit_.orthographic());
+    view_.setOrthographic(!view_.orbit_.orthographic());
   } else if (key == "1") {
-    presetView(geom::PresetView::Front);
+    view_.presetView(geom::PresetView::Front);
   } else if (key == "2") {
-    presetView(geom::PresetView::Side);
+    view_.presetView(geom::PresetView::Side);
   } else if (key == "3") {
-    presetView(geom::PresetView::Top);
+    view_.presetView(geom::PresetView::Top);
   } else if (key == "a") {
     requestAutoSketchUniform();
   } else if (key == "w") {
-    display_.meshStyle = static_cast<MeshStyle>((static_cast<int>(display_.meshStyle) + 1) % 3);
+    view_.display_.meshStyle = static_cast<MeshStyle>((static_cast<int>(view_.display_.meshStyle) + 1) % 3);
   } else if (key == "c") {
-    display_.colorMode = nextColorMode(display_.colorMode, cloud_);  // the file's attributes too
+    view_.display_.colorMode = nextColorMode(view_.display_.colorMode, cloud_);  // the file's attributes too
   } else if (key == "l") {
-    display_.labels = static_cast<LabelMode>((static_cast<int>(display_.labels) + 1) % 3);
-    info(std::string("node labels: ") + toString(display_.labels));
+    view_.display_.labels = static_cast<LabelMode>((static_cast<int>(view_.display_.labels) + 1) % 3);
+    info(std::string("node labels: ") + toString(view_.display_.labels));
   } else {
     return false;
   }

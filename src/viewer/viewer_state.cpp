@@ -1,7 +1,6 @@
-// ViewerState, part 1: the state itself and its edit commands — construction, the cloud, the
-// edit protocol (undo, rebuild, autosave) and every sketch action. Saving, loading and exporting
-// are in viewer_files.cpp; input handling (mouse, wheel, keys, the view they steer) in
-// viewer_input.cpp; what is drawn (colours, markers, lines, status messages) in viewer_draw.cpp.
+// ViewerState itself and its edit commands: construction, the cloud, the edit protocol (undo,
+// rebuild, autosave) and every sketch action. See viewer_state.h for the map of the files that
+// implement ViewerState and of the parts it is made of.
 #include "treesketch/viewer/viewer_state.h"
 
 #include <algorithm>
@@ -47,7 +46,7 @@ class NullReconstruction : public ViewerReconstruction {
 }  // namespace
 
 ViewerState::ViewerState(const ViewerOptions& options, ReconstructionFactory factory)
-    : options_(options), factory_(std::move(factory)), undo_(options.undoLimit) {
+    : options_(options), factory_(std::move(factory)), status_(options.statusInfoSeconds), undo_(options.undoLimit) {
   if (!factory_) factory_ = [](const geom::PointCloud& c) { return makeDefaultReconstruction(c); };
   recon_ = std::make_unique<NullReconstruction>();
 }
@@ -108,27 +107,26 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     cloud_ = std::move(cloud);
     ++cloudVersion_;
     up_ = up;
-    viewUp_ = toUpDirection(up);
+    view_.up_ = toUpDirection(up);
     sketch_ = sketch::Sketch{};
     sketch_.up = up;
     bounds_ = box;
     sketch_.defaults = defaults;
     undo_.clear();
     lastEditKey_.clear();
-    selected_ = active_ = kNoNode;
-    activeChosen_ = false;
+    tools_.selected_ = tools_.active_ = kNoNode;
+    tools_.activeChosen_ = false;
     dirty_ = false;
-    recoveryPending_ = false;
     doc_.setCloud(sourcePath, cloud_);
 
-    orbit_.setSceneBounds(bounds_);
-    orbit_.preset(geom::PresetView::Front, upDirectionVector(viewUp_));
-    colorsStale_ = true;
+    view_.orbit_.setSceneBounds(bounds_);
+    view_.orbit_.preset(geom::PresetView::Front, upDirectionVector(view_.up_));
+    scene_.colorsStale_ = true;
     resetReconstruction();
     rebuild();
     info("opened " + (sourcePath.empty() ? std::string("cloud") : sourcePath.string()) + ": " +
-         std::to_string(cloud_.size()) + " points, up " + toString(viewUp_));
-    upWarningDismissed_ = false;
+         std::to_string(cloud_.size()) + " points, up " + toString(view_.up_));
+    view_.upWarningDismissed_ = false;
     if (std::string w = lyingDownWarning(); !w.empty()) info("warning: " + w);
     // Last, so that the offer of an earlier autosave is the message shown.
     detectRecovery();
@@ -169,17 +167,17 @@ void ViewerState::endEdit() {
   fixSelection();
   rebuild();
   // A drag is one edit: it is saved once, when the button is released.
-  if (gesture_ == Gesture::DragNode)
+  if (tools_.gesture_ == Gesture::DragNode)
     autosavePending_ = true;
   else
     autosave();
 }
 
 void ViewerState::fixSelection() {
-  if (selected_ != kNoNode && !sketch_.contains(selected_)) selected_ = kNoNode;
-  if (active_ != kNoNode && !sketch_.contains(active_)) active_ = kNoNode;
-  if (active_ == kNoNode) activeChosen_ = false;
-  if (active_ == kNoNode && !sketch_.empty()) active_ = sketch_.root();
+  if (tools_.selected_ != kNoNode && !sketch_.contains(tools_.selected_)) tools_.selected_ = kNoNode;
+  if (tools_.active_ != kNoNode && !sketch_.contains(tools_.active_)) tools_.active_ = kNoNode;
+  if (tools_.active_ == kNoNode) tools_.activeChosen_ = false;
+  if (tools_.active_ == kNoNode && !sketch_.empty()) tools_.active_ = sketch_.root();
 }
 
 void ViewerState::rebuild() {
@@ -187,25 +185,25 @@ void ViewerState::rebuild() {
   runAction("rebuild", [&] { recon_->update(sketch_); });
   lastRebuildMs_ = timer.ms();
   ++sceneVersion_;
-  if (display_.colorMode == ColorMode::CircleDistance) colorsStale_ = true;
+  if (view_.display_.colorMode == ColorMode::CircleDistance) scene_.colorsStale_ = true;
 }
 
 void ViewerState::autosave() {
   // An earlier session's autosave waits for the person's choice: never overwrite it before.
-  if (autosavePath().empty() || recoveryPending_) return;
+  if (doc_.autosavePath().empty() || doc_.recoveryPending()) return;
   // An empty sketch (undone or cleared to nothing) removes the autosave: nothing to bring back.
-  runAction("autosave to " + autosavePath().string(), [&] { doc_.writeAutosave(sketch_); });
+  runAction("autosave to " + doc_.autosavePath().string(), [&] { doc_.writeAutosave(sketch_); });
 }
 
 bool ViewerState::edit(const std::string& name, const std::string& label, const std::string& mergeKey,
                        const std::function<void()>& body) {
   if (refuseWhileBusy(name)) return false;
   sketch::Sketch before = sketch_;
-  NodeId selBefore = selected_, actBefore = active_;
+  NodeId selBefore = tools_.selected_, actBefore = tools_.active_;
   if (!runAction(name, body)) {
     sketch_ = std::move(before);
-    selected_ = selBefore;
-    active_ = actBefore;
+    tools_.selected_ = selBefore;
+    tools_.active_ = actBefore;
     return false;
   }
   if (mergeKey.empty() || mergeKey != lastEditKey_) undo_.push(before, label);
@@ -221,14 +219,14 @@ bool ViewerState::addNodeAt(const Vec2& screen) {
   }
   std::string how;
   NodeId added = kNoNode, parent = kNoNode;
-  const std::size_t errorsBefore = errorCount_;
-  if (!orbit_.viewport().contains(screen)) {
+  const std::size_t errorsBefore = status_.errorCount();
+  if (!view_.orbit_.viewport().contains(screen)) {
     error("add node: the point is outside the view");
     return false;
   }
   // A node's circle is fitted from the points along its view ray: where the ray meets none, the
   // node could only be skipped (or fit something far away), so nothing is added.
-  if (!pickPoint(cloud_, orbit_.camera(), screen, options_.pickRadiusPx).found) {
+  if (!pickPoint(cloud_, view_.orbit_.camera(), screen, options_.pickRadiusPx).found) {
     info("add node: nothing added: the view ray there meets no points (none within " +
          std::to_string(static_cast<int>(options_.pickRadiusPx)) + " px of the click)");
     return false;
@@ -239,21 +237,21 @@ bool ViewerState::addNodeAt(const Vec2& screen) {
       // (after a load or an automatic sketch the active node is only the root by default), a click
       // that missed a marker in a dense skeleton means "here, next to that node": attach it to the
       // nearest marker, never silently to the root.
-      if (activeChosen_ && active_ != kNoNode && sketch_.contains(active_)) {
-        parent = active_;
+      if (tools_.activeChosen_ && tools_.active_ != kNoNode && sketch_.contains(tools_.active_)) {
+        parent = tools_.active_;
       } else {
-        parent = nearestMarker(screen);
+        parent = scene_.nearestMarker(screen);
         how = parent != kNoNode ? " (the nearest node; select a node to attach elsewhere)"
                                 : " (the root: no node is visible in this view)";
         if (parent == kNoNode) parent = sketch_.root();
       }
     }
-    int cam = sketch_.addCamera(orbit_.camera());
+    int cam = sketch_.addCamera(view_.orbit_.camera());
     added = sketch_.addScreenNode(parent, cam, screen);
-    selected_ = active_ = added;
+    tools_.selected_ = tools_.active_ = added;
   });
-  if (ok) activeChosen_ = true;
-  if (ok && errorCount_ == errorsBefore) {  // a rebuild error stays the message shown
+  if (ok) tools_.activeChosen_ = true;
+  if (ok && status_.errorCount() == errorsBefore) {  // a rebuild error stays the message shown
     info(parent == kNoNode ? "added node " + std::to_string(added) + " (the root)"
                            : "added node " + std::to_string(added) + " under node " + std::to_string(parent) + how);
   }
@@ -266,7 +264,7 @@ bool ViewerState::addNodeAt(const Vec2& screen) {
 
 bool ViewerState::selectNode(NodeId id) {
   if (id == kNoNode) {
-    selected_ = kNoNode;
+    tools_.selected_ = kNoNode;
     ++sceneVersion_;
     return true;
   }
@@ -274,8 +272,8 @@ bool ViewerState::selectNode(NodeId id) {
     error("select: no node " + std::to_string(id));
     return false;
   }
-  selected_ = active_ = id;
-  activeChosen_ = true;
+  tools_.selected_ = tools_.active_ = id;
+  tools_.activeChosen_ = true;
   lastEditKey_.clear();
   ++sceneVersion_;
   return true;
@@ -286,8 +284,8 @@ bool ViewerState::setActiveNode(NodeId id) {
     error("make active: no node " + std::to_string(id));
     return false;
   }
-  active_ = id;
-  activeChosen_ = true;
+  tools_.active_ = id;
+  tools_.activeChosen_ = true;
   ++sceneVersion_;
   return true;
 }
@@ -306,7 +304,7 @@ bool ViewerState::moveNodeTo(NodeId id, const Vec2& screen) { return moveNodeImp
 bool ViewerState::moveNodeImpl(NodeId id, const Vec2& screen, const std::string& key) {
   return edit("move node", "move node " + std::to_string(id), key, [&] {
     const sketch::Node& node = sketch_.node(id);
-    geom::Camera cur = orbit_.camera();
+    geom::Camera cur = view_.orbit_.camera();
     if (node.isScreenNode() && sameAsCurrent(sketch_.cameras()[node.camera])) {
       sketch_.moveNode(id, screen);
     } else {
@@ -326,32 +324,32 @@ bool ViewerState::moveNodeImpl(NodeId id, const Vec2& screen, const std::string&
 }
 
 bool ViewerState::deleteSelected(bool withSubtree) {
-  if (selected_ == kNoNode) {
+  if (tools_.selected_ == kNoNode) {
     error("delete: no node selected");
     return false;
   }
-  NodeId id = selected_;
+  NodeId id = tools_.selected_;
   if (withSubtree && !sketch_.node(id).children.empty()) return requestDeleteSubtree(id);
   return edit("delete node", std::string(withSubtree ? "delete subtree " : "delete node ") + std::to_string(id), "",
               [&] {
                 NodeId parent = sketch_.node(id).parent;
                 sketch_.removeNode(id, withSubtree);
                 if (parent != kNoNode && sketch_.contains(parent)) {
-                  selected_ = active_ = parent;
+                  tools_.selected_ = tools_.active_ = parent;
                 } else {
-                  selected_ = kNoNode;
-                  active_ = sketch_.empty() ? kNoNode : sketch_.root();
+                  tools_.selected_ = kNoNode;
+                  tools_.active_ = sketch_.empty() ? kNoNode : sketch_.root();
                 }
               });
 }
 
 sketch::SamplingParams ViewerState::paramsForEdit() const {
-  if (selected_ != kNoNode && sketch_.contains(selected_)) return sketch_.node(selected_).params;
+  if (tools_.selected_ != kNoNode && sketch_.contains(tools_.selected_)) return sketch_.node(tools_.selected_).params;
   return sketch_.defaults;
 }
 
 bool ViewerState::applyParams(const sketch::SamplingParams& params, const std::string& label, const std::string& key) {
-  NodeId id = (selected_ != kNoNode && sketch_.contains(selected_)) ? selected_ : kNoNode;
+  NodeId id = (tools_.selected_ != kNoNode && sketch_.contains(tools_.selected_)) ? tools_.selected_ : kNoNode;
   std::string fullKey = key + ":" + std::to_string(id);
   return edit(label, label + (id == kNoNode ? " (new nodes)" : " of node " + std::to_string(id)), fullKey, [&] {
     if (id == kNoNode)
@@ -418,8 +416,8 @@ bool ViewerState::clearSketch() {
     fresh.up = sketch_.up;
     fresh.defaults = sketch_.defaults;
     sketch_ = std::move(fresh);
-    selected_ = active_ = kNoNode;
-    activeChosen_ = false;
+    tools_.selected_ = tools_.active_ = kNoNode;
+    tools_.activeChosen_ = false;
   });
 }
 
@@ -428,19 +426,19 @@ bool ViewerState::autoSketchUniform(int nodes) {
     error("automatic sketch: open a point cloud first");
     return false;
   }
-  if (!libraryUpAxis(viewUp_)) {
-    error(std::string("automatic sketch: needs up +y or +z (the view's up is ") + toString(viewUp_) + ")");
+  if (!libraryUpAxis(view_.up_)) {
+    error(std::string("automatic sketch: needs up +y or +z (the view's up is ") + toString(view_.up_) + ")");
     return false;
   }
   bool ok = edit("automatic sketch", "uniform automatic sketch", "", [&] {
-    sketch::Sketch uniform = sketch::uniformAutoSketch(cloud_, orbit_.camera(), nodes, up_);
+    sketch::Sketch uniform = sketch::uniformAutoSketch(cloud_, view_.orbit_.camera(), nodes, up_);
     edit::copyNotWood(sketch_, uniform);  // the person's lassos stay
     sketch_ = std::move(uniform);
-    selected_ = kNoNode;
+    tools_.selected_ = kNoNode;
     std::vector<NodeId> order = sketch_.topologicalOrder();
-    active_ = order.empty() ? kNoNode : order.back();
+    tools_.active_ = order.empty() ? kNoNode : order.back();
   });
-  if (ok) untouchedAuto_ = true, activeChosen_ = false;
+  if (ok) untouchedAuto_ = true, tools_.activeChosen_ = false;
   return ok;
 }
 
@@ -489,8 +487,8 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
     error("automatic skeleton sketch: open a point cloud first");
     return false;
   }
-  if (!libraryUpAxis(viewUp_)) {
-    error(std::string("automatic skeleton sketch: needs up +y or +z (the view's up is ") + toString(viewUp_) + ")");
+  if (!libraryUpAxis(view_.up_)) {
+    error(std::string("automatic skeleton sketch: needs up +y or +z (the view's up is ") + toString(view_.up_) + ")");
     return false;
   }
   bool ok = edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
@@ -504,26 +502,26 @@ bool ViewerState::autoSketchSkeleton(bool leafOn) {
     if (result.sketch.empty()) throw OptionsError("no skeleton found in this cloud");
     edit::copyNotWood(sketch_, result.sketch);
     sketch_ = std::move(result.sketch);
-    selected_ = kNoNode;
-    active_ = sketch_.root();
+    tools_.selected_ = kNoNode;
+    tools_.active_ = sketch_.root();
     info("automatic skeleton sketch: " + std::to_string(sketch_.size()) +
          " nodes keep the automatic model's circles "
          "(edit a node, or Refit, to fit it from the cloud)");
   });
-  if (ok) untouchedAuto_ = true, activeChosen_ = false;
+  if (ok) untouchedAuto_ = true, tools_.activeChosen_ = false;
   return ok;
 }
 
 bool ViewerState::refitSelected() {
-  if (selected_ == kNoNode || !sketch_.contains(selected_)) {
+  if (tools_.selected_ == kNoNode || !sketch_.contains(tools_.selected_)) {
     error("refit: select a node first");
     return false;
   }
-  if (!sketch_.node(selected_).kept) {
-    info("refit: node " + std::to_string(selected_) + " is fitted from the cloud already");
+  if (!sketch_.node(tools_.selected_).kept) {
+    info("refit: node " + std::to_string(tools_.selected_) + " is fitted from the cloud already");
     return false;
   }
-  const NodeId id = selected_;
+  const NodeId id = tools_.selected_;
   return edit("refit node", "refit node " + std::to_string(id), "", [&] { sketch_.setKeptCircle(id, std::nullopt); });
 }
 

@@ -17,24 +17,6 @@ using geom::Vec3;
 
 namespace {
 
-const char* toolName(ViewerState::Tool t) {
-  switch (t) {
-    case ViewerState::Tool::Select:
-      return "select (click a node to select it, drag it to move it; Shift+click adds a node)";
-    case ViewerState::Tool::AddNodes:
-      return "add nodes (a click on the cloud adds a node under the active node)";
-    case ViewerState::Tool::Stroke:
-      return "stroke (drag along a missing limb, from the node it grows from)";
-    case ViewerState::Tool::Lasso:
-      return "lasso (drag around points that are not wood)";
-    case ViewerState::Tool::Region:
-      return "automatic in region (drag around the region)";
-    case ViewerState::Tool::Reattach:
-      return "re-attach (click the node to move, then its new parent)";
-  }
-  return "?";
-}
-
 std::map<NodeId, edit::NodeAnchor> toEdit(const std::map<NodeId, std::pair<Vec3, double>>& a) {
   std::map<NodeId, edit::NodeAnchor> out;
   for (const auto& [id, v] : a) out[id] = edit::NodeAnchor{v.first, v.second};
@@ -43,30 +25,12 @@ std::map<NodeId, edit::NodeAnchor> toEdit(const std::map<NodeId, std::pair<Vec3,
 
 }  // namespace
 
-const char* ViewerState::toolLabel(Tool tool) {
-  switch (tool) {
-    case Tool::Select:
-      return "select";
-    case Tool::AddNodes:
-      return "add nodes";
-    case Tool::Stroke:
-      return "stroke";
-    case Tool::Lasso:
-      return "not-wood lasso";
-    case Tool::Region:
-      return "automatic in region";
-    case Tool::Reattach:
-      return "re-attach";
-  }
-  return "?";
-}
-
 void ViewerState::setTool(Tool tool) {
-  tool_ = tool;
-  reattachSource_ = kNoNode;
-  toolPath_.clear();
+  tools_.tool_ = tool;
+  tools_.reattachSource_ = kNoNode;
+  tools_.toolPath_.clear();
   ++sceneVersion_;
-  info(std::string("tool: ") + toolName(tool));
+  info(std::string("tool: ") + toolHelp(tool));
 }
 
 std::map<NodeId, std::pair<Vec3, double>> ViewerState::anchorsForTools() const {
@@ -91,11 +55,11 @@ bool ViewerState::strokeLimb(const std::vector<Vec2>& stroke) {
   edit::StrokeResult r;
   const auto anchors = toEdit(anchorsForTools());
   bool ok = edit("draw limb", "draw limb", "", [&] {
-    const geom::Camera cam = orbit_.camera();
+    const geom::Camera cam = view_.orbit_.camera();
     const sketch::Sketch& sk = sketch_;
     edit::ViewPicker picker(cloud_, cam, 4.0, [&sk](const Vec3& p) { return sk.isNotWood(p); });
     r = edit::drawLimb(sketch_, picker, cloud_, stroke, anchors);
-    selected_ = active_ = r.added.back();
+    tools_.selected_ = tools_.active_ = r.added.back();
   });
   if (ok) {
     info("drew a limb: " + std::to_string(r.added.size()) + " nodes under node " + std::to_string(r.attachedTo) + "; " +
@@ -129,11 +93,11 @@ bool ViewerState::lassoNotWood(const std::vector<Vec2>& polygon) {
   }
   std::size_t marked = 0, refit = 0;
   bool ok = edit("not-wood lasso", "not-wood lasso", "", [&] {
-    marked = edit::lassoNotWood(sketch_, cloud_, orbit_.camera(), polygon);
+    marked = edit::lassoNotWood(sketch_, cloud_, view_.orbit_.camera(), polygon);
     refit = edit::refitNotWoodCircles(sketch_);  // a model circle inside the lasso is fitted again
   });
   if (ok) {
-    colorsStale_ = true;
+    scene_.colorsStale_ = true;
     info("lasso: " + std::to_string(marked) + " points marked not-wood (left out of fits and the automatic skeleton)" +
          (refit ? "; " + std::to_string(refit) + " model circles inside it are fitted again from the other points"
                 : std::string()));
@@ -147,7 +111,7 @@ bool ViewerState::clearNotWood() {
     return false;
   }
   bool ok = edit("clear not-wood", "clear not-wood lassos", "", [&] { sketch_.clearNotWood(); });
-  if (ok) colorsStale_ = true;
+  if (ok) scene_.colorsStale_ = true;
   return ok;
 }
 
@@ -155,8 +119,8 @@ bool ViewerState::deleteSubtree(NodeId id) {
   return edit("delete subtree", "delete subtree " + std::to_string(id), "", [&] {
     const NodeId parent = sketch_.node(id).parent;
     sketch::deleteSubtree(sketch_, id);
-    selected_ = kNoNode;
-    active_ = parent != kNoNode && sketch_.contains(parent) ? parent : kNoNode;
+    tools_.selected_ = kNoNode;
+    tools_.active_ = parent != kNoNode && sketch_.contains(parent) ? parent : kNoNode;
   });
 }
 
@@ -227,8 +191,8 @@ bool ViewerState::automaticInRegion(const std::vector<Vec2>& polygon) {
   bool ok = edit("automatic in region", "automatic in region", "", [&] {
     edit::AutoHereOptions o;
     o.skeleton = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOff, up_);
-    r = edit::automaticInRegion(sketch_, cloud_, orbit_.camera(), polygon, anchors, o);
-    if (active_ == kNoNode && !sketch_.empty()) active_ = sketch_.root();
+    r = edit::automaticInRegion(sketch_, cloud_, view_.orbit_.camera(), polygon, anchors, o);
+    if (tools_.active_ == kNoNode && !sketch_.empty()) tools_.active_ = sketch_.root();
   });
   if (ok)
     info("automatic in region: " + std::to_string(r.added.size()) + " nodes added (" + std::to_string(r.duplicates) +
@@ -237,29 +201,30 @@ bool ViewerState::automaticInRegion(const std::vector<Vec2>& polygon) {
 }
 
 double ViewerState::selectedDepth() const {
-  if (selected_ == kNoNode || !sketch_.contains(selected_)) return std::numeric_limits<double>::quiet_NaN();
-  NodeFitView f = recon_->nodeFit(selected_);
+  if (tools_.selected_ == kNoNode || !sketch_.contains(tools_.selected_))
+    return std::numeric_limits<double>::quiet_NaN();
+  NodeFitView f = recon_->nodeFit(tools_.selected_);
   if (f.status != NodeStatus::Fitted) return std::numeric_limits<double>::quiet_NaN();
-  return (f.circle.centre - orbit_.camera().eye()).norm();
+  return (f.circle.centre - view_.orbit_.camera().eye()).norm();
 }
 
 // ---- input -----------------------------------------------------------------------------------------
 
 bool ViewerState::toolMouseDown(const Vec2& pos, MouseButton button, int mods) {
-  if (tool_ == Tool::Select || tool_ == Tool::AddNodes || button != MouseButton::Left || (mods & kModAlt))
+  if (tools_.tool_ == Tool::Select || tools_.tool_ == Tool::AddNodes || button != MouseButton::Left || (mods & kModAlt))
     return false;
-  gesture_ = Gesture::ToolPath;
-  gestureNode_ = tool_ == Tool::Reattach ? nodeAt(pos) : kNoNode;
-  toolPath_ = {pos};
+  tools_.gesture_ = Gesture::ToolPath;
+  tools_.gestureNode_ = tools_.tool_ == Tool::Reattach ? scene_.nodeAt(pos) : kNoNode;
+  tools_.toolPath_ = {pos};
   return true;
 }
 
 bool ViewerState::toolMouseUp(const Vec2& pos) {
-  std::vector<Vec2> path = std::move(toolPath_);
-  toolPath_.clear();
+  std::vector<Vec2> path = std::move(tools_.toolPath_);
+  tools_.toolPath_.clear();
   if (path.empty() || path.back() != pos) path.push_back(pos);
   ++sceneVersion_;
-  switch (tool_) {
+  switch (tools_.tool_) {
     case Tool::Select:
     case Tool::AddNodes:
       return false;
@@ -270,22 +235,24 @@ bool ViewerState::toolMouseUp(const Vec2& pos) {
     case Tool::Region:
       return automaticInRegion(path);
     case Tool::Reattach:
-      if (gestureNode_ == kNoNode) {
+      if (tools_.gestureNode_ == kNoNode) {
         error("re-attach: click on a node");
         return false;
       }
       // The first click in the tool names the node to move (whatever was selected before), the
       // second its new parent; Shift on the second turns the limb round.
-      if (reattachSource_ == kNoNode || !sketch_.contains(reattachSource_) || reattachSource_ == gestureNode_) {
-        reattachSource_ = gestureNode_;
-        selectNode(gestureNode_);
-        info("re-attach: now click the new parent of node " + std::to_string(gestureNode_) +
-             " (Shift+click: make node " + std::to_string(gestureNode_) + " the base of its limb, turned round)");
+      if (tools_.reattachSource_ == kNoNode || !sketch_.contains(tools_.reattachSource_) ||
+          tools_.reattachSource_ == tools_.gestureNode_) {
+        tools_.reattachSource_ = tools_.gestureNode_;
+        selectNode(tools_.gestureNode_);
+        info("re-attach: now click the new parent of node " + std::to_string(tools_.gestureNode_) +
+             " (Shift+click: make node " + std::to_string(tools_.gestureNode_) +
+             " the base of its limb, turned round)");
         return true;
       } else {
-        const NodeId source = reattachSource_;
-        reattachSource_ = kNoNode;
-        return reattachNode(source, gestureNode_, gestureMods_ & kModShift);
+        const NodeId source = tools_.reattachSource_;
+        tools_.reattachSource_ = kNoNode;
+        return reattachNode(source, tools_.gestureNode_, tools_.gestureMods_ & kModShift);
       }
   }
   return false;
@@ -293,7 +260,7 @@ bool ViewerState::toolMouseUp(const Vec2& pos) {
 
 bool ViewerState::toolKey(const std::string& key, int mods) {
   if (mods & (kModCtrl | kModAlt)) return false;
-  auto toggle = [&](Tool t) { setTool(tool_ == t ? Tool::Select : t); };
+  auto toggle = [&](Tool t) { setTool(tools_.tool_ == t ? Tool::Select : t); };
   if (key == "n") {
     toggle(Tool::AddNodes);
   } else if (key == "g") {
@@ -305,12 +272,12 @@ bool ViewerState::toolKey(const std::string& key, int mods) {
   } else if (key == "p") {
     toggle(Tool::Reattach);
   } else if (key == "h") {
-    if (selected_ == kNoNode) {
+    if (tools_.selected_ == kNoNode) {
       error("automatic below: select a node first");
     } else {
-      automaticBelow(selected_);
+      automaticBelow(tools_.selected_);
     }
-  } else if (key == "escape" && tool_ != Tool::Select) {
+  } else if (key == "escape" && tools_.tool_ != Tool::Select) {
     setTool(Tool::Select);
     return false;  // Escape also clears the selection, as before
   } else {

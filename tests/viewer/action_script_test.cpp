@@ -104,11 +104,11 @@ geom::PointCloud trunk() {
 TEST(ActionScript, RunsASessionAndReportsFailures) {
   test::TempDir dir;
   ViewerState state;
-  state.setViewport(geom::Viewport{0, 0, 800, 600});
+  state.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
   state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
-  Vec2 a = state.camera().project(Vec3(0, 1.5, 0)).head<2>();
-  Vec2 b = state.camera().project(Vec3(0, 2.5, 0)).head<2>();
+  Vec2 a = state.view().camera().project(Vec3(0, 1.5, 0)).head<2>();
+  Vec2 b = state.view().camera().project(Vec3(0, 2.5, 0)).head<2>();
   std::ostringstream text;
   text << "[{\"click\": [" << a.x() << ", " << a.y() << "]}, {\"click\": [" << b.x() << ", " << b.y() << "]},"
        << R"({"expect": {"nodes": 2, "fitted": 2, "active": 1}}, "save", "export )" << (dir / "m.obj").string()
@@ -143,13 +143,13 @@ TEST(ActionScript, TheModelsOutputsAreTheCommandLines) {
   const auto p = [&](const char* name) { return (dir / name).string(); };
   io::writePointCloud(dir / "trunk.xyz", trunk());
   ViewerState state;
-  state.setViewport(geom::Viewport{0, 0, 800, 600});
+  state.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(state.setCloud(io::readPointCloud(dir / "trunk.xyz"), geom::UpAxis::Y));
   state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   std::ostringstream text;
   text << "[";
   for (double y : {0.5, 1.5, 2.5, 3.5}) {
-    const Vec2 at = state.camera().project(Vec3(0, y, 0)).head<2>();
+    const Vec2 at = state.view().camera().project(Vec3(0, y, 0)).head<2>();
     text << "{\"click\": [" << at.x() << ", " << at.y() << "]}, ";
   }
   text << R"({"expect": {"nodes": 4, "fitted": 4}}, "save", )"
@@ -184,7 +184,7 @@ TEST(ActionScript, TheModelsOutputsAreTheCommandLines) {
 
 TEST(ActionScript, RefitButtonsDropKeptCircles) {
   ViewerState state;
-  state.setViewport(geom::Viewport{0, 0, 800, 600});
+  state.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
   state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   ScriptReport report = runActionScript(state, parse(R"(["autoSkeleton"])"));

@@ -28,10 +28,10 @@ std::string text(const sketch::Sketch& s) {
 struct Fixture {
   ViewerState state;
   Fixture() {
-    state.setViewport(geom::Viewport{0, 0, 800, 600});
+    state.view().setViewport(geom::Viewport{0, 0, 800, 600});
     EXPECT_TRUE(state.setCloud(test::forkedTree(), geom::UpAxis::Y));
     state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
-    for (int i = 1; i <= 3; ++i) state.clickAt(state.camera().project(Vec3(0, 0.8 * i, 0)).head<2>());
+    for (int i = 1; i <= 3; ++i) state.clickAt(state.view().camera().project(Vec3(0, 0.8 * i, 0)).head<2>());
   }
 };
 
@@ -39,24 +39,24 @@ TEST(BackgroundJob, CancelLeavesTheSketchAsItWasAndTheStateUsable) {
   Fixture f;
   const std::string before = text(f.state.sketch());
   const std::size_t undoBefore = f.state.history().undoCount();
-  f.state.holdJobs(true);
+  f.state.jobs().hold(true);
   ASSERT_TRUE(f.state.startAutoSkeletonJob());
-  EXPECT_TRUE(f.state.busy());
+  EXPECT_TRUE(f.state.jobs().busy());
   EXPECT_FALSE(f.state.pollJob());
   // The view moves; edits and a second job are refused with a message, not lost silently.
   f.state.dragTo(geom::Vec2(500, 300), geom::Vec2(540, 280), MouseButton::Right);
-  const std::size_t errors = f.state.errorCount();
+  const std::size_t errors = f.state.status().errorCount();
   EXPECT_FALSE(f.state.addNodeAt(geom::Vec2(400, 300)));
   EXPECT_FALSE(f.state.startAutoSkeletonJob());
-  EXPECT_EQ(f.state.errorCount(), errors + 2);
-  EXPECT_NE(f.state.lastMessage().text.find("busy"), std::string::npos);
-  f.state.cancelJob();
-  EXPECT_TRUE(f.state.jobProgress().cancelling);
+  EXPECT_EQ(f.state.status().errorCount(), errors + 2);
+  EXPECT_NE(f.state.status().lastMessage().text.find("busy"), std::string::npos);
+  f.state.jobs().cancel();
+  EXPECT_TRUE(f.state.jobs().progress().cancelling);
   f.state.waitForJob();
-  EXPECT_FALSE(f.state.busy());
+  EXPECT_FALSE(f.state.jobs().busy());
   EXPECT_EQ(text(f.state.sketch()), before);
   EXPECT_EQ(f.state.history().undoCount(), undoBefore);
-  EXPECT_NE(f.state.lastMessage().text.find("cancelled"), std::string::npos);
+  EXPECT_NE(f.state.status().lastMessage().text.find("cancelled"), std::string::npos);
 }
 
 TEST(BackgroundJob, TheResultIsOneUndoableEditAndProgressIsReported) {
@@ -65,11 +65,11 @@ TEST(BackgroundJob, TheResultIsOneUndoableEditAndProgressIsReported) {
   ASSERT_TRUE(f.state.startAutoSkeletonJob());
   double seen = 0.0;
   while (!f.state.pollJob()) {
-    seen = std::max(seen, f.state.jobProgress().fraction);
+    seen = std::max(seen, f.state.jobs().progress().fraction);
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   EXPECT_GT(seen, 0.0);
-  EXPECT_FALSE(f.state.busy());
+  EXPECT_FALSE(f.state.jobs().busy());
   EXPECT_GT(f.state.sketch().keptCircleCount(), 0u);
   EXPECT_FALSE(f.state.hasHandEdits());
   ASSERT_TRUE(f.state.undo());
@@ -90,8 +90,8 @@ TEST(BackgroundJob, AScriptWaitEndsWhenAFrameTookTheResult) {
   bool took = false;
   hooks.frame = [&] {
     if (++frames < 3) return;  // after the option and the start; the third is the wait's
-    f.state.holdJobs(false);
-    for (int i = 0; i < 6000 && f.state.busy(); ++i) {
+    f.state.jobs().hold(false);
+    for (int i = 0; i < 6000 && f.state.jobs().busy(); ++i) {
       if (f.state.pollJob()) took = true;
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
@@ -99,13 +99,13 @@ TEST(BackgroundJob, AScriptWaitEndsWhenAFrameTookTheResult) {
   const ScriptReport report = runActionScript(f.state, script, hooks);
   EXPECT_TRUE(report.failures.empty()) << report.failures.front();
   EXPECT_TRUE(took);
-  EXPECT_FALSE(f.state.busy());
+  EXPECT_FALSE(f.state.jobs().busy());
   EXPECT_GT(f.state.sketch().keptCircleCount(), 0u);
 }
 
 TEST(BackgroundJob, DestroyingTheStateStopsARunningJob) {
   auto s = std::make_unique<Fixture>();
-  s->state.holdJobs(true);
+  s->state.jobs().hold(true);
   ASSERT_TRUE(s->state.startAutoSkeletonJob());
   s.reset();  // must not hang or crash
   SUCCEED();

@@ -19,7 +19,7 @@ std::string readmeRow(const KeyBinding& k) { return "| " + k.keys + " | " + k.ac
 
 TEST(KeyBindings, EveryKeyInTheTableIsBound) {
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   geom::PointCloud cloud;
   for (int i = 0; i < 500; ++i) cloud.positions.emplace_back(0.1 * std::cos(i), 0.01 * i, 0.1 * std::sin(i));
   ASSERT_TRUE(s.setCloud(cloud, geom::UpAxis::Y));

@@ -26,13 +26,13 @@ geom::PointCloud trunk() {
 struct Fixture {
   ViewerState state;
   Fixture() {
-    state.setViewport(geom::Viewport{0, 0, 800, 600});
+    state.view().setViewport(geom::Viewport{0, 0, 800, 600});
     EXPECT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
     state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
     EXPECT_TRUE(state.autoSketchUniform(12));  // the active node is a default, not the person's
   }
   Vec2 markerOf(sketch::NodeId id) const {
-    for (const NodeMarker& m : state.nodeMarkers())
+    for (const NodeMarker& m : state.scene().nodeMarkers())
       if (m.id == id) return m.screen;
     ADD_FAILURE() << "no marker for node " << id;
     return Vec2::Zero();
@@ -50,11 +50,12 @@ TEST(NearMiss, AClickBesideAMarkerAttachesToThatNodeNotTheDefault) {
   const sketch::NodeId target = 5;
   // Just outside the pick radius, to the right of node 5's marker.
   Vec2 at = f.markerOf(target) + Vec2(f.state.options().pickRadiusPx + 5.0, 0.0);
-  ASSERT_EQ(f.state.nodeAt(at), sketch::kNoNode);
+  ASSERT_EQ(f.state.scene().nodeAt(at), sketch::kNoNode);
   f.state.clickAt(at);
   ASSERT_EQ(f.state.sketch().size(), before + 1);
   EXPECT_EQ(f.state.sketch().node(f.lastAdded()).parent, target);
-  EXPECT_NE(f.state.lastMessage().text.find("under node 5"), std::string::npos) << f.state.lastMessage().text;
+  EXPECT_NE(f.state.status().lastMessage().text.find("under node 5"), std::string::npos)
+      << f.state.status().lastMessage().text;
 }
 
 TEST(NearMiss, AClickWithinThePickRadiusSelectsTheNearestNode) {
@@ -65,7 +66,7 @@ TEST(NearMiss, AClickWithinThePickRadiusSelectsTheNearestNode) {
   const std::size_t before = f.state.sketch().size();
   f.state.clickAt(at);
   EXPECT_EQ(f.state.sketch().size(), before);
-  EXPECT_EQ(f.state.selected(), 5);
+  EXPECT_EQ(f.state.tools().selected(), 5);
 }
 
 TEST(NearMiss, ANodeThePersonMadeActiveIsTheParentWhereverTheClick) {

@@ -42,14 +42,15 @@ geom::PointCloud trunk(double dx = 0.0, int n = 6000) {
 struct OpenCloud {
   ViewerState state;
   explicit OpenCloud(const fs::path& cloudFile) {
-    state.setViewport(geom::Viewport{0, 0, 800, 600});
+    state.view().setViewport(geom::Viewport{0, 0, 800, 600});
     EXPECT_TRUE(state.openFile(cloudFile, geom::UpAxis::Y));
   }
   /// Shift+clicks (add a node) at `n` heights up the trunk's axis, each above the last (a click
   /// on an existing node's marker would select it).
   void addNodes(int n, double dx = 0.0) {
     for (int i = 0; i < n; ++i, ++clicks)
-      state.clickAt(state.camera().project(Vec3(dx, 0.3 + 0.35 * clicks, 0)).head<2>(), MouseButton::Left, kModShift);
+      state.clickAt(state.view().camera().project(Vec3(dx, 0.3 + 0.35 * clicks, 0)).head<2>(), MouseButton::Left,
+                    kModShift);
   }
   int clicks = 0;
 };
@@ -93,16 +94,16 @@ TEST(SketchDocument, TwoCloudsInOneFolderKeepTheirOwnSketchesAndAutosaves) {
   TwoClouds t;
   {
     OpenCloud s(t.a);
-    EXPECT_EQ(s.state.sketchPath(), t.dir / "tree.xyz.sketch.json");
+    EXPECT_EQ(s.state.document().sketchPath(), t.dir / "tree.xyz.sketch.json");
     s.addNodes(3);
     ASSERT_EQ(s.state.sketch().size(), 3u);
-    EXPECT_TRUE(fs::exists(s.state.autosavePath()));
+    EXPECT_TRUE(fs::exists(s.state.document().autosavePath()));
     EXPECT_TRUE(s.state.keyPress("ctrl+s"));
     EXPECT_EQ(io::readSketch(t.dir / "tree.xyz.sketch.json").size(), 3u);
     EXPECT_FALSE(fs::exists(t.dir / "tree.xyz.autosave.sketch.json"));  // saved: nothing to bring back
   }
   OpenCloud s(t.b);
-  EXPECT_EQ(s.state.sketchPath(), t.dir / "tree.las.xyz.sketch.json");
+  EXPECT_EQ(s.state.document().sketchPath(), t.dir / "tree.las.xyz.sketch.json");
   s.addNodes(1, 0.5);
   EXPECT_TRUE(s.state.keyPress("ctrl+s"));
   EXPECT_EQ(io::readSketch(t.dir / "tree.xyz.sketch.json").size(), 3u);  // the other tree's is untouched
@@ -115,7 +116,7 @@ TEST(SketchDocument, ASketchForAnotherCloudIsNotLoadedSilently) {
   {
     OpenCloud a(t.a);
     a.addNodes(3);
-    ASSERT_TRUE(a.state.saveSketch(a.state.sketchPath()));
+    ASSERT_TRUE(a.state.saveSketch(a.state.document().sketchPath()));
   }
   OpenCloud s(t.b);
   s.addNodes(1, 0.5);
@@ -152,7 +153,7 @@ TEST(SketchDocument, SavingOverAnotherFileAsks) {
   {
     OpenCloud a(t.a);
     a.addNodes(3);
-    ASSERT_TRUE(a.state.saveSketch(a.state.sketchPath()));
+    ASSERT_TRUE(a.state.saveSketch(a.state.document().sketchPath()));
   }
   const fs::path other = t.dir / "tree.xyz.sketch.json";
   const std::string before = test::readText(other);
@@ -178,7 +179,7 @@ TEST(SketchDocument, SavingOverAnotherFileAsks) {
 TEST(SketchDocument, AutosavesGoWhenUndoneToNothingDiscardedOrTheCloudChanges) {
   TwoClouds t;
   OpenCloud s(t.a);
-  const fs::path autosave = s.state.autosavePath();
+  const fs::path autosave = s.state.document().autosavePath();
   s.addNodes(2);
   ASSERT_TRUE(fs::exists(autosave));
   s.state.undo();
@@ -192,19 +193,19 @@ TEST(SketchDocument, AutosavesGoWhenUndoneToNothingDiscardedOrTheCloudChanges) {
   EXPECT_FALSE(fs::exists(autosave));
   {
     OpenCloud next(t.a);
-    EXPECT_FALSE(next.state.recoveryPending());
+    EXPECT_FALSE(next.state.document().recoveryPending());
   }
   // Saved work, an edit undone back to it, then another cloud: nothing unsaved, so the first
   // cloud's autosave does not stay behind.
   s.addNodes(1);
-  ASSERT_TRUE(s.state.saveSketch(s.state.sketchPath()));
+  ASSERT_TRUE(s.state.saveSketch(s.state.document().sketchPath()));
   EXPECT_FALSE(fs::exists(autosave));
   s.addNodes(1);
   s.state.undo();
   ASSERT_TRUE(fs::exists(autosave));
   ASSERT_TRUE(s.state.openFile(t.b, geom::UpAxis::Y));
   EXPECT_FALSE(fs::exists(autosave));
-  EXPECT_EQ(s.state.autosavePath(), t.dir / "tree.las.xyz.autosave.sketch.json");
+  EXPECT_EQ(s.state.document().autosavePath(), t.dir / "tree.las.xyz.autosave.sketch.json");
 }
 
 TEST(SketchDocument, NeverWritesOverTheOpenCloudOrAFileThatFailedToLoad) {
@@ -217,14 +218,14 @@ TEST(SketchDocument, NeverWritesOverTheOpenCloudOrAFileThatFailedToLoad) {
   EXPECT_FALSE(s.state.exportMesh(t.a));
   EXPECT_FALSE(s.state.exportModel(ViewerState::ModelFile::Cylinders, t.a));
   s.state.setAutosavePath(t.a);
-  EXPECT_NE(s.state.autosavePath(), t.a);
+  EXPECT_NE(s.state.document().autosavePath(), t.a);
   EXPECT_EQ(test::readText(t.a), cloudBytes);
   // A sketch file that does not parse: loading fails, and saving there is refused.
   test::writeText(t.dir / "broken.json", "{ not json");
   EXPECT_FALSE(s.state.loadSketch(t.dir / "broken.json"));
   s.state.setSketchPath(t.dir / "broken.json");
-  EXPECT_FALSE(s.state.keyPress("ctrl+s") && !s.state.lastMessage().error);
-  EXPECT_TRUE(s.state.lastMessage().error);
+  EXPECT_FALSE(s.state.keyPress("ctrl+s") && !s.state.status().lastMessage().error);
+  EXPECT_TRUE(s.state.status().lastMessage().error);
   EXPECT_EQ(test::readText(t.dir / "broken.json"), "{ not json");
   s.state.setAutosavePath(t.dir / "broken.json");
   s.addNodes(1);
@@ -235,11 +236,11 @@ TEST(SketchDocument, ACloudWithNoExtentIsRefusedNotACrash) {
   const double scales[] = {0.0, 1e-300};
   for (double scale : scales) {
     ViewerState s;
-    s.setViewport(geom::Viewport{0, 0, 800, 600});
+    s.view().setViewport(geom::Viewport{0, 0, 800, 600});
     geom::PointCloud flat = trunk();
     for (Vec3& p : flat.positions) p *= scale;
     EXPECT_FALSE(s.setCloud(flat, geom::UpAxis::Y)) << scale;
-    EXPECT_TRUE(s.lastMessage().error);
+    EXPECT_TRUE(s.status().lastMessage().error);
     s.clickAt(Vec2(400, 300), MouseButton::Left, kModShift);
     EXPECT_FALSE(s.autoSketchSkeleton());
     EXPECT_FALSE(s.startAutoSkeletonJob());
@@ -247,48 +248,49 @@ TEST(SketchDocument, ACloudWithNoExtentIsRefusedNotACrash) {
     EXPECT_TRUE(s.sketch().empty());
     // With a cloud open, a failed open keeps it and its sketch working.
     ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
-    s.clickAt(s.camera().project(Vec3(0, 1, 0)).head<2>(), MouseButton::Left, kModShift);
+    s.clickAt(s.view().camera().project(Vec3(0, 1, 0)).head<2>(), MouseButton::Left, kModShift);
     EXPECT_EQ(s.sketch().size(), 1u);
     EXPECT_FALSE(s.setCloud(flat, geom::UpAxis::Y));
     EXPECT_EQ(s.cloud().size(), 6000u);
-    s.clickAt(s.camera().project(Vec3(0, 2, 0)).head<2>(), MouseButton::Left, kModShift);
+    s.clickAt(s.view().camera().project(Vec3(0, 2, 0)).head<2>(), MouseButton::Left, kModShift);
     EXPECT_EQ(s.sketch().size(), 2u);
-    EXPECT_EQ(s.fittedCount(), 2u);
+    EXPECT_EQ(s.scene().fittedCount(), 2u);
   }
 }
 
 TEST(SketchDocument, ClicksSelectByDefaultAndAMissAddsNothing) {
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
-  const Vec2 onTrunk = s.camera().project(Vec3(0, 1, 0)).head<2>();
+  const Vec2 onTrunk = s.view().camera().project(Vec3(0, 1, 0)).head<2>();
   s.clickAt(onTrunk);  // the default tool selects: no node
   EXPECT_TRUE(s.sketch().empty());
-  EXPECT_NE(s.lastMessage().text.find("nothing added"), std::string::npos) << s.lastMessage().text;
+  EXPECT_NE(s.status().lastMessage().text.find("nothing added"), std::string::npos) << s.status().lastMessage().text;
   s.clickAt(onTrunk, MouseButton::Left, kModShift);  // Shift adds
   ASSERT_EQ(s.sketch().size(), 1u);
   EXPECT_TRUE(s.keyPress("n"));
-  EXPECT_EQ(s.tool(), ViewerState::Tool::AddNodes);
+  EXPECT_EQ(s.tools().tool(), ViewerState::Tool::AddNodes);
   // Empty space beside the trunk: the view ray meets no points, so nothing is added.
-  const Vec2 empty = s.camera().project(Vec3(1.5, 1, 0)).head<2>();
+  const Vec2 empty = s.view().camera().project(Vec3(1.5, 1, 0)).head<2>();
   s.clickAt(empty);
   EXPECT_EQ(s.sketch().size(), 1u);
-  EXPECT_NE(s.lastMessage().text.find("meets no points"), std::string::npos) << s.lastMessage().text;
-  s.clickAt(s.camera().project(Vec3(0, 2, 0)).head<2>());
+  EXPECT_NE(s.status().lastMessage().text.find("meets no points"), std::string::npos) << s.status().lastMessage().text;
+  s.clickAt(s.view().camera().project(Vec3(0, 2, 0)).head<2>());
   EXPECT_EQ(s.sketch().size(), 2u);
   EXPECT_TRUE(s.keyPress("escape"));
-  EXPECT_EQ(s.tool(), ViewerState::Tool::Select);
+  EXPECT_EQ(s.tools().tool(), ViewerState::Tool::Select);
 }
 
 TEST(SketchDocument, APickAmongOverlappingMarkersTakesTheNearestInDepth) {
   test::TempDir dir;
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
   // Two nodes on one view ray, 1.5 m apart in depth, the far one last in the sketch (a pick by
   // screen distance alone took the last of equals).
-  const Vec2 at = s.camera().project(Vec3(0, 2, 0)).head<2>();
-  const Vec3 nearP = s.camera().unproject(at, 0.2), farP = nearP + 1.5 * (s.camera().unproject(at, 0.9) - nearP).normalized();
+  const Vec2 at = s.view().camera().project(Vec3(0, 2, 0)).head<2>();
+  const Vec3 nearP = s.view().camera().unproject(at, 0.2),
+             farP = nearP + 1.5 * (s.view().camera().unproject(at, 0.9) - nearP).normalized();
   sketch::Sketch sk;
   const sketch::NodeId nearId = sk.addPointNode(sketch::kNoNode, nearP, Vec3::UnitY());
   const sketch::NodeId farId = sk.addPointNode(nearId, farP, Vec3::UnitY());
@@ -296,11 +298,12 @@ TEST(SketchDocument, APickAmongOverlappingMarkersTakesTheNearestInDepth) {
   sk.setKeptCircle(nearId, sketch::KeptCircle{nearP, 0.1});
   io::writeSketch(dir / "two.json", sk);
   ASSERT_TRUE(s.loadSketch(dir / "two.json"));
-  EXPECT_EQ(s.nodeAt(at + Vec2(1, 0)), nearId);
-  EXPECT_EQ(s.markersAt(at), 2u);
+  EXPECT_EQ(s.scene().nodeAt(at + Vec2(1, 0)), nearId);
+  EXPECT_EQ(s.scene().markersAt(at), 2u);
   s.clickAt(at + Vec2(1, 0));
-  EXPECT_EQ(s.selected(), nearId);
-  EXPECT_NE(s.lastMessage().text.find("nearest to the eye of 2 markers"), std::string::npos) << s.lastMessage().text;
+  EXPECT_EQ(s.tools().selected(), nearId);
+  EXPECT_NE(s.status().lastMessage().text.find("nearest to the eye of 2 markers"), std::string::npos)
+      << s.status().lastMessage().text;
 }
 
 TEST(SketchDocument, TheDistanceColouringIsZeroOnTheModelsSurface) {
@@ -324,13 +327,13 @@ TEST(SketchDocument, TheDistanceColouringIsZeroOnTheModelsSurface) {
 
   // In the window: trunk points halfway between two fitted circles 2 m apart lie on the tube.
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(0.0, 20000), geom::UpAxis::Y));
-  s.setColorMode(ColorMode::CircleDistance);
+  s.view().setColorMode(ColorMode::CircleDistance);
   for (double y : {1.0, 3.0})
-    s.clickAt(s.camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
-  ASSERT_EQ(s.fittedCount(), 2u);
-  const std::vector<Rgb>& colors = s.pointColors();
+    s.clickAt(s.view().camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
+  ASSERT_EQ(s.scene().fittedCount(), 2u);
+  const std::vector<Rgb>& colors = s.scene().pointColors();
   const double scale = s.options().distanceColorScale * s.bounds().diagonal();
   int between = 0, onSurface = 0;
   for (std::size_t i = 0; i < colors.size(); ++i) {
@@ -350,27 +353,27 @@ TEST(SketchDocument, TheDistanceColouringIsZeroOnTheModelsSurface) {
 // scratch on the model the edits leave: nodes dragged, one added, one undone.
 TEST(SketchDocument, TheDistanceColouringAfterEditsIsTheFullMeasure) {
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(0.0, 20000), geom::UpAxis::Y));
-  s.setColorMode(ColorMode::CircleDistance);
+  s.view().setColorMode(ColorMode::CircleDistance);
   for (double y : {0.5, 1.5, 2.5})
-    s.clickAt(s.camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
-  ASSERT_EQ(s.fittedCount(), 3u);
+    s.clickAt(s.view().camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
+  ASSERT_EQ(s.scene().fittedCount(), 3u);
   const double scale = s.options().distanceColorScale * s.bounds().diagonal();
   auto check = [&](const char* what) {
-    const std::vector<Rgb> colors = s.pointColors();
-    const geom::CylinderModel model = s.treeModel().cylinders;
+    const std::vector<Rgb> colors = s.scene().pointColors();
+    const geom::CylinderModel model = s.scene().treeModel().cylinders;
     ASSERT_FALSE(model.empty()) << what;
     EXPECT_EQ(colors, surfaceDistanceColors(s.cloud(), model, scale)) << what;
   };
   check("three nodes");
-  const sketch::NodeId middle = s.nodeAt(s.camera().project(Vec3(0, 1.5, 0)).head<2>());
+  const sketch::NodeId middle = s.scene().nodeAt(s.view().camera().project(Vec3(0, 1.5, 0)).head<2>());
   ASSERT_NE(middle, sketch::kNoNode);
   const Vec2 at = s.sketch().node(middle).screen;
   ASSERT_TRUE(s.moveNodeTo(middle, at + Vec2(6, -4)));
   check("middle node dragged");
-  EXPECT_GT(s.distanceColorGrid().lastPointsMeasured(), 0u);
-  s.clickAt(s.camera().project(Vec3(0, 3.5, 0)).head<2>(), MouseButton::Left, kModShift);
+  EXPECT_GT(s.scene().distanceColorGrid().lastPointsMeasured(), 0u);
+  s.clickAt(s.view().camera().project(Vec3(0, 3.5, 0)).head<2>(), MouseButton::Left, kModShift);
   check("a node added on top");
   ASSERT_TRUE(s.undo());
   check("the node undone");
@@ -381,7 +384,7 @@ TEST(SketchDocument, TheDistanceColouringAfterEditsIsTheFullMeasure) {
 TEST(SketchDocument, ReattachsFirstClickNamesTheNodeAndShiftTurnsTheLimbRound) {
   test::TempDir dir;
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
   // 0 (trunk) -> 1 (the limb's tip, far out) -> 2 (its base, near the trunk): hung by its tip.
   sketch::Sketch sk;
@@ -391,7 +394,7 @@ TEST(SketchDocument, ReattachsFirstClickNamesTheNodeAndShiftTurnsTheLimbRound) {
   io::writeSketch(dir / "hung.json", sk);
   ASSERT_TRUE(s.loadSketch(dir / "hung.json"));
   auto at = [&](sketch::NodeId id) {
-    for (const NodeMarker& m : s.nodeMarkers())
+    for (const NodeMarker& m : s.scene().nodeMarkers())
       if (m.id == id) return m.screen;
     return Vec2(-1, -1);
   };
@@ -399,7 +402,7 @@ TEST(SketchDocument, ReattachsFirstClickNamesTheNodeAndShiftTurnsTheLimbRound) {
   s.setTool(ViewerState::Tool::Reattach);
   s.clickAt(at(base));
   EXPECT_EQ(s.sketch().node(tip).parent, root) << "the first click moved the node selected before";
-  EXPECT_EQ(s.selected(), base);
+  EXPECT_EQ(s.tools().selected(), base);
   s.clickAt(at(root), MouseButton::Left, kModShift);
   EXPECT_EQ(s.sketch().node(base).parent, root);
   EXPECT_EQ(s.sketch().node(tip).parent, base);
@@ -418,35 +421,36 @@ TEST(SketchDocument, AStrokeSaysHowManyNodesFittedAndWhyOthersDidNot) {
     cloud.positions.push_back(from + t * dir + 0.04 * (std::cos(a) * Vec3::UnitZ() + std::sin(a) * dir.cross(Vec3::UnitZ())));
   }
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(cloud, geom::UpAxis::Y));
   for (double y : {1.0, 2.0, 3.0})
-    s.clickAt(s.camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
+    s.clickAt(s.view().camera().project(Vec3(0, y, 0)).head<2>(), MouseButton::Left, kModShift);
   ASSERT_EQ(s.sketch().size(), 3u);
   std::vector<Vec2> stroke;
-  for (double t = 0.0; t <= 1.45; t += 0.1) stroke.push_back(s.camera().project(from + t * dir).head<2>());
+  for (double t = 0.0; t <= 1.45; t += 0.1) stroke.push_back(s.view().camera().project(from + t * dir).head<2>());
   ASSERT_TRUE(s.strokeLimb(stroke));
   const std::size_t added = s.sketch().size() - 3;
   std::string said;
-  for (const StatusMessage& m : s.messages())
+  for (const StatusMessage& m : s.status().messages())
     if (m.text.rfind("drew a limb", 0) == 0) said = m.text;
   EXPECT_NE(said.find(" of " + std::to_string(added) + " fitted"), std::string::npos) << said;
   std::size_t fitted = 0;
-  for (const auto& [id, node] : s.sketch().nodes()) fitted += id >= 3 && s.nodeFit(id).status == NodeStatus::Fitted;
+  for (const auto& [id, node] : s.sketch().nodes())
+    fitted += id >= 3 && s.scene().nodeFit(id).status == NodeStatus::Fitted;
   EXPECT_NE(said.find(std::to_string(fitted) + " of "), std::string::npos) << said;
   if (fitted < added) EXPECT_NE(said.find(" not: "), std::string::npos) << said;
 }
 
 TEST(SketchDocument, TheNotWoodLassoChangesTheAutomaticModel) {
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(test::forkedTree(), geom::UpAxis::Y));
   // The lasso: around the outer part of the -x limb, away from the trunk and the other limb.
-  auto at = [&](double x, double y) { return Vec2(s.camera().project(Vec3(x, y, 0)).head<2>()); };
+  auto at = [&](double x, double y) { return Vec2(s.view().camera().project(Vec3(x, y, 0)).head<2>()); };
   const std::vector<Vec2> lasso = {at(-1.4, 2.75), at(-0.3, 2.75), at(-0.3, 4.0), at(-1.4, 4.0)};
   auto nodesInLasso = [&] {
     sketch::Sketch probe;
-    probe.addNotWoodLasso(probe.addCamera(s.camera()), lasso);
+    probe.addNotWoodLasso(probe.addCamera(s.view().camera()), lasso);
     int n = 0;
     for (const auto& [id, node] : s.sketch().nodes()) n += node.kept && probe.isNotWood(node.kept->centre);
     return n;

@@ -36,52 +36,52 @@ geom::PointCloud trunk(int axis = 1, int n = 4000) {
 
 TEST(StatusLine, InfosExpireErrorsStayUntilDismissedOrReplaced) {
   ViewerState s;
-  s.info("hello");
+  s.status().info("hello");
   auto now = std::chrono::steady_clock::now();
-  ASSERT_TRUE(s.statusLine(now));
-  EXPECT_EQ(s.statusLine(now)->text, "hello");
-  ASSERT_TRUE(s.statusExpiry());
-  EXPECT_FALSE(s.statusLine(now + 10s));  // 6 s by default
-  s.error("broken");
-  EXPECT_TRUE(s.statusLine(now + 1h));
-  EXPECT_FALSE(s.statusExpiry());
-  s.dismissStatus();
-  EXPECT_FALSE(s.statusLine(now + 1s));
-  s.error("again");
-  s.info("replaced");
-  EXPECT_EQ(s.statusLine()->text, "replaced");
-  EXPECT_FALSE(s.statusLine(now + 1h));
+  ASSERT_TRUE(s.status().statusLine(now));
+  EXPECT_EQ(s.status().statusLine(now)->text, "hello");
+  ASSERT_TRUE(s.status().expiry());
+  EXPECT_FALSE(s.status().statusLine(now + 10s));  // 6 s by default
+  s.status().error("broken");
+  EXPECT_TRUE(s.status().statusLine(now + 1h));
+  EXPECT_FALSE(s.status().expiry());
+  s.status().dismiss();
+  EXPECT_FALSE(s.status().statusLine(now + 1s));
+  s.status().error("again");
+  s.status().info("replaced");
+  EXPECT_EQ(s.status().statusLine()->text, "replaced");
+  EXPECT_FALSE(s.status().statusLine(now + 1h));
   // Esc dismisses too; the log keeps every message.
-  s.error("third");
+  s.status().error("third");
   EXPECT_TRUE(s.keyPress("escape"));
-  EXPECT_FALSE(s.statusLine());
-  EXPECT_EQ(s.messages().size(), 5u);
+  EXPECT_FALSE(s.status().statusLine());
+  EXPECT_EQ(s.status().messages().size(), 5u);
 }
 
 TEST(Labels, AutoHidesThemOnLargeSketchesAndTheKeyCycles) {
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
   s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   ASSERT_TRUE(s.autoSketchUniform(12));
-  EXPECT_EQ(s.display().labels, LabelMode::Auto);
-  EXPECT_TRUE(s.labelsShown());
+  EXPECT_EQ(s.view().display().labels, LabelMode::Auto);
+  EXPECT_TRUE(s.scene().labelsShown());
   ASSERT_TRUE(s.autoSketchUniform(int(s.options().autoLabelMaxNodes) + 1));
-  EXPECT_FALSE(s.labelsShown());
+  EXPECT_FALSE(s.scene().labelsShown());
   EXPECT_TRUE(s.keyPress("l"));  // auto -> on
-  EXPECT_TRUE(s.labelsShown());
+  EXPECT_TRUE(s.scene().labelsShown());
   EXPECT_TRUE(s.keyPress("l"));  // on -> off
-  EXPECT_FALSE(s.labelsShown());
+  EXPECT_FALSE(s.scene().labelsShown());
   EXPECT_EQ(parseLabelMode("auto"), LabelMode::Auto);
   EXPECT_THROW(parseLabelMode("maybe"), OptionsError);
 }
 
 TEST(Legend, DistanceScaleMatchesThePointColoursAndHeightFollowsTheViewUp) {
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
   s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
-  s.setColorMode(ColorMode::CircleDistance);
+  s.view().setColorMode(ColorMode::CircleDistance);
   Legend l = colorLegend(s);
   ASSERT_EQ(l.kind, Legend::Kind::Scale);
   ASSERT_GE(l.ramp.size(), 2u);
@@ -99,7 +99,7 @@ TEST(Legend, DistanceScaleMatchesThePointColoursAndHeightFollowsTheViewUp) {
     EXPECT_NEAR(colors[i].r, l.ramp[i].r, 1) << i;
     EXPECT_NEAR(colors[i].g, l.ramp[i].g, 1) << i;
   }
-  s.setColorMode(ColorMode::Height);
+  s.view().setColorMode(ColorMode::Height);
   l = colorLegend(s);
   ASSERT_EQ(l.kind, Legend::Kind::Scale);
   EXPECT_NEAR(l.range.max - l.range.min, s.bounds().extent().y(), 1e-9);
@@ -107,7 +107,7 @@ TEST(Legend, DistanceScaleMatchesThePointColoursAndHeightFollowsTheViewUp) {
   l = colorLegend(s);
   EXPECT_NEAR(l.range.max - l.range.min, s.bounds().extent().x(), 1e-9);
   EXPECT_NE(l.title.find(toString(UpDirection::PosX)), std::string::npos) << l.title;
-  s.setColorMode(ColorMode::Plain);
+  s.view().setColorMode(ColorMode::Plain);
   EXPECT_EQ(colorLegend(s).kind, Legend::Kind::None);
 }
 
@@ -126,31 +126,31 @@ TEST(UpDirection, TheLibraryRuleDecidesAndALyingCloudIsWarnedAbout) {
 
   // The same Z-up trunk opened as Y-up (the old default) lies down: warned; under +Z it stands.
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(zUp, geom::UpAxis::Y));
   s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   EXPECT_TRUE(s.upWarningShown());
   EXPECT_NE(s.lyingDownWarning().find("lying down"), std::string::npos);
   // On two of its points (the view looks down the hollow trunk: its axis meets no points).
-  s.clickAt(s.camera().project(zUp.positions[0]).head<2>());
-  s.clickAt(s.camera().project(zUp.positions[1]).head<2>());
+  s.clickAt(s.view().camera().project(zUp.positions[0]).head<2>());
+  s.clickAt(s.view().camera().project(zUp.positions[1]).head<2>());
   ASSERT_EQ(s.sketch().size(), 2u);
   s.setUpDirection(UpDirection::PosZ);
   EXPECT_FALSE(s.upWarningShown());
   EXPECT_EQ(s.up(), geom::UpAxis::Z);
   EXPECT_EQ(s.sketch().size(), 2u);  // the sketch is kept
   // The front view now has +Z as screen up.
-  geom::Camera cam = s.camera();
+  geom::Camera cam = s.view().camera();
   Vec3 low = cam.project(Vec3(0, 0, 0)), high = cam.project(Vec3(0, 0, 4));
   EXPECT_LT(high.y(), low.y());  // window y grows downwards
   // -Z: upside down; the automatic sketches refuse with a message (they assume +Y or +Z).
   s.setUpDirection(UpDirection::NegZ);
   EXPECT_FALSE(s.autoSketchUniform());
-  EXPECT_TRUE(s.lastMessage().error);
+  EXPECT_TRUE(s.status().lastMessage().error);
   EXPECT_EQ(s.sketch().size(), 2u);
   s.setUpDirection(UpDirection::PosX);
   EXPECT_TRUE(s.upWarningShown());
-  s.dismissUpWarning();
+  s.view().dismissUpWarning();
   EXPECT_FALSE(s.upWarningShown());
 }
 

@@ -33,18 +33,18 @@ geom::PointCloud trunk(int n = 20000, std::uint64_t seed = 7) {
 struct Fixture {
   ViewerState state;
   Fixture() {
-    state.setViewport(geom::Viewport{0, 0, 800, 600});
+    state.view().setViewport(geom::Viewport{0, 0, 800, 600});
     EXPECT_TRUE(state.setCloud(trunk(), geom::UpAxis::Y));
     state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   }
-  Vec2 screenOf(const Vec3& p) const { return state.camera().project(p).head<2>(); }
+  Vec2 screenOf(const Vec3& p) const { return state.view().camera().project(p).head<2>(); }
 };
 
 TEST(ViewerState, EmptyCloudIsAnErrorNotAnException) {
   ViewerState s;
   EXPECT_FALSE(s.setCloud(geom::PointCloud{}, geom::UpAxis::Y));
-  EXPECT_EQ(s.errorCount(), 1u);
-  EXPECT_TRUE(s.lastMessage().error);
+  EXPECT_EQ(s.status().errorCount(), 1u);
+  EXPECT_TRUE(s.status().lastMessage().error);
   EXPECT_FALSE(s.addNodeAt(Vec2(10, 10)));
   EXPECT_FALSE(s.autoSketchUniform());
 }
@@ -61,18 +61,18 @@ TEST(ViewerState, ClicksAddAChainOfNodesThatFitTheTrunk) {
   EXPECT_EQ(sk.node(1).parent, 0);
   EXPECT_EQ(sk.node(2).parent, 1);
   EXPECT_NEAR((sk.node(1).screen - b).norm(), 0.0, 1e-12);
-  EXPECT_EQ(f.state.active(), 2);
-  EXPECT_EQ(f.state.selected(), 2);
+  EXPECT_EQ(f.state.tools().active(), 2);
+  EXPECT_EQ(f.state.tools().selected(), 2);
   EXPECT_EQ(sk.cameras().size(), 1u);
-  EXPECT_EQ(f.state.fittedCount(), 3u);
-  NodeFitView fit = f.state.nodeFit(1);
+  EXPECT_EQ(f.state.scene().fittedCount(), 3u);
+  NodeFitView fit = f.state.scene().nodeFit(1);
   ASSERT_EQ(fit.status, NodeStatus::Fitted);
   EXPECT_NEAR(fit.circle.radius, kRadius, 0.02);
   EXPECT_NEAR(fit.circle.centre.y(), 2.0, 0.05);
   EXPECT_NEAR(std::hypot(fit.circle.centre.x(), fit.circle.centre.z()), 0.0, 0.03);
-  EXPECT_FALSE(f.state.mesh().empty());
+  EXPECT_FALSE(f.state.scene().mesh().empty());
   EXPECT_GE(f.state.lastRebuildMs(), 0.0);
-  EXPECT_EQ(f.state.errorCount(), 0u);
+  EXPECT_EQ(f.state.status().errorCount(), 0u);
 }
 
 TEST(ViewerState, ClickOnANodeSelectsItAndMakesItActive) {
@@ -82,14 +82,14 @@ TEST(ViewerState, ClickOnANodeSelectsItAndMakesItActive) {
   f.state.clickAt(b);
   f.state.clickAt(a + Vec2(3, 0));  // within the pick radius of node 0
   EXPECT_EQ(f.state.sketch().size(), 2u);
-  EXPECT_EQ(f.state.selected(), 0);
-  EXPECT_EQ(f.state.active(), 0);
+  EXPECT_EQ(f.state.tools().selected(), 0);
+  EXPECT_EQ(f.state.tools().active(), 0);
   f.state.clickAt(b, MouseButton::Left, kModCtrl);  // Ctrl: select node 1, node 0 stays active
-  EXPECT_EQ(f.state.selected(), 1);
-  EXPECT_EQ(f.state.active(), 0);
+  EXPECT_EQ(f.state.tools().selected(), 1);
+  EXPECT_EQ(f.state.tools().active(), 0);
   f.state.clickAt(f.screenOf(Vec3(0, 3, 0)));  // a branch from node 0
   EXPECT_EQ(f.state.sketch().node(2).parent, 0);
-  EXPECT_EQ(f.state.nodeAt(Vec2(700, 20)), kNoNode);
+  EXPECT_EQ(f.state.scene().nodeAt(Vec2(700, 20)), kNoNode);
 }
 
 TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
@@ -99,7 +99,7 @@ TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
   EXPECT_TRUE(f.state.deleteSelected(false));
   EXPECT_EQ(f.state.sketch().size(), 3u);
   EXPECT_EQ(f.state.sketch().node(2).parent, 0);
-  EXPECT_EQ(f.state.selected(), 0);
+  EXPECT_EQ(f.state.tools().selected(), 0);
   EXPECT_TRUE(f.state.undo());
   EXPECT_EQ(f.state.sketch().size(), 4u);
   EXPECT_EQ(f.state.sketch().node(2).parent, 1);
@@ -108,10 +108,10 @@ TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
   EXPECT_TRUE(f.state.keyPress("shift+delete"));
   ASSERT_TRUE(f.state.confirmationPending());
   EXPECT_EQ(f.state.sketch().size(), 4u);
-  for (const NodeMarker& m : f.state.nodeMarkers()) EXPECT_EQ(m.doomed, m.id != 0) << m.id;
+  for (const NodeMarker& m : f.state.scene().nodeMarkers()) EXPECT_EQ(m.doomed, m.id != 0) << m.id;
   EXPECT_FALSE(f.state.answerConfirmation(false));
   EXPECT_EQ(f.state.sketch().size(), 4u);
-  for (const NodeMarker& m : f.state.nodeMarkers()) EXPECT_FALSE(m.doomed) << m.id;
+  for (const NodeMarker& m : f.state.scene().nodeMarkers()) EXPECT_FALSE(m.doomed) << m.id;
   EXPECT_TRUE(f.state.keyPress("shift+delete"));
   EXPECT_TRUE(f.state.answerConfirmation(true));
   EXPECT_EQ(f.state.sketch().size(), 1u);
@@ -120,10 +120,10 @@ TEST(ViewerState, DeleteReattachesOrRemovesTheSubtreeAndUndoRestores) {
   EXPECT_TRUE(f.state.keyPress("y", kModCtrl));
   EXPECT_EQ(f.state.sketch().size(), 1u);
   EXPECT_TRUE(f.state.redo() == false);  // nothing left to redo: an info message, no error
-  EXPECT_EQ(f.state.errorCount(), 0u);
+  EXPECT_EQ(f.state.status().errorCount(), 0u);
   f.state.selectNode(kNoNode);
   EXPECT_FALSE(f.state.deleteSelected(false));  // nothing selected: an error message
-  EXPECT_EQ(f.state.errorCount(), 1u);
+  EXPECT_EQ(f.state.status().errorCount(), 1u);
   EXPECT_EQ(f.state.sketch().size(), 1u);
 }
 
@@ -138,7 +138,7 @@ TEST(ViewerState, DragMovesANodeAsOneUndoStep) {
   EXPECT_EQ(f.state.sketch().size(), 2u);
   EXPECT_NEAR((f.state.sketch().node(1).screen - to).norm(), 0.0, 1e-9);
   EXPECT_EQ(f.state.history().undoCount(), undoBefore + 1);
-  EXPECT_NEAR(f.state.nodeFit(1).circle.centre.y(), 2.5, 0.05);
+  EXPECT_NEAR(f.state.scene().nodeFit(1).circle.centre.y(), 2.5, 0.05);
   f.state.undo();
   EXPECT_NEAR((f.state.sketch().node(1).screen - b).norm(), 0.0, 1e-9);
 }
@@ -158,7 +158,7 @@ TEST(ViewerState, SliderChangesMergeAndBadValuesAreRejected) {
   EXPECT_FALSE(f.state.setSliceHalfThickness(-1));
   EXPECT_FALSE(f.state.setLineEpsilon(std::nan("")));
   EXPECT_DOUBLE_EQ(f.state.sketch().node(0).params.sliceHalfThickness, 0.05);
-  EXPECT_EQ(f.state.errorCount(), 2u);
+  EXPECT_EQ(f.state.status().errorCount(), 2u);
   // No selection: the sizes of new nodes.
   f.state.selectNode(kNoNode);
   EXPECT_TRUE(f.state.setSliceHalfThickness(0.02));
@@ -169,57 +169,57 @@ TEST(ViewerState, NodesKeepTheirCameraAcrossViews) {
   Fixture f;
   Vec2 a = f.screenOf(Vec3(0, 1, 0));
   f.state.clickAt(a);
-  f.state.presetView(geom::PresetView::Side);
+  f.state.view().presetView(geom::PresetView::Side);
   f.state.clickAt(f.screenOf(Vec3(0, 2.5, 0)));
   const sketch::Sketch& sk = f.state.sketch();
   ASSERT_EQ(sk.size(), 2u);
   EXPECT_EQ(sk.cameras().size(), 2u);
   EXPECT_NE(sk.node(0).camera, sk.node(1).camera);
   EXPECT_NEAR((sk.node(0).screen - a).norm(), 0.0, 1e-12);  // unchanged by the view change
-  std::vector<NodeMarker> markers = f.state.nodeMarkers();
+  std::vector<NodeMarker> markers = f.state.scene().nodeMarkers();
   ASSERT_EQ(markers.size(), 2u);
   EXPECT_FALSE(markers[0].inCurrentView);
   EXPECT_TRUE(markers[1].inCurrentView);
   // Node 0's marker sits where its fitted centre projects in the side view.
-  Vec2 expected = f.screenOf(f.state.nodeFit(0).circle.centre);
+  Vec2 expected = f.screenOf(f.state.scene().nodeFit(0).circle.centre);
   EXPECT_NEAR((markers[0].screen - expected).norm(), 0.0, 1e-6);
-  EXPECT_EQ(f.state.fittedCount(), 2u);
+  EXPECT_EQ(f.state.scene().fittedCount(), 2u);
   // Moving node 0 in the side view keeps its own camera.
   EXPECT_TRUE(f.state.moveNodeTo(0, f.screenOf(Vec3(0, 1.5, 0))));
   EXPECT_EQ(f.state.sketch().node(0).camera, sk.node(0).camera);
-  EXPECT_NEAR(f.state.nodeFit(0).circle.centre.y(), 1.5, 0.05);
+  EXPECT_NEAR(f.state.scene().nodeFit(0).circle.centre.y(), 1.5, 0.05);
 }
 
 TEST(ViewerState, SelectedNodeShowsItsSamplingRegionAndSlice) {
   Fixture f;
   f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
-  SamplingRegion r = f.state.samplingRegion();
+  SamplingRegion r = f.state.scene().samplingRegion();
   ASSERT_TRUE(r.valid);
   EXPECT_TRUE(r.geometry.hasLine);
-  std::vector<std::uint32_t> slice = f.state.highlightedSlicePoints();
+  std::vector<std::uint32_t> slice = f.state.scene().highlightedSlicePoints();
   ASSERT_FALSE(slice.empty());
   for (std::uint32_t i : slice) {
     double d = std::abs((f.state.cloud().positions[i] - r.geometry.planePoint).dot(r.geometry.planeNormal));
     EXPECT_LT(d, r.sliceHalfThickness);
   }
-  EXPECT_FALSE(f.state.highlightedInliers().empty());
-  EXPECT_GT(f.state.sceneLines().size(), 20u);  // circle + slab + cylinder
+  EXPECT_FALSE(f.state.scene().highlightedInliers().empty());
+  EXPECT_GT(f.state.scene().sceneLines().size(), 20u);  // circle + slab + cylinder
   f.state.selectNode(kNoNode);
-  EXPECT_FALSE(f.state.samplingRegion().valid);
-  EXPECT_TRUE(f.state.highlightedSlicePoints().empty());
+  EXPECT_FALSE(f.state.scene().samplingRegion().valid);
+  EXPECT_TRUE(f.state.scene().highlightedSlicePoints().empty());
 }
 
 TEST(ViewerState, ColourModes) {
   Fixture f;
   // Height colours are the renderer's (one colour module for pictures and the window).
-  EXPECT_EQ(f.state.pointColors(), render::heightColors(f.state.cloud().positions, f.state.up()));
-  std::uint64_t v = f.state.colorsVersion();
-  f.state.setColorMode(ColorMode::Plain);
-  EXPECT_EQ(f.state.pointColors()[0], f.state.options().plainColor);
-  EXPECT_GT(f.state.colorsVersion(), v);
+  EXPECT_EQ(f.state.scene().pointColors(), render::heightColors(f.state.cloud().positions, f.state.up()));
+  std::uint64_t v = f.state.scene().colorsVersion();
+  f.state.view().setColorMode(ColorMode::Plain);
+  EXPECT_EQ(f.state.scene().pointColors()[0], f.state.options().plainColor);
+  EXPECT_GT(f.state.scene().colorsVersion(), v);
   f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
-  f.state.setColorMode(ColorMode::CircleDistance);
-  const auto& colors = f.state.pointColors();
+  f.state.view().setColorMode(ColorMode::CircleDistance);
+  const auto& colors = f.state.scene().pointColors();
   // Trunk points near y = 2 lie on the fitted circle: the ramp's start; the ends are far.
   int near = 0, onCircle = 0;
   for (std::size_t i = 0; i < colors.size(); ++i) {
@@ -241,10 +241,10 @@ TEST(ViewerState, FailingActionsReportAndKeepTheSketch) {
   test::writeText(dir / "bad.json", "{not json");
   EXPECT_FALSE(f.state.loadSketch(dir / "bad.json"));
   EXPECT_EQ(f.state.sketch().size(), 1u);
-  EXPECT_EQ(f.state.errorCount(), 3u);
+  EXPECT_EQ(f.state.status().errorCount(), 3u);
   EXPECT_TRUE(f.state.exportMesh(dir / "m.obj"));
   EXPECT_FALSE(f.state.exportMesh(dir / "m.xyz"));  // unsupported extension
-  EXPECT_EQ(f.state.errorCount(), 4u);
+  EXPECT_EQ(f.state.status().errorCount(), 4u);
   EXPECT_TRUE(std::filesystem::exists(dir / "m.obj"));
   // Save and load round trip.
   EXPECT_TRUE(f.state.saveSketch(dir / "s.json"));
@@ -272,59 +272,59 @@ TEST(ViewerState, ReconstructionFailureBecomesAMessage) {
     const geom::TriMesh& mesh() const override { return m; }
   };
   ViewerState s({}, [](const geom::PointCloud&) { return std::make_unique<Throwing>(); });
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   s.setCloud(trunk(500), geom::UpAxis::Y);
   s.setTool(ViewerState::Tool::AddNodes);
-  std::size_t before = s.errorCount();
+  std::size_t before = s.status().errorCount();
   EXPECT_NO_THROW(s.clickAt(Vec2(400, 300)));
   EXPECT_EQ(s.sketch().size(), 1u);
-  EXPECT_GT(s.errorCount(), before);
-  EXPECT_NE(s.lastMessage().text.find("boom"), std::string::npos);
+  EXPECT_GT(s.status().errorCount(), before);
+  EXPECT_NE(s.status().lastMessage().text.find("boom"), std::string::npos);
 }
 
 TEST(ViewerState, AutosavesBesideTheCloudOnEveryEdit) {
   test::TempDir dir;
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(2000), geom::UpAxis::Y, dir / "tree.xyz"));
   s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
-  EXPECT_EQ(s.autosavePath(), dir / "tree.xyz.autosave.sketch.json");
-  s.clickAt(s.camera().project(Vec3(0, 1, 0)).head<2>());
-  s.clickAt(s.camera().project(Vec3(0, 2, 0)).head<2>());
-  sketch::Sketch saved = io::readSketch(s.autosavePath());
+  EXPECT_EQ(s.document().autosavePath(), dir / "tree.xyz.autosave.sketch.json");
+  s.clickAt(s.view().camera().project(Vec3(0, 1, 0)).head<2>());
+  s.clickAt(s.view().camera().project(Vec3(0, 2, 0)).head<2>());
+  sketch::Sketch saved = io::readSketch(s.document().autosavePath());
   EXPECT_EQ(saved.size(), 2u);
   s.undo();
-  EXPECT_EQ(io::readSketch(s.autosavePath()).size(), 1u);
+  EXPECT_EQ(io::readSketch(s.document().autosavePath()).size(), 1u);
   // Ctrl+S saves to the sketch path: the cloud's own sketch file unless another is set; a save
   // removes the autosave (the work is in its file), the next edit writes it again.
-  EXPECT_EQ(s.sketchPath(), dir / "tree.xyz.sketch.json");
+  EXPECT_EQ(s.document().sketchPath(), dir / "tree.xyz.sketch.json");
   EXPECT_TRUE(s.keyPress("ctrl+s"));
-  EXPECT_FALSE(s.lastMessage().error);
+  EXPECT_FALSE(s.status().lastMessage().error);
   EXPECT_EQ(io::readSketch(dir / "tree.xyz.sketch.json").size(), 1u);
-  EXPECT_FALSE(std::filesystem::exists(s.autosavePath()));
+  EXPECT_FALSE(std::filesystem::exists(s.document().autosavePath()));
   s.setSketchPath(dir / "mine.json");
   EXPECT_TRUE(s.keyPress("s", kModCtrl));
   EXPECT_EQ(io::readSketch(dir / "mine.json").size(), 1u);
-  s.clickAt(s.camera().project(Vec3(0, 3, 0)).head<2>());
-  EXPECT_EQ(io::readSketch(s.autosavePath()).size(), 2u);
+  s.clickAt(s.view().camera().project(Vec3(0, 3, 0)).head<2>());
+  EXPECT_EQ(io::readSketch(s.document().autosavePath()).size(), 2u);
   // A drag is saved when the button is released.
   Vec2 from = s.sketch().node(0).screen, to = from + Vec2(0, -20);
   s.mouseDown(from, MouseButton::Left);
   s.mouseMove(from + Vec2(0, -10));
-  EXPECT_NEAR((io::readSketch(s.autosavePath()).node(0).screen - from).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((io::readSketch(s.document().autosavePath()).node(0).screen - from).norm(), 0.0, 1e-9);
   s.mouseUp(to, MouseButton::Left);
-  EXPECT_NEAR((io::readSketch(s.autosavePath()).node(0).screen - to).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((io::readSketch(s.document().autosavePath()).node(0).screen - to).norm(), 0.0, 1e-9);
 }
 
 TEST(ViewerState, UniformAutoSketchAndViewKeys) {
   Fixture f;
   EXPECT_TRUE(f.state.autoSketchUniform(5));
   EXPECT_EQ(f.state.sketch().size(), 5u);
-  EXPECT_GE(f.state.fittedCount(), 3u);
+  EXPECT_GE(f.state.scene().fittedCount(), 3u);
   EXPECT_TRUE(f.state.keyPress("o"));
-  EXPECT_TRUE(f.state.orbit().orthographic());
+  EXPECT_TRUE(f.state.view().orbit().orthographic());
   EXPECT_TRUE(f.state.keyPress("3"));
-  EXPECT_NEAR((f.state.camera().forward() - Vec3(0, -1, 0)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((f.state.view().camera().forward() - Vec3(0, -1, 0)).norm(), 0.0, 1e-9);
   EXPECT_FALSE(f.state.keyPress("q"));
   EXPECT_TRUE(f.state.undo());
   EXPECT_TRUE(f.state.sketch().empty());
@@ -332,14 +332,14 @@ TEST(ViewerState, UniformAutoSketchAndViewKeys) {
 
 TEST(ViewerState, SkeletonAutoSketchGivesPointNodesAlongTheTrunk) {
   Fixture f;
-  ASSERT_TRUE(f.state.autoSketchSkeleton()) << f.state.lastMessage().text;
+  ASSERT_TRUE(f.state.autoSketchSkeleton()) << f.state.status().lastMessage().text;
   const sketch::Sketch& sk = f.state.sketch();
   ASSERT_GE(sk.size(), 2u);
   for (const auto& [id, node] : sk.nodes()) {
     EXPECT_FALSE(node.isScreenNode());
     EXPECT_NEAR(std::hypot(node.point.x(), node.point.z()), 0.0, 0.1);  // on the trunk's axis
   }
-  EXPECT_GE(f.state.fittedCount(), sk.size() / 2);
+  EXPECT_GE(f.state.scene().fittedCount(), sk.size() / 2);
   // Point nodes can be dragged in the view too.
   sketch::NodeId id = sk.root();
   Vec3 before = sk.node(id).point;
@@ -351,32 +351,32 @@ TEST(ViewerState, SkeletonAutoSketchGivesPointNodesAlongTheTrunk) {
 // sizes, Refit or Refit all fit from the cloud, each one undo step.
 TEST(ViewerState, SkeletonAutoSketchKeepsItsModelUntilRefit) {
   Fixture f;
-  ASSERT_TRUE(f.state.autoSketchSkeleton()) << f.state.lastMessage().text;
+  ASSERT_TRUE(f.state.autoSketchSkeleton()) << f.state.status().lastMessage().text;
   const std::size_t n = f.state.sketch().size();
   ASSERT_GE(n, 3u);
   const std::size_t kept = f.state.sketch().keptCircleCount();
   EXPECT_GE(kept, n - 1);  // all but bridged forks (a trunk has none)
   const sketch::NodeId id = f.state.sketch().root();
-  ASSERT_TRUE(f.state.nodeFit(id).kept);
-  EXPECT_EQ(f.state.nodeFit(id).status, NodeStatus::Fitted);
+  ASSERT_TRUE(f.state.scene().nodeFit(id).kept);
+  EXPECT_EQ(f.state.scene().nodeFit(id).status, NodeStatus::Fitted);
   EXPECT_FALSE(f.state.refitSelected());  // nothing selected: an error, no change
-  EXPECT_TRUE(f.state.lastMessage().error);
+  EXPECT_TRUE(f.state.status().lastMessage().error);
   ASSERT_TRUE(f.state.selectNode(id));
   ASSERT_TRUE(f.state.refitSelected());
-  EXPECT_FALSE(f.state.nodeFit(id).kept);
+  EXPECT_FALSE(f.state.scene().nodeFit(id).kept);
   EXPECT_EQ(f.state.sketch().keptCircleCount(), kept - 1);
   EXPECT_FALSE(f.state.refitSelected());  // fitted from the cloud already
   ASSERT_TRUE(f.state.undo());
-  EXPECT_TRUE(f.state.nodeFit(id).kept);
+  EXPECT_TRUE(f.state.scene().nodeFit(id).kept);
   // Editing a node's sizes refits that node.
   const sketch::NodeId other = f.state.sketch().node(id).children.at(0);
   ASSERT_TRUE(f.state.selectNode(other));
   ASSERT_TRUE(f.state.setLineEpsilon(f.state.sketch().node(other).params.lineEpsilon * 1.5));
-  EXPECT_FALSE(f.state.nodeFit(other).kept);
-  EXPECT_TRUE(f.state.nodeFit(id).kept);
+  EXPECT_FALSE(f.state.scene().nodeFit(other).kept);
+  EXPECT_TRUE(f.state.scene().nodeFit(id).kept);
   ASSERT_TRUE(f.state.refitAll());
   EXPECT_EQ(f.state.sketch().keptCircleCount(), 0u);
-  EXPECT_FALSE(f.state.nodeFit(id).kept);
+  EXPECT_FALSE(f.state.scene().nodeFit(id).kept);
   EXPECT_FALSE(f.state.refitAll());
   ASSERT_TRUE(f.state.undo());
   EXPECT_EQ(f.state.sketch().keptCircleCount(), kept - 1);
@@ -386,14 +386,14 @@ TEST(ViewerState, SkeletonAutoSketchInLeafIsOneUndoStep) {
   // A sparse trunk: on dense, randomly sampled surfaces the leaf-on settings' fine voxels split
   // rings into arcs and make thousands of nodes (see skeleton::leafOnSkeletonOptions).
   ViewerState state;
-  state.setViewport(geom::Viewport{0, 0, 800, 600});
+  state.view().setViewport(geom::Viewport{0, 0, 800, 600});
   // Bent, so that the chains' simplification (tolerances in voxels) keeps nodes: a straight trunk
   // is one straight chain in both settings.
   geom::PointCloud bent = trunk(3000);
   for (auto& p : bent.positions) p.x() += 0.4 * std::sin(p.y() * M_PI / 4);
   ASSERT_TRUE(state.setCloud(bent, geom::UpAxis::Y));
   state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
-  ASSERT_TRUE(state.autoSketchSkeleton(true)) << state.lastMessage().text;
+  ASSERT_TRUE(state.autoSketchSkeleton(true)) << state.status().lastMessage().text;
   const sketch::Sketch& sk = state.sketch();
   ASSERT_GE(sk.size(), 2u);
   const std::size_t leafOnNodes = sk.size();
@@ -407,9 +407,9 @@ TEST(ViewerState, SkeletonAutoSketchInLeafIsOneUndoStep) {
 TEST(ViewerState, OrbitAndPanGesturesDoNotEditTheSketch) {
   Fixture f;
   f.state.clickAt(f.screenOf(Vec3(0, 2, 0)));
-  geom::Mat4 view = f.state.camera().view;
+  geom::Mat4 view = f.state.view().camera().view;
   f.state.dragTo(Vec2(400, 300), Vec2(500, 320), MouseButton::Right);
-  EXPECT_FALSE(f.state.camera().view.isApprox(view));
+  EXPECT_FALSE(f.state.view().camera().view.isApprox(view));
   f.state.dragTo(Vec2(400, 300), Vec2(450, 300), MouseButton::Middle);
   f.state.scroll(2);
   EXPECT_EQ(f.state.sketch().size(), 1u);
@@ -427,16 +427,16 @@ namespace {
 
 TEST(ViewerState, OrthographicViewSketchesToo) {
   ViewerState s;
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   ASSERT_TRUE(s.setCloud(trunk(), geom::UpAxis::Y));
   s.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
-  s.setOrthographic(true);
-  s.presetView(geom::PresetView::Front);
-  for (double y : {1.0, 2.0, 3.0}) s.clickAt(s.camera().project(Vec3(0, y, 0)).head<2>());
+  s.view().setOrthographic(true);
+  s.view().presetView(geom::PresetView::Front);
+  for (double y : {1.0, 2.0, 3.0}) s.clickAt(s.view().camera().project(Vec3(0, y, 0)).head<2>());
   ASSERT_EQ(s.sketch().size(), 3u);
   EXPECT_TRUE(s.sketch().cameras()[0].isOrthographic());
-  EXPECT_EQ(s.fittedCount(), 3u);
-  EXPECT_NEAR(s.nodeFit(2).circle.radius, kRadius, 0.02);
+  EXPECT_EQ(s.scene().fittedCount(), 3u);
+  EXPECT_NEAR(s.scene().nodeFit(2).circle.radius, kRadius, 0.02);
 }
 
 }  // namespace

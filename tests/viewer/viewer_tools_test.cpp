@@ -33,11 +33,11 @@ geom::PointCloud tree() {
 struct Fixture {
   ViewerState state;
   Fixture() {
-    state.setViewport(geom::Viewport{0, 0, 1280, 800});
+    state.view().setViewport(geom::Viewport{0, 0, 1280, 800});
     EXPECT_TRUE(state.setCloud(tree(), geom::UpAxis::Y));
     state.setTool(ViewerState::Tool::AddNodes);  // clicks add nodes (the default selects)
   }
-  Vec2 at(const Vec3& p) const { return state.camera().project(p).head<2>(); }
+  Vec2 at(const Vec3& p) const { return state.view().camera().project(p).head<2>(); }
   std::string pt(const Vec3& p) const {
     Vec2 s = at(p);
     std::ostringstream o;
@@ -72,9 +72,9 @@ TEST(ViewerTools, ScriptVerbsStrokeLassoReattachDeleteAndUndo) {
   EXPECT_FALSE(sk.node(first).isScreenNode());
   int fitted = 0;
   for (const auto& [id, n] : sk.nodes())
-    if (id >= first && f.state.nodeFit(id).status == NodeStatus::Fitted) {
+    if (id >= first && f.state.scene().nodeFit(id).status == NodeStatus::Fitted) {
       ++fitted;
-      EXPECT_NEAR(f.state.nodeFit(id).circle.radius, 0.08, 0.03);
+      EXPECT_NEAR(f.state.scene().nodeFit(id).circle.radius, 0.08, 0.03);
     }
   EXPECT_GE(fitted, int(sk.size()) - 4);
   const std::size_t withLimb = sk.size();
@@ -100,10 +100,10 @@ TEST(ViewerTools, ScriptVerbsStrokeLassoReattachDeleteAndUndo) {
         << "]]},{\"expect\":{\"notWood\":1}}]";
   r = f.run(lasso.str());
   ASSERT_TRUE(r.ok()) << joinReport(r);
-  EXPECT_LT(f.state.fittedCount(), std::size_t(3 + fitted));
+  EXPECT_LT(f.state.scene().fittedCount(), std::size_t(3 + fitted));
   r = f.run("[\"undo\",{\"expect\":{\"notWood\":0}}]");
   ASSERT_TRUE(r.ok()) << joinReport(r);
-  EXPECT_EQ(f.state.fittedCount(), std::size_t(3 + fitted));
+  EXPECT_EQ(f.state.scene().fittedCount(), std::size_t(3 + fitted));
 }
 
 TEST(ViewerTools, LassoIsSavedWithTheSketch) {
@@ -121,21 +121,21 @@ TEST(ViewerTools, MouseDragsUseTheChosenTool) {
   f.state.clickAt(f.at(Vec3(0, 1, 0)));
   f.state.clickAt(f.at(Vec3(0, 2, 0)));
   ASSERT_TRUE(f.state.keyPress("g"));
-  EXPECT_EQ(f.state.tool(), ViewerState::Tool::Stroke);
+  EXPECT_EQ(f.state.tools().tool(), ViewerState::Tool::Stroke);
   f.state.dragTo(f.at(kFork), f.at(kFork + 1.5 * kDir), MouseButton::Left, kModNone, 12);
   EXPECT_GE(f.state.sketch().size(), 4u);
-  EXPECT_TRUE(f.state.toolPath().empty());
+  EXPECT_TRUE(f.state.tools().toolPath().empty());
   EXPECT_TRUE(f.state.canUndo());
   // Re-attach tool: click the limb's first node, then the root.
   ASSERT_TRUE(f.state.keyPress("p"));
   f.state.selectNode(sketch::kNoNode);
-  f.state.clickAt(f.at(f.state.nodeFit(2).circle.centre));
-  EXPECT_EQ(f.state.selected(), 2);
-  f.state.clickAt(f.at(f.state.nodeFit(0).circle.centre));
+  f.state.clickAt(f.at(f.state.scene().nodeFit(2).circle.centre));
+  EXPECT_EQ(f.state.tools().selected(), 2);
+  f.state.clickAt(f.at(f.state.scene().nodeFit(0).circle.centre));
   EXPECT_EQ(f.state.sketch().node(2).parent, 0);
   // Escape goes back to sketching; a drag with the lasso tool adds a lasso.
   f.state.keyPress("escape");
-  EXPECT_EQ(f.state.tool(), ViewerState::Tool::Select);
+  EXPECT_EQ(f.state.tools().tool(), ViewerState::Tool::Select);
   f.state.keyPress("x");
   f.state.mouseDown(Vec2(10, 10), MouseButton::Left);
   f.state.mouseMove(Vec2(200, 10));
@@ -148,7 +148,7 @@ TEST(ViewerTools, NotWoodPointsAreDrawnDarkUntilTheLassoIsUndone) {
   Fixture f;
   auto darkCount = [&] {
     std::size_t n = 0;
-    for (const Rgb& c : f.state.pointColors()) n += c == Rgb{60, 50, 70};
+    for (const Rgb& c : f.state.scene().pointColors()) n += c == Rgb{60, 50, 70};
     return n;
   };
   EXPECT_EQ(darkCount(), 0u);

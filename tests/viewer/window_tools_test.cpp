@@ -255,7 +255,7 @@ TEST(AttributeColors, NiceTicksAreRoundAndInside) {
 }
 
 ViewerState& withCloud(ViewerState& s, geom::PointCloud c) {
-  s.setViewport(geom::Viewport{0, 0, 800, 600});
+  s.view().setViewport(geom::Viewport{0, 0, 800, 600});
   EXPECT_TRUE(s.setCloud(std::move(c), geom::UpAxis::Z));
   return s;
 }
@@ -293,32 +293,32 @@ TEST(ColorLegend, LegendsMatchTheColouring) {
   EXPECT_EQ(h.ramp.front(), render::viridis(0.0));
   EXPECT_EQ(h.ramp.back(), render::viridis(1.0));
 
-  s.setColorMode(ColorMode::Classification);
+  s.view().setColorMode(ColorMode::Classification);
   Legend cl = colorLegend(s);
   ASSERT_EQ(cl.kind, Legend::Kind::Classes);
   ASSERT_EQ(cl.classes.size(), 2u);
   EXPECT_EQ(cl.classes[0].code, 2);
   EXPECT_EQ(cl.classes[0].count, 10u);
   EXPECT_EQ(cl.classes[1].name, "high vegetation");
-  EXPECT_EQ(s.pointColors()[0], classificationColor(2));
-  EXPECT_EQ(s.pointColors()[50], classificationColor(5));
+  EXPECT_EQ(s.scene().pointColors()[0], classificationColor(2));
+  EXPECT_EQ(s.scene().pointColors()[50], classificationColor(5));
 
-  s.setColorMode(ColorMode::Intensity);
+  s.view().setColorMode(ColorMode::Intensity);
   Legend in = colorLegend(s);
   EXPECT_NEAR(in.range.min, 1.0, 1.0);
   EXPECT_NEAR(in.range.max, 98.0, 1.0);
-  EXPECT_EQ(s.pointColors()[0], (Rgb{0, 0, 0}));  // below the 1 % value
-  EXPECT_EQ(s.pointColors()[99], (Rgb{255, 255, 255}));
+  EXPECT_EQ(s.scene().pointColors()[0], (Rgb{0, 0, 0}));  // below the 1 % value
+  EXPECT_EQ(s.scene().pointColors()[99], (Rgb{255, 255, 255}));
 
-  s.setColorMode(ColorMode::CircleDistance);
+  s.view().setColorMode(ColorMode::CircleDistance);
   Legend d = colorLegend(s);
   EXPECT_DOUBLE_EQ(d.range.min, 0.0);
   EXPECT_NEAR(d.range.max, s.options().distanceColorScale * s.bounds().diagonal(), 1e-12);
 
-  s.setColorMode(ColorMode::FileColor);  // the cloud has none: plain, and the legend says so
+  s.view().setColorMode(ColorMode::FileColor);  // the cloud has none: plain, and the legend says so
   EXPECT_EQ(colorLegend(s).kind, Legend::Kind::None);
   EXPECT_NE(colorLegend(s).note.find("no rgb"), std::string::npos);
-  EXPECT_EQ(s.pointColors()[0], s.options().plainColor);
+  EXPECT_EQ(s.scene().pointColors()[0], s.options().plainColor);
 }
 
 TEST(ColorLegend, ColourModeNamesParse) {

@@ -4,7 +4,9 @@
 // the panel and the hovered ID is recorded at each point; one widget covers one connected region,
 // so an ID seen in two separate regions belongs to two widgets. Run by CTest (gui.panels_unique_ids)
 // with a node selected and without, so that every section is drawn. The same scan checks that every
-// hovered widget shows a tooltip.
+// hovered widget shows a tooltip. With --steady (CTest gui.panel_steady) it checks instead that
+// selecting a node moves none of the controls below the Node section (a click meant for one of them
+// hit another when the section grew).
 #include <imgui.h>
 #include <imgui_internal.h>
 
@@ -12,6 +14,7 @@
 #include <cstdio>
 #include <map>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -85,14 +88,54 @@ int clashes(viewer::ViewerState& state, gui::PanelState& panel, int width, int h
   return bad;
 }
 
+/// The window y (pixels) of the panel's "Correction tools" header: the first row of a scan down the
+/// panel where the mouse hovers it; -1 when not found.
+int toolsHeaderY(viewer::ViewerState& state, gui::PanelState& panel, int width, int height) {
+  ImGuiIO& io = ImGui::GetIO();
+  auto hovered = [&](float y) {
+    io.MousePos = ImVec2(40.0f, y);
+    ImGui::NewFrame();
+    gui::drawPanels(state, panel, width, height);
+    ImGuiWindow* w = ImGui::FindWindowByName("treesketch");
+    ImGuiID header = w ? w->GetID("Correction tools") : 0;
+    ImGuiID id = ImGui::GetCurrentContext()->HoveredId;
+    ImGui::Render();
+    return header != 0 && id == header;
+  };
+  for (int y = 0; y < height; ++y) {
+    hovered(float(y));  // hover is resolved against the previous frame
+    if (hovered(float(y))) return y;
+  }
+  return -1;
+}
+
+/// The header's place with each kind of selection: none, a fitted node, a node that did not fit.
+int steady(viewer::ViewerState& state, gui::PanelState& panel, int width, int height) {
+  int bad = 0;
+  state.setTool(viewer::Tool::AddNodes);  // the clicks add three nodes up the trunk
+  for (int i = 1; i <= 3; ++i) state.clickAt(state.view().camera().project(geom::Vec3(0, i, 0)).head<2>());
+  state.setTool(viewer::Tool::Select);
+  state.selectNode(sketch::kNoNode);
+  const int none = toolsHeaderY(state, panel, width, height);
+  std::printf("no node selected: the Correction tools header at y = %d\n", none);
+  if (none < 0) return 1;
+  for (sketch::NodeId id : state.sketch().ids()) {
+    if (!state.selectNode(id)) return 1;
+    const int y = toolsHeaderY(state, panel, width, height);
+    std::printf("node %d (%s) selected: at y = %d\n", id, viewer::toString(state.scene().nodeFit(id).status), y);
+    if (y != none) ++bad;
+  }
+  return bad;
+}
+
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;
   io.DeltaTime = 1.0f / 60.0f;
-  const int width = 1280, height = 1800;  // tall: every section fits without scrolling
+  const int width = 1280, height = 2400;  // tall: every section fits without scrolling
   io.DisplaySize = ImVec2(float(width), float(height));
   unsigned char* pixels = nullptr;
   int tw = 0, th = 0;
@@ -100,11 +143,18 @@ int main() {
   io.Fonts->SetTexID(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(1)));
 
   viewer::ViewerState state;
-  state.setViewport(gui::Layout::sceneViewport(width, height));
+  state.view().setViewport(gui::Layout::sceneViewport(width, height));
   if (!state.setCloud(trunk(), geom::UpAxis::Y)) return 2;
-  for (int i = 1; i <= 3; ++i) state.clickAt(state.camera().project(geom::Vec3(0, i, 0)).head<2>());
+  for (int i = 1; i <= 3; ++i) state.clickAt(state.view().camera().project(geom::Vec3(0, i, 0)).head<2>());
   gui::PanelState panel;
   panel.sketchPath = "unused.sketch.json";
+  if (argc > 1 && std::string(argv[1]) == "--steady") {
+    state.selectNode(sketch::kNoNode);
+    int moved = steady(state, panel, width, height);
+    ImGui::DestroyContext();
+    if (moved) std::printf("FAILED: selecting a node moved the controls below the Node section\n");
+    return moved ? 1 : 0;
+  }
   int bad = clashes(state, panel, width, height);  // node 2 selected: the Node section's widgets
   state.selectNode(sketch::kNoNode);
   bad += clashes(state, panel, width, height);  // no node: the sizes for new nodes

@@ -3,9 +3,11 @@
 // "tree.las.sketch.json") and autosaved ("tree.las.autosave.sketch.json"), which files must never
 // be written (the open cloud, a file that failed to load as a sketch), and the questions to ask
 // before a sketch made for another cloud is loaded or another file is replaced. Plain C++, no GL;
-// ViewerState owns one and asks it before every load, save and autosave.
+// ViewerState owns one and asks it before every load, save and autosave; it also holds the offer of
+// an earlier session's autosave (crash recovery).
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -66,11 +68,32 @@ class SketchDocument {
   void writeAutosave(const sketch::Sketch& sketch);
   /// Deletes the autosave file if there is one; true when a file was removed.
   bool removeAutosave();
+  /// Renames the autosave file to "<autosave>.kept-<date>-<time>.sketch.json" beside it (a name
+  /// not yet taken), loadable by hand; returns the new name. Throws std::filesystem's errors.
+  std::filesystem::path keepAutosave();
+
+  /// Crash recovery: an autosave found at autosavePath() is work from an earlier session (a crash,
+  /// or a window closed with unsaved edits). findRecovery() looks for one and, when found, holds it
+  /// as an offer (recoveryPending()) until endRecovery(): meanwhile the autosave is never written.
+  /// Returns the status text to show ("" when there is nothing to offer); `readable` is false when
+  /// the file cannot be read (recoveryError() says why). An autosave whose cloud record names
+  /// another cloud (point count or hash differ) is not offered: it is renamed as keepAutosave()
+  /// does, so that it is neither restored onto this cloud nor replaced by this cloud's autosave.
+  std::string findRecovery(bool& readable);
+  bool recoveryPending() const { return recoveryPending_; }
+  /// Nodes in the waiting autosave (0 when it cannot be read; recoveryError() says why).
+  std::size_t recoveryNodes() const { return recoveryNodes_; }
+  const std::string& recoveryError() const { return recoveryError_; }
+  /// The offer is answered (or withdrawn: another cloud is opened).
+  void endRecovery();
 
  private:
   std::filesystem::path cloudPath_, sketchPath_, autosavePath_, ownFile_;
   io::SketchCloudRecord cloud_;
   std::vector<std::filesystem::path> failedLoads_;
+  bool recoveryPending_ = false;
+  std::size_t recoveryNodes_ = 0;
+  std::string recoveryError_;
 };
 
 /// The same file: equivalent when both exist, else the same absolute, normalised path.

@@ -1,16 +1,21 @@
-// The interactive sketching tool's state and actions, in plain C++ (no GL, no window): the cloud,
-// the sketch and its live reconstruction, the orbit camera, selection and active node, undo/redo,
-// display options, status messages and autosave; and "what to draw" (point colours, node markers
-// in screen space, 3D lines for circles and the selected node's sampling region, highlighted slice
-// points, the tube mesh). The desktop window (apps/viewer) only draws this and forwards input;
-// tests and the script runner drive it directly. No action ever throws: a failure becomes an error
-// status message and the sketch is kept.
-// ViewerState is implemented in several files by concern: src/viewer/viewer_state.cpp (the state
-// and its edit commands: cloud, sketch edits, undo), viewer_files.cpp (save, load, export, through
-// the SketchDocument that ties the sketch to its cloud), viewer_input.cpp (mouse, wheel, keys and
-// the view they steer), viewer_draw.cpp (what is drawn: colours, markers, lines, status),
-// viewer_tools.cpp (the correction tools), recovery.cpp (the earlier session's autosave offered
-// back).
+// The desktop tool's state and actions, in plain C++ (no GL, no window), as a façade over its
+// parts, each a header of its own that says what it owns:
+//   document()  the sketch's files: its cloud's record, save path, autosave, recovery offer
+//               (viewer/sketch_document.h);
+//   view()      camera, viewport, up direction, colouring and display options (viewer/view_settings.h);
+//   tools()     the active tool, the path being dragged, the selected and active node
+//               (viewer/tool_state.h);
+//   jobs()      the automatic model on a worker thread, its progress and cancel (viewer/jobs.h);
+//   status()    the messages and the status line (viewer/status_log.h);
+//   scene()     what the window draws of it: colours, markers, lines, the mesh (viewer/scene.h).
+// ViewerState itself keeps the cloud, the sketch with its undo history and live reconstruction,
+// and the operations that cross parts: opening a cloud, every edit (undoable, rebuilt, autosaved),
+// mouse and keys, saving and loading. The desktop window (apps/viewer) only draws this and forwards input; tests and
+// the script runner drive it directly. No action ever throws: a failure becomes an error status message and the sketch
+// is kept. Implemented in several files by concern: src/viewer/viewer_state.cpp (the cloud, the edit protocol, sketch
+// edits, undo), viewer_files.cpp (save, load, export, through SketchDocument), viewer_input.cpp (mouse, wheel, keys),
+// viewer_draw.cpp (the Scene part), viewer_tools.cpp (the correction tools), viewer_view.cpp (the up direction),
+// recovery.cpp (the earlier session's autosave offered back), background_job.cpp (the automatic skeleton through Jobs).
 #pragma once
 
 #include <array>
@@ -32,32 +37,21 @@
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/sketch/sketch.h"
 #include "treesketch/util/progress.h"
-#include "treesketch/viewer/orbit_camera.h"
+#include "treesketch/viewer/jobs.h"
 #include "treesketch/viewer/point_colors.h"
+#include "treesketch/viewer/scene.h"
+#include "treesketch/viewer/scene_items.h"
 #include "treesketch/viewer/sketch_document.h"
+#include "treesketch/viewer/status_log.h"
+#include "treesketch/viewer/tool_state.h"
 #include "treesketch/viewer/undo_stack.h"
+#include "treesketch/viewer/view_settings.h"
 #include "treesketch/viewer/view_up.h"
 
 namespace treesketch::viewer {
 
 using sketch::kNoNode;
 using sketch::NodeId;
-
-/// Point colourings. The last three colour by the file's attributes (viewer/color_legend.h says
-/// which a cloud has); a cloud without the attribute is drawn plain.
-enum class ColorMode { Height, CircleDistance, Plain, Intensity, FileColor, Classification };
-enum class MeshStyle { Solid, Wireframe, Hidden };
-enum class MouseButton { Left, Right, Middle };
-/// Modifier key bits for mouse and key events.
-enum Modifier : int { kModNone = 0, kModShift = 1, kModCtrl = 2, kModAlt = 4 };
-
-/// Parses "height" / "distance" / "plain" / "intensity" / "rgb" / "classification"; throws
-/// OptionsError otherwise.
-ColorMode parseColorMode(const std::string& s);
-/// Parses "solid" / "wireframe" / "hidden"; throws OptionsError otherwise.
-MeshStyle parseMeshStyle(const std::string& s);
-const char* toString(ColorMode mode);
-const char* toString(MeshStyle style);
 
 struct ViewerOptions {
   /// A click within this distance of a node marker picks the node, window pixels.
@@ -81,109 +75,6 @@ struct ViewerOptions {
   std::size_t autoLabelMaxNodes = 100;
 };
 
-/// Node numbers beside the markers: Auto (up to ViewerOptions::autoLabelMaxNodes nodes), On, Off.
-enum class LabelMode { Auto, On, Off };
-/// Parses "auto" / "on" / "off"; throws OptionsError otherwise.
-LabelMode parseLabelMode(const std::string& s);
-const char* toString(LabelMode mode);
-
-struct DisplayOptions {
-  ColorMode colorMode = ColorMode::Height;
-  float pointSize = 2.0f;  ///< window pixels
-  MeshStyle meshStyle = MeshStyle::Solid;
-  bool showCloud = true;
-  bool showNodes = true;
-  bool showCircles = true;
-  bool showSamplingRegion = true;  ///< the selected node's slab, cylinder and slice points
-  LabelMode labels = LabelMode::Auto;
-};
-
-/// A node's reconstruction outcome, as the viewer shows it.
-enum class NodeStatus { Pending, Fitted, Skipped };
-const char* toString(NodeStatus status);
-
-/// Everything the viewer knows about one node's fit (from the reconstruction).
-struct NodeFitView {
-  NodeStatus status = NodeStatus::Pending;
-  std::string reason;             ///< why it was skipped ("" when fitted)
-  Circle3 circle;                 ///< valid when fitted
-  double finalLineEpsilon = 0.0;  ///< the cylinder radius the fit ended with, world units
-  std::size_t slicePoints = 0, testPoints = 0, inliers = 0;
-  /// Fitted from the node's kept circle (an automatic sketch's model), not from the cloud.
-  bool kept = false;
-  /// Screen nodes: the circle's depth along the node's view ray (world units from its near
-  /// point; NaN when unknown), and what the depth choice says (fit::NodeResult::warning) — a jump
-  /// away from where the circle was expected sets depthJump.
-  double depth = std::nan("");
-  bool depthJump = false;
-  std::string warning;
-};
-
-/// A node as drawn over the view: screen position (window pixels) under the current camera.
-struct NodeMarker {
-  sketch::NodeId id = sketch::kNoNode;
-  sketch::NodeId parent = sketch::kNoNode;
-  geom::Vec2 screen = geom::Vec2::Zero();
-  bool visible = true;        ///< false when behind the camera or outside the depth range
-  bool inCurrentView = true;  ///< drawn under the current camera (false: projected from 3D)
-  bool selected = false;
-  bool active = false;
-  NodeStatus status = NodeStatus::Pending;
-  /// Window depth of the node's circle (or anchor) under the current camera, 0 (near) to 1 (far);
-  /// NaN when unknown. A pick among overlapping markers takes the smallest.
-  double depth = std::nan("");
-  /// A Delete subtree waiting for its confirmation would remove this node (drawn as such).
-  bool doomed = false;
-};
-
-/// A coloured 3D line segment (world frame).
-struct Line3 {
-  geom::Vec3 a = geom::Vec3::Zero(), b = geom::Vec3::Zero();
-  Rgb color = {255, 255, 255};
-};
-
-/// The selected node's sampling region (thesis §4.4): the slab |dist to plane| < ε and the
-/// cylinder of radius lineEpsilon around the line L, for drawing.
-struct SamplingRegion {
-  bool valid = false;
-  sketch::NodeGeometry geometry;
-  double sliceHalfThickness = 0.0;
-  double lineEpsilon = 0.0;  ///< the final (possibly grown) radius when the node was fitted
-};
-
-/// A status message for the status bar / log.
-struct StatusMessage {
-  bool error = false;
-  std::string text;
-  std::chrono::steady_clock::time_point time{};  ///< when it was posted
-};
-
-/// The reconstruction the viewer runs after every edit. Implemented over recon::Reconstruction in
-/// the library; tests may plug in their own.
-class ViewerReconstruction {
- public:
-  virtual ~ViewerReconstruction() = default;
-  /// Re-fits what changed in `sketch` (nodes added, moved, re-parameterised, removed) and
-  /// rebuilds the mesh.
-  virtual void update(const sketch::Sketch& sketch) = 0;
-  /// The fit of node `id` (Pending when unknown).
-  virtual NodeFitView nodeFit(sketch::NodeId id) const = 0;
-  /// Indices into the cloud of the node's slice (nearPts) and of its circle's inliers.
-  virtual std::vector<std::uint32_t> slicePoints(sketch::NodeId id) const = 0;
-  virtual std::vector<std::uint32_t> inlierPoints(sketch::NodeId id) const = 0;
-  virtual const geom::TriMesh& mesh() const = 0;
-  /// Every node's fit, the sketch's order and parents, and the mesh (what the model's outputs are
-  /// made from: model::fromReconstruction). Default: no fits, the mesh only.
-  virtual recon::ReconstructionResult result() const {
-    recon::ReconstructionResult r;
-    r.mesh = mesh();
-    return r;
-  }
-};
-
-/// The default reconstruction (recon::Reconstruction over `cloud`, which must outlive it).
-std::unique_ptr<ViewerReconstruction> makeDefaultReconstruction(const geom::PointCloud& cloud);
-
 class ViewerState {
  public:
   using ReconstructionFactory = std::function<std::unique_ptr<ViewerReconstruction>(const geom::PointCloud&)>;
@@ -200,7 +91,7 @@ class ViewerState {
   /// sketch its default file and its autosave beside the cloud, named after the whole file name
   /// ("tree.las" -> "tree.las.sketch.json", "tree.las.autosave.sketch.json", so tree.las and
   /// tree.xyz in one folder keep apart); empty: no sketch path and no autosave unless set. An
-  /// autosave found there is offered back (recoveryPending()). The previous cloud's autosave is
+  /// autosave found there is offered back (document().recoveryPending()). The previous cloud's autosave is
   /// removed when it holds nothing unsaved (as closeSession). Returns false (error status, the
   /// open cloud and sketch kept) for an empty cloud or one with no extent to sketch on (every point
   /// at one place, or a box under a micrometre or under 1e-9 of its distance from the origin).
@@ -217,30 +108,34 @@ class ViewerState {
   const sketch::Sketch& sketch() const { return sketch_; }
   /// Where the sketch is autosaved after every edit (empty: never). An existing file there is work
   /// from an earlier session (a crash, or a window closed with unsaved edits): it is offered back
-  /// (recoveryPending()) and never overwritten before resolveRecovery() is called.
+  /// (document().recoveryPending()) and never overwritten before resolveRecovery() is called.
   /// A path that must never be written (the open cloud, a file that failed to load) is refused
   /// with an error and the autosave stays where it was.
   void setAutosavePath(const std::filesystem::path& path);
-  const std::filesystem::path& autosavePath() const { return doc_.autosavePath(); }
   /// Where Ctrl+S saves the sketch (empty: Ctrl+S reports that a path is needed). setCloud sets it
   /// to the cloud's own sketch file (SketchDocument::sketchPathFor).
   void setSketchPath(const std::filesystem::path& path) { doc_.setSketchPath(path); }
-  const std::filesystem::path& sketchPath() const { return doc_.sketchPath(); }
-  /// The open cloud's record (path, point count, hash), its files, and what may not be written.
+
+  // ---- the parts ----------------------------------------------------------------------------------
+  /// The open cloud's record (path, point count, hash), its sketch and autosave files, what may not
+  /// be written, and the offer of an earlier session's autosave.
   const SketchDocument& document() const { return doc_; }
+  ViewSettings& view() { return view_; }
+  const ViewSettings& view() const { return view_; }
+  const ToolState& tools() const { return tools_; }
+  Jobs& jobs() { return jobs_; }
+  const Jobs& jobs() const { return jobs_; }
+  StatusLog& status() { return status_; }
+  const StatusLog& status() const { return status_; }
 
   // ---- crash recovery ---------------------------------------------------------------------------
   /// What to do with an autosave found at start: load it (an undoable edit), delete it, or keep
   /// it for later (renamed "<autosave>.kept-<date>-<time>.sketch.json", loadable by hand).
   enum class RecoveryChoice { Restore, Discard, Keep };
-  /// An earlier session's autosave is waiting for the person's choice. Until then autosave writes
-  /// nothing (edits still work; they are autosaved once the choice is made).
-  bool recoveryPending() const { return recoveryPending_; }
-  /// Nodes in the waiting autosave (0 when it cannot be read; recoveryError() says why).
-  std::size_t recoveryNodes() const { return recoveryNodes_; }
-  const std::string& recoveryError() const { return recoveryError_; }
-  /// Applies the choice; false (error status) when nothing is pending or the file cannot be
-  /// read/moved (the file is then left where it is and the offer stays).
+  /// An earlier session's autosave waits for the person's choice while
+  /// document().recoveryPending(); until then autosave writes nothing (edits still work; they are
+  /// autosaved once the choice is made). Applies the choice; false (error status) when nothing is pending or the file
+  /// cannot be read/moved (the file is then left where it is and the offer stays).
   bool resolveRecovery(RecoveryChoice choice);
   /// Edits since the sketch was last saved, loaded or the cloud opened.
   bool hasUnsavedChanges() const { return dirty_; }
@@ -253,47 +148,18 @@ class ViewerState {
   /// its offer's answer is left alone).
   void discardUnsavedWork();
 
-  // ---- view -------------------------------------------------------------------------------------
-  /// The 3D view's rectangle in window pixels (top-left origin).
-  void setViewport(const geom::Viewport& viewport);
-  OrbitCamera& orbit() { return orbit_; }
-  const OrbitCamera& orbit() const { return orbit_; }
-  geom::Camera camera() const { return orbit_.camera(); }
-  void fitView();
-  void presetView(geom::PresetView view);
-  void setOrthographic(bool ortho);
-  /// The view is moving (an orbit, pan or zoom within the last `viewSettleSeconds`): the window
-  /// draws a subsample of the cloud (PointLod) and the whole cloud once it is still.
-  bool viewMoving(std::chrono::steady_clock::time_point now) const {
-    return now < lastViewChange_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                       std::chrono::duration<double>(kViewSettleSeconds));
-  }
-  /// When the view counts as still (for the window's next wake-up).
-  std::chrono::steady_clock::time_point viewSettles() const {
-    return lastViewChange_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                 std::chrono::duration<double>(kViewSettleSeconds));
-  }
-  /// Design choice: a pause of 0.15 s between mouse moves ends a gesture (longer than a frame at
-  /// 10 Hz, shorter than a person notices the full cloud coming back late).
-  static constexpr double kViewSettleSeconds = 0.15;
-  DisplayOptions& display() { return display_; }
-  const DisplayOptions& display() const { return display_; }
-  void setColorMode(ColorMode mode);
-  /// Node numbers are drawn (display().labels and the node count).
-  bool labelsShown() const;
+  // ---- view (what crosses from view() to the cloud and the sketch) ---------------------------------
   /// The view's up direction (initially the cloud's up axis). Setting it re-orients the view
   /// (front preset) and the height colouring; the cloud and the sketch are untouched, and for +Y
   /// or +Z the library's up axis (automatic sketches, the sketch file's "up") follows. Other
   /// directions are for viewing and sketching by hand: the automatic sketches then refuse with a
   /// message, as they assume +Y or +Z.
   void setUpDirection(UpDirection up);
-  UpDirection upDirection() const { return viewUp_; }
   /// The warning shown when the cloud looks lying down under the current up ("" when upright).
   /// The window shows it as a banner over the view, with the up-axis choice, until the up changes
   /// or the person dismisses it (upWarningShown()).
   std::string lyingDownWarning() const;
-  bool upWarningShown() const { return !upWarningDismissed_ && !lyingDownWarning().empty(); }
-  void dismissUpWarning() { upWarningDismissed_ = true; }
+  bool upWarningShown() const { return !view_.upWarningDismissed() && !lyingDownWarning().empty(); }
 
   // ---- input (window pixels; what a mouse and keyboard do) -------------------------------------
   /// Left button: press on a node (the nearest marker within the pick radius) picks it (release
@@ -364,49 +230,25 @@ class ViewerState {
   bool answerConfirmation(bool yes);
   // ---- long work on a worker thread ------------------------------------------------------------
   /// Starts the automatic skeleton sketch (as autoSketchSkeleton) on a worker thread and returns
-  /// at once; the window keeps drawing, shows jobProgress() and may cancelJob(). pollJob() takes
+  /// at once; the window keeps drawing, shows jobs().progress() and may jobs().cancel(). pollJob() takes
   /// the result in as one undoable edit. While the job runs, edits are refused with a message
   /// (the view still moves); the sketch is untouched until the result is taken in, so a cancel
   /// leaves it exactly as it was. False (error status) when a job runs already or no cloud is open.
   bool startAutoSkeletonJob(bool leafOn = false);
-  bool busy() const;
-  struct JobProgress {
-    std::string what;         ///< "automatic skeleton: fitting nodes 128 / 640"
-    double fraction = 0.0;    ///< 0..1 within the current step
-    int step = 1, steps = 2;  ///< extraction, then the fit pass
-    bool cancelling = false;
-  };
-  JobProgress jobProgress() const;
-  /// Asks the running job to stop at its next progress report (no effect when none runs).
-  void cancelJob();
   /// Takes a finished job in (result, cancel message or error); call once a frame. True when a job
   /// ended in this call.
   bool pollJob();
   /// Blocks until the running job has ended and takes it in (scripts, and closing the window).
   void waitForJob();
-  /// Test seam: while held, a started job waits before its first step (busy, cancellable), so a
-  /// script can check "the window works while a job runs" and "cancel" without racing the job.
-  void holdJobs(bool hold);
 
   /// Drops the selected node's kept circle (it is then fitted from the cloud) / every node's.
   /// Undoable; an error message when there is nothing to refit.
   bool refitSelected();
   bool refitAll();
   // ---- correction tools (src/viewer/viewer_tools.cpp over edit/correction_tools.h) ----
-  /// What a left click or drag in the view does: Select (pick and drag nodes; a click on empty
-  /// space adds nothing, Shift+click adds a node there — the default), AddNodes (a click on
-  /// empty space adds a node), Stroke (draw a limb as one stroke), Lasso (mark points as
-  /// not-wood), Region (automatic skeleton inside the drawn region, merged), Reattach (a click on
-  /// a node makes it the selected node's new parent). Keys: N add nodes, G stroke, X lasso, R
-  /// region, P re-attach (each toggles its tool), H automatic below the selected node, Escape
-  /// back to Select.
-  enum class Tool { Select, AddNodes, Stroke, Lasso, Region, Reattach };
-  /// The tool's name as the canvas and the Tools menu show it ("select", "add nodes", ...).
-  static const char* toolLabel(Tool tool);
+  /// Chooses the tool a left click or drag uses (ToolState; the status line says how to use it).
+  using Tool = viewer::Tool;
   void setTool(Tool tool);
-  Tool tool() const { return tool_; }
-  /// The stroke or polygon being drawn (window pixels), for the overlay.
-  const std::vector<geom::Vec2>& toolPath() const { return toolPath_; }
   /// Each one undoable, rebuilds, autosaves; false + error status on failure. Screen points are
   /// window pixels under the current view.
   bool strokeLimb(const std::vector<geom::Vec2>& stroke);
@@ -448,63 +290,26 @@ class ViewerState {
   /// `unitMetres` metres per cloud unit. False (error status) when no piece is fitted yet.
   bool exportModel(ModelFile what, const std::filesystem::path& path, double unitMetres = 1.0);
 
-  sketch::NodeId selected() const { return selected_; }
-  sketch::NodeId active() const { return active_; }
   bool canUndo() const { return undo_.canUndo(); }
   bool canRedo() const { return undo_.canRedo(); }
   const UndoStack& history() const { return undo_; }
 
-  // ---- what to draw -----------------------------------------------------------------------------
-  /// Per-point colours for the current colour mode (recomputed only when stale).
-  const std::vector<Rgb>& pointColors();
-  /// Increases whenever pointColors() would change.
-  std::uint64_t colorsVersion() const { return colorsVersion_; }
-  /// The model the fitted sketch makes (model::fromReconstruction): what the exports write and
-  /// the distance colouring measures against. Empty with no cloud or no two linked fitted nodes.
-  model::TreeModel treeModel() const;
-  /// The distance colouring's grid (its last call's counts; for tests and benchmarks).
-  const DistanceColorGrid& distanceColorGrid() const { return distanceGrid_; }
-  /// Markers of all nodes under the current camera.
-  std::vector<NodeMarker> nodeMarkers() const;
-  /// The node a click at `screen` picks: of the markers within the pick radius, the nearest to
-  /// the eye (NodeMarker::depth), then the nearest on screen (kNoNode if none).
-  sketch::NodeId nodeAt(const geom::Vec2& screen) const;
-  /// How many visible markers lie within the pick radius of `screen` (a pick among several says
-  /// which it took).
-  std::size_t markersAt(const geom::Vec2& screen) const;
-  /// 3D lines: fitted circles (selected one highlighted) and the selected node's sampling region.
-  std::vector<Line3> sceneLines() const;
-  SamplingRegion samplingRegion() const;
-  /// Cloud indices of the selected node's slice points and circle inliers (empty when none).
-  std::vector<std::uint32_t> highlightedSlicePoints() const;
-  std::vector<std::uint32_t> highlightedInliers() const;
-  NodeFitView nodeFit(sketch::NodeId id) const;
-  const geom::TriMesh& mesh() const;
+  // ---- what to draw ------------------------------------------------------------------------------
+  /// What the window draws of this state (viewer/scene.h): colours, markers, lines, the mesh.
+  Scene& scene() { return scene_; }
+  const Scene& scene() const { return scene_; }
   /// Increases whenever the mesh, the markers or the lines may have changed.
   std::uint64_t sceneVersion() const { return sceneVersion_; }
-  /// Counts of fitted and skipped nodes.
-  std::size_t fittedCount() const;
-  std::size_t skippedCount() const;
 
-  // ---- status -----------------------------------------------------------------------------------
+  // ---- status ------------------------------------------------------------------------------------
   double lastRebuildMs() const { return lastRebuildMs_; }
-  const std::vector<StatusMessage>& messages() const { return messages_; }
-  StatusMessage lastMessage() const { return messages_.empty() ? StatusMessage{} : messages_.back(); }
-  std::size_t errorCount() const { return errorCount_; }
-  void info(const std::string& text);
-  void error(const std::string& text);
-  /// What the status bar shows at `now`: the last message if it is an error not dismissed, or an
-  /// info younger than ViewerOptions::statusInfoSeconds; nullopt otherwise (the bar shows counts).
-  std::optional<StatusMessage> statusLine(std::chrono::steady_clock::time_point now) const;
-  std::optional<StatusMessage> statusLine() const { return statusLine(std::chrono::steady_clock::now()); }
-  /// Hides the status bar's message (Esc, or its close button); the messages log keeps it.
-  void dismissStatus() { statusDismissed_ = true; }
-  /// When the status line will change by itself next (an info expiring); nullopt when it will not.
-  std::optional<std::chrono::steady_clock::time_point> statusExpiry() const;
   const ViewerOptions& options() const { return options_; }
 
  private:
-  enum class Gesture { None, PendingAdd, PendingEmpty, PendingNode, DragNode, Orbit, Pan, ToolPath };
+  using Gesture = ToolState::Gesture;
+  void info(const std::string& text) { status_.info(text); }
+  void error(const std::string& text) { status_.error(text); }
+  geom::Camera camera() const { return view_.camera(); }
   /// The tools' share of the mouse (viewer_tools.cpp); true when the tool took the event.
   bool toolMouseDown(const geom::Vec2& pos, MouseButton button, int mods);
   bool toolMouseUp(const geom::Vec2& pos);
@@ -523,8 +328,9 @@ class ViewerState {
   void endEdit();
   void rebuild();
   void autosave();
-  /// Looks for an earlier session's autosave at autosavePath_ (sets recoveryPending_).
+  /// Looks for an earlier session's autosave (SketchDocument::findRecovery) and says what it found.
   void detectRecovery();
+  bool takeJobOutcome(std::optional<Jobs::Outcome> outcome);
   void resetReconstruction();
   void fixSelection();
   bool sameAsCurrent(const geom::Camera& cam) const;
@@ -542,29 +348,15 @@ class ViewerState {
   geom::BBox bounds_;
   geom::UpAxis up_ = geom::UpAxis::Y;
   SketchDocument doc_;
+  ViewSettings view_;
+  ToolState tools_;
+  StatusLog status_;
   sketch::Sketch sketch_;
   std::unique_ptr<ViewerReconstruction> recon_;
-  OrbitCamera orbit_;
-  DisplayOptions display_;
   UndoStack undo_;
   std::string lastEditKey_;
-  sketch::NodeId selected_ = sketch::kNoNode;
-  sketch::NodeId active_ = sketch::kNoNode;
-
-  Gesture gesture_ = Gesture::None;
-  MouseButton gestureButton_ = MouseButton::Left;
-  int gestureMods_ = kModNone;
-  geom::Vec2 pressPos_ = geom::Vec2::Zero();
-  geom::Vec2 lastPos_ = geom::Vec2::Zero();
-  sketch::NodeId gestureNode_ = sketch::kNoNode;
-  std::uint64_t dragSerial_ = 0;
   bool autosavePending_ = false;
   bool untouchedAuto_ = false;
-  /// The person chose the active node (selected it, added it, dragged it); false when it is a
-  /// fallback (the root after a load, an automatic sketch, a deletion of the active node).
-  bool activeChosen_ = false;
-  /// The visible node whose marker is nearest to `screen`, at any distance (kNoNode if none).
-  sketch::NodeId nearestMarker(const geom::Vec2& screen) const;
   std::function<bool()> pendingAction_;
   sketch::NodeId pendingDelete_ = sketch::kNoNode;  ///< the subtree a waiting question would delete
   std::string pendingQuestion_;
@@ -574,39 +366,19 @@ class ViewerState {
   bool ask(const std::string& question, std::function<bool()> action);
   bool takeLoadedSketch(const std::filesystem::path& path, sketch::Sketch loaded, bool ownCloud);
   bool writeSketchFile(const std::filesystem::path& path);
-  struct Job;
-  std::shared_ptr<Job> job_;
-  bool holdJobs_ = false;  // shared_ptr: Job is complete only in background_job.cpp
   bool refuseWhileBusy(const std::string& name);
-  bool recoveryPending_ = false;
-  std::size_t recoveryNodes_ = 0;
-  std::string recoveryError_;
   bool dirty_ = false;
 
-  std::vector<Rgb> colors_;
-  DistanceColorGrid distanceGrid_;  ///< binned once per cloud for the distance colouring
-  std::uint64_t distanceGridVersion_ = 0;
-  ColorMode colorsMode_ = ColorMode::Height;
-  bool colorsStale_ = true;
-  std::uint64_t colorsVersion_ = 1;
   std::uint64_t cloudVersion_ = 0;
   std::uint64_t sceneVersion_ = 1;
-  geom::TriMesh emptyMesh_;
   double lastRebuildMs_ = 0.0;
-  std::vector<StatusMessage> messages_;
-  bool statusDismissed_ = false;
-  UpDirection viewUp_ = UpDirection::PosY;
-  bool upWarningDismissed_ = false;
-  std::chrono::steady_clock::time_point lastViewChange_{};
   void viewMoved() {
-    lastViewChange_ = std::chrono::steady_clock::now();
+    view_.lastViewChange_ = std::chrono::steady_clock::now();
     ++sceneVersion_;
   }
-  std::size_t errorCount_ = 0;
-  std::vector<sketch::NotWoodLasso> colorsNotWood_;  ///< the lassos pointColors() last drew
-  Tool tool_ = Tool::Select;
-  sketch::NodeId reattachSource_ = sketch::kNoNode;  ///< the Reattach tool's first click
-  std::vector<geom::Vec2> toolPath_;
+  friend class Scene;
+  Scene scene_{*this};
+  Jobs jobs_;  // last: destroyed first, so that a running job stops before the cloud it reads goes
 };
 
 }  // namespace treesketch::viewer
