@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "treesketch/skeleton/skeleton.h"
+#include "treesketch/util/non_increasing_fit.h"
 
 namespace treesketch::skeleton::detail {
 
@@ -34,8 +35,7 @@ Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector
 /// node carries (nodes parent-first; the first root is the root).
 std::vector<double> pipeRadii(const std::vector<SkeletonNode>& nodes, double rootRadius);
 
-/// In place: the least-squares non-increasing sequence to `values` with `weights` > 0
-/// (isotonic regression by pooling adjacent violators): a branch's taper.
-void nonIncreasingFit(std::vector<double>& values, const std::vector<double>& weights);
+/// A branch's taper (util/non_increasing_fit.h), shared with a fitted sketch's inferred radii.
+using util::nonIncreasingFit;
 
 }  // namespace treesketch::skeleton::detail
