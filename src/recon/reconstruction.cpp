@@ -237,6 +237,7 @@ ReconstructionResult reconstruct(const geom::PointCloud& cloud, const sketch::Sk
 ReconstructionOptions sketchReconstructionOptions() {
   ReconstructionOptions o;
   o.fit.chooseDepth = true;
+  o.radii.enabled = true;
   return o;
 }
 

@@ -132,17 +132,17 @@ TEST(RadiusInference, AWideFitOnALimbIsSetAsideAndAThinGapIsFilled) {
     n.geometry.planePoint = f.centre;  // point nodes
     in.push_back(n);
   }
-  const auto out = inferRadii(in);
+  RadiusInferenceOptions on;
+  on.enabled = true;
+  const auto out = inferRadii(in, on);
   EXPECT_EQ(out.at(5).source, RadiusSource::Inferred);
   EXPECT_NE(out.at(5).why.find("wider"), std::string::npos) << out.at(5).why;
   for (int i = 1; i < 8; ++i) EXPECT_LE(out.at(i).radius, out.at(i - 1).radius + 1e-12) << i;
   EXPECT_EQ(out.at(4).source, RadiusSource::Inferred);
   EXPECT_GT(out.at(6).radius, 0.02);
   EXPECT_LT(out.at(6).radius, 0.04);
-  // Off: the fits as they are, the skipped nodes bridged.
-  RadiusInferenceOptions off;
-  off.enabled = false;
-  const auto raw = inferRadii(in, off);
+  // Off (the thesis's procedure, the default): the fits as they are, the skipped nodes bridged.
+  const auto raw = inferRadii(in);
   EXPECT_EQ(raw.at(5).radius, 0.2);
   EXPECT_EQ(raw.at(4).source, RadiusSource::None);
 }

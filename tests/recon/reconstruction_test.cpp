@@ -89,11 +89,7 @@ TEST(Reconstruction, FittingAloneSweepsNothingAndTheNextUpdateSweepsOnce) {
 TEST(Reconstruction, EditsRefitOnlyTheTouchedNodes) {
   geom::PointCloud cloud = treeCloud();
   sketch::Sketch s = trunkSketch();
-  // The fits as they are: a radius inferred along the limb (on by default) may move with any fit
-  // of the limb, and its bands with it.
-  ReconstructionOptions o = serial();
-  o.radii.enabled = false;
-  Reconstruction rec(cloud, o);
+  Reconstruction rec(cloud, serial());
   rec.update(s);
   ASSERT_EQ(rec.fitCount(), 4u);
   EXPECT_TRUE(rec.update(s).empty());  // no change: no fit
@@ -120,7 +116,7 @@ TEST(Reconstruction, EditsRefitOnlyTheTouchedNodes) {
   EXPECT_EQ(rec.sweeper().segmentKeys().size(), 2u);
 
   // The incremental state equals a fresh one-shot reconstruction.
-  ReconstructionResult fresh = reconstruct(cloud, s, o);
+  ReconstructionResult fresh = reconstruct(cloud, s, serial());
   for (auto id : s.ids()) {
     EXPECT_EQ(fresh.results.at(id).centre, rec.result(id)->centre);
     EXPECT_EQ(fresh.results.at(id).radius, rec.result(id)->radius);

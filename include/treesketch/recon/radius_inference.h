@@ -42,8 +42,10 @@ struct NodeRadius {
 };
 
 struct RadiusInferenceOptions {
-  /// Off: the model is the fits as they are (the thesis's procedure), unfitted nodes bridged.
-  bool enabled = true;
+  /// Off: the model is the fits as they are, unfitted nodes bridged — the thesis's procedure, and
+  /// what the automatic model's own passes use (its radius rules are its own). On for a person's
+  /// sketch (recon::sketchReconstructionOptions).
+  bool enabled = false;
   /// A fit on a limb that forks off another, wider than this many radii of the node it forks
   /// from, is implausible: a side limb is thinner than what carries it (the pipe model gives each child of
   /// an even fork 0.71 of its parent's radius; 0.9 leaves room for a fit's ±10 %), and a slice

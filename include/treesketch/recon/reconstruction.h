@@ -138,7 +138,8 @@ struct ReconstructionResult {
 
 /// The options a person's sketch is fitted with, in the desktop tool and by `reconstruct --sketch`
 /// alike (so one sketch gives one model): the defaults, with screen nodes choosing their depth along
-/// the view ray (fit::NodeFitOptions::chooseDepth).
+/// the view ray (fit::NodeFitOptions::chooseDepth) and radii inferred along each limb where the fits
+/// fail or are implausible (RadiusInferenceOptions::enabled).
 ReconstructionOptions sketchReconstructionOptions();
 
 /// One-shot reconstruction (index, fit every node, sweep). Empty sketch → empty mesh.
