@@ -66,6 +66,12 @@ nlohmann::json reportHeader(const ReconstructArgs& a, const recon::Reconstructio
     j["lineEpsilon"] = n.lineEpsilon;
     j["growthSteps"] = n.growthSteps;
     j["ms"] = n.ms;
+    // The model's circle: the fit, the kept circle or a radius inferred from the limb, and why.
+    if (auto c = r.radii.find(id); c != r.radii.end()) {
+      j["modelRadiusSource"] = recon::toString(c->second.source);
+      j["modelRadius"] = c->second.radius;
+      if (!c->second.why.empty()) j["modelRadiusWhy"] = c->second.why;
+    }
     nodes.push_back(j);
   }
   nlohmann::json root;
@@ -76,6 +82,10 @@ nlohmann::json reportHeader(const ReconstructArgs& a, const recon::Reconstructio
   root["seed"] = a.seed;
   root["ringVertices"] = a.ring;
   root["nodes"] = nodes;
+  const recon::FitSummary summary = recon::summarizeFits(r.results, r.radii);
+  root["fitSummary"] = {{"nodes", summary.nodes},       {"fitted", summary.fitted},
+                        {"kept", summary.kept},         {"disabled", summary.disabled},
+                        {"inferred", summary.inferred}, {"notFitted", summary.notFitted}};
   root["vertices"] = r.mesh.vertices.size();
   root["triangles"] = r.mesh.triangles.size();
   root["timings"] = {{"indexMs", r.timings.indexMs},
@@ -177,8 +187,10 @@ void runReconstruct(const ReconstructArgs& a) {
       "triangles; index %.1f ms, fit %.1f ms, sweep %.1f ms -> %s\n",
       r.results.size(), fitted, skipped, disabled, kept, r.mesh.vertices.size(), r.mesh.triangles.size(),
       r.timings.indexMs, r.timings.fitMs, r.timings.sweepMs, a.out.mesh.c_str());
-  if (!shape.unfitted.empty())
-    std::printf("nodes that did not fit (bridged by their neighbours): %s\n", shape.unfittedList().c_str());
+  if (!shape.unfitted.empty()) {
+    std::printf("nodes that did not fit: %s\n", shape.unfittedList().c_str());
+    std::printf("fits: %s\n", recon::summarizeFits(r.results, r.radii).text().c_str());
+  }
   printModelSummary(measures, outputs);
 }
 

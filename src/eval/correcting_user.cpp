@@ -170,6 +170,7 @@ class CorrectingSession {
     recon::ReconstructionOptions ro;
     ro.seed = o.seed;
     ro.fit.chooseDepth = true;  // as the viewer
+    ro.radii.enabled = true;
     return ro;
   }
 

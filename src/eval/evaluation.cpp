@@ -84,13 +84,15 @@ std::vector<sketch::BranchPolyline> branchesForBudget(const std::vector<sketch::
   return out;
 }
 
-/// chooseDepth: a person's screen nodes choose their depth along the view ray; the
-/// thesis's uniform baseline keeps the thesis's fit.
+/// chooseDepth: a person's screen nodes choose their depth along the view ray and radii are
+/// inferred along the limbs, as the viewer fits a sketch; the thesis's uniform baseline keeps the
+/// thesis's fit.
 MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud& cloud, std::uint64_t seed,
                                const Stopwatch& timer, bool chooseDepth = false) {
   recon::ReconstructionOptions ro;
   ro.seed = seed;
   ro.fit.chooseDepth = chooseDepth;
+  ro.radii.enabled = chooseDepth;  // as the viewer fits a person's sketch
   recon::ReconstructionResult r = recon::reconstruct(cloud, sk, ro);
   MethodOutput out;
   out.mesh = std::move(r.mesh);

@@ -60,16 +60,35 @@ void writeJson(const std::string& path, const nlohmann::json& j) {
 
 }  // namespace
 
+namespace {
+
+/// Node `id`'s circle in the model: the reconstruction's (a fit, a kept circle or a radius
+/// inferred from its limb), or its fit when the result has none (a result put together by hand).
+recon::NodeRadius modelCircle(const recon::ReconstructionResult& r, sketch::NodeId id) {
+  if (auto it = r.radii.find(id); it != r.radii.end()) return it->second;
+  recon::NodeRadius c;
+  const fit::NodeResult& n = r.results.at(id);
+  if (n.status == fit::NodeStatus::Fitted && n.radius > 0 && n.centre.allFinite()) {
+    c.source = n.kept ? recon::RadiusSource::Kept : recon::RadiusSource::Fitted;
+    c.centre = n.centre;
+    c.radius = n.radius;
+  }
+  return c;
+}
+
+}  // namespace
+
 TreeModel fromReconstruction(const recon::ReconstructionResult& r, geom::UpAxis up) {
   std::vector<geom::ModelNode> nodes;
   std::vector<std::int64_t> ids;
+  std::vector<char> measured;
   std::map<sketch::NodeId, std::int64_t> index;  // node with a circle → its place in `nodes`
   for (sketch::NodeId id : r.order) {
-    const fit::NodeResult& n = r.results.at(id);
-    if (n.status != fit::NodeStatus::Fitted || !(n.radius > 0) || !n.centre.allFinite()) continue;
+    const recon::NodeRadius c = modelCircle(r, id);
+    if (c.source == recon::RadiusSource::None || !(c.radius > 0) || !c.centre.allFinite()) continue;
     geom::ModelNode m;
-    m.position = n.centre;
-    m.radius = n.radius;
+    m.position = c.centre;
+    m.radius = c.radius;
     for (sketch::NodeId p = r.parents.at(id); p != sketch::kNoNode; p = r.parents.at(p)) {
       auto it = index.find(p);
       if (it != index.end()) {
@@ -80,12 +99,13 @@ TreeModel fromReconstruction(const recon::ReconstructionResult& r, geom::UpAxis 
     index[id] = static_cast<std::int64_t>(nodes.size());
     nodes.push_back(m);
     ids.push_back(static_cast<std::int64_t>(id));
+    measured.push_back(c.source != recon::RadiusSource::Inferred);
   }
   assignBranchOrders(nodes);
   TreeModel model;
   model.up = up;
   model.cylinders = geom::cylinderModelFromNodes(nodes);
-  pieceAttributes(nodes, ids, std::vector<char>(nodes.size(), 1), &model);
+  pieceAttributes(nodes, ids, measured, &model);
   model.mesh = r.mesh;
   return model;
 }

@@ -39,12 +39,18 @@ Reconstruction::Reconstruction(const geom::PointCloud& cloud, const Reconstructi
 
 void Reconstruction::reset() {
   entries_.clear();
+  radii_.clear();
   sweeper_ = sweep::TubeSweeper(options_.sweep);
 }
 
 const fit::NodeResult* Reconstruction::result(NodeId id) const {
   auto it = entries_.find(id);
   return it == entries_.end() ? nullptr : &it->second.result;
+}
+
+const NodeRadius* Reconstruction::radius(NodeId id) const {
+  auto it = radii_.find(id);
+  return it == radii_.end() ? nullptr : &it->second;
 }
 
 std::map<NodeId, const fit::NodeResult*> Reconstruction::results() const {
@@ -164,7 +170,20 @@ void Reconstruction::fitPending(const sketch::Sketch& sketch, Pending& p, const 
   fitCount_ += p.changed.size();
 }
 
-// 3. Sweep.
+// 3. The model's circles: fits checked against their limb, radii inferred for the rest.
+void Reconstruction::refreshRadii() {
+  std::vector<RadiusInput> in;
+  in.reserve(order_.size());
+  for (NodeId id : order_) {
+    auto it = entries_.find(id);
+    if (it == entries_.end()) continue;
+    in.push_back(RadiusInput{id, it->second.parent, &it->second.result, it->second.geometry,
+                             it->second.params.sliceHalfThickness});
+  }
+  radii_ = inferRadii(in, options_.radii);
+}
+
+// 4. Sweep through the model's circles (a node with none is bridged).
 void Reconstruction::sweepEntries() {
   std::vector<sweep::SweepNode> nodes;
   nodes.reserve(entries_.size());
@@ -172,8 +191,9 @@ void Reconstruction::sweepEntries() {
     sweep::SweepNode n;
     n.id = id;
     n.parent = e.parent;
-    n.fitted = e.result.status == fit::NodeStatus::Fitted;
-    n.disc = {e.result.centre, e.result.normal, e.result.radius};
+    const NodeRadius* c = radius(id);
+    n.fitted = c && c->source != RadiusSource::None;
+    if (n.fitted) n.disc = {c->centre, c->normal, c->radius};
     nodes.push_back(n);
   }
   sweeper_.update(nodes);
@@ -186,6 +206,8 @@ std::vector<NodeId> Reconstruction::fit(const sketch::Sketch& sketch, const Prog
   Pending pending = diff(sketch, lassosChanged);
   if (options_.fit.chooseDepth) addPriorDependents(sketch, pending);
   fitPending(sketch, pending, progress);
+  order_ = sketch.topologicalOrder();
+  refreshRadii();
   timings_.fitMs = timer.ms();
   timings_.sweepMs = 0.0;
   timings_.totalMs = timings_.fitMs;
@@ -215,12 +237,14 @@ ReconstructionResult reconstruct(const geom::PointCloud& cloud, const sketch::Sk
 ReconstructionOptions sketchReconstructionOptions() {
   ReconstructionOptions o;
   o.fit.chooseDepth = true;
+  o.radii.enabled = true;
   return o;
 }
 
 ReconstructionResult Reconstruction::result(const sketch::Sketch& sketch) const {
   ReconstructionResult out;
   for (const auto& [id, r] : results()) out.results[id] = *r;
+  out.radii = radii_;
   out.order = sketch.topologicalOrder();
   for (NodeId id : out.order) out.parents[id] = sketch.node(id).parent;
   out.mesh = mesh();

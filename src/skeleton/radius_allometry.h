@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "treesketch/skeleton/skeleton.h"
+#include "treesketch/util/non_increasing_fit.h"
 
 namespace treesketch::skeleton::detail {
 
@@ -34,12 +35,7 @@ Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector
 /// node carries (nodes parent-first; the first root is the root).
 std::vector<double> pipeRadii(const std::vector<SkeletonNode>& nodes, double rootRadius);
 
-/// In place: the least-absolute-deviations non-increasing sequence to `values` with `weights` > 0
-/// (isotonic regression by pooling adjacent violators, each pool at its members' weighted
-/// median): a branch's taper. The median, not the mean: a run of thick fits just below a fork
-/// (a slice through the crotch holds both limbs) would raise the whole trunk below it by their
-/// mean (adtree_tree1's stem at 1.3 m from 13 to 17.6 cm); its median moves only as far as the
-/// majority of the fits.
-void nonIncreasingFit(std::vector<double>& values, const std::vector<double>& weights);
+/// A branch's taper (util/non_increasing_fit.h), shared with a fitted sketch's inferred radii.
+using util::nonIncreasingFit;
 
 }  // namespace treesketch::skeleton::detail

@@ -147,7 +147,7 @@ void pipeAtForks(const std::vector<SkeletonNode>& nodes, const std::vector<char>
 /// Step 4: no child thicker than its parent (see RadiusRules::childNotThicker).
 void taperAlongBranches(const std::vector<SkeletonNode>& nodes, const std::vector<std::vector<std::int32_t>>& chains,
                         const std::vector<char>& ok, std::vector<double>& r) {
-  // Along each branch the least-squares non-increasing radii (isotonic regression, trusted fits
+  // Along each branch the least-absolute-deviations non-increasing radii (isotonic regression, trusted fits
   // weighing most), so one thin fit lowers its neighbours a little instead of capping the whole
   // branch above it; then a branch is capped by the node it forks from (chains are parent-first,
   // so that node is final).

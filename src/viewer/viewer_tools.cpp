@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "treesketch/edit/correction_tools.h"
+#include "treesketch/recon/radius_inference.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/error.h"
 #include "treesketch/viewer/viewer_state.h"
@@ -70,20 +71,10 @@ bool ViewerState::strokeLimb(const std::vector<Vec2>& stroke) {
 }
 
 std::string ViewerState::limbFitSummary(const std::vector<NodeId>& nodes) const {
-  // How many of the limb's nodes fitted, and why the others did not, grouped by reason (a sparse
+  // How many of the limb's nodes fitted, and why the others did not, by kind of reason (a sparse
   // limb's nodes mostly fail on the minimum support: the person sees why, not only a thin tube).
-  std::size_t fitted = 0;
-  std::map<std::string, std::size_t> reasons;
-  for (NodeId id : nodes) {
-    const NodeFitView f = recon_->nodeFit(id);
-    if (f.status == NodeStatus::Fitted)
-      ++fitted;
-    else
-      ++reasons[f.reason.empty() ? std::string(toString(f.status)) : f.reason];
-  }
-  std::string text = std::to_string(fitted) + " of " + std::to_string(nodes.size()) + " fitted";
-  for (const auto& [reason, n] : reasons) text += "; " + std::to_string(n) + " not: " + reason;
-  return text;
+  const recon::ReconstructionResult r = recon_->result();
+  return recon::summarizeFits(r.results, r.radii, nodes).text();
 }
 
 bool ViewerState::lassoNotWood(const std::vector<Vec2>& polygon) {

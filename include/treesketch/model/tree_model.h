@@ -36,8 +36,10 @@ struct TreeModel {
   bool empty() const { return cylinders.empty(); }
 };
 
-/// A fitted sketch's model: each node with a circle (fitted, or kept by the sketch) joined to its
-/// nearest ancestor with one (skipped and disabled nodes are bridged, as the sweep bridges them).
+/// A fitted sketch's model: each node with a circle in the reconstruction's model (its accepted
+/// fit, its kept circle, or a radius inferred from its limb: recon/radius_inference.h) joined to
+/// its nearest ancestor with one (nodes with none are bridged, as the sweep bridges them); a piece
+/// ending at an inferred radius is not measured.
 /// Branch orders follow the tree's shape (at a node the child with the largest radius continues
 /// the branch, every other child starts one of the next order), so a branch's first piece starts
 /// with the branch's own radius, as the automatic model's do. The mesh is the reconstruction's.

@@ -13,6 +13,7 @@
 #include "treesketch/fit/node_fit.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/tri_mesh.h"
+#include "treesketch/recon/radius_inference.h"
 #include "treesketch/sketch/sketch.h"
 #include "treesketch/sweep/tube_mesh.h"
 #include "treesketch/util/progress.h"
@@ -29,6 +30,9 @@ struct ReconstructionOptions {
   std::uint64_t seed = 1;
   /// Fit changed nodes in parallel (TBB) when more than one changed.
   bool parallel = true;
+  /// Which fits the model uses and the radii inferred for the rest (recon/radius_inference.h):
+  /// what the sweep and every model made from the result take.
+  RadiusInferenceOptions radii;
 };
 
 struct Timings {
@@ -70,6 +74,9 @@ class Reconstruction {
   const geom::TriMesh& mesh() const { return sweeper_.mesh(); }
   /// The last fit of node `id`; nullptr if the node is unknown.
   const fit::NodeResult* result(NodeId id) const;
+  /// Node `id`'s circle in the model (its fit, kept circle or inferred radius; inferRadii over the
+  /// last fits); nullptr if the node is unknown.
+  const NodeRadius* radius(NodeId id) const;
   /// All current results by id.
   std::map<NodeId, const fit::NodeResult*> results() const;
   /// Total node fits performed since construction.
@@ -104,6 +111,7 @@ class Reconstruction {
   void addPriorDependents(const sketch::Sketch& sketch, Pending& p) const;
   void fitPending(const sketch::Sketch& sketch, Pending& p, const ProgressFn& progress);
   void sweepEntries();
+  void refreshRadii();
 
   ReconstructionOptions options_;
   std::unique_ptr<fit::CloudIndex> index_;
@@ -111,12 +119,17 @@ class Reconstruction {
   sweep::TubeSweeper sweeper_;
   std::size_t fitCount_ = 0;
   Timings timings_;
+  std::vector<NodeId> order_;  ///< the last sketch's parent-before-child order
+  std::map<NodeId, NodeRadius> radii_;
   /// The lassos (each with its camera) the index's exclusions were computed from.
   std::vector<std::pair<sketch::NotWoodLasso, geom::Camera>> notWood_;
 };
 
 struct ReconstructionResult {
   std::map<NodeId, fit::NodeResult> results;
+  /// Every node's circle in the model: its fit, its kept circle or a radius inferred from its
+  /// limb (Reconstruction::radius); what the mesh was swept through.
+  std::map<NodeId, NodeRadius> radii;
   std::vector<NodeId> order;  ///< the sketch's parent-before-child order
   std::map<NodeId, NodeId> parents;
   geom::TriMesh mesh;
@@ -125,7 +138,8 @@ struct ReconstructionResult {
 
 /// The options a person's sketch is fitted with, in the desktop tool and by `reconstruct --sketch`
 /// alike (so one sketch gives one model): the defaults, with screen nodes choosing their depth along
-/// the view ray (fit::NodeFitOptions::chooseDepth).
+/// the view ray (fit::NodeFitOptions::chooseDepth) and radii inferred along each limb where the fits
+/// fail or are implausible (RadiusInferenceOptions::enabled).
 ReconstructionOptions sketchReconstructionOptions();
 
 /// One-shot reconstruction (index, fit every node, sweep). Empty sketch → empty mesh.
