@@ -253,6 +253,11 @@ Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions&
         leafOn.empty() ? "remove ground, neighbours and outliers from the cloud" : leafOn);
   if (!o.leafOn && o.leafPieceShare > kMaxLeafPieceShare)
     add(L::Uncertain, percent(o.leafPieceShare) + " of the skeleton's pieces are flat, as leaves are", leafOn);
+  if (o.woodOnly)
+    add(L::Uncertain,
+        "modelled from the points classified as wood only: twigs and limbs the classification calls leaf are "
+        "missing, so the volume is a lower figure",
+        "");
   const double length = m.figures.length;
   if (length > 0 && static_cast<double>(points) / length < kMinPointsPerMetre) {
     char buf[160];
