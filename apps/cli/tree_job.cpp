@@ -15,14 +15,11 @@
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/util/atomic_file.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 
 namespace treesketch::cli {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 /// What the report says first: the job, the cloud and the automatic model's counts and timings.
 nlohmann::json reportHeader(const TreeJob& a, const TreeJobResult& r, const skeleton::AutoSkeletonResult& s) {
@@ -71,7 +68,7 @@ geom::PointCloud woodPoints(const geom::PointCloud& cloud, geom::UpAxis up, cons
 }  // namespace
 
 TreeJobResult runTreeJob(const TreeJob& a) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch t0;
   checkSettings(a.settings);
   model::checkOutputs(a.out, {a.cloud});
   if (!a.sketch.empty()) {
@@ -86,7 +83,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   const geom::PointCloud cloud = io::readPointCloud(a.cloud);
   cloud::requireUsableExtent(cloud, a.cloud);
   r.points = cloud.size();
-  r.readMs = msSince(t0);
+  r.readMs = t0.ms();
   const io::UpAxisChoice up = io::chooseUpAxis(a.up, cloud);
   r.up = geom::toString(up.up);
   r.upReason = up.reason;
@@ -123,7 +120,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   r.vertices = s.mesh.vertices.size();
   r.triangles = s.mesh.triangles.size();
 
-  const auto tm = std::chrono::steady_clock::now();
+  const Stopwatch tm;
   const model::TreeModel tree = model::fromAutoSkeleton(s, up.up);
   model::MeasureOptions mo;
   mo.unitMetres = a.unitMetres;
@@ -132,7 +129,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   mo.noise = s.noiseMeasured ? s.noise : -1.0;
   mo.leafPieceShare = r.skeletonNodes ? static_cast<double>(r.leafPieces) / static_cast<double>(r.skeletonNodes) : 0.0;
   const model::ModelMeasures measures = model::measure(tree, kept, mo);
-  r.metricsMs = msSince(tm);
+  r.metricsMs = tm.ms();
 
   const nlohmann::json header = reportHeader(a, r, s);
   // The sketch first; the model's outputs end with the report, after which a batch writes its
@@ -141,7 +138,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   if (!a.strays.empty()) io::writePointCloud(a.strays, cloud::selectPoints(modelled, s.strays.setAside));
   model::writeOutputs(tree, measures, a.out, header);
   r.measures = measures;
-  r.totalMs = msSince(t0);
+  r.totalMs = t0.ms();
   return r;
 }
 

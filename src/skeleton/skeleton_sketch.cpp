@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "skeleton/axis_smoothing.h"
+#include "treesketch/util/stopwatch.h"
 #include "skeleton/completion.h"
 #include "skeleton/radius_allometry.h"
 #include "skeleton/surface_bound.h"
@@ -28,10 +29,6 @@ constexpr double kInterpolatedRadiusWeight = 0.25;
 /// Below this share of nodes with an accepted circle (and without a tracked stem) the circles do
 /// not measure the tree and every radius is inferred from its crown (see fitModel).
 constexpr double kMinFittedShare = 0.05;
-
-double elapsedMs(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
-}
 
 sketch::SamplingParams paramsFor(double radius, double voxel, const SkeletonSketchOptions& o) {
   sketch::SamplingParams p;
@@ -346,13 +343,13 @@ std::vector<double> radiiFromTheCrown(const std::vector<SkeletonNode>& nodes, co
 
 void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const geom::PointCloud& cloud,
               const AutoSkeletonOptions& options, const ProgressFn& progress) {
-  auto t0 = std::chrono::steady_clock::now();
+  Stopwatch t0;
   res.sketch = skeletonToSketch(res.skeleton, options.sketch);
   const double voxel = res.skeleton.graph.voxelSize;
   res.fits = fitPass(rec, res.sketch, res.skeleton.nodes, options, progress);
-  res.fitMs += elapsedMs(t0);
+  res.fitMs += t0.ms();
 
-  t0 = std::chrono::steady_clock::now();
+  t0.restart();
   std::vector<double> fitted = acceptFits(res, options.radii, voxel);
   // A handful of circles on a tree of hundreds of nodes is no measurement of it: a scan whose
   // noise is the size of its stems (a mobile-scanner-like scan of a small tree or a bush, 25 mm
@@ -381,7 +378,7 @@ void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const geom::P
     res.model[i].radius = radii[i];
     res.model[i].position = axes[i];
   }
-  res.sweepMs += elapsedMs(t0);
+  res.sweepMs += t0.ms();
 }
 
 /// Step 4b (CompletionRules): the points the model leaves out, cut into connected parts (the
@@ -394,7 +391,7 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
               std::vector<std::uint32_t>& unexplained, int round) {
   const CompletionRules& c = options.completion;
   if (!c.enabled || res.model.size() < 2 || c.maxParts == 0 || c.maxRounds == 0) return false;
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch t0;
   const double voxel = res.skeleton.graph.voxelSize;
   SkeletonOptions partOptions = options.skeleton;
   partOptions.graph.voxelSize = voxel;  // the same scale as the model's
@@ -407,7 +404,7 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
   unexplained = detail::unexplainedPoints(cloud, index, c.marginVoxels * voxel, &res.skeleton.graph,
                                           round == 0 ? nullptr : &unexplained);
   if (unexplained.size() < static_cast<std::size_t>(c.minPoints)) {
-    res.completionMs += elapsedMs(t0);
+    res.completionMs += t0.ms();
     return false;
   }
   geom::PointCloud rest;
@@ -437,7 +434,7 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
     const Skeleton part = extractSkeleton(points, partOptions);
     grafted |= detail::graftPart(res.skeleton.nodes, part.nodes, res.model, pieces, index, c.maxGapVoxels * voxel);
   }
-  res.completionMs += elapsedMs(t0);
+  res.completionMs += t0.ms();
   return grafted;
 }
 
@@ -450,19 +447,19 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
                                    const ProgressFn& progress) {
   AutoSkeletonResult res;
   // 1. The skeleton.
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch t0;
   // `progress` sees the extraction's four steps (d of 4), then the fit pass (d of n); a callback
   // may throw (treesketch::Cancelled) to stop at the next report.
   res.skeleton = extractSkeleton(cloud, options.skeleton, progress);
-  res.skeletonMs = elapsedMs(t0);
+  res.skeletonMs = t0.ms();
   if (res.skeleton.nodes.empty()) {
     res.sketch = skeletonToSketch(res.skeleton, options.sketch);
     return res;
   }
   // 2.-4. Its sketch, the fit pass (recon builds the slice index and fits every node) and the model.
-  const auto t2 = std::chrono::steady_clock::now();
+  const Stopwatch t2;
   recon::Reconstruction rec(cloud, reconstructionOptions(options, res.skeleton.graph.voxelSize));
-  res.fitMs += elapsedMs(t2);
+  res.fitMs += t2.ms();
   fitModel(res, rec, cloud, options, progress);
   // 4b. The parts the model left out, grafted on and fitted (recon fits only the new nodes), round
   // after round while a round grafts any (a part grafted on explains points near it, and the
@@ -488,7 +485,7 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
   }
 
   // 4c. No tube thicker than the surface its points show (a scanner sees the bark).
-  const auto t1 = std::chrono::steady_clock::now();
+  const Stopwatch t1;
   const double voxel = res.skeleton.graph.voxelSize;
   // The noise: the smaller of the tracked stem's points' spread and the circles' (each is the
   // scanner's noise plus the shape's own departure from a circle: a polygonal or rough stem, a
@@ -512,7 +509,7 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
   handOver(res, options.bridgeUnfittedForks);
   rec.update(res.sketch);
   res.mesh = rec.mesh();
-  res.sweepMs += elapsedMs(t1);
+  res.sweepMs += t1.ms();
   return res;
 }
 
