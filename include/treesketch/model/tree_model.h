@@ -88,8 +88,8 @@ struct MeasureOptions {
   bool woodOnly = false;
   /// Share of the automatic skeleton's pieces that looked like leaves (flat), or < 0 when unknown.
   double leafPieceShare = -1;
-  /// The scan's noise measured while modelling (cloud units; the automatic model's median circle
-  /// residual, AutoSkeletonResult::noise), or < 0 when not measured.
+  /// The scan's noise measured while modelling (cloud units; the points' spread about the stem or
+  /// the circles, AutoSkeletonResult::noise), or < 0 when not measured.
   double noise = -1;
 };
 

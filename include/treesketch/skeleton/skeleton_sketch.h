@@ -207,8 +207,9 @@ struct AutoSkeletonResult {
   /// No circle could be fitted and no stem measured (a sparse airborne cloud): every radius is
   /// the pipe model's from a stem inferred from the crown's width (none accepted in fitAccepted).
   bool radiiFromCrown = false;
-  /// The scan's noise measured on the cloud (cloud units): the median RMS residual of the accepted
-  /// circle fits, or half a voxel when fewer than three were accepted (noiseMeasured false).
+  /// The scan's noise measured on the cloud (cloud units): the smaller of the tracked stem's points'
+  /// spread about its surface and the accepted circles' (surface_bound.h: stemNoise,
+  /// measuredNoise), or half a voxel when neither could be measured (noiseMeasured false).
   double noise = 0;
   bool noiseMeasured = false;
   /// Nodes whose radius was lowered because the points around their tube lie inside it (a scanner
