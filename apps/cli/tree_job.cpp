@@ -40,6 +40,7 @@ nlohmann::json reportHeader(const TreeJob& a, const TreeJobResult& r, const skel
   header["skeletonNodes"] = r.skeletonNodes;
   header["forks"] = r.forks;
   header["thinnedBySurface"] = s.thinnedBySurface;
+  header["thickenedBySurface"] = s.thickenedBySurface;
   header["vertices"] = r.vertices;
   header["triangles"] = r.triangles;
   header["timings"] = {{"readMs", r.readMs},

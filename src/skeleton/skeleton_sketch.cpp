@@ -502,8 +502,10 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
     std::vector<double> own(res.model.size(), 0.0);
     for (std::size_t i = 0; i < own.size() && i < res.fits.size(); ++i)
       if (res.fitAccepted[i]) own[i] = res.fits[i].rms;
-    res.thinnedBySurface =
-        detail::boundRadiiBySurface(res.model, cloud, res.noise, voxel, options.radii.medianWindow, own).nodesThinned;
+    const detail::SurfaceBoundStats bound =
+        detail::boundRadiiBySurface(res.model, cloud, res.noise, voxel, options.radii.medianWindow, own);
+    res.thinnedBySurface = bound.nodesThinned;
+    res.thickenedBySurface = bound.nodesThickened;
   }
   // 5.-6. The model into the sketch, and recon sweeps that sketch (kept circles need no fit).
   handOver(res, options.bridgeUnfittedForks);

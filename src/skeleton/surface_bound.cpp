@@ -30,6 +30,13 @@ constexpr double kInsideQuantile = 0.25;
 /// its points inside and 1.33× TreeQSM's volume; 1.5 took 2-3 more points of volume off the
 /// synthetic trees' sphere scans, docs/notes/radii_and_volume.md).
 constexpr double kMarginNoise = 2.0;
+/// An inferred radius (no circle of its own) whose points lie outside it is raised to their lower
+/// quartile less this many noises. Points about a line with Gaussian noise σ in the plane across it
+/// (a twig thinner than the noise) have their distances' lower quartile at 0.76σ (Rayleigh), so a
+/// margin of one noise raises no tube on noise alone; a surface of radius r sampled all round has
+/// it at r − 0.67σ, and seen from one side with the axis at the points' centroid lower still, so
+/// the raise never passes the wood the points show.
+constexpr double kRaiseMarginNoise = 1.0;
 /// The circles' noise is the lower quartile of their spreads: a well-sampled branch's circle shows
 /// the scanner's noise, a circle around a leaf cluster or a twig's blob of points a wider spread
 /// (of the median and the lower quartile, chosen on the tuning clouds: the quartile left
@@ -157,12 +164,14 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
   // Each node is judged on the points of the nodes around it along its branch (a window of
   // `window` nodes): a sparse scan puts a few points on each node, a window enough for a quantile,
   // and one odd node does not decide alone. A branch's first node is capped by its parent's radius
-  // (chains are parent-first, so that radius is final); no radius is raised.
+  // (chains are parent-first, so that radius is final). An inferred radius the points show too
+  // thin is raised, never above the node before it along the branch (or its parent).
   const int half = std::max(0, window / 2);
   std::vector<double> pooled;
   for (const auto& chain : branchChains(model)) {
     const int m = static_cast<int>(chain.size());
     std::vector<double> bound(chain.size(), -1.0);  // < 0: too few points
+    std::vector<double> raise(chain.size(), -1.0);  // < 0: no raise (a measured radius, or too few points)
     for (int k = 0; k < m; ++k) {
       pooled.clear();
       for (int j = std::max(0, k - half); j <= std::min(m - 1, k + half); ++j)
@@ -171,7 +180,9 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
       // A branch whose own circle fit left a larger residual than the scan's noise is not round
       // (or rough): its points spread that much about its surface.
       const double own = chain[k] < static_cast<std::int32_t>(ownResidual.size()) ? ownResidual[chain[k]] : 0.0;
-      bound[k] = quantile(pooled, kInsideQuantile) + std::max(margin, kMarginNoise * own);
+      const double low = quantile(pooled, kInsideQuantile);
+      bound[k] = low + std::max(margin, kMarginNoise * own);
+      if (!(own > 0) && !model[chain[k]].stem) raise[k] = low - kRaiseMarginNoise * noise;
       ++stats.nodesWithEvidence;
     }
     const std::int32_t parent = model[chain.front()].parent;
@@ -180,7 +191,12 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
       double r = node.radius;
       if (k == 0 && parent >= 0) r = std::min(r, model[parent].radius);
       if (bound[k] >= 0) r = std::min(r, bound[k]);
+      if (raise[k] > r) {
+        const double cap = k > 0 ? model[chain[k - 1]].radius : parent >= 0 ? model[parent].radius : raise[k];
+        r = std::max(r, std::min(raise[k], cap));
+      }
       if (r < node.radius) ++stats.nodesThinned;
+      if (r > node.radius) ++stats.nodesThickened;
       node.radius = r;
     }
   }

@@ -38,13 +38,17 @@ double stemNoise(const std::vector<SkeletonNode>& model, const geom::PointCloud&
 struct SurfaceBoundStats {
   std::size_t nodesWithEvidence = 0;  ///< nodes with enough points to be judged
   std::size_t nodesThinned = 0;       ///< nodes whose radius the bound lowered
+  std::size_t nodesThickened = 0;     ///< inferred radii the points raised
 };
 
-/// Lowers the radii of `model` (parent-first nodes) where the points lie inside the tubes. Each
-/// point goes to the node of its nearest tube (points farther than `noise` plus `voxel` outside it
-/// are left out); a node is judged on the points of the `window` nodes around it along its branch:
-/// its radius is at most their distances to the axis' lower quartile plus four `noise`. A
-/// branch's first node is also capped by its parent's radius; no radius is raised.
+/// Fits the radii of `model` (parent-first nodes) to the points about the tubes. Each point goes
+/// to the node of its nearest tube (points farther than `noise` plus `voxel` outside it are left
+/// out); a node is judged on the points of the `window` nodes around it along its branch: its
+/// radius is at most their distances to the axis' lower quartile plus two `noise` (or two of its
+/// own fit's residual, `ownResidual`, when larger). A node without a measured radius (no residual
+/// of its own, not on the tracked stem) whose points' lower quartile lies more than one `noise`
+/// outside it is raised to that, never above the node before it along its branch. A branch's
+/// first node is also capped by its parent's radius.
 SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
                                       double voxel, int window, const std::vector<double>& ownResidual = {});
 

@@ -118,3 +118,37 @@ TEST(SurfaceBound, TheStemsPointsGiveTheScansNoise) {
   for (auto& n : model) n.stem = false;  // no tracked stem: not measured here
   EXPECT_LT(skeleton::detail::stemNoise(model, cloud, 0.02), 0);
 }
+
+TEST(SurfaceBound, AnInferredBranchThinnerThanItsPointsIsRaisedAMeasuredOneIsNot) {
+  // The side branch (radius 0.02) got an inferred radius of 0.005 (the pipe law at a thin tip):
+  // its points lie 1.5 cm outside that tube. It is raised to within the margin of its surface,
+  // and no further; the same branch with a circle of its own keeps its radius.
+  const geom::PointCloud cloud = test::sampleCylinders(kTree, 0.01, kNoise, 6);
+  auto inferred = trunkAndBranch(0.10, 0.005);
+  const auto stats = skeleton::detail::boundRadiiBySurface(inferred, cloud, kNoise, 0.02, 5);
+  EXPECT_GE(stats.nodesThickened, 8u);
+  for (std::size_t i = 0; i <= 20; ++i) EXPECT_DOUBLE_EQ(inferred[i].radius, 0.10) << i;
+  for (std::size_t i = 22; i < inferred.size(); ++i) {
+    EXPECT_GT(inferred[i].radius, 0.02 - 3 * kNoise) << i;
+    EXPECT_LE(inferred[i].radius, 0.02) << i;
+  }
+  auto measured = trunkAndBranch(0.10, 0.005);
+  std::vector<double> own(measured.size(), 0.0);
+  for (std::size_t i = 21; i < own.size(); ++i) own[i] = kNoise;  // fitted: their own residual
+  EXPECT_EQ(skeleton::detail::boundRadiiBySurface(measured, cloud, kNoise, 0.02, 5, own).nodesThickened, 0u);
+  for (std::size_t i = 21; i < measured.size(); ++i) EXPECT_DOUBLE_EQ(measured[i].radius, 0.005) << i;
+}
+
+TEST(SurfaceBound, ATwigThinnerThanTheNoiseIsNotRaisedByTheNoise) {
+  // A twig of 1 mm under 8 mm of noise: its points are a blob about the line, not a surface, whose
+  // distances' lower quartile (here 0.3 noise; 0.76 noise for noise in the plane) is under the
+  // raise's margin of one noise.
+  const std::vector<test::Cyl> twig = {{Vec3(0, 0, 0), Vec3(0, 2, 0), 0.10, -1}, {Vec3(0, 1, 0), Vec3(1, 1, 0), 0.001, 0}};
+  const double noise = 0.008;
+  const geom::PointCloud cloud = test::sampleCylinders(twig, 0.003, noise, 7);
+  auto model = trunkAndBranch(0.10, 0.001);
+  const auto stats = skeleton::detail::boundRadiiBySurface(model, cloud, noise, 0.02, 5);
+  EXPECT_GE(stats.nodesWithEvidence, 25u);
+  EXPECT_EQ(stats.nodesThickened, 0u);
+  for (std::size_t i = 21; i < model.size(); ++i) EXPECT_DOUBLE_EQ(model[i].radius, 0.001) << i;
+}

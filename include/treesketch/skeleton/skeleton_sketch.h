@@ -215,6 +215,8 @@ struct AutoSkeletonResult {
   /// Nodes whose radius was lowered because the points around their tube lie inside it (a scanner
   /// sees the surface; see surface_bound.h).
   std::size_t thinnedBySurface = 0;
+  /// Nodes without a measured radius raised because the points around their tube lie outside it.
+  std::size_t thickenedBySurface = 0;
   /// The points set aside as strays before modelling (indices into the input cloud); the model
   /// is made from the others (cloud::keptPoints), and is measured against them.
   cloud::StrayPoints strays;
