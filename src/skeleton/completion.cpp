@@ -12,7 +12,23 @@ namespace treesketch::skeleton::detail {
 
 std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, const compare::CylinderModelIndex& model,
                                              double margin, const VoxelGraph* grid,
-                                             const std::vector<std::uint32_t>* among) {
+                                             const std::vector<std::uint32_t>* among,
+                                             const std::vector<double>* pieceMargin) {
+  // With a margin per piece, a voxel is decided at once only against the smallest (all explained)
+  // and the largest (none explained) of them.
+  double lowMargin = margin, highMargin = margin;
+  if (pieceMargin && !pieceMargin->empty()) {
+    lowMargin = *std::min_element(pieceMargin->begin(), pieceMargin->end());
+    highMargin = *std::max_element(pieceMargin->begin(), pieceMargin->end());
+  }
+  const auto outside = [&](const geom::Vec3& p) {
+    std::int64_t piece = -1;
+    const double d = model.signedDistance(p, &piece);
+    const double m = pieceMargin && piece >= 0 && static_cast<std::size_t>(piece) < pieceMargin->size()
+                         ? (*pieceMargin)[static_cast<std::size_t>(piece)]
+                         : margin;
+    return d > m;
+  };
   const std::size_t n = among ? among->size() : cloud.size();
   auto pointAt = [&](std::size_t k) { return among ? (*among)[k] : static_cast<std::uint32_t>(k); };
   // Per voxel: 0 = measure each point, 1 = all explained, 2 = none explained.
@@ -31,9 +47,9 @@ std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, cons
       for (std::size_t v = r.begin(); v < r.end(); ++v) {
         if (spread[v] < 0) continue;
         const double d = model.signedDistance(grid->positions[v]);
-        if (std::max(d, 0.0) + spread[v] <= margin)
+        if (std::max(d, 0.0) + spread[v] <= lowMargin)
           verdict[v] = 1;
-        else if (d - spread[v] > margin)
+        else if (d - spread[v] > highMargin)
           verdict[v] = 2;
       }
     });
@@ -43,7 +59,7 @@ std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, cons
     for (std::size_t k = r.begin(); k < r.end(); ++k) {
       const std::uint32_t i = pointAt(k);
       const char known = useGrid ? verdict[grid->pointVoxel[i]] : 0;
-      out[k] = known != 0 ? known == 2 : model.signedDistance(cloud.positions[i]) > margin;
+      out[k] = known != 0 ? known == 2 : outside(cloud.positions[i]);
     }
   });
   std::vector<std::uint32_t> rest;

@@ -30,7 +30,8 @@ namespace treesketch::skeleton::detail {
 /// the completion took 0.18 s instead of 0.75 s (bench/README.md).
 std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, const compare::CylinderModelIndex& model,
                                              double margin, const VoxelGraph* grid = nullptr,
-                                             const std::vector<std::uint32_t>* among = nullptr);
+                                             const std::vector<std::uint32_t>* among = nullptr,
+                                             const std::vector<double>* pieceMargin = nullptr);
 
 /// Grafts `part` (the skeleton of some unexplained points: parent-first, root 0) onto `nodes`
 /// (the skeleton; `model` is its fitted model, index for index up to the parts grafted since,

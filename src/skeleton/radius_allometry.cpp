@@ -19,8 +19,8 @@ double median(std::vector<double> v) {
   return v[m];
 }
 
-/// Length carried by each node: its own segment (from its parent) and every segment above it,
-/// plus the median segment (a tip's wood goes on a little past its last node).
+}  // namespace
+
 std::vector<double> carriedLengths(const std::vector<SkeletonNode>& nodes) {
   const std::size_t n = nodes.size();
   std::vector<double> own(n, 0.0);
@@ -36,8 +36,6 @@ std::vector<double> carriedLengths(const std::vector<SkeletonNode>& nodes) {
   for (double& c : carried) c += tip;
   return carried;
 }
-
-}  // namespace
 
 double Allometry::predict(std::size_t i) const { return std::exp(logA + b * std::log(carried[i])); }
 

@@ -31,6 +31,10 @@ struct Allometry {
 Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector<double>& r,
                        const std::vector<char>& trusted, const std::vector<char>& stem);
 
+/// Length carried by each node (parent-first): its own segment (from its parent) and every
+/// segment above it, plus the median segment (a tip's wood goes on a little past its last node).
+std::vector<double> carriedLengths(const std::vector<SkeletonNode>& nodes);
+
 /// The pipe law through the root: r_i = rootRadius · (L_i / L_root)^0.5, where L is the length a
 /// node carries (nodes parent-first; the first root is the root).
 std::vector<double> pipeRadii(const std::vector<SkeletonNode>& nodes, double rootRadius);

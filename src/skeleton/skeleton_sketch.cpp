@@ -29,6 +29,12 @@ constexpr double kInterpolatedRadiusWeight = 0.25;
 /// Below this share of nodes with an accepted circle (and without a tracked stem) the circles do
 /// not measure the tree and every radius is inferred from its crown (see fitModel).
 constexpr double kMinFittedShare = 0.05;
+/// The completion's margin about a fitted tube, in robust spreads of its circle's points (or the
+/// scan's noise, the larger): a normal spread leaves 0.3 % of a surface's points beyond three.
+/// Of 3 and 4 on the tuning clouds (share within ±2 cm): 3 (4 left voxr_t0 under TreeQSM's). A
+/// margin of the scan's noise alone, without the circle's own spread, grafted the synthetic trees'
+/// polygon corners (docs/notes/radii_and_volume.md, "Completing the model down to its circles").
+constexpr double kFittedMarginSpreads = 3.0;
 
 sketch::SamplingParams paramsFor(double radius, double voxel, const SkeletonSketchOptions& o) {
   sketch::SamplingParams p;
@@ -401,8 +407,21 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
   partOptions.graph.maxGapVoxels = std::min(partOptions.graph.maxGapVoxels, c.maxGapVoxels);
   const geom::CylinderModel pieces = cylinderModelFromSkeleton(res.model);
   const compare::CylinderModelIndex index(pieces);
+  // A point farther outside a fitted tube than its circle's points stray about it (three robust
+  // spreads, the scan's noise at least) is not that surface's: a twig the level sets merged into
+  // the limb beside it. Elsewhere (no circle measures the surface) the margin is a voxel.
+  std::vector<double> pieceMargin;
+  for (std::size_t i = 0; i < res.model.size(); ++i) {
+    if (res.model[i].parent < 0) continue;  // the pieces are the non-root nodes, in order
+    double m = c.marginVoxels * voxel;
+    if (i < res.fitAccepted.size() && res.fitAccepted[i] && res.noise > 0) {
+      const double spread = detail::fitSpread(res.fits[i], cloud);
+      if (std::isfinite(spread)) m = std::min(m, kFittedMarginSpreads * std::max(res.noise, spread));
+    }
+    pieceMargin.push_back(m);
+  }
   unexplained = detail::unexplainedPoints(cloud, index, c.marginVoxels * voxel, &res.skeleton.graph,
-                                          round == 0 ? nullptr : &unexplained);
+                                          round == 0 ? nullptr : &unexplained, &pieceMargin);
   if (unexplained.size() < static_cast<std::size_t>(c.minPoints)) {
     res.completionMs += t0.ms();
     return false;
@@ -442,6 +461,18 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
 
 namespace {
 
+/// The scan's noise (AutoSkeletonResult::noise): the smaller of the tracked stem's points' spread
+/// and the circles' (each is the scanner's noise plus the shape's own departure from a circle: a
+/// polygonal or rough stem, a leafy crown's circles); half a voxel when neither is measured.
+void measureNoise(AutoSkeletonResult& res, const geom::PointCloud& cloud) {
+  const double voxel = res.skeleton.graph.voxelSize;
+  const double onStem = detail::stemNoise(res.model, cloud, voxel);
+  const double onFits = detail::measuredNoise(res.fits, res.fitAccepted, cloud, -1.0);
+  res.noise = onStem > 0 && onFits > 0 ? std::min(onStem, onFits) : std::max(onStem, onFits);
+  res.noiseMeasured = res.noise > 0;
+  if (!res.noiseMeasured) res.noise = 0.5 * voxel;
+}
+
 /// The pipeline on the kept points.
 AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
                                    const ProgressFn& progress) {
@@ -467,19 +498,26 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
   // length but a fit taken on it, against its host's side, can be thick, and with the carried-length allometry refitted
   // over both, the limbs of a dense crown grew (adtree_tree7: 3.6 → 5.5 % of the points deeper than 2 cm inside). A
   // part is no thicker than the node it grows from.
+  measureNoise(res, cloud);  // the completion's margins use it
   std::vector<std::uint32_t> unexplained;
   for (int round = 0; round < options.completion.maxRounds; ++round) {
     const std::size_t modelled = res.model.size();
     if (!complete(cloud, options, res, unexplained, round)) break;
     const std::vector<SkeletonNode> before = res.model;
     fitModel(res, rec, cloud, options, progress);
+    const std::vector<double> carried = detail::carriedLengths(res.model);
     for (std::size_t i = 0; i < res.model.size(); ++i) {
       SkeletonNode& node = res.model[i];
       if (i < modelled) {
         node.position = before[i].position;
         node.radius = before[i].radius;
       } else {
-        node.radius = std::min(node.radius, res.model[node.parent].radius);  // parent-first
+        // Parent-first: no thicker than its parent, and no more cross-section than the pipe model
+        // gives the length it carries.
+        const SkeletonNode& parent = res.model[node.parent];
+        node.radius = std::min(node.radius, parent.radius);
+        if (carried[node.parent] > 0)
+          node.radius = std::min(node.radius, parent.radius * std::sqrt(carried[i] / carried[node.parent]));
       }
     }
   }
@@ -487,16 +525,7 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
   // 4c. No tube thicker than the surface its points show (a scanner sees the bark).
   const Stopwatch t1;
   const double voxel = res.skeleton.graph.voxelSize;
-  // The noise: the smaller of the tracked stem's points' spread and the circles' (each is the
-  // scanner's noise plus the shape's own departure from a circle: a polygonal or rough stem, a
-  // leafy crown's circles).
-  {
-    const double onStem = detail::stemNoise(res.model, cloud, voxel);
-    const double onFits = detail::measuredNoise(res.fits, res.fitAccepted, cloud, -1.0);
-    res.noise = onStem > 0 && onFits > 0 ? std::min(onStem, onFits) : std::max(onStem, onFits);
-  }
-  res.noiseMeasured = res.noise > 0;
-  if (!res.noiseMeasured) res.noise = 0.5 * voxel;
+  measureNoise(res, cloud);  // again: the grafted parts' circles count too
 
   if (options.radii.surfaceBound) {
     std::vector<double> own(res.model.size(), 0.0);

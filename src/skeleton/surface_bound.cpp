@@ -117,6 +117,11 @@ double fitNoise(const fit::NodeResult& f, const geom::PointCloud& cloud, std::ve
 
 }  // namespace
 
+double fitSpread(const fit::NodeResult& f, const geom::PointCloud& cloud) {
+  std::vector<double> residuals;
+  return fitNoise(f, cloud, residuals);
+}
+
 double measuredNoise(const std::vector<fit::NodeResult>& fits, const std::vector<char>& accepted,
                      const geom::PointCloud& cloud, double fallback) {
   std::vector<double> perFit, residuals;

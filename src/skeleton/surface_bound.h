@@ -26,6 +26,10 @@ namespace treesketch::skeleton::detail {
 double measuredNoise(const std::vector<fit::NodeResult>& fits, const std::vector<char>& accepted,
                      const geom::PointCloud& cloud, double fallback);
 
+/// 1.4826 × the median of |distance to the centre in the fit's plane − radius| over all the fit's
+/// test points (a robust σ of the points about the circle), NaN with fewer than 12.
+double fitSpread(const fit::NodeResult& f, const geom::PointCloud& cloud);
+
 /// The scan's noise measured on the stem (cloud units): the points of the tracked stem's tubes
 /// (model nodes with `stem`), in windows of three nodes, their distances to the axis' robust
 /// spread (1.4826 × the median absolute deviation from their median); the median over the

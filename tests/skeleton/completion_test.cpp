@@ -81,6 +81,24 @@ TEST(Completion, UnexplainedPointsAreThoseBeyondTheMargin) {
             (std::vector<std::uint32_t>{3}));
 }
 
+TEST(Completion, EachPieceHasItsOwnMargin) {
+  // The limb's three pieces: the middle one fitted (a margin of its circle's spread, 1 cm), the
+  // others with a voxel's margin (10 cm). A point 5 cm off the middle piece is a twig the level
+  // sets merged into it; 5 cm off the others it is within their margin.
+  Limb limb;
+  geom::PointCloud cloud;
+  cloud.positions = {Vec3(0.15, 0.5, 0), Vec3(0.15, 1.5, 0), Vec3(0.15, 2.5, 0), Vec3(0.105, 1.5, 0)};
+  const std::vector<double> margins{0.1, 0.01, 0.1};
+  EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, limb.index, 0.1, nullptr, nullptr, &margins),
+            (std::vector<std::uint32_t>{1}));
+  // Voxels decided at once agree.
+  skeleton::VoxelGraphOptions o;
+  o.voxelSize = 0.02;
+  const skeleton::VoxelGraph grid = skeleton::buildVoxelGraph(cloud, o);
+  EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, limb.index, 0.1, &grid, nullptr, &margins),
+            (std::vector<std::uint32_t>{1}));
+}
+
 // Voxels decided at once (by the distance at their centroid and their points' spread) give the
 // points measured one by one: a cloud on, inside and around the limb at every distance, on grids
 // coarser and finer than the margin.
@@ -105,5 +123,9 @@ TEST(Completion, TheGridDecidesVoxelsAsThePointsWould) {
     for (std::uint32_t i : all)
       if (i % 3 == 0) expected.push_back(i);
     EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, limb.index, 0.05, &grid, &among), expected) << voxel;
+    const std::vector<double> margins{0.02, 0.08, 0.05};  // a margin per piece
+    EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, limb.index, 0.05, &grid, nullptr, &margins),
+              skeleton::detail::unexplainedPoints(cloud, limb.index, 0.05, nullptr, nullptr, &margins))
+        << voxel;
   }
 }

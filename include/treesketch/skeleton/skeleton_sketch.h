@@ -132,7 +132,7 @@ inline fit::NodeFitOptions autoNodeFitOptions() {
 struct CompletionRules {
   bool enabled = true;
   /// A point is unexplained when it lies farther than this many voxels outside the model's
-  /// surface. 1 measured best on the tuning half (docs/notes/skeleton_options.md, "The model
+  /// surface (beside a tube with a fitted circle, three spreads of that circle's points, if less). 1 measured best on the tuning half (docs/notes/skeleton_options.md, "The model
   /// completed from the points it leaves out"): 0.75 let 10 mm range noise through as twigs (tips up to 2× the limbs), 1.5 left most of the
   /// gain on the table.
   double marginVoxels = 1.0;
