@@ -37,6 +37,17 @@ std::vector<double> carriedLengths(const std::vector<SkeletonNode>& nodes) {
   return carried;
 }
 
+void capByPipeModel(std::vector<SkeletonNode>& nodes, std::size_t from) {
+  const std::vector<double> carried = carriedLengths(nodes);
+  for (std::size_t i = from; i < nodes.size(); ++i) {
+    const std::int32_t p = nodes[i].parent;
+    if (p < 0) continue;
+    double r = std::min(nodes[i].radius, nodes[p].radius);
+    if (carried[p] > 0) r = std::min(r, nodes[p].radius * std::sqrt(carried[i] / carried[p]));
+    nodes[i].radius = r;
+  }
+}
+
 double Allometry::predict(std::size_t i) const { return std::exp(logA + b * std::log(carried[i])); }
 
 Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector<double>& r,

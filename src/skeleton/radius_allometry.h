@@ -35,6 +35,12 @@ Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector
 /// segment above it, plus the median segment (a tip's wood goes on a little past its last node).
 std::vector<double> carriedLengths(const std::vector<SkeletonNode>& nodes);
 
+/// Nodes `from` on (parent-first; a grafted part's): each no thicker than its parent, and with no
+/// more cross-section than the pipe model gives the length it carries, r ≤ r_parent · √(L / L_parent).
+/// A part grafted beside a limb is fitted on a few points against the limb's side: its circles
+/// can be as thick as the limb (knotted thick tubes in a real crown's picture).
+void capByPipeModel(std::vector<SkeletonNode>& nodes, std::size_t from);
+
 /// The pipe law through the root: r_i = rootRadius · (L_i / L_root)^0.5, where L is the length a
 /// node carries (nodes parent-first; the first root is the root).
 std::vector<double> pipeRadii(const std::vector<SkeletonNode>& nodes, double rootRadius);

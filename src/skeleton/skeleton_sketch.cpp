@@ -505,21 +505,11 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
     if (!complete(cloud, options, res, unexplained, round)) break;
     const std::vector<SkeletonNode> before = res.model;
     fitModel(res, rec, cloud, options, progress);
-    const std::vector<double> carried = detail::carriedLengths(res.model);
-    for (std::size_t i = 0; i < res.model.size(); ++i) {
-      SkeletonNode& node = res.model[i];
-      if (i < modelled) {
-        node.position = before[i].position;
-        node.radius = before[i].radius;
-      } else {
-        // Parent-first: no thicker than its parent, and no more cross-section than the pipe model
-        // gives the length it carries.
-        const SkeletonNode& parent = res.model[node.parent];
-        node.radius = std::min(node.radius, parent.radius);
-        if (carried[node.parent] > 0)
-          node.radius = std::min(node.radius, parent.radius * std::sqrt(carried[i] / carried[node.parent]));
-      }
+    for (std::size_t i = 0; i < modelled; ++i) {
+      res.model[i].position = before[i].position;
+      res.model[i].radius = before[i].radius;
     }
+    detail::capByPipeModel(res.model, modelled);
   }
 
   // 4c. No tube thicker than the surface its points show (a scanner sees the bark).

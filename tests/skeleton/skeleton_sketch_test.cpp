@@ -4,6 +4,7 @@
 
 #include <sstream>
 
+#include "skeleton/radius_allometry.h"
 #include "synthetic_tree.h"
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/io/sketch_file.h"
@@ -490,8 +491,12 @@ TEST(SkeletonSketch, ATwigAlongItsLimbIsGraftedOn) {
     }
     EXPECT_EQ(res.sketch.size(), res.model.size());
     EXPECT_EQ(res.fits.size(), res.model.size());
-    std::printf("completion %d: %zu nodes, %zu ends, %.3f of the twig's points explained\n", complete, out.nodes,
-                out.ends, out.explained);
+    double thickest = 0;  // the grafted twig's thickest node
+    for (const auto& n : res.model)
+      if (n.grafted) thickest = std::max(thickest, n.radius);
+    if (complete) EXPECT_LT(thickest, 0.03);  // the twig is 0.015 thick, its limb 0.06
+    std::printf("completion %d: %zu nodes, %zu ends, %.3f of the twig's points explained, grafts up to %.4f\n",
+                complete, out.nodes, out.ends, out.explained, thickest);
     return out;
   };
   const Outcome without = run(false), with = run(true);
@@ -499,4 +504,30 @@ TEST(SkeletonSketch, ATwigAlongItsLimbIsGraftedOn) {
   EXPECT_GT(with.explained, 0.75);
   EXPECT_GT(with.nodes, without.nodes);
   EXPECT_LE(with.ends, without.ends + 1);  // the twig is one branch, not a fringe of stubs
+}
+
+TEST(SkeletonSketch, AGraftedPartCarriesNoMoreThanThePipeModelGives) {
+  // A limb of five nodes 0.1 apart (radius 0.06) and a part of four nodes grafted on its third,
+  // each fitted as thick as the limb: the part thins as the pipe model says, the limb keeps its radii.
+  std::vector<skeleton::SkeletonNode> nodes(9);
+  for (int i = 0; i < 5; ++i) {
+    nodes[i].position = Vec3(0, 0.1 * i, 0);
+    nodes[i].parent = i - 1;
+    nodes[i].radius = 0.06;
+  }
+  for (int k = 0; k < 4; ++k) {
+    nodes[5 + k].position = Vec3(0.1 * (k + 1), 0.2, 0);
+    nodes[5 + k].parent = k == 0 ? 2 : 4 + k;
+    nodes[5 + k].radius = 0.06;
+  }
+  skeleton::detail::capByPipeModel(nodes, 5);
+  for (int i = 0; i < 5; ++i) EXPECT_DOUBLE_EQ(nodes[i].radius, 0.06) << i;
+  const std::vector<double> carried = skeleton::detail::carriedLengths(nodes);
+  for (int i = 5; i < 9; ++i) {
+    const auto& p = nodes[nodes[i].parent];
+    EXPECT_NEAR(nodes[i].radius, p.radius * std::sqrt(carried[i] / carried[nodes[i].parent]), 1e-12) << i;
+    EXPECT_LT(nodes[i].radius, p.radius) << i;
+  }
+  // The tip carries 0.2 (its segment and one more beyond its end), the host 0.8: half its radius.
+  EXPECT_NEAR(nodes[8].radius, 0.5 * 0.06, 1e-12);
 }
