@@ -178,7 +178,7 @@ TreeModel fromSkeletonNodes(const std::vector<skeleton::SkeletonNode>& nodes, co
 }
 
 TreeModel fromAutoSkeleton(const skeleton::AutoSkeletonResult& r, geom::UpAxis up) {
-  TreeModel model = fromSkeletonNodes(r.model, r.fitAccepted, up);
+  TreeModel model = fromSkeletonNodes(r.model, r.radiusMeasured, up);
   model.mesh = r.mesh;
   return model;
 }

@@ -170,7 +170,7 @@ void taperAlongBranches(const std::vector<SkeletonNode>& nodes, const std::vecto
 }  // namespace
 
 std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, const std::vector<double>& fitted,
-                                    const std::vector<char>& valid, const RadiusRules& rules) {
+                                    const std::vector<char>& valid, const RadiusRules& rules, std::vector<char>* kept) {
   checkRules(rules);
   if (fitted.size() != nodes.size() || valid.size() != nodes.size())
     throw OptionsError("skeleton radii: one fitted radius and one validity flag per node expected");
@@ -199,6 +199,7 @@ std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, cons
         if (ok[i] && !measured[i] && r[i] > p * rules.allometryMaxRatio) ok[i] = 0;
       }
   }
+  if (kept) *kept = ok;
   const auto chains = detail::branchChains(nodes);
   interpolateRejected(nodes, chains, ok, allometry, r);
   if (rules.medianWindow > 1) medianAlongBranches(chains, rules.medianWindow, r);
@@ -377,7 +378,9 @@ void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const geom::P
   std::vector<double> radii;
   if (!measured) radii = radiiFromTheCrown(res.skeleton.nodes, cloud, options.skeleton.up);
   res.radiiFromCrown = !radii.empty();
-  if (radii.empty()) radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, options.radii);
+  res.radiusMeasured.assign(res.model.size(), 0);
+  if (radii.empty())
+    radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, options.radii, &res.radiusMeasured);
   const std::vector<geom::Vec3> axes =
       detail::smoothAxes(res.model, res.fitAccepted, radii, options.axes.centroidPrecisionVoxels * voxel, options.axes);
   for (std::size_t i = 0; i < res.model.size(); ++i) {
@@ -504,12 +507,18 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
     const std::size_t modelled = res.model.size();
     if (!complete(cloud, options, res, unexplained, round)) break;
     const std::vector<SkeletonNode> before = res.model;
+    const std::vector<char> measuredBefore = res.radiusMeasured;
     fitModel(res, rec, cloud, options, progress);
     for (std::size_t i = 0; i < modelled; ++i) {
       res.model[i].position = before[i].position;
       res.model[i].radius = before[i].radius;
+      res.radiusMeasured[i] = measuredBefore[i];
     }
+    std::vector<double> grafted(res.model.size() - modelled);
+    for (std::size_t i = modelled; i < res.model.size(); ++i) grafted[i - modelled] = res.model[i].radius;
     detail::capByPipeModel(res.model, modelled);
+    for (std::size_t i = modelled; i < res.model.size(); ++i)
+      if (res.model[i].radius < grafted[i - modelled]) res.radiusMeasured[i] = 0;  // the pipe model's now
   }
 
   // 4c. No tube thicker than the surface its points show (a scanner sees the bark).
@@ -520,7 +529,7 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
   if (options.radii.surfaceBound) {
     std::vector<double> own(res.model.size(), 0.0);
     for (std::size_t i = 0; i < own.size() && i < res.fits.size(); ++i)
-      if (res.fitAccepted[i]) own[i] = res.fits[i].rms;
+      if (res.radiusMeasured[i] && res.fitAccepted[i]) own[i] = res.fits[i].rms;
     const detail::SurfaceBoundStats bound =
         detail::boundRadiiBySurface(res.model, cloud, res.noise, voxel, options.radii.medianWindow, own);
     res.thinnedBySurface = bound.nodesThinned;

@@ -104,8 +104,11 @@ sketch::Sketch skeletonToSketch(const Skeleton& skeleton, const SkeletonSketchOp
 /// `valid[i]` whether to trust it; invalid ones are interpolated along the branch by arc length
 /// from valid neighbours (or take the skeleton's estimate when the branch has none). Returns one
 /// radius per node, > 0. Throws OptionsError when the sizes differ or an option is out of range.
+/// `kept`, when given, receives per node whether its radius rests on its own fit (valid, and not
+/// rejected as far thicker than the pipe law) or on the tracked stem's circles.
 std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, const std::vector<double>& fitted,
-                                    const std::vector<char>& valid, const RadiusRules& rules = {});
+                                    const std::vector<char>& valid, const RadiusRules& rules = {},
+                                    std::vector<char>* kept = nullptr);
 
 /// The node fit used by the automatic sketch: the fit module's defaults (the inlier band is the
 /// same fixed width as a user's node's), except that the test region grows at most 3 times (a
@@ -200,6 +203,9 @@ struct AutoSkeletonResult {
   sketch::Sketch sketch;
   std::vector<fit::NodeResult> fits;  ///< the fit pass, per model node (= sketch id)
   std::vector<char> fitAccepted;      ///< the fit passed the RadiusRules checks
+  /// The node's radius is measured: its accepted fit's (not set aside as far thicker than the pipe
+  /// law) or the tracked stem's; otherwise inferred (interpolated, the pipe law, the crown).
+  std::vector<char> radiusMeasured;
   /// skeleton.nodes with positions moved to the accepted fit centres and radii regularised (what
   /// the cylinder table is written from).
   std::vector<SkeletonNode> model;
