@@ -57,8 +57,12 @@ bool ViewerState::strokeLimb(const std::vector<Vec2>& stroke) {
   const auto anchors = toEdit(anchorsForTools());
   bool ok = edit("draw limb", "draw limb", "", [&] {
     const geom::Camera cam = view_.orbit_.camera();
+    // The stroke follows the wood: the not-wood points and, once the cloud is classified, the
+    // points classed leaf (after the lassos) are not candidates for its depth.
     const sketch::Sketch& sk = sketch_;
-    edit::ViewPicker picker(cloud_, cam, 4.0, [&sk](const Vec3& p) { return sk.isNotWood(p); });
+    const std::vector<std::uint8_t> leaf = leafFlags();
+    edit::ViewPicker picker(cloud_, cam, 4.0,
+                            [&sk, &leaf](std::size_t i, const Vec3& p) { return !edit::isWoodPoint(sk, leaf, i, p); });
     r = edit::drawLimb(sketch_, picker, cloud_, stroke, anchors);
     tools_.selected_ = tools_.active_ = r.added.back();
   });
@@ -98,10 +102,10 @@ bool ViewerState::lassoNotWood(const std::vector<Vec2>& polygon) {
 
 bool ViewerState::clearNotWood() {
   if (sketch_.notWood().empty()) {
-    info("clear not-wood: no lasso to clear");
+    info("clear lassos: no lasso to clear");
     return false;
   }
-  bool ok = edit("clear not-wood", "clear not-wood lassos", "", [&] { sketch_.clearNotWood(); });
+  bool ok = edit("clear lassos", "clear not-wood and wood lassos", "", [&] { sketch_.clearNotWood(); });
   if (ok) scene_.colorsStale_ = true;
   return ok;
 }
@@ -223,6 +227,8 @@ bool ViewerState::toolMouseUp(const Vec2& pos) {
       return strokeLimb(path);
     case Tool::Lasso:
       return lassoNotWood(path);
+    case Tool::LassoWood:
+      return lassoWood(path);
     case Tool::Region:
       return automaticInRegion(path);
     case Tool::Reattach:
@@ -256,8 +262,12 @@ bool ViewerState::toolKey(const std::string& key, int mods) {
     toggle(Tool::AddNodes);
   } else if (key == "g") {
     toggle(Tool::Stroke);
+  } else if (key == "x" && (mods & kModShift)) {  // Shift+X: the opposite lasso, points are wood
+    toggle(Tool::LassoWood);
   } else if (key == "x") {  // X: cross points out as not-wood (L is the node labels)
     toggle(Tool::Lasso);
+  } else if (key == "k") {
+    startClassifyJob();
   } else if (key == "r") {
     toggle(Tool::Region);
   } else if (key == "p") {
