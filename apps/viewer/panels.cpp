@@ -186,7 +186,7 @@ void automaticSketchRows(viewer::ViewerState& state, PanelState& panel) {
   }
   ImGui::SameLine();
   static const char* const kLeaves[] = {"leaf-off", "in leaf", "wood only"};
-  ImGui::SetNextItemWidth(100);
+  ImGui::SetNextItemWidth(82);  // "wood only" and the arrow: Clear and Refit all stay on the row
   ImGui::Combo("##leaves", &panel.autoLeaves, kLeaves, 3);
   ImGui::SameLine();
 }
