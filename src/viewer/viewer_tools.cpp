@@ -157,6 +157,14 @@ bool ViewerState::reattachNode(NodeId id, NodeId newParent, bool reverse) {
   return ok;
 }
 
+const geom::PointCloud& ViewerState::pointsForAutomatic(geom::PointCloud& store) const {
+  // Once the cloud is classified, "automatic from here" models the wood (after the lassos) with
+  // the leaf-off settings, as the automatic skeleton on the wood does; before, every point.
+  if (!classes_) return cloud_;
+  store = edit::woodOnly(cloud_, sketch_, leafFlags());
+  return store;
+}
+
 bool ViewerState::automaticBelow(NodeId id) {
   if (cloud_.empty()) {
     error("automatic below: open a point cloud first");
@@ -167,7 +175,8 @@ bool ViewerState::automaticBelow(NodeId id) {
   bool ok = edit("automatic below", "automatic below node " + std::to_string(id), "", [&] {
     edit::AutoHereOptions o;
     o.skeleton = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOff, up_);
-    r = edit::automaticBelow(sketch_, cloud_, id, anchors, o);
+    geom::PointCloud wood;
+    r = edit::automaticBelow(sketch_, pointsForAutomatic(wood), id, anchors, o);
   });
   if (ok)
     info("automatic below node " + std::to_string(id) + ": " + std::to_string(r.added.size()) + " nodes added (" +
@@ -186,7 +195,8 @@ bool ViewerState::automaticInRegion(const std::vector<Vec2>& polygon) {
   bool ok = edit("automatic in region", "automatic in region", "", [&] {
     edit::AutoHereOptions o;
     o.skeleton = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOff, up_);
-    r = edit::automaticInRegion(sketch_, cloud_, view_.orbit_.camera(), polygon, anchors, o);
+    geom::PointCloud wood;
+    r = edit::automaticInRegion(sketch_, pointsForAutomatic(wood), view_.orbit_.camera(), polygon, anchors, o);
     if (tools_.active_ == kNoNode && !sketch_.empty()) tools_.active_ = sketch_.root();
   });
   if (ok)

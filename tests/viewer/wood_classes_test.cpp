@@ -144,6 +144,27 @@ TEST(WoodClasses, TheSkeletonAndTheFitsFollowTheCorrectedClasses) {
   EXPECT_EQ(f.state.sketch().notWood().size(), 1u);  // the person's lasso stays
 }
 
+// "Automatic in region" models the wood once the cloud is classified: fewer points.
+TEST(WoodClasses, AutomaticInRegionModelsTheWood) {
+  Fixture f;
+  auto regionPoints = [&] {
+    const std::string text = f.state.status().lastMessage().text;  // "... (N points)"
+    const std::size_t end = text.rfind(" points)");
+    const std::size_t start = text.rfind(' ', end - 1);
+    return end == std::string::npos ? std::size_t(0) : std::size_t(std::stoul(text.substr(start + 1, end - start - 1)));
+  };
+  ASSERT_TRUE(f.state.automaticInRegion(Fixture::wholeView()));
+  const std::size_t every = regionPoints();
+  EXPECT_GT(every, f.state.cloud().size() / 2);
+  ASSERT_TRUE(f.state.undo());
+  f.classify();
+  ASSERT_TRUE(f.state.automaticInRegion(Fixture::wholeView()));
+  const std::size_t wood = regionPoints();
+  EXPECT_LT(wood, every);
+  EXPECT_LE(wood, f.state.woodPointCount());
+  EXPECT_GT(wood, 0u);
+}
+
 TEST(WoodClasses, ScriptVerbsAndKeys) {
   Fixture f;
   std::istringstream bad(R"([{"start": "bogus"}])");

@@ -297,6 +297,7 @@ class ViewerState {
   /// the first click names the node to move (never the node selected before), the second its new
   /// parent; Shift on the second click reverses.
   bool reattachNode(sketch::NodeId id, sketch::NodeId newParent, bool reverse = false);
+  /// Once the cloud is classified (startClassifyJob), both model only its wood after the lassos.
   bool automaticBelow(sketch::NodeId id);
   bool automaticInRegion(const std::vector<geom::Vec2>& polygon);
   /// Where the selected node's circle lies along its view ray (the chosen depth, for the view to
@@ -409,6 +410,9 @@ class ViewerState {
   void applyLeafPoints();
   /// Per point, 1 = leaf by the classification (empty: not classified): what the fits leave out.
   std::vector<std::uint8_t> leafFlags() const;
+  /// The points "automatic from here" (below a node, in a region) models: the cloud, or once it is
+  /// classified its wood after the lassos (copied into `store`).
+  const geom::PointCloud& pointsForAutomatic(geom::PointCloud& store) const;
   std::shared_ptr<const classify::Classification> classes_;
   std::uint64_t classesVersion_ = 0;  ///< increases with every classification taken in or dropped
   mutable std::vector<std::uint8_t> woodAfterLassos_;
