@@ -42,8 +42,8 @@ geom::PointCloud woodPoints(const geom::PointCloud& cloud, geom::UpAxis up, cons
 }
 
 std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bool woodOnly, const py::object& up,
-                                     std::uint64_t seed, int ring, const py::object& inlierThreshold,
-                                     double unitMetres, const py::object& progressFn) {
+                                     std::uint64_t seed, int ring, const py::object& inlierThreshold, double unitMetres,
+                                     const py::object& progressFn) {
   const CloudPtr cloud = cloudObj.cast<CloudPtr>();
   if (!cloud) throw OptionsError("reconstruct: cloud is None");
   const std::string upOption = up.is_none() ? std::string() : up.cast<std::string>();
@@ -315,13 +315,13 @@ void bindModel(py::module_& m) {
       });
 
   m.def("reconstruct", &reconstruct, py::arg("cloud"), py::kw_only(), py::arg("leaf_on") = false,
-        py::arg("wood_only") = false, py::arg("up") = py::none(), py::arg("seed") = 1, py::arg("ring") = 16, py::arg("inlier_threshold") = py::none(),
-        py::arg("unit_metres") = 1.0, py::arg("progress") = py::none(),
+        py::arg("wood_only") = false, py::arg("up") = py::none(), py::arg("seed") = 1, py::arg("ring") = 16,
+        py::arg("inlier_threshold") = py::none(), py::arg("unit_metres") = 1.0, py::arg("progress") = py::none(),
         "The automatic model of a tree cloud, as `treesketch reconstruct CLOUD --auto` makes it: skeleton, a "
         "circle fit per node, regularised radii, tube mesh, metrics. up: 'y' or 'z' (None: what the file "
         "declares, else z); leaf_on: the tree was scanned in leaf; wood_only: model only the points the wood/leaf "
-        "classification calls wood, with the leaf-off settings, measured against every point (as --wood-only); ring: vertices per ring; inlier_threshold: "
-        "the fits' RANSAC band in cloud units (None: the library's); unit_metres: metres per cloud unit for the "
+        "classification calls wood, with the leaf-off settings, measured against every point (as --wood-only); "
+        "ring: vertices per ring; inlier_threshold: the fits' RANSAC band in cloud units (None: the library's); unit_metres: metres per cloud unit for the "
         "metrics. progress(done, total) is called during the work (from worker threads, with the GIL held); an "
         "exception it raises stops the work and is raised here. The GIL is released while the library works. "
         "Raises DegenerateInputError when no model can be made (no skeleton, no circle), OptionsError for bad "

@@ -94,7 +94,8 @@ void selectedNodeSection(viewer::ViewerState& state) {
 void displaySection(viewer::ViewerState& state) {
   viewer::DisplayOptions& d = state.view().display();
   if (ImGui::BeginCombo("colour", viewer::colorModeLabel(d.colorMode))) {
-    for (viewer::ColorMode m : viewer::availableColorModes(state.cloud(), state.woodClasses() != nullptr))  // the file's attributes too
+    for (viewer::ColorMode m :
+         viewer::availableColorModes(state.cloud(), state.woodClasses() != nullptr))  // the file's attributes too
       if (ImGui::Selectable(viewer::colorModeLabel(m), m == d.colorMode)) d.colorMode = m;
     ImGui::EndCombo();
   }
@@ -335,10 +336,9 @@ void drawToolOverlay(const viewer::ViewerState& state) {
     for (const geom::Vec2& p : path) pts.emplace_back(float(p.x()), float(p.y()));
     const bool closed = state.tools().tool() == Tool::Lasso || state.tools().tool() == Tool::LassoWood ||
                         state.tools().tool() == Tool::Region;
-    const ImU32 colour =
-        state.tools().tool() == Tool::Lasso       ? IM_COL32(255, 90, 200, 255)
-        : state.tools().tool() == Tool::LassoWood ? IM_COL32(200, 140, 70, 255)
-                                                  : IM_COL32(90, 220, 255, 255);
+    const ImU32 colour = state.tools().tool() == Tool::Lasso       ? IM_COL32(255, 90, 200, 255)
+                         : state.tools().tool() == Tool::LassoWood ? IM_COL32(200, 140, 70, 255)
+                                                                   : IM_COL32(90, 220, 255, 255);
     dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), colour, closed ? ImDrawFlags_Closed : 0, 2.0f);
   }
   // The active tool, always on the canvas (the panel's buttons may be scrolled away).

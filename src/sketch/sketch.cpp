@@ -446,7 +446,8 @@ void Sketch::validate() const {
   checkParams(defaults, "sketch defaults");
   for (std::size_t i = 0; i < cameras_.size(); ++i) cameras_[i].validate("camera " + std::to_string(i));
   for (std::size_t i = 0; i < notWood_.size(); ++i)
-    checkLasso(notWood_[i], cameras_.size(), (notWood_[i].wood ? "wood lasso " : "not-wood lasso ") + std::to_string(i));
+    checkLasso(notWood_[i], cameras_.size(),
+               (notWood_[i].wood ? "wood lasso " : "not-wood lasso ") + std::to_string(i));
   if (nodes_.empty()) return;
   NodeId theRoot = kNoNode;
   for (const auto& [id, n] : nodes_) {

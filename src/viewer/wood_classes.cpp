@@ -66,7 +66,8 @@ void ViewerState::takeClassification(std::shared_ptr<const classify::Classificat
   char share[32];
   std::snprintf(share, sizeof share, "%.1f %%", 100.0 * double(n) / double(std::max<std::size_t>(cloud_.size(), 1)));
   info("wood/leaf classification: " + std::to_string(n) + " of " + std::to_string(cloud_.size()) +
-       " points are wood (" + share + "); the fits and strokes now use the wood only (lassos correct it: X not wood, "
+       " points are wood (" + share +
+       "); the fits and strokes now use the wood only (lassos correct it: X not wood, "
        "Shift+X wood)");
 }
 
@@ -177,14 +178,14 @@ bool ViewerState::lassoWood(const std::vector<geom::Vec2>& polygon) {
     return false;
   }
   std::size_t marked = 0;
-  bool ok = edit("wood lasso", "wood lasso", "", [&] {
-    marked = edit::lassoWood(sketch_, cloud_, view_.orbit_.camera(), polygon);
-  });
+  bool ok = edit("wood lasso", "wood lasso", "",
+                 [&] { marked = edit::lassoWood(sketch_, cloud_, view_.orbit_.camera(), polygon); });
   if (ok) {
     scene_.colorsStale_ = true;
     info("wood lasso: " + std::to_string(marked) + " points marked wood" +
-         (classes_ ? std::string(" (the fits use them whatever the classification said)")
-                   : std::string(" (they override not-wood lassos drawn before; classify the cloud, K, for the rest)")));
+         (classes_
+              ? std::string(" (the fits use them whatever the classification said)")
+              : std::string(" (they override not-wood lassos drawn before; classify the cloud, K, for the rest)")));
   }
   return ok;
 }

@@ -116,7 +116,8 @@ TEST(DrawLimb, PointsThePickerSkipsAreNotCandidates) {
   std::fill(leaf.begin() + 20000, leaf.begin() + 26000, 1);  // the front branch (scene(): second cylinder)
   ViewPicker picker(cloud, cam, 4.0, [&](std::size_t i, const Vec3& p) { return !isWoodPoint(sk, leaf, i, p); });
   const Vec3 start = kFork + 0.3 * kBranchDir;
-  StrokeResult r = drawLimb(sk, picker, cloud, strokeAlong(cam, start, kFork + 1.5 * kBranchDir), nodeAnchors(sk, nullptr));
+  StrokeResult r =
+      drawLimb(sk, picker, cloud, strokeAlong(cam, start, kFork + 1.5 * kBranchDir), nodeAnchors(sk, nullptr));
   ASSERT_FALSE(r.added.empty());
   for (sketch::NodeId id : r.added) EXPECT_NEAR(sk.node(id).point.z(), kBehind.z(), 0.15);
 }

@@ -1,8 +1,8 @@
 // The desktop tool's long work on a worker thread: at most one job at a time (the automatic
-// skeleton, the wood/leaf classification), its progress, a cancel that stops it at its next progress report, and its outcome,
-// handed back on the window's thread. It never touches the sketch: ViewerState starts a job with
-// what it needs copied or kept alive, and takes the finished sketch in as one undoable edit (and a
-// classification as the cloud's classes).
+// skeleton, the wood/leaf classification), its progress, a cancel that stops it at its next
+// progress report, and its outcome, handed back on the window's thread. It never touches the
+// sketch: ViewerState starts a job with what it needs copied or kept alive, and takes the
+// finished sketch in as one undoable edit (and a classification as the cloud's classes).
 //
 // Threading: the worker writes only the job's own fields, under its mutex or as atomics; every
 // function here is called on the window's thread.
@@ -71,7 +71,7 @@ class Jobs {
   struct Outcome {
     std::string name;
     std::optional<JobResult> result;  ///< when it finished without error or cancel
-    std::string error;                     ///< why it failed ("" otherwise)
+    std::string error;                ///< why it failed ("" otherwise)
     bool cancelled = false;
     double seconds = 0.0;
   };

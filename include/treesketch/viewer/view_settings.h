@@ -20,7 +20,16 @@ namespace treesketch::viewer {
 /// which a cloud has); a cloud without the attribute is drawn plain.
 /// WoodProbability and WoodClass show the viewer's own wood/leaf classification
 /// (ViewerState::woodClasses; the class after the lassos), the others the file's attributes.
-enum class ColorMode { Height, CircleDistance, Plain, Intensity, FileColor, Classification, WoodProbability, WoodClass };
+enum class ColorMode {
+  Height,
+  CircleDistance,
+  Plain,
+  Intensity,
+  FileColor,
+  Classification,
+  WoodProbability,
+  WoodClass
+};
 enum class MeshStyle { Solid, Wireframe, Hidden };
 /// Node numbers beside the markers: Auto (up to ViewerOptions::autoLabelMaxNodes nodes), On, Off.
 enum class LabelMode { Auto, On, Off };
