@@ -179,6 +179,17 @@ TEST(WoodClasses, ScriptVerbsAndKeys) {
   for (const auto& s : r.failures) failures += s + "\n";
   EXPECT_TRUE(r.failures.empty()) << failures;
   EXPECT_EQ(f.state.tools().tool(), ViewerState::Tool::LassoWood);
+  // A scripted session changes the model: the skeleton's nodes fitted from the wood, then a wood
+  // lasso over the whole view (every point wood again) and the fits move.
+  auto run = [&](const std::string& json) {
+    std::istringstream in(json);
+    const ScriptReport report = runActionScript(f.state, parseActionScript(in, "wood.json"));
+    EXPECT_TRUE(report.failures.empty()) << (report.failures.empty() ? "" : report.failures.front());
+  };
+  run(R"([{"button": "refitAll"}, {"expect": {"kept": 0}}])");
+  const double onWood = f.fittedRadii();
+  run(R"([{"lassoWood": [[-5, -5], [805, -5], [805, 605], [-5, 605]]}, {"expect": {"woodLassos": 2}}])");
+  EXPECT_NE(f.fittedRadii(), onWood);
   // Keys: Shift+X toggles the wood lasso, X the not-wood one; K starts the classification.
   EXPECT_TRUE(f.state.keyPress("shift+x"));
   EXPECT_EQ(f.state.tools().tool(), ViewerState::Tool::Select);
