@@ -179,7 +179,7 @@ TEST(WoodClasses, ScriptVerbsAndKeys) {
   for (const auto& s : r.failures) failures += s + "\n";
   EXPECT_TRUE(r.failures.empty()) << failures;
   EXPECT_EQ(f.state.tools().tool(), ViewerState::Tool::LassoWood);
-  // A scripted session changes the model: the skeleton's nodes fitted from the wood, then a wood
+  // A script changes the model: the skeleton's nodes fitted from the wood, then a wood
   // lasso over the whole view (every point wood again) and the fits move.
   auto run = [&](const std::string& json) {
     std::istringstream in(json);

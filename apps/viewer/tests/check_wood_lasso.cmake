@@ -1,7 +1,7 @@
-# The sketch the wood session saved holds its wood lasso and is written as version 2
-# (tests/wood_session.json). cmake -DSKETCH=PATH -P check_wood_lasso.cmake
+# The sketch the wood script saved holds its wood lasso and is written as version 2
+# (tests/wood_script.json). cmake -DSKETCH=PATH -P check_wood_lasso.cmake
 if(NOT EXISTS "${SKETCH}")
-  message(FATAL_ERROR "${SKETCH}: not written by the wood session")
+  message(FATAL_ERROR "${SKETCH}: not written by the wood script")
 endif()
 file(READ "${SKETCH}" text)
 string(JSON version GET "${text}" version)
