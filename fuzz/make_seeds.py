@@ -171,6 +171,11 @@ put("sketch_read", "point_nodes.json",
     '{"id":4,"parent":0,"point":[0,0,1.5],"normal":[0.1,0,1],"params":{},'
     '"circle":{"centre":[0,0,1.5],"radius":0.12}},'
     '{"id":9,"parent":4,"point":[0.3,0,2],"normal":[1,0,1],"params":{"lineEpsilon":1e-3}}]}' % PARAMS)
+put("sketch_read", "lassos.json",
+    '{"format":"treesketch-sketch","version":2,"up":"y","defaults":%s,"cameras":[%s],'
+    '"notWood":[{"camera":0,"polygon":[[0,0],[640,0],[640,800]]},'
+    '{"camera":0,"wood":true,"polygon":[[100,100],[900,100],[900,700],[100,700]]}],'
+    '"nodes":[{"id":0,"parent":-1,"camera":0,"screen":[640,700],"params":%s}]}' % (PARAMS, CAM, PARAMS))
 put("sketch_read", "camera.json", CAM)
 put("sketch_read", "cycle.json",
     '{"format":"treesketch-sketch","version":1,"up":"y","cameras":[],"nodes":['

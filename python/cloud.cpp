@@ -1,9 +1,12 @@
 // treesketch.Cloud and read_cloud: a point cloud whose positions and attributes are NumPy views
-// of the library's storage (no copy), kept alive by the Cloud they come from.
+// of the library's storage (no copy), kept alive by the Cloud they come from; classify: the wood/leaf
+// classification of a cloud as NumPy arrays.
 #include <cstring>
 
 #include "bindings.h"
+#include "treesketch/classify/classify.h"
 #include "treesketch/io/point_cloud_io.h"
+#include "treesketch/io/up_axis.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::python {
@@ -135,6 +138,53 @@ void bindCloud(py::module_& m) {
       "Reads a point cloud (.ply .xyz .txt .csv .pts .las; .obj vertices). Raises InputError naming the file "
       "and the line or byte offset for an unreadable file, NaN or Inf, fewer than 4 points, or .laz (with how to "
       "decompress it).");
+
+  m.def(
+      "classify",
+      [](const CloudPtr& cloud, const py::object& up, const py::object& threshold) {
+        if (!cloud) throw OptionsError("classify: cloud is None");
+        const std::string upOption = up.is_none() ? std::string() : up.cast<std::string>();
+        classify::ClassifyOptions options;
+        if (!threshold.is_none()) {
+          options.threshold = threshold.cast<double>();
+          if (!(options.threshold >= 0.0 && options.threshold <= 1.0))
+            throw OptionsError("classify: threshold must be between 0 and 1, got " + std::to_string(options.threshold));
+        }
+        classify::Classification c;
+        {
+          py::gil_scoped_release release;
+          c = classify::classifyWood(*cloud, io::chooseUpAxis(upOption, *cloud).up, options);
+        }
+        const auto n = static_cast<py::ssize_t>(c.wood.size());
+        py::array_t<float> probability(n);
+        py::array_t<bool> wood(n);
+        py::array_t<std::uint8_t> codes(n);
+        const std::vector<std::uint8_t> classCodes = classify::classCodes(c);
+        auto p = probability.mutable_unchecked<1>();
+        auto w = wood.mutable_unchecked<1>();
+        auto k = codes.mutable_unchecked<1>();
+        for (py::ssize_t i = 0; i < n; ++i) {
+          const auto u = static_cast<std::size_t>(i);
+          p(i) = c.woodProbability[u];
+          w(i) = c.wood[u] != 0;
+          k(i) = classCodes[u];
+        }
+        py::dict d;
+        d["wood_probability"] = probability;
+        d["wood"] = wood;
+        d["classification"] = codes;
+        d["threshold"] = c.threshold;
+        d["wood_points"] = c.woodPoints;
+        return d;
+      },
+      py::arg("cloud"), py::kw_only(), py::arg("up") = py::none(), py::arg("threshold") = py::none(),
+      "Tells wood from leaves, as `treesketch classify` does (the model built into the library): a dict of "
+      "per-point NumPy arrays, 'wood_probability' (float32, the classifier's, 0..1), 'wood' (bool, the class "
+      "after the graph step that keeps wood connected to the stem) and 'classification' (uint8, the file codes: "
+      "64 wood, 65 leaf), with 'threshold' (the probability called wood) and 'wood_points'. up: 'y' or 'z' "
+      "(None: what the file declares, else z); threshold: call wood at this probability and above (None: the "
+      "model's own). The GIL is released while it works. Raises DegenerateInputError for a cloud too small to "
+      "classify, OptionsError for a threshold outside 0..1.");
 }
 
 }  // namespace treesketch::python

@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "bindings.h"
+#include "treesketch/classify/classify.h"
 #include "treesketch/io/sketch_file.h"
 #include "treesketch/io/up_axis.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
@@ -25,8 +26,23 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, const py::object& up, std::uint64_t seed,
-                                     int ring, const py::object& inlierThreshold, double unitMetres,
+/// The points of `cloud` the wood/leaf classification calls wood, as `reconstruct --auto
+/// --wood-only` takes them (apps/cli/tree_job.cpp): fewer than a hundred is no tree's wood.
+geom::PointCloud woodPoints(const geom::PointCloud& cloud, geom::UpAxis up, const std::string& source) {
+  constexpr std::size_t kMinWoodPoints = 100;
+  const classify::Classification c = classify::classifyWood(cloud, up);
+  std::vector<std::uint32_t> wood;
+  for (std::size_t i = 0; i < cloud.size() && i < c.wood.size(); ++i)
+    if (c.wood[i]) wood.push_back(static_cast<std::uint32_t>(i));
+  if (wood.size() < kMinWoodPoints)
+    throw DegenerateInputError(source + ": --wood-only: " + std::to_string(wood.size()) + " of " +
+                               std::to_string(cloud.size()) +
+                               " points classified as wood, too few to model (run without --wood-only)");
+  return cloud::selectPoints(cloud, wood);
+}
+
+std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bool woodOnly, const py::object& up,
+                                     std::uint64_t seed, int ring, const py::object& inlierThreshold, double unitMetres,
                                      const py::object& progressFn) {
   const CloudPtr cloud = cloudObj.cast<CloudPtr>();
   if (!cloud) throw OptionsError("reconstruct: cloud is None");
@@ -43,14 +59,19 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
     t.points = cloud->size();
     const io::UpAxisChoice choice = io::chooseUpAxis(upOption, *cloud);
     t.upReason = choice.reason;
-    skeleton::AutoSkeletonOptions opt =
-        skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, choice.up);
+    // With wood_only the wood points are modelled with the leaf-off settings and the model is
+    // measured against every point, as `reconstruct --auto --wood-only`.
+    geom::PointCloud woodStore;
+    if (woodOnly) woodStore = woodPoints(*cloud, choice.up, t.source);
+    const geom::PointCloud& modelled = woodOnly ? woodStore : *cloud;
+    skeleton::AutoSkeletonOptions opt = skeleton::autoSkeletonPreset(
+        leafOn && !woodOnly ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, choice.up);
     opt.seed = seed;
     opt.ringVertices = ring;
     if (threshold >= 0.0) opt.fit.circle.inlierThreshold = threshold;
     skeleton::AutoSkeletonResult s;
     try {
-      s = skeleton::autoSkeletonSketch(*cloud, opt, progress.function());
+      s = skeleton::autoSkeletonSketch(modelled, opt, progress.function());
     } catch (const Cancelled&) {
       py::gil_scoped_acquire gil;
       progress.rethrowIfFailed();
@@ -58,12 +79,14 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
     }
     // The model is made from, and measured against, the points kept (the strays are set aside).
     geom::PointCloud keptStore;
-    const geom::PointCloud& kept = s.strays.empty() ? *cloud : (keptStore = cloud::keptPoints(*cloud, s.strays));
-    model::checkAutoModel(t.source, kept, s);
+    const geom::PointCloud& kept =
+        woodOnly || s.strays.empty() ? *cloud : (keptStore = cloud::keptPoints(*cloud, s.strays));
+    model::checkAutoModel(t.source, woodOnly ? modelled : kept, s);
     std::size_t accepted = 0, leafPieces = 0;
     for (char c : s.fitAccepted) accepted += c != 0;
     for (const auto& n : s.model) leafPieces += skeleton::isLeafPiece(n, opt);
     t.counts = {{"points", t.points},
+                {"wood_points", woodOnly ? woodStore.size() : 0},
                 {"skeleton_nodes", s.model.size()},
                 {"forks", skeleton::countBranchPoints(s.model)},
                 {"fits_accepted", accepted},
@@ -74,6 +97,7 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
     t.reportHeader = {{"cloud", t.source},
                       {"auto", true},
                       {"leafOn", leafOn},
+                      {"woodOnly", woodOnly},
                       {"up", geom::toString(choice.up)},
                       {"upReason", t.upReason},
                       {"points", t.points},
@@ -90,6 +114,7 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, co
     model::MeasureOptions mo;
     mo.unitMetres = unitMetres;
     mo.leafOn = leafOn;  // as the CLI measures it: the fit, the volume's range and the verdict
+    mo.woodOnly = woodOnly;
     mo.noise = s.noiseMeasured ? s.noise : -1.0;
     mo.leafPieceShare = s.model.empty() ? 0.0 : static_cast<double>(leafPieces) / static_cast<double>(s.model.size());
     t.measures = model::measure(t.tree, kept, mo);
@@ -290,12 +315,13 @@ void bindModel(py::module_& m) {
       });
 
   m.def("reconstruct", &reconstruct, py::arg("cloud"), py::kw_only(), py::arg("leaf_on") = false,
-        py::arg("up") = py::none(), py::arg("seed") = 1, py::arg("ring") = 16, py::arg("inlier_threshold") = py::none(),
-        py::arg("unit_metres") = 1.0, py::arg("progress") = py::none(),
+        py::arg("wood_only") = false, py::arg("up") = py::none(), py::arg("seed") = 1, py::arg("ring") = 16,
+        py::arg("inlier_threshold") = py::none(), py::arg("unit_metres") = 1.0, py::arg("progress") = py::none(),
         "The automatic model of a tree cloud, as `treesketch reconstruct CLOUD --auto` makes it: skeleton, a "
         "circle fit per node, regularised radii, tube mesh, metrics. up: 'y' or 'z' (None: what the file "
-        "declares, else z); leaf_on: the tree was scanned in leaf; ring: vertices per ring; inlier_threshold: "
-        "the fits' RANSAC band in cloud units (None: the library's); unit_metres: metres per cloud unit for the "
+        "declares, else z); leaf_on: the tree was scanned in leaf; wood_only: model only the points the wood/leaf "
+        "classification calls wood, with the leaf-off settings, measured against every point (as --wood-only); "
+        "ring: vertices per ring; inlier_threshold: the fits' RANSAC band in cloud units (None: the library's); unit_metres: metres per cloud unit for the "
         "metrics. progress(done, total) is called during the work (from worker threads, with the GIL held); an "
         "exception it raises stops the work and is raised here. The GIL is released while the library works. "
         "Raises DegenerateInputError when no model can be made (no skeleton, no circle), OptionsError for bad "

@@ -11,7 +11,8 @@
 #   to show the feature; the geometry is the demo tree's.
 # (docs/gui_sketch.png and gui_mesh.png come from apps/viewer/docs_screenshots.json, and
 # docs/gui_stroke_drawn.png, gui_subtree.png, gui_distance.png from apps/viewer/docs_edits.json,
-# both run by hand with `treesketch gui --script` on the demo tree, in docs/.)
+# and docs/gui_wood.png from apps/viewer/docs_wood.json (with --demo-rays 300000), all run by hand
+# with `treesketch gui --script` on the demo tree, in docs/.)
 # Usage: scripts/gui_screenshots.sh [BUILD_DIR]   (default build; needs xvfb-run and Mesa)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"

@@ -93,6 +93,9 @@ void addMethodOptions(CLI::App& cmd, EvaluateOpts& o) {
   cmd.add_flag("--choose-depth", o.e.chooseDepth,
                "The simulated user's screen nodes choose their depth along the view ray from the parent's circle "
                "(as the viewer does) instead of the thesis's fit (the best-supported circle along the whole ray)");
+  cmd.add_flag_function("--user-every-point", [&o](std::int64_t) { o.e.userFitsOnWood = false; },
+               "On leaf-on scans the simulated user's nodes are fitted to every point (the thesis) instead of "
+               "the points the wood/leaf classification calls wood");
   cmd.add_flag("--correcting-user", o.correcting,
                "Run only the simulated correcting user: from the automatic skeleton, one edit at a time "
                "on the worst visible error; writes correcting_user.{csv,md} and correcting_user_*.svg");

@@ -61,7 +61,7 @@ void WindowActions::drawFileMenu() {
 void WindowActions::drawViewMenu() {
   viewer::DisplayOptions& d = state_.view().display();
   if (ImGui::BeginMenu("Colour points by")) {
-    for (viewer::ColorMode m : viewer::availableColorModes(state_.cloud()))
+    for (viewer::ColorMode m : viewer::availableColorModes(state_.cloud(), state_.woodClasses() != nullptr))
       if (ImGui::MenuItem(viewer::colorModeLabel(m), nullptr, d.colorMode == m)) state_.view().setColorMode(m);
     ImGui::EndMenu();
   }
@@ -122,12 +122,16 @@ void WindowActions::drawMenuBar() {
     using Tool = viewer::ViewerState::Tool;
     static const std::pair<Tool, const char*> kTools[] = {{Tool::Select, "Esc"}, {Tool::AddNodes, "N"},
                                                           {Tool::Stroke, "G"},   {Tool::Lasso, "X"},
+                                                          {Tool::LassoWood, "Shift+X"},
                                                           {Tool::Region, "R"},   {Tool::Reattach, "P"}};
     for (const auto& [tool, key] : kTools)
       if (ImGui::MenuItem(viewer::toolLabel(tool), key, state_.tools().tool() == tool)) state_.setTool(tool);
     if (ImGui::MenuItem("Delete subtree of the selected node", "Shift+Del", false,
                         state_.tools().selected() != sketch::kNoNode))
       state_.requestDeleteSubtree(state_.tools().selected());
+    ImGui::Separator();
+    if (ImGui::MenuItem("Classify wood/leaf", "K", false, !state_.jobs().busy())) state_.startClassifyJob();
+    tip("Tell wood from leaves in the background; the fits and strokes then use the wood only");
     ImGui::Separator();
     bool pick = pickMode_;
     if (ImGui::MenuItem("Pick points / measure", "M", pick)) setPickMode(!pick);

@@ -94,7 +94,8 @@ void selectedNodeSection(viewer::ViewerState& state) {
 void displaySection(viewer::ViewerState& state) {
   viewer::DisplayOptions& d = state.view().display();
   if (ImGui::BeginCombo("colour", viewer::colorModeLabel(d.colorMode))) {
-    for (viewer::ColorMode m : viewer::availableColorModes(state.cloud()))  // the file's attributes too
+    for (viewer::ColorMode m :
+         viewer::availableColorModes(state.cloud(), state.woodClasses() != nullptr))  // the file's attributes too
       if (ImGui::Selectable(viewer::colorModeLabel(m), m == d.colorMode)) d.colorMode = m;
     ImGui::EndCombo();
   }
@@ -170,6 +171,27 @@ void statusBar(viewer::ViewerState& state, int width, int height) {
   ImGui::End();
 }
 
+/// The automatic sketches: the uniform one with its node count, the skeleton with its choice for
+/// the leaves (leaf-off; "in leaf": every point, the leafy-scan settings; "wood only": the
+/// classified wood with the leaf-off settings).
+void automaticSketchRows(viewer::ViewerState& state, PanelState& panel) {
+  // "##": the label shows "nodes", the ID is unique (View has a "nodes" checkbox too).
+  ImGui::SliderInt("nodes##autoNodes", &panel.autoNodes, 2, 40);
+  ImGui::SameLine();
+  if (ImGui::Button("Auto")) state.requestAutoSketchUniform(panel.autoNodes);
+  if (ImGui::Button("Auto skeleton")) {
+    if (panel.autoLeaves == PanelState::kWoodOnly)
+      state.requestAutoSketchSkeletonWood();
+    else
+      state.requestAutoSketchSkeleton(panel.autoLeaves == PanelState::kInLeaf);
+  }
+  ImGui::SameLine();
+  static const char* const kLeaves[] = {"leaf-off", "in leaf", "wood only"};
+  ImGui::SetNextItemWidth(82);  // "wood only" and the arrow: Clear and Refit all stay on the row
+  ImGui::Combo("##leaves", &panel.autoLeaves, kLeaves, 3);
+  ImGui::SameLine();
+}
+
 }  // namespace
 
 void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int height,
@@ -202,14 +224,7 @@ void drawPanels(viewer::ViewerState& state, PanelState& panel, int width, int he
     if (ImGui::Button("Screenshot")) panel.screenshotRequested = true;
   }
   if (ImGui::CollapsingHeader("Sketch", ImGuiTreeNodeFlags_DefaultOpen)) {
-    // "##": the label shows "nodes", the ID is unique (View has a "nodes" checkbox too).
-    ImGui::SliderInt("nodes##autoNodes", &panel.autoNodes, 2, 40);
-    ImGui::SameLine();
-    if (ImGui::Button("Auto")) state.requestAutoSketchUniform(panel.autoNodes);
-    if (ImGui::Button("Auto skeleton")) state.requestAutoSketchSkeleton(panel.autoLeafOn);
-    ImGui::SameLine();
-    ImGui::Checkbox("in leaf", &panel.autoLeafOn);
-    ImGui::SameLine();
+    automaticSketchRows(state, panel);
     if (ImGui::Button("Clear")) state.clearSketch();
     if (state.sketch().keptCircleCount() > 0) {
       ImGui::SameLine();
@@ -319,9 +334,11 @@ void drawToolOverlay(const viewer::ViewerState& state) {
     std::vector<ImVec2> pts;
     pts.reserve(path.size());
     for (const geom::Vec2& p : path) pts.emplace_back(float(p.x()), float(p.y()));
-    const bool closed = state.tools().tool() == Tool::Lasso || state.tools().tool() == Tool::Region;
-    const ImU32 colour =
-        state.tools().tool() == Tool::Lasso ? IM_COL32(255, 90, 200, 255) : IM_COL32(90, 220, 255, 255);
+    const bool closed = state.tools().tool() == Tool::Lasso || state.tools().tool() == Tool::LassoWood ||
+                        state.tools().tool() == Tool::Region;
+    const ImU32 colour = state.tools().tool() == Tool::Lasso       ? IM_COL32(255, 90, 200, 255)
+                         : state.tools().tool() == Tool::LassoWood ? IM_COL32(200, 140, 70, 255)
+                                                                   : IM_COL32(90, 220, 255, 255);
     dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), colour, closed ? ImDrawFlags_Closed : 0, 2.0f);
   }
   // The active tool, always on the canvas (the panel's buttons may be scrolled away).

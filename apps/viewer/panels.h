@@ -34,7 +34,10 @@ struct PanelState {
   std::string screenshotPath = "treesketch_screenshot.png";
   std::string inputName;  ///< shown at the top
   int autoNodes = 12;
-  bool autoLeafOn = false;           ///< "in leaf" box: the skeleton sketch's settings for leafy scans
+  /// The automatic skeleton's leaves: leaf-off, in leaf (every point, the settings for leafy
+  /// scans) or wood only (the classified wood, the leaf-off settings).
+  static constexpr int kLeafOff = 0, kInLeaf = 1, kWoodOnly = 2;
+  int autoLeaves = kLeafOff;
   bool screenshotRequested = false;  ///< set by the Screenshot button; the main loop takes it
   bool showHelp = true;
   /// A panel button pressed by a script (its label; empty: none), taken in by the next frame.

@@ -1,5 +1,6 @@
 // The "Correction tools" section of the side panel: the tool buttons (same as the
-// keys G, X, R, P, H), the not-wood lassos, and the selected node's depth along the view ray.
+// keys G, X, Shift+X, R, P, H), the lassos, the wood/leaf classification (K), and the selected
+// node's depth along the view ray.
 // Kept in its own file so the panel layout (panels.cpp) only calls it.
 #include <imgui.h>
 
@@ -23,17 +24,27 @@ void toolsSection(viewer::ViewerState& state) {
   toolButton("Stroke (G)", Tool::Stroke);
   ImGui::SameLine();
   toolButton("Lasso (X)", Tool::Lasso);
-  toolButton("Region (R)", Tool::Region);
+  toolButton("Wood lasso (Shift+X)", Tool::LassoWood);
   ImGui::SameLine();
+  toolButton("Region (R)", Tool::Region);
   toolButton("Re-attach (P)", Tool::Reattach);
   ImGui::BeginDisabled(state.tools().selected() == sketch::kNoNode);
   if (ImGui::Button("Automatic below selected (H)")) state.automaticBelow(state.tools().selected());
   ImGui::EndDisabled();
-  ImGui::Text("%zu not-wood lasso(s)", state.sketch().notWood().size());
+  const std::size_t woodLassos = state.sketch().woodLassoCount();
+  ImGui::Text("%zu not-wood, %zu wood lasso(s)", state.sketch().notWood().size() - woodLassos, woodLassos);
   ImGui::SameLine();
   ImGui::BeginDisabled(state.sketch().notWood().empty());
   if (ImGui::Button("Clear##notWood")) state.clearNotWood();
   ImGui::EndDisabled();
+  ImGui::BeginDisabled(state.jobs().busy());
+  if (ImGui::Button("Classify wood/leaf (K)")) state.startClassifyJob();
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (state.woodClasses())
+    ImGui::Text("%zu of %zu points wood", state.woodPointCount(), state.cloud().size());
+  else
+    ImGui::TextDisabled("not classified");
   const double depth = state.selectedDepth();
   if (std::isfinite(depth)) ImGui::Text("selected circle: %.3f from the eye", depth);
   if (state.tools().selected() != sketch::kNoNode) {

@@ -258,6 +258,7 @@ const viewer::Legend& WindowActions::legend() {
   // and mode. Height and distance legends follow the view's up, the colour scale and the fits,
   // and are O(1): made afresh every frame so they never go stale.
   const viewer::ColorMode mode = state_.view().display().colorMode;
+  // The wood class legend's counts are kept by the state (O(1)).
   const bool perPoint = mode == viewer::ColorMode::Intensity || mode == viewer::ColorMode::Classification;
   if (!perPoint || legendCloud_ != state_.cloudVersion() || legendMode_ != mode) {
     legend_ = viewer::colorLegend(state_);

@@ -31,7 +31,7 @@ std::map<NodeId, NodeAnchor> nodeAnchors(const sketch::Sketch& sketch, const rec
 // ---- view picker ---------------------------------------------------------------------------------
 
 ViewPicker::ViewPicker(const geom::PointCloud& cloud, const geom::Camera& camera, double cellPx,
-                       const std::function<bool(const Vec3&)>& skip)
+                       const std::function<bool(std::size_t, const Vec3&)>& skip)
     : camera_(camera), cell_(std::max(cellPx, 1.0)) {
   camera_.validate("view picker camera");
   const geom::Viewport& vp = camera_.viewport;
@@ -47,7 +47,7 @@ ViewPicker::ViewPicker(const geom::PointCloud& cloud, const geom::Camera& camera
   start_.assign(std::size_t(cols_) * rows_ + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p = cloud.positions[i];
-    if (!p.allFinite() || (skip && skip(p))) continue;
+    if (!p.allFinite() || (skip && skip(i, p))) continue;
     Eigen::Vector4d c = m * Eigen::Vector4d(p.x(), p.y(), p.z(), 1.0);
     if (!(c.w() > 0) && !ortho) continue;  // behind the eye
     const double x = c.x() / c.w(), y = c.y() / c.w(), z = c.z() / c.w();
@@ -310,12 +310,29 @@ std::size_t lassoNotWood(sketch::Sketch& sketch, const geom::PointCloud& cloud, 
   return n;
 }
 
+std::size_t lassoWood(sketch::Sketch& sketch, const geom::PointCloud& cloud, const geom::Camera& camera,
+                      const std::vector<Vec2>& polygon) {
+  const int cam = sketch.addCamera(camera);
+  sketch::Sketch one;  // count what this lasso alone marks
+  one.addWoodLasso(one.addCamera(camera), polygon);
+  sketch.addWoodLasso(cam, polygon);
+  std::size_t n = 0;
+  for (const Vec3& p : cloud.positions) n += one.lassoClass(p) == sketch::Sketch::LassoClass::Wood;
+  return n;
+}
+
 void copyNotWood(const sketch::Sketch& from, sketch::Sketch& to) {
   for (const sketch::NotWoodLasso& l : from.notWood()) {
     const sketch::NotWoodLasso* same = nullptr;
     for (const sketch::NotWoodLasso& m : to.notWood())
-      if (m.polygon == l.polygon && to.cameras()[m.camera].view == from.cameras()[l.camera].view) same = &m;
-    if (!same) to.addNotWoodLasso(to.addCamera(from.cameras()[l.camera]), l.polygon);
+      if (m.polygon == l.polygon && m.wood == l.wood && to.cameras()[m.camera].view == from.cameras()[l.camera].view)
+        same = &m;
+    if (same) continue;
+    const int cam = to.addCamera(from.cameras()[l.camera]);
+    if (l.wood)
+      to.addWoodLasso(cam, l.polygon);
+    else
+      to.addNotWoodLasso(cam, l.polygon);
   }
 }
 
@@ -329,11 +346,27 @@ std::size_t refitNotWoodCircles(sketch::Sketch& sketch) {
 }
 
 geom::PointCloud woodOnly(const geom::PointCloud& cloud, const sketch::Sketch& sketch) {
-  if (sketch.notWood().empty()) return cloud;
+  return woodOnly(cloud, sketch, {});
+}
+
+bool isWoodPoint(const sketch::Sketch& sketch, const std::vector<std::uint8_t>& leaf, std::size_t i,
+                 const geom::Vec3& p) {
+  if (sketch.notWood().empty()) return leaf.empty() || !leaf[i];
+  const sketch::Sketch::LassoClass c = sketch.lassoClass(p);
+  if (c != sketch::Sketch::LassoClass::None) return c == sketch::Sketch::LassoClass::Wood;
+  return leaf.empty() || !leaf[i];
+}
+
+geom::PointCloud woodOnly(const geom::PointCloud& cloud, const sketch::Sketch& sketch,
+                          const std::vector<std::uint8_t>& leaf) {
+  if (!leaf.empty() && leaf.size() != cloud.size())
+    throw OptionsError("wood points: " + std::to_string(leaf.size()) + " classes for a cloud of " +
+                       std::to_string(cloud.size()) + " points");
+  if (sketch.notWood().empty() && leaf.empty()) return cloud;
   geom::PointCloud out;
   out.up = cloud.up;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (sketch.isNotWood(cloud.positions[i])) continue;
+    if (!isWoodPoint(sketch, leaf, i, cloud.positions[i])) continue;
     out.positions.push_back(cloud.positions[i]);
     if (!cloud.station.empty()) out.station.push_back(cloud.station[i]);
     if (!cloud.meshId.empty()) out.meshId.push_back(cloud.meshId[i]);

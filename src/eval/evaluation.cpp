@@ -133,12 +133,33 @@ sketch::PolylineSketchOptions userOptions(const MethodInput& in, std::vector<ske
   return po;
 }
 
+geom::PointCloud classifiedWood(const geom::PointCloud& cloud, geom::UpAxis up);
+constexpr std::size_t kMinWoodPoints = 100;
+
+// The careful user draws over the whole cloud, as the person sees it; on a leaf-on scan its nodes
+// are fitted to the points the wood/leaf classification calls wood (EvalOptions::userFitsOnWood),
+// as the desktop tool fits a person's nodes once the cloud is classified.
 MethodOutput methodUser(const MethodInput& in) {
   const Stopwatch timer;
   std::vector<sketch::BranchPolyline> axes;
   auto po = userOptions(in, axes);
   sketch::Sketch sk = sketch::sketchFromPolylines(axes, viewCamera(in), po);
+  if (in.leafOn && in.options.userFitsOnWood) {
+    const geom::PointCloud wood = classifiedWood(in.cloud, in.tree.up);
+    if (wood.size() >= kMinWoodPoints)  // else no tree's wood: every point, as before
+      return reconstructSketch(sk, wood, in.options.seed, timer, in.options.chooseDepth);
+  }
   return reconstructSketch(sk, in.cloud, in.options.seed, timer, in.options.chooseDepth);
+}
+
+/// The points of `cloud` the wood/leaf classification calls wood (empty when it finds none).
+geom::PointCloud classifiedWood(const geom::PointCloud& cloud, geom::UpAxis up) {
+  const classify::Classification c = classify::classifyWood(cloud, up);
+  geom::PointCloud wood;
+  wood.up = cloud.up;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (c.wood[i]) wood.positions.push_back(cloud.positions[i]);
+  return wood;
 }
 
 MethodOutput methodIdeal(const MethodInput& in) {
@@ -174,12 +195,8 @@ MethodOutput methodSkeleton(const MethodInput& in) {
 MethodOutput methodSkeletonWood(const MethodInput& in) {
   if (!in.leafOn) return methodSkeleton(in);
   const Stopwatch timer;
-  const classify::Classification c = classify::classifyWood(in.cloud, in.tree.up);
-  geom::PointCloud wood;
-  wood.up = in.cloud.up;
-  for (std::size_t i = 0; i < in.cloud.size(); ++i)
-    if (c.wood[i]) wood.positions.push_back(in.cloud.positions[i]);
-  if (wood.size() < 100) return methodSkeleton(in);  // nothing to model as wood: as before
+  const geom::PointCloud wood = classifiedWood(in.cloud, in.tree.up);
+  if (wood.size() < kMinWoodPoints) return methodSkeleton(in);  // nothing to model as wood: as before
   MethodInput woodInput{in.tree, wood, in.options, in.nodeCount, false};
   MethodOutput out = methodSkeleton(woodInput);
   out.ms = timer.ms();

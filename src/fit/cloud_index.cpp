@@ -161,6 +161,11 @@ CloudIndex::CloudIndex(const geom::PointCloud& cloud, const CloudIndexOptions& o
 }
 
 std::size_t CloudIndex::setExcluded(const std::function<bool(const Vec3&)>& excluded) {
+  if (!excluded) return setExcludedByIndex({});
+  return setExcludedByIndex([&excluded](std::uint32_t, const Vec3& p) { return excluded(p); });
+}
+
+std::size_t CloudIndex::setExcludedByIndex(const std::function<bool(std::uint32_t, const Vec3&)>& excluded) {
   for (const auto& [slot, p] : excludedSaved_) {
     sorted_[slot] = p;
     for (int a = 0; a < 3; ++a) fpos_[a][slot] = float(p[a] - centre_[a]);
@@ -169,7 +174,7 @@ std::size_t CloudIndex::setExcluded(const std::function<bool(const Vec3&)>& excl
   if (!excluded) return 0;
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t s = 0; s < sorted_.size(); ++s) {
-    if (!excluded(sorted_[s])) continue;
+    if (!excluded(ids_[s], sorted_[s])) continue;
     excludedSaved_.emplace_back(std::uint32_t(s), sorted_[s]);
     sorted_[s] = Vec3::Constant(kNaN);
     for (int a = 0; a < 3; ++a) fpos_[a][s] = std::numeric_limits<float>::quiet_NaN();

@@ -20,6 +20,9 @@ namespace {
 
 constexpr const char* kFormatName = "treesketch-sketch";
 constexpr int kFormatVersion = 1;
+/// A sketch with a wood lasso is written as version 2, so that a reader of version 1 (which would
+/// take the lasso for a not-wood one) refuses it; every other sketch stays version 1.
+constexpr int kWoodLassoVersion = 2;
 
 /// Error context: "source: where: what".
 struct Ctx {
@@ -230,9 +233,9 @@ sketch::Sketch sketchFromJson(const json& root, const std::string& source) {
   if (!format.is_string() || format.get<std::string>() != kFormatName)
     top.fail(std::string("\"format\" must be \"") + kFormatName + "\", got " + format.dump());
   long long version = integer(field(root, "version", top), "\"version\"", top);
-  if (version != kFormatVersion)
-    top.fail("unsupported version " + std::to_string(version) + " (this program reads version " +
-             std::to_string(kFormatVersion) + ")");
+  if (version != kFormatVersion && version != kWoodLassoVersion)
+    top.fail("unsupported version " + std::to_string(version) + " (this program reads versions " +
+             std::to_string(kFormatVersion) + " and " + std::to_string(kWoodLassoVersion) + ")");
   sketch::Sketch sk;
   if (auto it = root.find("up"); it != root.end()) {
     if (!it->is_string()) top.fail("\"up\": expected \"y\" or \"z\", got " + typeName(*it));
@@ -267,8 +270,16 @@ sketch::Sketch sketchFromJson(const json& root, const std::string& source) {
         if (!v.is_array() || v.size() != 2) lctx.fail(what + ": expected [x, y]");
         vs.emplace_back(number(v[0], what + " x", lctx), number(v[1], what + " y", lctx));
       }
+      bool wood = false;
+      if (auto w = l.find("wood"); w != l.end()) {
+        if (!w->is_boolean()) lctx.fail("\"wood\": expected true or false, got " + typeName(*w));
+        wood = w->get<bool>();
+      }
       try {
-        sk.addNotWoodLasso(static_cast<int>(cam), vs);
+        if (wood)
+          sk.addWoodLasso(static_cast<int>(cam), vs);
+        else
+          sk.addNotWoodLasso(static_cast<int>(cam), vs);
       } catch (const OptionsError& e) {
         lctx.fail(e.what());
       }
@@ -298,7 +309,7 @@ sketch::Sketch sketchFromJson(const json& root, const std::string& source) {
 ojson sketchToJson(const sketch::Sketch& sk, const SketchCloudRecord* cloud = nullptr) {
   ojson j;
   j["format"] = kFormatName;
-  j["version"] = kFormatVersion;
+  j["version"] = sk.woodLassoCount() > 0 ? kWoodLassoVersion : kFormatVersion;
   if (cloud) j["cloud"] = ojson{{"path", cloud->path}, {"points", cloud->points}, {"hash", cloud->hash}};
   j["up"] = geom::toString(sk.up);
   j["defaults"] = paramsToJson(sk.defaults, sketch::SamplingParams{});  // absent = -1 = unlimited (thesis)
@@ -309,6 +320,7 @@ ojson sketchToJson(const sketch::Sketch& sk, const SketchCloudRecord* cloud = nu
     for (const auto& l : sk.notWood()) {
       ojson o;
       o["camera"] = l.camera;
+      if (l.wood) o["wood"] = true;
       o["polygon"] = ojson::array();
       for (const auto& v : l.polygon) o["polygon"].push_back({v.x(), v.y()});
       j["notWood"].push_back(std::move(o));

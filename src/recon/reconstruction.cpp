@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "treesketch/util/error.h"
 #include "treesketch/util/stopwatch.h"
 
 namespace treesketch::recon {
@@ -34,6 +35,7 @@ Reconstruction::Reconstruction(const geom::PointCloud& cloud, const Reconstructi
     : options_(options), sweeper_(options.sweep) {
   const Stopwatch timer;
   index_ = std::make_unique<fit::CloudIndex>(cloud, options_.index);
+  cloudSize_ = cloud.size();
   timings_.indexMs = timer.ms();
 }
 
@@ -59,15 +61,32 @@ std::map<NodeId, const fit::NodeResult*> Reconstruction::results() const {
   return out;
 }
 
-// 0. Not-wood lassos: recompute the index's exclusions when they changed; every fit may change.
+void Reconstruction::setLeafPoints(std::vector<std::uint8_t> leaf) {
+  if (!leaf.empty() && leaf.size() != cloudSize_)
+    throw OptionsError("leaf points: " + std::to_string(leaf.size()) + " flags for a cloud of " +
+                       std::to_string(cloudSize_) + " points");
+  if (leaf == leaf_) return;
+  leaf_ = std::move(leaf);
+  leafChanged_ = true;
+}
+
+// 0. Not-wood and wood lassos, and the points classified leaf: recompute the index's exclusions
+// when they changed; every fit may change.
 bool Reconstruction::refreshExclusions(const sketch::Sketch& sketch) {
-  if (sameLassos(notWood_, sketch)) return false;
+  if (sameLassos(notWood_, sketch) && !leafChanged_) return false;
+  leafChanged_ = false;
   notWood_.clear();
   for (const auto& l : sketch.notWood()) notWood_.emplace_back(l, sketch.cameras()[l.camera]);
-  if (sketch.notWood().empty())
+  if (sketch.notWood().empty() && leaf_.empty()) {
     index_->setExcluded({});
-  else
+  } else if (leaf_.empty()) {
     index_->setExcluded([&](const geom::Vec3& p) { return sketch.isNotWood(p); });
+  } else {
+    index_->setExcludedByIndex([&](std::uint32_t i, const geom::Vec3& p) {
+      const sketch::Sketch::LassoClass c = sketch.lassoClass(p);
+      return c == sketch::Sketch::LassoClass::None ? leaf_[i] != 0 : c == sketch::Sketch::LassoClass::NotWood;
+    });
+  }
   return true;
 }
 

@@ -399,10 +399,23 @@ void checkLasso(const NotWoodLasso& l, std::size_t cameras, const std::string& w
 }  // namespace
 
 std::size_t Sketch::addNotWoodLasso(int camera, const std::vector<Vec2>& polygon) {
-  NotWoodLasso l{camera, polygon};
+  NotWoodLasso l{camera, polygon, false};
   checkLasso(l, cameras_.size(), "not-wood lasso");
   notWood_.push_back(std::move(l));
   return notWood_.size() - 1;
+}
+
+std::size_t Sketch::addWoodLasso(int camera, const std::vector<Vec2>& polygon) {
+  NotWoodLasso l{camera, polygon, true};
+  checkLasso(l, cameras_.size(), "wood lasso");
+  notWood_.push_back(std::move(l));
+  return notWood_.size() - 1;
+}
+
+std::size_t Sketch::woodLassoCount() const {
+  std::size_t n = 0;
+  for (const NotWoodLasso& l : notWood_) n += l.wood;
+  return n;
 }
 
 void Sketch::removeNotWoodLasso(std::size_t index) {
@@ -418,20 +431,23 @@ std::size_t Sketch::clearNotWood() {
   return n;
 }
 
-bool Sketch::isNotWood(const Vec3& p) const {
-  for (const NotWoodLasso& l : notWood_) {
-    const Vec3 s = cameras_[l.camera].project(p);
+Sketch::LassoClass Sketch::lassoClass(const Vec3& p) const {
+  for (auto it = notWood_.rbegin(); it != notWood_.rend(); ++it) {  // the last lasso drawn decides
+    const Vec3 s = cameras_[it->camera].project(p);
     if (!s.allFinite() || s.z() < 0.0 || s.z() > 1.0) continue;  // behind the camera or beyond its range
-    if (polygonContains(l.polygon, s.head<2>())) return true;
+    if (polygonContains(it->polygon, s.head<2>())) return it->wood ? LassoClass::Wood : LassoClass::NotWood;
   }
-  return false;
+  return LassoClass::None;
 }
+
+bool Sketch::isNotWood(const Vec3& p) const { return lassoClass(p) == LassoClass::NotWood; }
 
 void Sketch::validate() const {
   checkParams(defaults, "sketch defaults");
   for (std::size_t i = 0; i < cameras_.size(); ++i) cameras_[i].validate("camera " + std::to_string(i));
   for (std::size_t i = 0; i < notWood_.size(); ++i)
-    checkLasso(notWood_[i], cameras_.size(), "not-wood lasso " + std::to_string(i));
+    checkLasso(notWood_[i], cameras_.size(),
+               (notWood_[i].wood ? "wood lasso " : "not-wood lasso ") + std::to_string(i));
   if (nodes_.empty()) return;
   NodeId theRoot = kNoNode;
   for (const auto& [id, n] : nodes_) {

@@ -167,6 +167,8 @@ std::optional<std::string> performInput(ViewerState& state, const ScriptAction& 
         state.strokeLimb(a.points);
       else if (a.name == "lasso")
         state.lassoNotWood(a.points);
+      else if (a.name == "lassoWood")
+        state.lassoWood(a.points);
       else
         state.automaticInRegion(a.points);
       break;
@@ -232,7 +234,12 @@ std::string performAction(ViewerState& state, const ScriptAction& a, const Scrip
                                                   : ViewerState::RecoveryChoice::Keep);
       break;
     case Kind::Start:
-      state.startAutoSkeletonJob();
+      if (a.name == "classify")
+        state.startClassifyJob();
+      else if (a.name == "autoSkeletonWood")
+        state.startWoodSkeletonJob();
+      else
+        state.startAutoSkeletonJob();
       break;
     case Kind::Confirm:
       if (!state.confirmationPending()) throw OptionsError("no question is waiting");

@@ -225,12 +225,15 @@ class Parser {
     return true;
   }
 
-  /// {"stroke"}, {"lasso"}, {"region"}, {"deleteSubtree"}, {"automaticBelow"}, {"reattach"},
+  /// {"stroke"}, {"lasso"}, {"lassoWood"}, {"region"}, {"deleteSubtree"}, {"automaticBelow"}, {"reattach"},
   /// {"tool"}; false when `j` holds none of them.
   bool editVerb(const json& j, std::size_t index, ScriptAction& a) const {
-    if (j.contains("stroke") || j.contains("lasso") || j.contains("region")) {
+    if (j.contains("stroke") || j.contains("lasso") || j.contains("lassoWood") || j.contains("region")) {
       a.kind = Kind::Path;
-      a.name = j.contains("stroke") ? "stroke" : j.contains("lasso") ? "lasso" : "region";
+      a.name = j.contains("stroke")      ? "stroke"
+               : j.contains("lasso")     ? "lasso"
+               : j.contains("lassoWood") ? "lassoWood"
+                                         : "region";
       const json& pts = j[a.name];
       const std::size_t need = a.name == "stroke" ? 2 : 3;
       if (!pts.is_array() || pts.size() < need)
@@ -255,7 +258,7 @@ class Parser {
       a.kind = Kind::Tool;
       a.name = string(j["tool"], index, "tool");
       if (!entryNamed(kTools, a.name))
-        fail(index, "tool must be sketch, stroke, lasso, region or reattach, got '" + a.name + "'");
+        fail(index, "tool must be sketch, stroke, lasso, lassoWood, region or reattach, got '" + a.name + "'");
     } else {
       return false;
     }
@@ -267,8 +270,9 @@ class Parser {
     if (j.contains("start")) {
       a.kind = Kind::Start;
       a.name = string(j["start"], index, "start");
-      if (a.name != "autoSkeleton")
-        fail(index, "start: only 'autoSkeleton' runs in the background, got '" + a.name + "'");
+      if (a.name != "autoSkeleton" && a.name != "autoSkeletonWood" && a.name != "classify")
+        fail(index, "start: only 'autoSkeleton', 'autoSkeletonWood' and 'classify' run in the background, got '" +
+                        a.name + "'");
     } else if (j.contains("confirm")) {
       a.kind = Kind::Confirm;
       if (!j["confirm"].is_boolean()) fail(index, "confirm: expected true or false");

@@ -152,4 +152,40 @@ Legend classLegend(const std::vector<std::uint8_t>& classification) {
   return l;
 }
 
+namespace {
+constexpr Rgb kWoodBrown{140, 90, 50};
+constexpr Rgb kLeafGreen{90, 170, 70};
+}  // namespace
+
+Rgb woodClassColor(bool wood) { return wood ? kWoodBrown : kLeafGreen; }
+
+Rgb woodProbabilityColor(double t) {
+  if (std::isnan(t)) return Rgb{128, 128, 128};
+  t = std::clamp(t, 0.0, 1.0);
+  auto mix = [t](std::uint8_t a, std::uint8_t b) { return static_cast<std::uint8_t>(std::lround(a + t * (b - a))); };
+  return Rgb{mix(kLeafGreen.r, kWoodBrown.r), mix(kLeafGreen.g, kWoodBrown.g), mix(kLeafGreen.b, kWoodBrown.b)};
+}
+
+std::vector<Rgb> woodColors(const std::vector<float>& probability, const std::vector<std::uint8_t>& wood) {
+  std::vector<Rgb> out;
+  if (!probability.empty()) {
+    out.reserve(probability.size());
+    for (float p : probability) out.push_back(woodProbabilityColor(p));
+    return out;
+  }
+  out.reserve(wood.size());
+  for (std::uint8_t w : wood) out.push_back(woodClassColor(w != 0));
+  return out;
+}
+
+Legend woodClassLegend(std::size_t woodPoints, std::size_t points) {
+  Legend l;
+  l.kind = Legend::Kind::Classes;
+  l.title = "wood / leaf (the classification, then the lassos)";
+  l.classes.push_back({64, "wood", woodClassColor(true), woodPoints});
+  l.classes.push_back({65, "leaf", woodClassColor(false), points - std::min(points, woodPoints)});
+  l.note = "the fits and strokes use the wood points only";
+  return l;
+}
+
 }  // namespace treesketch::viewer

@@ -44,7 +44,9 @@ bool ViewerState::startAutoSkeletonJob(bool leafOn) {
   jobs_.start("automatic skeleton", [options, cloud](const ProgressFn& progress) {
     skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(*cloud, options, progress);
     if (r.sketch.empty()) throw OptionsError("no skeleton found in this cloud");
-    return std::move(r.sketch);
+    JobResult out;
+    out.sketch = std::move(r.sketch);
+    return out;
   });
   info("automatic skeleton: running (Cancel stops it; the sketch stays as it is until it is done)");
   return true;
@@ -61,8 +63,11 @@ bool ViewerState::takeJobOutcome(std::optional<Jobs::Outcome> job) {
     info(job->name + ": cancelled; the sketch is as it was");
   } else if (!job->error.empty()) {
     error(job->name + ": " + job->error);
-  } else if (job->result) {
-    sketch::Sketch result = std::move(*job->result);
+  } else if (job->result && job->result->classes && !job->result->sketch) {
+    takeClassification(std::move(job->result->classes));
+  } else if (job->result && job->result->sketch) {
+    if (job->result->classes) takeClassification(std::move(job->result->classes));
+    sketch::Sketch result = std::move(*job->result->sketch);
     bool ok = edit("automatic skeleton sketch", "automatic skeleton sketch", "", [&] {
       edit::copyNotWood(sketch_, result);  // the person's lassos stay
       sketch_ = std::move(result);

@@ -4,19 +4,24 @@
 #include <cmath>
 #include <cstdio>
 
+#include "treesketch/classify/classify.h"
 #include "treesketch/render/color_map.h"
 #include "treesketch/viewer/view_up.h"
 
 namespace treesketch::viewer {
 
 namespace {
-constexpr ColorMode kMenuOrder[] = {ColorMode::Height,    ColorMode::CircleDistance, ColorMode::Plain,
-                                    ColorMode::Intensity, ColorMode::FileColor,      ColorMode::Classification};
+constexpr ColorMode kMenuOrder[] = {ColorMode::Height,         ColorMode::CircleDistance, ColorMode::Plain,
+                                    ColorMode::Intensity,      ColorMode::FileColor,      ColorMode::Classification,
+                                    ColorMode::WoodProbability, ColorMode::WoodClass};
 }
 
-bool colorModeAvailable(ColorMode mode, const geom::PointCloud& cloud) {
+bool colorModeAvailable(ColorMode mode, const geom::PointCloud& cloud, bool classified) {
   const std::size_t n = cloud.size();
   switch (mode) {
+    case ColorMode::WoodProbability:
+    case ColorMode::WoodClass:
+      return n > 0 && classified;
     case ColorMode::Intensity:
       return n > 0 && cloud.intensity.size() == n;
     case ColorMode::FileColor:
@@ -28,15 +33,15 @@ bool colorModeAvailable(ColorMode mode, const geom::PointCloud& cloud) {
   }
 }
 
-std::vector<ColorMode> availableColorModes(const geom::PointCloud& cloud) {
+std::vector<ColorMode> availableColorModes(const geom::PointCloud& cloud, bool classified) {
   std::vector<ColorMode> out;
   for (ColorMode m : kMenuOrder)
-    if (colorModeAvailable(m, cloud)) out.push_back(m);
+    if (colorModeAvailable(m, cloud, classified)) out.push_back(m);
   return out;
 }
 
-ColorMode nextColorMode(ColorMode mode, const geom::PointCloud& cloud) {
-  std::vector<ColorMode> modes = availableColorModes(cloud);
+ColorMode nextColorMode(ColorMode mode, const geom::PointCloud& cloud, bool classified) {
+  std::vector<ColorMode> modes = availableColorModes(cloud, classified);
   auto it = std::find(modes.begin(), modes.end(), mode);
   if (it == modes.end() || ++it == modes.end()) return modes.front();
   return *it;
@@ -56,6 +61,10 @@ const char* colorModeLabel(ColorMode mode) {
       return "RGB (file)";
     case ColorMode::Classification:
       return "classification (file)";
+    case ColorMode::WoodProbability:
+      return "wood probability";
+    case ColorMode::WoodClass:
+      return "wood / leaf";
   }
   return "?";
 }
@@ -78,9 +87,11 @@ Legend colorLegend(const ViewerState& state) {
   const geom::PointCloud& cloud = state.cloud();
   const ColorMode mode = state.view().display().colorMode;
   if (cloud.empty()) return {};
-  if (!colorModeAvailable(mode, cloud)) {
+  if (!colorModeAvailable(mode, cloud, state.woodClasses() != nullptr)) {
     Legend l;
-    l.note = std::string("the file has no ") + toString(mode) + ": drawn plain";
+    l.note = mode == ColorMode::WoodProbability || mode == ColorMode::WoodClass
+                 ? std::string("not classified yet (Tools > Classify wood/leaf, K): drawn plain")
+                 : std::string("the file has no ") + toString(mode) + ": drawn plain";
     return l;
   }
   switch (mode) {
@@ -121,6 +132,16 @@ Legend colorLegend(const ViewerState& state) {
       l.note = "the colours stored in the file";
       return l;
     }
+    case ColorMode::WoodProbability: {
+      Legend l = scaleLegend("wood probability (the classifier's)", {0.0, 1.0}, woodProbabilityColor);
+      char note[128];
+      std::snprintf(note, sizeof note, "wood at %.3g and above; the lassos change the class, not this",
+                    state.woodClasses()->threshold);
+      l.note = note;
+      return l;
+    }
+    case ColorMode::WoodClass:
+      return woodClassLegend(state.woodPointCount(), cloud.size());
     case ColorMode::Plain:
       return {};
   }

@@ -60,6 +60,11 @@ class DefaultReconstruction : public ViewerReconstruction {
 
   const geom::TriMesh& mesh() const override { return recon_.mesh(); }
 
+  void setLeafPoints(std::vector<std::uint8_t> leaf) override {
+    recon_.setLeafPoints(std::move(leaf));
+    cache_.reset();  // the selected node's slice leaves the leaf points out too
+  }
+
  private:
   struct Cached {
     sketch::NodeId id;

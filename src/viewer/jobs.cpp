@@ -14,6 +14,7 @@ namespace treesketch::viewer {
 
 struct Jobs::Job {
   std::string name;
+  JobSteps steps = JobSteps::Skeleton;
   std::atomic<bool> cancel{false}, finished{false}, hold{false};
   std::atomic<std::uint64_t> done{0}, total{0};
   std::atomic<int> step{1};
@@ -40,8 +41,13 @@ JobProgress Jobs::progress() const {
   p.step = job_->step;
   p.fraction = total > 0 ? double(done) / double(total) : 0.0;
   p.cancelling = job_->cancel;
-  p.what = job_->name + (p.step == 1 ? ": skeleton (step " + std::to_string(done) + " of 4)"
-                                     : ": fitting nodes " + std::to_string(done) + " / " + std::to_string(total));
+  const bool classifying =
+      job_->steps == JobSteps::Classify || (job_->steps == JobSteps::ClassifyThenSkeleton && total == 0);
+  if (classifying)
+    p.what = job_->name + ": classifying wood and leaves (a few seconds; a cancel takes effect when it ends)";
+  else
+    p.what = job_->name + (p.step == 1 ? ": skeleton (step " + std::to_string(done) + " of 4)"
+                                       : ": fitting nodes " + std::to_string(done) + " / " + std::to_string(total));
   if (p.cancelling) p.what += " — cancelling";
   return p;
 }
@@ -55,10 +61,11 @@ void Jobs::hold(bool hold) {
   if (job_) job_->hold = hold;
 }
 
-bool Jobs::start(const std::string& name, Work work) {
+bool Jobs::start(const std::string& name, Work work, JobSteps steps) {
   if (job_) return false;
   auto job = std::make_shared<Job>();
   job->name = name;
+  job->steps = steps;
   Job* j = job.get();
   j->hold = hold_;
   job->thread = std::thread([j, work = std::move(work)] {

@@ -28,6 +28,8 @@ inline const Button kButtons[] = {
     {"clear", [](ViewerState& s) { s.clearSketch(); }},
     {"autoSketch", [](ViewerState& s) { s.requestAutoSketchUniform(); }},
     {"autoSkeleton", [](ViewerState& s) { s.requestAutoSketchSkeleton(); }},
+    {"autoSkeletonWood", [](ViewerState& s) { s.requestAutoSketchSkeletonWood(); }},
+    {"classify", [](ViewerState& s) { s.startClassifyJob(); }},
     {"delete", [](ViewerState& s) { s.deleteSelected(false); }},
     {"deleteSubtree", [](ViewerState& s) { s.deleteSelected(true); }},
     {"refit", [](ViewerState& s) { s.refitSelected(); }},
@@ -45,7 +47,7 @@ inline const ToolName kTools[] = {
     {"select", ViewerState::Tool::Select},     {"sketch", ViewerState::Tool::Select},
     {"add", ViewerState::Tool::AddNodes},      {"stroke", ViewerState::Tool::Stroke},
     {"lasso", ViewerState::Tool::Lasso},       {"region", ViewerState::Tool::Region},
-    {"reattach", ViewerState::Tool::Reattach},
+    {"reattach", ViewerState::Tool::Reattach}, {"lassoWood", ViewerState::Tool::LassoWood},
 };
 
 /// {"slider": NAME, "value": number}.
@@ -118,6 +120,9 @@ inline const Expectation kExpectations[] = {
     {"legend", [](const ViewerState& s) { return double(colorLegend(s).kind != Legend::Kind::None); }, false},
     {"busy", [](const ViewerState& s) { return double(s.jobs().busy()); }, false},
     {"points", [](const ViewerState& s) { return double(s.cloud().size()); }, false},
+    {"woodLassos", [](const ViewerState& s) { return double(s.sketch().woodLassoCount()); }, false},
+    {"classified", [](const ViewerState& s) { return double(s.woodClasses() != nullptr); }, false},
+    {"woodPoints", [](const ViewerState& s) { return double(s.woodPointCount()); }, true},
 };
 
 /// The model file an export verb writes: "export" the mesh, "export-cylinders", "export-qsm",

@@ -17,6 +17,8 @@ const char* toolLabel(Tool tool) {
       return "automatic in region";
     case Tool::Reattach:
       return "re-attach";
+    case Tool::LassoWood:
+      return "wood lasso";
   }
   return "?";
 }
@@ -35,6 +37,8 @@ const char* toolHelp(Tool t) {
       return "automatic in region (drag around the region)";
     case Tool::Reattach:
       return "re-attach (click the node to move, then its new parent)";
+    case Tool::LassoWood:
+      return "wood lasso (drag around points that are wood, whatever the classification says)";
   }
   return "?";
 }

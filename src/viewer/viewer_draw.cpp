@@ -6,6 +6,7 @@
 #include <exception>
 #include <limits>
 
+#include "treesketch/classify/classify.h"
 #include "treesketch/model/tree_model.h"
 #include "treesketch/render/color_map.h"
 #include "treesketch/util/error.h"
@@ -71,8 +72,10 @@ ColorMode parseColorMode(const std::string& s) {
   if (k == "intensity") return ColorMode::Intensity;
   if (k == "rgb" || k == "color" || k == "colour") return ColorMode::FileColor;
   if (k == "classification" || k == "class") return ColorMode::Classification;
-  throw OptionsError(
-      "colour mode must be 'height', 'distance', 'plain', 'intensity', 'rgb' or 'classification', got '" + s + "'");
+  if (k == "wood-probability") return ColorMode::WoodProbability;
+  if (k == "wood-class" || k == "wood") return ColorMode::WoodClass;
+  throw OptionsError("colour mode must be 'height', 'distance', 'plain', 'intensity', 'rgb', 'classification', "
+                     "'wood-probability' or 'wood-class', got '" + s + "'");
 }
 
 MeshStyle parseMeshStyle(const std::string& s) {
@@ -97,6 +100,10 @@ const char* toString(ColorMode mode) {
       return "rgb";
     case ColorMode::Classification:
       return "classification";
+    case ColorMode::WoodProbability:
+      return "wood-probability";
+    case ColorMode::WoodClass:
+      return "wood-class";
   }
   return "?";
 }
@@ -163,7 +170,8 @@ bool Scene::labelsShown() const {
 
 const std::vector<Rgb>& Scene::pointColors() {
   if (colorsStale_ || colorsMode_ != s_.view_.display().colorMode || colors_.size() != s_.cloud_.size() ||
-      colorsNotWood_ != s_.sketch_.notWood()) {
+      colorsNotWood_ != s_.sketch_.notWood() || colorsClasses_ != s_.classesVersion_) {
+    colorsClasses_ = s_.classesVersion_;
     colorsMode_ = s_.view_.display().colorMode;
     colorsNotWood_ = s_.sketch_.notWood();
     switch (colorsMode_) {
@@ -201,9 +209,17 @@ const std::vector<Rgb>& Scene::pointColors() {
         colors_ = attributeColors(s_.cloud_, colorsMode_);
         if (colors_.size() != s_.cloud_.size()) colors_ = plainColors(s_.cloud_, s_.options_.plainColor);
         break;
+      case ColorMode::WoodProbability:
+      case ColorMode::WoodClass:
+        colors_ = s_.classes_ ? woodColors(colorsMode_ == ColorMode::WoodProbability ? s_.classes_->woodProbability
+                                                                                     : std::vector<float>{},
+                                           s_.woodAfterLassos())
+                              : plainColors(s_.cloud_, s_.options_.plainColor);
+        break;
     }
-    // Not-wood points (the sketch's lassos) are drawn dark, whatever the colour mode.
-    if (!s_.sketch_.notWood().empty())
+    // Not-wood points (the sketch's lassos) are drawn dark, whatever the colour mode (the wood
+    // class shows them as leaf already).
+    if (!s_.sketch_.notWood().empty() && colorsMode_ != ColorMode::WoodClass)
       for (std::size_t i = 0; i < s_.cloud_.size(); ++i)
         if (s_.sketch_.isNotWood(s_.cloud_.positions[i])) colors_[i] = Rgb{60, 50, 70};
     colorsStale_ = false;

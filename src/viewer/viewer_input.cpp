@@ -187,7 +187,8 @@ bool ViewerState::keyPress(const std::string& keyName, int mods) {
   } else if (key == "w") {
     view_.display_.meshStyle = static_cast<MeshStyle>((static_cast<int>(view_.display_.meshStyle) + 1) % 3);
   } else if (key == "c") {
-    view_.display_.colorMode = nextColorMode(view_.display_.colorMode, cloud_);  // the file's attributes too
+    // The file's attributes too, and the wood/leaf classification once there is one.
+    view_.display_.colorMode = nextColorMode(view_.display_.colorMode, cloud_, classes_ != nullptr);
   } else if (key == "l") {
     view_.display_.labels = static_cast<LabelMode>((static_cast<int>(view_.display_.labels) + 1) % 3);
     info(std::string("node labels: ") + toString(view_.display_.labels));

@@ -122,6 +122,8 @@ bool ViewerState::setCloud(geom::PointCloud cloud, geom::UpAxis up, const std::f
     view_.orbit_.setSceneBounds(bounds_);
     view_.orbit_.preset(geom::PresetView::Front, upDirectionVector(view_.up_));
     scene_.colorsStale_ = true;
+    classes_.reset();  // the classification was the previous cloud's
+    ++classesVersion_;
     resetReconstruction();
     rebuild();
     info("opened " + (sourcePath.empty() ? std::string("cloud") : sourcePath.string()) + ": " +

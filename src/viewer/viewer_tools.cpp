@@ -57,8 +57,12 @@ bool ViewerState::strokeLimb(const std::vector<Vec2>& stroke) {
   const auto anchors = toEdit(anchorsForTools());
   bool ok = edit("draw limb", "draw limb", "", [&] {
     const geom::Camera cam = view_.orbit_.camera();
+    // The stroke follows the wood: the not-wood points and, once the cloud is classified, the
+    // points classed leaf (after the lassos) are not candidates for its depth.
     const sketch::Sketch& sk = sketch_;
-    edit::ViewPicker picker(cloud_, cam, 4.0, [&sk](const Vec3& p) { return sk.isNotWood(p); });
+    const std::vector<std::uint8_t> leaf = leafFlags();
+    edit::ViewPicker picker(cloud_, cam, 4.0,
+                            [&sk, &leaf](std::size_t i, const Vec3& p) { return !edit::isWoodPoint(sk, leaf, i, p); });
     r = edit::drawLimb(sketch_, picker, cloud_, stroke, anchors);
     tools_.selected_ = tools_.active_ = r.added.back();
   });
@@ -98,10 +102,10 @@ bool ViewerState::lassoNotWood(const std::vector<Vec2>& polygon) {
 
 bool ViewerState::clearNotWood() {
   if (sketch_.notWood().empty()) {
-    info("clear not-wood: no lasso to clear");
+    info("clear lassos: no lasso to clear");
     return false;
   }
-  bool ok = edit("clear not-wood", "clear not-wood lassos", "", [&] { sketch_.clearNotWood(); });
+  bool ok = edit("clear lassos", "clear not-wood and wood lassos", "", [&] { sketch_.clearNotWood(); });
   if (ok) scene_.colorsStale_ = true;
   return ok;
 }
@@ -153,6 +157,14 @@ bool ViewerState::reattachNode(NodeId id, NodeId newParent, bool reverse) {
   return ok;
 }
 
+const geom::PointCloud& ViewerState::pointsForAutomatic(geom::PointCloud& store) const {
+  // Once the cloud is classified, "automatic from here" models the wood (after the lassos) with
+  // the leaf-off settings, as the automatic skeleton on the wood does; before, every point.
+  if (!classes_) return cloud_;
+  store = edit::woodOnly(cloud_, sketch_, leafFlags());
+  return store;
+}
+
 bool ViewerState::automaticBelow(NodeId id) {
   if (cloud_.empty()) {
     error("automatic below: open a point cloud first");
@@ -163,7 +175,8 @@ bool ViewerState::automaticBelow(NodeId id) {
   bool ok = edit("automatic below", "automatic below node " + std::to_string(id), "", [&] {
     edit::AutoHereOptions o;
     o.skeleton = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOff, up_);
-    r = edit::automaticBelow(sketch_, cloud_, id, anchors, o);
+    geom::PointCloud wood;
+    r = edit::automaticBelow(sketch_, pointsForAutomatic(wood), id, anchors, o);
   });
   if (ok)
     info("automatic below node " + std::to_string(id) + ": " + std::to_string(r.added.size()) + " nodes added (" +
@@ -182,7 +195,8 @@ bool ViewerState::automaticInRegion(const std::vector<Vec2>& polygon) {
   bool ok = edit("automatic in region", "automatic in region", "", [&] {
     edit::AutoHereOptions o;
     o.skeleton = skeleton::autoSkeletonPreset(skeleton::Foliage::LeafOff, up_);
-    r = edit::automaticInRegion(sketch_, cloud_, view_.orbit_.camera(), polygon, anchors, o);
+    geom::PointCloud wood;
+    r = edit::automaticInRegion(sketch_, pointsForAutomatic(wood), view_.orbit_.camera(), polygon, anchors, o);
     if (tools_.active_ == kNoNode && !sketch_.empty()) tools_.active_ = sketch_.root();
   });
   if (ok)
@@ -223,6 +237,8 @@ bool ViewerState::toolMouseUp(const Vec2& pos) {
       return strokeLimb(path);
     case Tool::Lasso:
       return lassoNotWood(path);
+    case Tool::LassoWood:
+      return lassoWood(path);
     case Tool::Region:
       return automaticInRegion(path);
     case Tool::Reattach:
@@ -256,8 +272,12 @@ bool ViewerState::toolKey(const std::string& key, int mods) {
     toggle(Tool::AddNodes);
   } else if (key == "g") {
     toggle(Tool::Stroke);
+  } else if (key == "x" && (mods & kModShift)) {  // Shift+X: the opposite lasso, points are wood
+    toggle(Tool::LassoWood);
   } else if (key == "x") {  // X: cross points out as not-wood (L is the node labels)
     toggle(Tool::Lasso);
+  } else if (key == "k") {
+    startClassifyJob();
   } else if (key == "r") {
     toggle(Tool::Region);
   } else if (key == "p") {

@@ -19,7 +19,7 @@ set(allowed_skeleton "recon;compare;fit;sweep;sketch;cloud;accel;geom;util")
 set(allowed_model "skeleton;recon;compare;io;fit;sweep;sketch;cloud;accel;geom;util")
 set(allowed_edit "skeleton;recon;fit;sweep;sketch;cloud;accel;geom;util")
 set(allowed_eval "model;classify;edit;skeleton;recon;compare;scan;gen;fit;sweep;sketch;io;render;cloud;accel;geom;util")
-set(allowed_viewer "model;edit;skeleton;recon;compare;render;scan;gen;fit;sweep;sketch;io;cloud;accel;geom;util")
+set(allowed_viewer "model;edit;classify;skeleton;recon;compare;render;scan;gen;fit;sweep;sketch;io;cloud;accel;geom;util")
 set(modules util geom cloud accel gen sketch io fit sweep scan compare render classify recon skeleton model edit eval viewer)
 
 if(NOT ROOT)

@@ -106,6 +106,52 @@ TEST(DrawLimb, StartingOnTheBranchBehindFollowsThatOne) {
   EXPECT_GT(r.behindFront, 0);  // the chosen surface was not the front-most: counted
 }
 
+// With the front branch's points classed leaf (the picker skips them by index), the same stroke
+// can only follow the branch behind it.
+TEST(DrawLimb, PointsThePickerSkipsAreNotCandidates) {
+  const geom::PointCloud cloud = scene();
+  const geom::Camera cam = front(cloud);
+  sketch::Sketch sk = trunkSketch(cloud);
+  std::vector<std::uint8_t> leaf(cloud.size(), 0);
+  std::fill(leaf.begin() + 20000, leaf.begin() + 26000, 1);  // the front branch (scene(): second cylinder)
+  ViewPicker picker(cloud, cam, 4.0, [&](std::size_t i, const Vec3& p) { return !isWoodPoint(sk, leaf, i, p); });
+  const Vec3 start = kFork + 0.3 * kBranchDir;
+  StrokeResult r =
+      drawLimb(sk, picker, cloud, strokeAlong(cam, start, kFork + 1.5 * kBranchDir), nodeAnchors(sk, nullptr));
+  ASSERT_FALSE(r.added.empty());
+  for (sketch::NodeId id : r.added) EXPECT_NEAR(sk.node(id).point.z(), kBehind.z(), 0.15);
+}
+
+// woodOnly with a classification: leaf points go, a wood lasso brings them back, a not-wood lasso
+// drawn after it wins.
+TEST(Lasso, WoodLassoCorrectsTheClassification) {
+  const geom::PointCloud cloud = scene();
+  const geom::Camera cam = front(cloud);
+  sketch::Sketch sk = trunkSketch(cloud);
+  std::vector<std::uint8_t> leaf(cloud.size(), 0);
+  std::fill(leaf.begin() + 20000, leaf.begin() + 26000, 1);
+  EXPECT_EQ(woodOnly(cloud, sk, leaf).size(), cloud.size() - 6000);
+  EXPECT_THROW(woodOnly(cloud, sk, std::vector<std::uint8_t>(5, 0)), OptionsError);
+  const Vec2 s = cam.project(kFork + 0.8 * kBranchDir).head<2>();
+  const std::vector<Vec2> poly = {s + Vec2(-40, -40), s + Vec2(40, -40), s + Vec2(40, 40), s + Vec2(-40, 40)};
+  const std::size_t marked = lassoWood(sk, cloud, cam, poly);
+  EXPECT_GT(marked, 500u);
+  EXPECT_EQ(sk.woodLassoCount(), 1u);
+  const std::size_t back = woodOnly(cloud, sk, leaf).size();
+  EXPECT_GT(back, cloud.size() - 6000);  // the front branch's points inside the lasso are wood again
+  EXPECT_LE(back, cloud.size());
+  const std::size_t leafInside = back - (cloud.size() - 6000), leafOutside = 6000 - leafInside;
+  EXPECT_EQ(lassoNotWood(sk, cloud, cam, poly), marked);
+  // Every point inside is out now, and the leaf points outside stay out.
+  EXPECT_EQ(woodOnly(cloud, sk, leaf).size(), cloud.size() - marked - leafOutside);
+  // A sketch that replaces another keeps both kinds, in order.
+  sketch::Sketch other;
+  copyNotWood(sk, other);
+  ASSERT_EQ(other.notWood().size(), 2u);
+  EXPECT_TRUE(other.notWood()[0].wood);
+  EXPECT_FALSE(other.notWood()[1].wood);
+}
+
 TEST(DrawLimb, RejectsStrokesWithNothingToFollow) {
   const geom::PointCloud cloud = scene();
   const geom::Camera cam = front(cloud);

@@ -281,6 +281,31 @@ TEST(SketchFile, NotWoodLassosRoundTripAndOldFilesStillRead) {
   EXPECT_TRUE(readSketch(old, "old.json").notWood().empty());
 }
 
+// A wood lasso is kept in drawing order with the not-wood ones; its file is version 2, so that a
+// reader of version 1 (which would read it as a not-wood lasso) refuses it.
+TEST(SketchFile, WoodLassosRoundTripAsVersionTwo) {
+  Sketch sk = awkwardSketch();
+  sk.addNotWoodLasso(0, {Vec2(0, 0), Vec2(10, 0), Vec2(10, 10)});
+  sk.addWoodLasso(1, {Vec2(1, 2), Vec2(30, 2), Vec2(30, 40.5)});
+  std::stringstream ss;
+  writeSketch(ss, sk);
+  EXPECT_NE(ss.str().find("\"wood\":true"), std::string::npos) << ss.str();
+  EXPECT_NE(ss.str().find("\"version\": 2"), std::string::npos);
+  Sketch back = readSketch(ss, "mem");
+  ASSERT_EQ(back.notWood().size(), 2u);
+  EXPECT_EQ(back.notWood(), sk.notWood());
+  EXPECT_FALSE(back.notWood()[0].wood);
+  EXPECT_TRUE(back.notWood()[1].wood);
+  // Without a wood lasso the file stays version 1.
+  std::stringstream plain;
+  writeSketch(plain, awkwardSketch());
+  EXPECT_NE(plain.str().find("\"version\": 1"), std::string::npos);
+  const std::string nodes = R"([{"id":0,"parent":-1,"camera":0,"screen":[400,300]}])";
+  std::string f = fileWith(nodes);
+  expectBad(f.substr(0, f.size() - 1) + R"(,"notWood":[{"camera":0,"wood":"yes","polygon":[[0,0],[5,0],[5,5]]}]})",
+            {"not-wood lasso 0", "\"wood\"", "true or false"});
+}
+
 TEST(SketchFile, RejectsBadNotWoodLassos) {
   const std::string nodes = R"([{"id":0,"parent":-1,"camera":0,"screen":[400,300]}])";
   auto withLasso = [&](const std::string& lasso) {
@@ -322,7 +347,7 @@ TEST(SketchFile, RejectsBadCameras) {
 
 TEST(SketchFile, RejectsWrongHeaderAndMalformedJson) {
   expectBad(fileWith("[]", "[]", R"("format":"something-else","version":1)"), {"format"});
-  expectBad(fileWith("[]", "[]", R"("format":"treesketch-sketch","version":2)"), {"unsupported version 2"});
+  expectBad(fileWith("[]", "[]", R"("format":"treesketch-sketch","version":3)"), {"unsupported version 3"});
   expectBad(fileWith("[]", "[]", R"("format":"treesketch-sketch")"), {"missing \"version\""});
   expectBad(R"({"format":"treesketch-sketch","version":1,"up":"x","cameras":[],"nodes":[]})", {"up"});
   expectBad(R"({"format":"treesketch-sketch","version":1,"cameras":[],"nodes":[}])",

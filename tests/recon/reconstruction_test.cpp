@@ -277,5 +277,42 @@ TEST(Reconstruction, EmptyAndInvalidInput) {
   EXPECT_TRUE(nothing.mesh.empty());
 }
 
+// The points a classification calls leaf are left out of the fits (every node is fitted again),
+// and a wood lasso brings them back.
+TEST(Reconstruction, LeafPointsAreLeftOutUntilAWoodLassoHoldsThem) {
+  const geom::PointCloud cloud = treeCloud();
+  sketch::Sketch s = trunkSketch();
+  Reconstruction rec(cloud, serial());
+  rec.update(s);
+  auto onTrunk = [&](sketch::NodeId id) {
+    const fit::NodeResult* r = rec.result(id);
+    return r && r->status == fit::NodeStatus::Fitted && std::abs(r->radius - 0.25) < 0.02 * 0.25 &&
+           (r->centre - Vec3(0.5, s.node(id).point.y(), 0)).norm() < 0.02 * 0.25;
+  };
+  auto countOnTrunk = [&] {
+    int n = 0;
+    for (auto id : s.ids()) n += onTrunk(id);
+    return n;
+  };
+  ASSERT_EQ(countOnTrunk(), 4);
+  // The trunk's points (the first 12,000) are called leaf: no node finds the trunk.
+  std::vector<std::uint8_t> leaf(cloud.size(), 0);
+  std::fill(leaf.begin(), leaf.begin() + 12000, 1);
+  rec.setLeafPoints(leaf);
+  EXPECT_EQ(rec.update(s).size(), 4u);
+  EXPECT_EQ(countOnTrunk(), 0);
+  // A wood lasso over the whole front view: every point is wood again.
+  const int cam = s.addCamera(geom::presetCamera(geom::PresetView::Front, cloud.bounds(), geom::UpAxis::Y,
+                                                 geom::Viewport{0, 0, 100, 100}, false));
+  s.addWoodLasso(cam, {Vec2(-1, -1), Vec2(101, -1), Vec2(101, 101), Vec2(-1, 101)});
+  EXPECT_EQ(rec.update(s).size(), 4u);
+  EXPECT_EQ(countOnTrunk(), 4);
+  // A not-wood lasso drawn after it over the same view wins.
+  s.addNotWoodLasso(cam, {Vec2(-1, -1), Vec2(101, -1), Vec2(101, 101), Vec2(-1, 101)});
+  rec.update(s);
+  EXPECT_EQ(countOnTrunk(), 0);
+  EXPECT_THROW(rec.setLeafPoints(std::vector<std::uint8_t>(3, 0)), OptionsError);
+}
+
 }  // namespace
 }  // namespace treesketch::recon

@@ -110,5 +110,29 @@ TEST(NotWoodLasso, PolygonTestAndValidation) {
   EXPECT_THROW(sk.removeNotWoodLasso(0), OptionsError);
 }
 
+// A wood lasso says the opposite of a not-wood lasso; where they overlap the one drawn last decides.
+TEST(NotWoodLasso, WoodLassoAndTheLastLassoDecides) {
+  Sketch sk;
+  int cam = sk.addCamera(geom::presetCamera(geom::PresetView::Front, geom::BBox{Vec3(-1, 0, -1), Vec3(1, 2, 1)},
+                                            geom::UpAxis::Y, geom::Viewport{0, 0, 100, 100}, false));
+  EXPECT_THROW(sk.addWoodLasso(cam, {Vec2(0, 0), Vec2(1, 1)}), OptionsError);
+  const Vec3 left(-0.5, 1, 0), right(0.5, 1, 0);
+  EXPECT_EQ(sk.lassoClass(left), Sketch::LassoClass::None);
+  sk.addNotWoodLasso(cam, {Vec2(0, 0), Vec2(100, 0), Vec2(100, 100), Vec2(0, 100)});  // the whole view
+  EXPECT_TRUE(sk.isNotWood(left));
+  EXPECT_TRUE(sk.isNotWood(right));
+  sk.addWoodLasso(cam, {Vec2(0, 0), Vec2(50, 0), Vec2(50, 100), Vec2(0, 100)});  // then the left half as wood
+  EXPECT_EQ(sk.lassoClass(left), Sketch::LassoClass::Wood);
+  EXPECT_FALSE(sk.isNotWood(left));
+  EXPECT_EQ(sk.lassoClass(right), Sketch::LassoClass::NotWood);
+  EXPECT_EQ(sk.woodLassoCount(), 1u);
+  EXPECT_EQ(sk.notWood().size(), 2u);
+  EXPECT_NO_THROW(sk.validate());
+  sk.addNotWoodLasso(cam, {Vec2(0, 0), Vec2(100, 0), Vec2(100, 100), Vec2(0, 100)});  // not wood again, on top
+  EXPECT_TRUE(sk.isNotWood(left));
+  EXPECT_EQ(sk.clearNotWood(), 3u);
+  EXPECT_EQ(sk.woodLassoCount(), 0u);
+}
+
 }  // namespace
 }  // namespace treesketch::sketch

@@ -50,9 +50,10 @@ std::map<NodeId, NodeAnchor> nodeAnchors(const sketch::Sketch& sketch, const rec
 /// built once): the view ray's candidates in depth.
 class ViewPicker {
  public:
-  /// `skip` (optional): points for which it is true are left out (not-wood points).
+  /// `skip` (optional): points for which it is true, given their index in `cloud` and position,
+  /// are left out (not-wood points, the points a classification calls leaf).
   ViewPicker(const geom::PointCloud& cloud, const geom::Camera& camera, double cellPx = 4.0,
-             const std::function<bool(const geom::Vec3&)>& skip = {});
+             const std::function<bool(std::size_t, const geom::Vec3&)>& skip = {});
   struct Candidate {
     std::uint32_t index;  ///< into the cloud
     double depth;         ///< distance along the view ray from the near plane, world units
@@ -122,8 +123,22 @@ StrokeResult drawLimb(sketch::Sketch& sketch, const ViewPicker& picker, const ge
 std::size_t lassoNotWood(sketch::Sketch& sketch, const geom::PointCloud& cloud, const geom::Camera& camera,
                          const std::vector<geom::Vec2>& polygon);
 
+/// Adds a wood lasso under `camera` (its points are wood whatever the classification says; see
+/// sketch::NotWoodLasso); returns the number of cloud points it marks.
+std::size_t lassoWood(sketch::Sketch& sketch, const geom::PointCloud& cloud, const geom::Camera& camera,
+                      const std::vector<geom::Vec2>& polygon);
+
 /// The cloud without its not-wood points (what the automatic skeleton is given).
 geom::PointCloud woodOnly(const geom::PointCloud& cloud, const sketch::Sketch& sketch);
+/// The same with a wood/leaf classification: `leaf` (one flag per point, 1 = the classification
+/// calls it leaf; empty = none) leaves out the leaf points too, except where a lasso says
+/// otherwise (the last lasso drawn over a point decides). Throws OptionsError when `leaf` is not
+/// empty and not one flag per point.
+geom::PointCloud woodOnly(const geom::PointCloud& cloud, const sketch::Sketch& sketch,
+                          const std::vector<std::uint8_t>& leaf);
+/// Point `i` (at `p`) is wood by the lassos, else by `leaf` (empty: wood).
+bool isWoodPoint(const sketch::Sketch& sketch, const std::vector<std::uint8_t>& leaf, std::size_t i,
+                 const geom::Vec3& p);
 
 /// Adds `from`'s not-wood lassos (with their cameras) to `to`: a sketch that replaces another
 /// (an automatic one) keeps the person's lassos.

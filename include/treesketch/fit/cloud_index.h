@@ -123,6 +123,9 @@ class CloudIndex {
   /// positions are set to NaN, which no region test accepts, on both query paths), so results
   /// stay in the same storage order. Not safe while other threads query this index.
   std::size_t setExcluded(const std::function<bool(const geom::Vec3&)>& excluded);
+  /// The same, deciding by the point's index in the cloud the index was built from as well as its
+  /// position (a per-point class, such as the wood/leaf classification's).
+  std::size_t setExcludedByIndex(const std::function<bool(std::uint32_t index, const geom::Vec3&)>& excluded);
   std::size_t excludedCount() const { return excludedSaved_.size(); }
 
   /// Original indices of the stored (finite) points in storage order, the order every query

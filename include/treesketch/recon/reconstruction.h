@@ -56,9 +56,9 @@ class Reconstruction {
   /// re-fitted: its fit starts from the parent's circle); removed nodes are dropped; re-parenting alone only re-sweeps. A node
   /// with a kept circle is not fitted: it takes that circle (fit::resolveNode). Returns the ids
   /// re-fitted (or re-resolved).
-  /// The sketch's not-wood lassos (Sketch::notWood) leave their points out of every fit: when
-  /// they change, the index's exclusions are recomputed and every node that is not a kept circle
-  /// is re-fitted.
+  /// The sketch's not-wood lassos (Sketch::notWood) leave their points out of every fit, and its
+  /// wood lassos bring back points setLeafPoints left out: when they change, the index's
+  /// exclusions are recomputed and every node that is not a kept circle is re-fitted.
   /// `progress` (optional) is told (nodes fitted, nodes to fit) as the fits finish.
   /// Throws OptionsError for an invalid sketch (see Sketch::validate).
   std::vector<NodeId> update(const sketch::Sketch& sketch, const ProgressFn& progress = {});
@@ -70,6 +70,14 @@ class Reconstruction {
 
   /// Forgets every fit and the mesh (keeps the index): the next update fits every node.
   void reset();
+
+  /// The points a wood/leaf classification calls leaf (one flag per point of the cloud the
+  /// index was built from, 1 = leaf; empty: no classification). From the next update they are
+  /// left out of every fit, except where a wood lasso holds them (a not-wood lasso leaves its
+  /// points out either way; the last lasso drawn over a point decides), and every node that is not
+  /// a kept circle is re-fitted. Throws OptionsError when the size is not the cloud's.
+  void setLeafPoints(std::vector<std::uint8_t> leaf);
+  const std::vector<std::uint8_t>& leafPoints() const { return leaf_; }
 
   const geom::TriMesh& mesh() const { return sweeper_.mesh(); }
   /// The last fit of node `id`; nullptr if the node is unknown.
@@ -123,6 +131,9 @@ class Reconstruction {
   std::map<NodeId, NodeRadius> radii_;
   /// The lassos (each with its camera) the index's exclusions were computed from.
   std::vector<std::pair<sketch::NotWoodLasso, geom::Camera>> notWood_;
+  std::vector<std::uint8_t> leaf_;  ///< setLeafPoints
+  std::size_t cloudSize_ = 0;
+  bool leafChanged_ = false;  ///< setLeafPoints was called since the exclusions were computed
 };
 
 struct ReconstructionResult {

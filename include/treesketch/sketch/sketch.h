@@ -69,9 +69,13 @@ struct KeptCircle {
 /// not wood: the fits and the automatic skeleton leave it out. Stored as the polygon, not as point
 /// indices, so the sketch file stays independent of the cloud's point order and an edit stays
 /// small; membership is computed where the cloud is (recon, the correction tools).
+/// A lasso with `wood` set says the opposite: its points are wood, whatever a wood/leaf
+/// classification called them (and whatever an earlier not-wood lasso said). Where lassos overlap,
+/// the one drawn last decides (Sketch::lassoClass).
 struct NotWoodLasso {
   int camera = -1;                    ///< index into Sketch::cameras
   std::vector<geom::Vec2> polygon;    ///< pixels, top-left origin; >= 3 vertices, closed implicitly
+  bool wood = false;                  ///< a wood lasso (its points are wood), not a not-wood one
 
   bool operator==(const NotWoodLasso&) const = default;
 };
@@ -151,14 +155,24 @@ class Sketch {
   /// Re-parents `id` under `newParent` (throws if that would make a cycle).
   void setParent(NodeId id, NodeId newParent);
 
-  /// Not-wood lassos (see NotWoodLasso). addNotWoodLasso throws OptionsError for an unknown
-  /// camera, fewer than 3 vertices or a non-finite vertex; returns the lasso's index.
+  /// Not-wood and wood lassos (see NotWoodLasso), in the order drawn. addNotWoodLasso /
+  /// addWoodLasso throw OptionsError for an unknown camera, fewer than 3 vertices or a non-finite
+  /// vertex; they return the lasso's index.
   std::size_t addNotWoodLasso(int camera, const std::vector<geom::Vec2>& polygon);
-  /// Removes lasso `index` (OptionsError when out of range) / every lasso (returns how many).
+  std::size_t addWoodLasso(int camera, const std::vector<geom::Vec2>& polygon);
+  /// Removes lasso `index` (OptionsError when out of range) / every lasso of both kinds (returns
+  /// how many).
   void removeNotWoodLasso(std::size_t index);
   std::size_t clearNotWood();
+  /// Every lasso, not-wood and wood, in the order drawn.
   const std::vector<NotWoodLasso>& notWood() const { return notWood_; }
-  /// True when `p` (world) projects inside any lasso's polygon, in front of the lasso's camera.
+  /// How many of the lassos are wood lassos.
+  std::size_t woodLassoCount() const;
+  /// What the lassos say of `p` (world): None when it projects inside no lasso (in front of
+  /// the lasso's camera), else the class of the last lasso drawn that holds it.
+  enum class LassoClass { None, NotWood, Wood };
+  LassoClass lassoClass(const geom::Vec3& p) const;
+  /// True when the lassos call `p` not wood (lassoClass(p) == NotWood).
   bool isNotWood(const geom::Vec3& p) const;
 
   bool contains(NodeId id) const { return nodes_.count(id) != 0; }

@@ -17,24 +17,29 @@
 //              true|"auto"|"-z"|...}   (holdJobs: a test seam, see ViewerState::holdJobs)
 //   {"view": "front"|"side"|"top"|"fit"}
 //   {"select": nodeId}                     -1 clears the selection
-//   {"button": "autoSketch"|"autoSkeleton"|"undo"|"redo"|"clear"|"fit"|"delete"|"deleteSubtree"|
-//              "refit"|"refitAll"}
+//   {"button": "autoSketch"|"autoSkeleton"|"autoSkeletonWood"|"classify"|"undo"|"redo"|"clear"|"fit"|
+//              "delete"|"deleteSubtree"|"refit"|"refitAll"|"clearNotWood"|"cancel"}
+//                                          (autoSkeletonWood: the skeleton on the classified wood;
+//                                          classify: the wood/leaf classification, a background job)
 //   {"save": PATH}, {"load": PATH}, {"export": PATH}, {"screenshot": PATH}   ("save"/"load"
 //                                          without a path use the session's sketch path)
 //   Correction tools (each one undoable edit under the current view):
 //   {"stroke": [[x, y], ...]}              draw a limb as one stroke (>= 2 points, base first)
 //   {"lasso": [[x, y], ...]}               mark the points inside the polygon as not-wood
+//   {"lassoWood": [[x, y], ...]}           mark the points inside the polygon as wood
 //   {"region": [[x, y], ...]}              automatic skeleton inside the polygon, merged
 //   {"deleteSubtree": nodeId}              delete a node and everything below it
 //   {"reattach": [nodeId, newParentId], "reverse": false}   re-attach a node (and its subtree) to
 //                                          another parent; reverse: the limb is turned round, the
 //                                          node its base (sketch::reattachReversed)
 //   {"automaticBelow": nodeId}             automatic skeleton below a node, merged
-//   {"tool": "sketch"|"stroke"|"lasso"|"region"|"reattach"}   what a left drag does (as keys
-//                                          G, X, R, P), so "drag" actions can use the tools
+//   {"tool": "sketch"|"stroke"|"lasso"|"lassoWood"|"region"|"reattach"}   what a left drag does
+//                                          (as keys G, X, Shift+X, R, P), so "drag" actions can
+//                                          use the tools
 //   {"recovery": "restore"|"discard"|"keep"}   answers the offer of an earlier session's autosave
 //   {"confirm": true|false}               answers the question waiting (replace hand edits?)
-//   {"start": "autoSkeleton"}              starts the background job and goes on at once (the
+//   {"start": "autoSkeleton"|"autoSkeletonWood"|"classify"}   starts the background job and goes
+//                                          on at once (the
 //                                          "autoSkeleton" button waits for its job to end, drawing
 //                                          frames); {"button": "cancel"} cancels it; {"wait": "job"}
 //                                          waits for it
@@ -43,9 +48,11 @@
 //   {"expect": {"nodes": n, "fitted": n, "skipped": n, "selected": id, "active": id,
 //               "errors": n, "meshTriangles": n, "kept": n, "notWood": n, "points": n,
 //               "recoveryOffered": 0|1, "confirmPending": 0|1, "handEdits": 0|1, "labelsShown": 0|1,
-//               "statusShown": 0|1, "lyingDown": 0|1, "legend": 0|1, "busy": 0|1}}
+//               "statusShown": 0|1, "lyingDown": 0|1, "legend": 0|1, "busy": 0|1, "woodLassos": n,
+//               "classified": 0|1, "woodPoints": n}}
 //                                          ("meshTriangles" checks "at least n"; "kept": nodes
-//                                          with a kept circle; "notWood": not-wood lassos;
+//                                          with a kept circle; "notWood": lassos of both kinds;
+//                                          "woodPoints": at least n points wood after the lassos;
 //                                          "points": the cloud's size)
 // Window verbs (the menus, dialogs and tools of apps/viewer; they need ScriptHooks::window, so a
 // script without a window fails them with a message):

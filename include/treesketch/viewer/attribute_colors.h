@@ -42,6 +42,13 @@ std::vector<Rgb> fileColors(const std::vector<std::array<std::uint8_t, 3>>& colo
 /// classificationColor per point.
 std::vector<Rgb> classificationColors(const std::vector<std::uint8_t>& classification);
 
+/// The viewer's wood/leaf colours: wood brown, leaf green (as docs/classify.md's pictures), and a
+/// ramp between them for the wood probability (0 leaf green, 1 wood brown; clamped, NaN grey).
+Rgb woodClassColor(bool wood);
+Rgb woodProbabilityColor(double t);
+/// Per point: by `probability` on the ramp when it is not empty, else by class (`wood`: 1 wood).
+std::vector<Rgb> woodColors(const std::vector<float>& probability, const std::vector<std::uint8_t>& wood);
+
 struct LegendClass {
   int code = 0;
   std::string name;
@@ -70,5 +77,7 @@ std::vector<double> niceTicks(const ValueRange& range, int maxTicks = 5);
 Legend scaleLegend(const std::string& title, const ValueRange& range, Rgb (*sample)(double), int rampSteps = 32);
 /// Legend of the classes present in `classification` with their counts (ascending codes).
 Legend classLegend(const std::vector<std::uint8_t>& classification);
+/// Legend of the wood class: wood and leaf with their counts (`woodPoints` of `points`).
+Legend woodClassLegend(std::size_t woodPoints, std::size_t points);
 
 }  // namespace treesketch::viewer

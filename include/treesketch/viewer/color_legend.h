@@ -11,12 +11,14 @@
 namespace treesketch::viewer {
 
 /// True when `cloud` has what `mode` colours by (intensity, RGB, classification: the attribute,
-/// one per point); height, distance and plain are always available.
-bool colorModeAvailable(ColorMode mode, const geom::PointCloud& cloud);
-/// The available modes in menu order (height, distance, plain, then the file's attributes).
-std::vector<ColorMode> availableColorModes(const geom::PointCloud& cloud);
+/// one per point; the wood probability and class: `classified`, the viewer's own classification
+/// is there); height, distance and plain are always available.
+bool colorModeAvailable(ColorMode mode, const geom::PointCloud& cloud, bool classified = false);
+/// The available modes in menu order (height, distance, plain, the file's attributes, then the
+/// wood probability and class when `classified`).
+std::vector<ColorMode> availableColorModes(const geom::PointCloud& cloud, bool classified = false);
 /// The available mode after `mode` (wrapping), for the `C` key.
-ColorMode nextColorMode(ColorMode mode, const geom::PointCloud& cloud);
+ColorMode nextColorMode(ColorMode mode, const geom::PointCloud& cloud, bool classified = false);
 /// A readable name for menus ("distance to circles", "RGB (file)").
 const char* colorModeLabel(ColorMode mode);
 

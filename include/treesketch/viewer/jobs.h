@@ -1,7 +1,8 @@
 // The desktop tool's long work on a worker thread: at most one job at a time (the automatic
-// skeleton), its progress, a cancel that stops it at its next progress report, and its outcome,
-// handed back on the window's thread. It never touches the sketch: ViewerState starts a job with
-// what it needs copied or kept alive, and takes the finished sketch in as one undoable edit.
+// skeleton, the wood/leaf classification), its progress, a cancel that stops it at its next
+// progress report, and its outcome, handed back on the window's thread. It never touches the
+// sketch: ViewerState starts a job with what it needs copied or kept alive, and takes the
+// finished sketch in as one undoable edit (and a classification as the cloud's classes).
 //
 // Threading: the worker writes only the job's own fields, under its mutex or as atomics; every
 // function here is called on the window's thread.
@@ -15,7 +16,23 @@
 #include "treesketch/sketch/sketch.h"
 #include "treesketch/util/progress.h"
 
+namespace treesketch::classify {
+struct Classification;
+}
+
 namespace treesketch::viewer {
+
+/// What a job made: a sketch (the automatic skeleton), a wood/leaf classification of the open
+/// cloud, or both (the skeleton on the wood of a cloud not classified before).
+struct JobResult {
+  std::optional<sketch::Sketch> sketch;
+  std::shared_ptr<const classify::Classification> classes;
+};
+
+/// What the progress line says a job is doing: the automatic skeleton's two steps, the
+/// classification (one step; it reports no progress inside), or the classification and then the
+/// skeleton.
+enum class JobSteps { Skeleton, Classify, ClassifyThenSkeleton };
 
 struct JobProgress {
   std::string what;         ///< "automatic skeleton: fitting nodes 128 / 640"
@@ -42,18 +59,19 @@ class Jobs {
   /// script can check "the window works while a job runs" and "cancel" without racing the job.
   void hold(bool hold);
 
-  /// The work: makes a sketch, reporting progress through the function it is given (which throws
-  /// util's Cancelled once cancel() was called). A new total after some progress counts as the
-  /// next step.
-  using Work = std::function<sketch::Sketch(const ProgressFn&)>;
+  /// The work: makes a sketch or a classification, reporting progress through the function it is
+  /// given (which throws util's Cancelled once cancel() was called). A new total after some
+  /// progress counts as the next step. A cancel during a step that reports nothing (the
+  /// classification) takes effect when the step ends: its result is dropped.
+  using Work = std::function<JobResult(const ProgressFn&)>;
   /// Starts `work` on a worker thread. The caller checks busy() first; a second job replaces
   /// nothing (false).
-  bool start(const std::string& name, Work work);
+  bool start(const std::string& name, Work work, JobSteps steps = JobSteps::Skeleton);
 
   struct Outcome {
     std::string name;
-    std::optional<sketch::Sketch> result;  ///< when it finished without error or cancel
-    std::string error;                     ///< why it failed ("" otherwise)
+    std::optional<JobResult> result;  ///< when it finished without error or cancel
+    std::string error;                ///< why it failed ("" otherwise)
     bool cancelled = false;
     double seconds = 0.0;
   };

@@ -68,6 +68,7 @@ class Scene {
   bool colorsStale_ = true;
   std::uint64_t colorsVersion_ = 1;
   std::vector<sketch::NotWoodLasso> colorsNotWood_;  ///< the lassos pointColors() last drew
+  std::uint64_t colorsClasses_ = 0;                  ///< the classification pointColors() last drew
   geom::TriMesh emptyMesh_;
 };
 

@@ -85,6 +85,10 @@ class ViewerReconstruction {
   virtual std::vector<std::uint32_t> slicePoints(sketch::NodeId id) const = 0;
   virtual std::vector<std::uint32_t> inlierPoints(sketch::NodeId id) const = 0;
   virtual const geom::TriMesh& mesh() const = 0;
+  /// The points a wood/leaf classification calls leaf (1 per point; empty: none): left out of the
+  /// fits from the next update, except where a wood lasso holds them
+  /// (recon::Reconstruction::setLeafPoints). Default: ignored.
+  virtual void setLeafPoints(std::vector<std::uint8_t> leaf) { (void)leaf; }
   /// Every node's fit, the sketch's order and parents, and the mesh (what the model's outputs are
   /// made from: model::fromReconstruction). Default: no fits, the mesh only.
   virtual recon::ReconstructionResult result() const {

@@ -24,7 +24,7 @@ enum Modifier : int { kModNone = 0, kModShift = 1, kModCtrl = 2, kModAlt = 4 };
 /// a node makes it the selected node's new parent). Keys: N add nodes, G stroke, X lasso, R
 /// region, P re-attach (each toggles its tool), H automatic below the selected node, Escape
 /// back to Select.
-enum class Tool { Select, AddNodes, Stroke, Lasso, Region, Reattach };
+enum class Tool { Select, AddNodes, Stroke, Lasso, Region, Reattach, LassoWood };
 /// The tool's name as the canvas and the Tools menu show it ("select", "add nodes", ...).
 const char* toolLabel(Tool tool);
 /// The tool's name with a line on how to use it (the status line when it is chosen).

@@ -18,12 +18,24 @@ namespace treesketch::viewer {
 
 /// Point colourings. The last three colour by the file's attributes (viewer/color_legend.h says
 /// which a cloud has); a cloud without the attribute is drawn plain.
-enum class ColorMode { Height, CircleDistance, Plain, Intensity, FileColor, Classification };
+/// WoodProbability and WoodClass show the viewer's own wood/leaf classification
+/// (ViewerState::woodClasses; the class after the lassos), the others the file's attributes.
+enum class ColorMode {
+  Height,
+  CircleDistance,
+  Plain,
+  Intensity,
+  FileColor,
+  Classification,
+  WoodProbability,
+  WoodClass
+};
 enum class MeshStyle { Solid, Wireframe, Hidden };
 /// Node numbers beside the markers: Auto (up to ViewerOptions::autoLabelMaxNodes nodes), On, Off.
 enum class LabelMode { Auto, On, Off };
 
-/// Parses "height" / "distance" / "plain" / "intensity" / "rgb" / "classification"; throws
+/// Parses "height" / "distance" / "plain" / "intensity" / "rgb" / "classification" /
+/// "wood-probability" / "wood-class"; throws
 /// OptionsError otherwise.
 ColorMode parseColorMode(const std::string& s);
 /// Parses "solid" / "wireframe" / "hidden"; throws OptionsError otherwise.

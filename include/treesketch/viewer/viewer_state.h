@@ -15,7 +15,8 @@
 // is kept. Implemented in several files by concern: src/viewer/viewer_state.cpp (the cloud, the edit protocol, sketch
 // edits, undo), viewer_files.cpp (save, load, export, through SketchDocument), viewer_input.cpp (mouse, wheel, keys),
 // viewer_draw.cpp (the Scene part), viewer_tools.cpp (the correction tools), viewer_view.cpp (the up direction),
-// recovery.cpp (the earlier session's autosave offered back), background_job.cpp (the automatic skeleton through Jobs).
+// recovery.cpp (the earlier session's autosave offered back), background_job.cpp (the automatic skeleton through Jobs),
+// wood_classes.cpp (the wood/leaf classification, the wood lasso, the automatic skeleton on the wood).
 #pragma once
 
 #include <array>
@@ -30,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "treesketch/classify/classify.h"
 #include "treesketch/geom/camera.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/tri_mesh.h"
@@ -241,6 +243,33 @@ class ViewerState {
   /// Blocks until the running job has ended and takes it in (scripts, and closing the window).
   void waitForJob();
 
+  // ---- wood/leaf classification (src/viewer/wood_classes.cpp) ------------------------------------
+  /// Starts the wood/leaf classification of the open cloud (classify::classifyWood with the model
+  /// built into the library, on the view's up axis) as a background job (progress, Cancel: the
+  /// classification reports nothing inside, so a cancel takes effect when it ends and drops it).
+  /// pollJob() takes it in: from then on the fits of a person's nodes and the strokes use only
+  /// the points classed wood, the lassos correcting the classes (a wood lasso makes its points
+  /// wood, a not-wood lasso leaf; the last lasso over a point decides); the colour modes
+  /// WoodProbability and WoodClass show it. The classes belong to the cloud, not to the sketch:
+  /// they are not undone and go with the cloud. False (error status) when a job runs, no cloud is
+  /// open or the view's up is not +Y or +Z.
+  bool startClassifyJob();
+  /// The open cloud's classification (nullptr until one is taken in).
+  const classify::Classification* woodClasses() const { return classes_.get(); }
+  /// Per point, 1 when it is wood after the lassos (what the fits use); empty with no
+  /// classification. Kept until the lassos or the classification change.
+  const std::vector<std::uint8_t>& woodAfterLassos() const;
+  /// The points woodAfterLassos() calls wood.
+  std::size_t woodPointCount() const;
+  /// The automatic skeleton on the wood only, as `reconstruct --auto --wood-only`: the points
+  /// classed wood (after the lassos) modelled with the leaf-off preset. A background job like
+  /// startAutoSkeletonJob's, which classifies the cloud first when it is not classified (that
+  /// classification is kept). False (error status) as startAutoSkeletonJob.
+  bool startWoodSkeletonJob();
+  /// What the window's "wood only" Auto skeleton calls: asks first when the sketch holds hand
+  /// edits, as requestAutoSketchSkeleton.
+  bool requestAutoSketchSkeletonWood();
+
   /// Drops the selected node's kept circle (it is then fitted from the cloud) / every node's.
   /// Undoable; an error message when there is nothing to refit.
   bool refitSelected();
@@ -253,6 +282,10 @@ class ViewerState {
   /// window pixels under the current view.
   bool strokeLimb(const std::vector<geom::Vec2>& stroke);
   bool lassoNotWood(const std::vector<geom::Vec2>& polygon);
+  /// The opposite lasso: its points are wood, whatever the classification (or an earlier
+  /// not-wood lasso) said; saved in the sketch with the not-wood lassos.
+  bool lassoWood(const std::vector<geom::Vec2>& polygon);
+  /// Removes every lasso, not-wood and wood.
   bool clearNotWood();
   bool deleteSubtree(sketch::NodeId id);
   /// Delete subtree as the window's Shift+Delete and button do it: a node with children is not
@@ -264,6 +297,7 @@ class ViewerState {
   /// the first click names the node to move (never the node selected before), the second its new
   /// parent; Shift on the second click reverses.
   bool reattachNode(sketch::NodeId id, sketch::NodeId newParent, bool reverse = false);
+  /// Once the cloud is classified (startClassifyJob), both model only its wood after the lassos.
   bool automaticBelow(sketch::NodeId id);
   bool automaticInRegion(const std::vector<geom::Vec2>& polygon);
   /// Where the selected node's circle lies along its view ray (the chosen depth, for the view to
@@ -368,6 +402,23 @@ class ViewerState {
   bool writeSketchFile(const std::filesystem::path& path);
   bool refuseWhileBusy(const std::string& name);
   bool dirty_ = false;
+
+  // The wood/leaf classification (wood_classes.cpp).
+  void takeClassification(std::shared_ptr<const classify::Classification> classes);
+  /// Gives the reconstruction the points classed leaf (after a new classification or a new
+  /// reconstruction).
+  void applyLeafPoints();
+  /// Per point, 1 = leaf by the classification (empty: not classified): what the fits leave out.
+  std::vector<std::uint8_t> leafFlags() const;
+  /// The points "automatic from here" (below a node, in a region) models: the cloud, or once it is
+  /// classified its wood after the lassos (copied into `store`).
+  const geom::PointCloud& pointsForAutomatic(geom::PointCloud& store) const;
+  std::shared_ptr<const classify::Classification> classes_;
+  std::uint64_t classesVersion_ = 0;  ///< increases with every classification taken in or dropped
+  mutable std::vector<std::uint8_t> woodAfterLassos_;
+  mutable std::size_t woodCount_ = 0;
+  mutable std::uint64_t woodFor_ = 0;  ///< the classesVersion_ woodAfterLassos_ was made for
+  mutable std::vector<std::pair<sketch::NotWoodLasso, geom::Camera>> woodLassos_;  ///< and the lassos
 
   std::uint64_t cloudVersion_ = 0;
   std::uint64_t sceneVersion_ = 1;
