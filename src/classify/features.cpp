@@ -58,8 +58,8 @@ void normalTurn(const geom::Mat3& scatter, int k, float* out) {
 /// The normal features of point i at every scale of `scales` after the first (kPerNormalScale
 /// each, into `out`): `lists` holds every point's neighbours, nearest first and itself first,
 /// `stride` a point, ended early by kNoNeighbour.
-void normalFeatures(const std::vector<geom::Vec3>& normals, const std::vector<std::uint32_t>& lists,
-                    std::size_t stride, std::size_t i, const std::vector<int>& scales, float* out) {
+void normalFeatures(const std::vector<geom::Vec3>& normals, const std::vector<std::uint32_t>& lists, std::size_t stride,
+                    std::size_t i, const std::vector<int>& scales, float* out) {
   geom::Mat3 scatter = geom::Mat3::Zero();
   std::size_t scale = 1;
   int taken = 0;
@@ -174,10 +174,11 @@ void pointFeatures(const accel::PointIndex& index, std::uint32_t i, const std::v
 void normalFeaturesOfAll(const std::vector<geom::Vec3>& normals, const std::vector<std::uint32_t>& lists,
                          const std::vector<int>& scales, float* values, std::size_t rowStride, std::size_t column) {
   const std::size_t stride = static_cast<std::size_t>(scales.back()) + 1;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, normals.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      normalFeatures(normals, lists, stride, i, scales, values + i * rowStride + column);
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, normals.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        normalFeatures(normals, lists, stride, i, scales, values + i * rowStride + column);
+                    });
 }
 
 /// Number of normal feature columns for `scales` (none with one scale or less).
@@ -201,15 +202,15 @@ void coarseFeatures(const std::vector<geom::Vec3>& cores, const FeatureOptions& 
   std::vector<float> values(coarse.size() * per);
   std::vector<geom::Vec3> normals(coarse.size());
   std::vector<std::uint32_t> lists(turn > 0 ? coarse.size() * stride : 0);
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, coarse.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
-        std::vector<accel::Neighbour> nb;
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          pointFeatures(index, static_cast<std::uint32_t>(i), o.coarseScales, size, up, values.data() + i * per, nb,
-                        &normals[i]);
-          if (turn > 0) keepNeighbours(nb, i, stride, lists);
-        }
-      });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, coarse.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      std::vector<accel::Neighbour> nb;
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        pointFeatures(index, static_cast<std::uint32_t>(i), o.coarseScales, size, up,
+                                      values.data() + i * per, nb, &normals[i]);
+                        if (turn > 0) keepNeighbours(nb, i, stride, lists);
+                      }
+                    });
   if (turn > 0) normalFeaturesOfAll(normals, lists, o.coarseScales, values.data(), per, covariance);
   for (std::size_t i = 0; i < cores.size(); ++i) {
     const float* from = values.data() + coarseOf[i] * per;
@@ -297,7 +298,8 @@ std::vector<std::string> featureNames(const FeatureOptions& options) {
     for (std::size_t s = 1; s < options.scales.size(); ++s)
       for (const char* p : turn) names.push_back(std::string(p) + "_k" + std::to_string(options.scales[s]));
     for (std::size_t s = 1; s < options.coarseScales.size(); ++s)
-      for (const char* p : turn) names.push_back(std::string(p) + "_coarse_k" + std::to_string(options.coarseScales[s]));
+      for (const char* p : turn)
+        names.push_back(std::string(p) + "_coarse_k" + std::to_string(options.coarseScales[s]));
   }
   if (options.graphFeatures)
     for (const auto& name : detail::graphFeatureNames()) names.push_back(name);

@@ -121,8 +121,8 @@ TEST(Features, BarkNormalsFanAboutOneAxisLeafNormalsScatter) {
   for (std::size_t i = bark; i < c.size(); ++i) leafFan += t.row(i)[fan], leafScatter += t.row(i)[scatter];
   barkFan /= bark, barkScatter /= bark, barkSpread /= bark;
   leafFan /= c.size() - bark, leafScatter /= c.size() - bark;
-  EXPECT_GT(barkSpread, 0.01);           // the bark's normals do turn over the patch
-  EXPECT_GT(barkFan, 3 * barkScatter);   // ... about one axis
+  EXPECT_GT(barkSpread, 0.01);          // the bark's normals do turn over the patch
+  EXPECT_GT(barkFan, 3 * barkScatter);  // ... about one axis
   EXPECT_GT(leafScatter, 3 * barkScatter);
   EXPECT_GT(barkFan / std::max(barkSpread, 1e-9), leafFan / std::max(leafScatter + leafFan, 1e-9));
   // Switched off, the columns are gone.

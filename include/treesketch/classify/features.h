@@ -2,7 +2,8 @@
 // covariance at several neighbourhood sizes (linearity, planarity, scattering, the verticality
 // of the principal axis and of the normal), the neighbourhood's size against the cloud's own
 // spacing (density), how far the neighbourhood's centroid sits off the point, the same over a
-// coarse level (cubes of a fraction of the tree's height), and the point's height above the base
+// coarse level (cubes of a fraction of the tree's height), how the surface normals turn over each
+// neighbourhood (bark fans about one axis, leaves scatter), and the point's height above the base
 // and distance from the base's vertical line as fractions of the height.
 // Neighbourhoods are k nearest points, so every scale follows the cloud's local spacing; features
 // are ratios, so they do not depend on the cloud's unit.
