@@ -38,6 +38,7 @@ struct ClassifyArgs {
   double metresPerUnit = eval::kEzTreeMetresPerUnit;
   int leafVariants = 2;
   bool noPosition = false;
+  bool noNormal = false;
 };
 
 classify::ClassifyOptions classifyOptions(const ClassifyArgs& a) {
@@ -69,6 +70,7 @@ void runTrain(const ClassifyArgs& a) {
   t.conditions = conditions(a);
   t.leafVariants = a.leafVariants;
   t.features.positionFeatures = !a.noPosition;
+  t.features.normalFeatures = !a.noNormal;
   t.log = [](const std::string& line) { std::cerr << line << "\n"; };
   const classify::BoostedTrees m = eval::trainClassifier(labelledTrees(a, true), t);
   writeFileAtomically(a.train, [&](std::ostream& out) { out << classify::toJson(m); });
@@ -164,6 +166,8 @@ void registerClassify(CLI::App& app, Action& action) {
       ->check(CLI::Range(1, 8));
   cmd->add_flag("--no-position-features", a->noPosition,
                 "--train: leave out the height and distance from the stem (shape and paths only)");
+  cmd->add_flag("--no-normal-features", a->noNormal,
+                "--train: leave out how the surface normals turn over each neighbourhood");
   cmd->add_option("--metres-per-unit", a->metresPerUnit, "Scale of the --trees meshes")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

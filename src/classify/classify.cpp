@@ -20,12 +20,12 @@ const BoostedTrees& trainedModel() {
 }
 
 FeatureOptions featureOptionsFor(const BoostedTrees& model, FeatureOptions options) {
-  for (int position = 1; position >= 0; --position)
-    for (int graph = 1; graph >= 0; --graph) {
-      options.positionFeatures = position != 0;
-      options.graphFeatures = graph != 0;
-      if (featureNames(options) == model.featureNames) return options;
-    }
+  for (int off = 0; off < 8; ++off) {  // every setting of the three switches, all on first
+    options.normalFeatures = (off & 4) == 0;
+    options.positionFeatures = (off & 2) == 0;
+    options.graphFeatures = (off & 1) == 0;
+    if (featureNames(options) == model.featureNames) return options;
+  }
   throw OptionsError("classify: the model was trained on other features than these (" +
                      std::to_string(model.featureNames.size()) + " features)");
 }

@@ -43,7 +43,7 @@ TEST(Classify, BuiltInModelSeparatesWoodFromLeavesOnAnotherGeneratorsTree) {
     ASSERT_LE(c.woodProbability[i], 1.0f);
   }
   const double f1 = 2.0 * tp / (2.0 * tp + fp + fn);
-  EXPECT_GT(f1, 0.7) << "tp " << tp << " fp " << fp << " fn " << fn;
+  EXPECT_GT(f1, 0.8) << "tp " << tp << " fp " << fp << " fn " << fn;
   EXPECT_EQ(c.woodPoints, tp + fp);
   // The graph step only demotes: wood after it is a subset of the classifier's wood.
   for (std::size_t i = 0; i < cloud.size(); ++i)
@@ -71,6 +71,25 @@ TEST(Classify, BlockedPredictionGivesEveryRowsOwnProbability) {
     hi = std::max(hi, p[i]);
   }
   EXPECT_LT(lo, hi);  // the rows differ, so a row given another's answer would show
+}
+
+TEST(Classify, AModelTrainedWithoutTheNormalsTurnIsStillRead) {
+  // A model trained with --no-normal-features (or before they existed) names no normal_fan_*
+  // column: the stage computes the features it was trained on, and the prediction runs.
+  FeatureOptions without;
+  without.normalFeatures = false;
+  BoostedTrees m;
+  m.featureNames = featureNames(without);
+  m.trees = {{TreeNode{}}};
+  const FeatureOptions chosen = featureOptionsFor(m);
+  EXPECT_FALSE(chosen.normalFeatures);
+  EXPECT_TRUE(chosen.graphFeatures);
+  EXPECT_TRUE(chosen.positionFeatures);
+  EXPECT_TRUE(featureOptionsFor(trainedModel()).normalFeatures);
+  geom::PointCloud cloud;
+  for (int i = 0; i < 200; ++i) cloud.positions.emplace_back(0.01 * i, 0.02 * (i % 7), 0.001 * (i % 5));
+  const Classification c = classifyWood(cloud, geom::UpAxis::Y, {}, &m);
+  EXPECT_EQ(c.wood.size(), cloud.size());
 }
 
 TEST(Classify, ModelOfOtherFeaturesIsRefused) {

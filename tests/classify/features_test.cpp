@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "treesketch/util/error.h"
@@ -79,6 +81,55 @@ TEST(Features, ASpacingFinerThanTheFloorIsRaisedToIt) {
   const int lin = column(floored, "linearity_k16"), ax = column(floored, "axis_up_k16");
   EXPECT_GT(floored.row(floored.coreOf[100])[lin], 0.9);
   EXPECT_GT(floored.row(floored.coreOf[100])[ax], 0.95);
+}
+
+/// A limb's bark (a cylinder of radius 0.15 m, 2 m long) and, beside it, a cluster of small flat
+/// leaves (3 cm squares) at random orientations, both sampled about 1 cm apart.
+geom::PointCloud barkAndLeaves(unsigned seed, std::size_t& barkPoints) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  geom::PointCloud c;
+  for (int i = 0; i < 20000; ++i) {
+    const double a = 2 * M_PI * u(rng);
+    c.positions.emplace_back(0.15 * std::cos(a), 2.0 * u(rng), 0.15 * std::sin(a));
+  }
+  barkPoints = c.size();
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int leaf = 0; leaf < 400; ++leaf) {
+    const geom::Vec3 centre(2.0 + 0.25 * g(rng), 1.0 + 0.25 * g(rng), 0.25 * g(rng));
+    const geom::Vec3 n = geom::Vec3(g(rng), g(rng), g(rng)).normalized();
+    const geom::Vec3 a = n.unitOrthogonal(), b = n.cross(a);
+    for (int k = 0; k < 25; ++k) c.positions.push_back(centre + 0.03 * (u(rng) - 0.5) * a + 0.03 * (u(rng) - 0.5) * b);
+  }
+  return c;
+}
+
+TEST(Features, BarkNormalsFanAboutOneAxisLeafNormalsScatter) {
+  // At 32 points the bark patch is about as planar as a leaf; its normals turn about the limb's axis
+  // only (fan), while a leaf cluster's turn every way (scatter).
+  std::size_t bark = 0;
+  const geom::PointCloud c = barkAndLeaves(11, bark);
+  FeatureOptions o;
+  o.coreSpacings = 0;
+  o.minSpacingHeightFraction = 0;
+  const FeatureTable t = computeFeatures(c, geom::UpAxis::Y, o);
+  const int fan = column(t, "normal_fan_k32"), scatter = column(t, "normal_scatter_k32"),
+            spread = column(t, "normal_spread_k32");
+  double barkFan = 0, barkScatter = 0, barkSpread = 0, leafFan = 0, leafScatter = 0;
+  for (std::size_t i = 0; i < bark; ++i)
+    barkFan += t.row(i)[fan], barkScatter += t.row(i)[scatter], barkSpread += t.row(i)[spread];
+  for (std::size_t i = bark; i < c.size(); ++i) leafFan += t.row(i)[fan], leafScatter += t.row(i)[scatter];
+  barkFan /= bark, barkScatter /= bark, barkSpread /= bark;
+  leafFan /= c.size() - bark, leafScatter /= c.size() - bark;
+  EXPECT_GT(barkSpread, 0.01);          // the bark's normals do turn over the patch
+  EXPECT_GT(barkFan, 3 * barkScatter);  // ... about one axis
+  EXPECT_GT(leafScatter, 3 * barkScatter);
+  EXPECT_GT(barkFan / std::max(barkSpread, 1e-9), leafFan / std::max(leafScatter + leafFan, 1e-9));
+  // Switched off, the columns are gone.
+  o.normalFeatures = false;
+  const FeatureTable without = computeFeatures(c, geom::UpAxis::Y, o);
+  EXPECT_EQ(without.count, t.count - 9);  // 3 per fine scale after the first (16, 32), 3 for coarse 24
+  for (const auto& name : without.names) EXPECT_EQ(name.find("normal_fan"), std::string::npos);
 }
 
 TEST(Features, BadOptionsAndTinyCloudsAreRefused) {

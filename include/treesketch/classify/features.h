@@ -2,7 +2,8 @@
 // covariance at several neighbourhood sizes (linearity, planarity, scattering, the verticality
 // of the principal axis and of the normal), the neighbourhood's size against the cloud's own
 // spacing (density), how far the neighbourhood's centroid sits off the point, the same over a
-// coarse level (cubes of a fraction of the tree's height), and the point's height above the base
+// coarse level (cubes of a fraction of the tree's height), how the surface normals turn over each
+// neighbourhood (bark fans about one axis, leaves scatter), and the point's height above the base
 // and distance from the base's vertical line as fractions of the height.
 // Neighbourhoods are k nearest points, so every scale follows the cloud's local spacing; features
 // are ratios, so they do not depend on the cloud's unit.
@@ -49,6 +50,12 @@ struct FeatureOptions {
   /// Shortest-path features over the core points' neighbour graph from the base (the points whose
   /// paths pass through a point, the path's length and detour; src/classify/graph_features.h).
   bool graphFeatures = true;
+  /// How the surface normals turn over each neighbourhood (at every scale after the first, fine and
+  /// coarse; the normals are those of the first scale): a leaf is flat and small, so its normals
+  /// agree over its own patch and scatter in every direction over a cluster of leaves; bark curves
+  /// about one axis, so over a patch of a limb its normals fan out in one plane and never along the
+  /// limb, however flat the limb looks to the point covariance at that scale.
+  bool normalFeatures = true;
   /// The point's height above the base and distance from the base's vertical line, as fractions
   /// of the height: a prior on where wood is (the stem low and central) that the generator's trees
   /// teach and a bare crown or a conifer's needles contradict.
