@@ -29,12 +29,13 @@ constexpr double kInterpolatedRadiusWeight = 0.25;
 /// Below this share of nodes with an accepted circle (and without a tracked stem) the circles do
 /// not measure the tree and every radius is inferred from its crown (see fitModel).
 constexpr double kMinFittedShare = 0.05;
-/// The completion's margin about a fitted tube, in robust spreads of its circle's points (or the
-/// scan's noise, the larger): a normal spread leaves 0.3 % of a surface's points beyond three.
-/// Of 3 and 4 on the tuning clouds (share within ±2 cm): 3 (4 left voxr_t0 under TreeQSM's). A
-/// margin of the scan's noise alone, without the circle's own spread, grafted the synthetic trees'
-/// polygon corners (docs/notes/radii_and_volume.md, "Completing the model down to its circles").
-constexpr double kFittedMarginSpreads = 3.0;
+/// The completion's margin about a tube, in robust spreads of its surface's points (or the scan's
+/// noise, the larger): a normal spread leaves 0.3 % of a surface's points beyond three. Of 2, 3 and 4
+/// on the tuning clouds (share within ±2 cm): 3 (4 left voxr_t0 under TreeQSM's share; 2 no better
+/// than 3 on rtwig). A margin of the scan's noise alone, without the surface's own spread, grafted
+/// the synthetic trees' polygon corners (docs/notes/radii_and_volume.md, "Completing the model down
+/// to its circles").
+constexpr double kMarginSpreads = 3.0;
 
 sketch::SamplingParams paramsFor(double radius, double voxel, const SkeletonSketchOptions& o) {
   sketch::SamplingParams p;
@@ -410,17 +411,19 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
   partOptions.graph.maxGapVoxels = std::min(partOptions.graph.maxGapVoxels, c.maxGapVoxels);
   const geom::CylinderModel pieces = cylinderModelFromSkeleton(res.model);
   const compare::CylinderModelIndex index(pieces);
-  // A point farther outside a fitted tube than its circle's points stray about it (three robust
-  // spreads, the scan's noise at least) is not that surface's: a twig the level sets merged into
-  // the limb beside it. Elsewhere (no circle measures the surface) the margin is a voxel.
+  // A point farther outside a tube than its surface's points stray about it (three robust
+  // spreads: its circle's points about the circle where it has an accepted fit, else its points'
+  // distances to the axis; the scan's noise at least) is not that surface's: a twig the level sets
+  // merged into the limb beside it. Never wider than a voxel, the margin before.
   std::vector<double> pieceMargin;
+  const std::vector<double> spreads =
+      detail::surfaceSpreads(res.model, cloud, res.noise, voxel, options.radii.medianWindow);
   for (std::size_t i = 0; i < res.model.size(); ++i) {
     if (res.model[i].parent < 0) continue;  // the pieces are the non-root nodes, in order
+    double spread = spreads[i];
+    if (i < res.fitAccepted.size() && res.fitAccepted[i]) spread = detail::fitSpread(res.fits[i], cloud);
     double m = c.marginVoxels * voxel;
-    if (i < res.fitAccepted.size() && res.fitAccepted[i] && res.noise > 0) {
-      const double spread = detail::fitSpread(res.fits[i], cloud);
-      if (std::isfinite(spread)) m = std::min(m, kFittedMarginSpreads * std::max(res.noise, spread));
-    }
+    if (res.noiseMeasured && std::isfinite(spread)) m = std::min(m, kMarginSpreads * std::max(res.noise, spread));
     pieceMargin.push_back(m);
   }
   unexplained = detail::unexplainedPoints(cloud, index, c.marginVoxels * voxel, &res.skeleton.graph,

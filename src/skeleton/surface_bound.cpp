@@ -117,6 +117,29 @@ double fitNoise(const fit::NodeResult& f, const geom::PointCloud& cloud, std::ve
 
 }  // namespace
 
+std::vector<double> surfaceSpreads(const std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
+                                   double voxel, int window) {
+  constexpr double kMadToSigma = 1.4826;
+  std::vector<double> spread(model.size(), std::nan(""));
+  if (model.size() < 2 || cloud.empty() || !(noise > 0) || !(voxel > 0)) return spread;
+  const std::vector<std::vector<double>> perNode = distancesPerNode(model, cloud, noise + voxel);
+  const int half = std::max(0, window / 2);
+  std::vector<double> pooled;
+  for (const auto& chain : branchChains(model)) {
+    const int m = static_cast<int>(chain.size());
+    for (int k = 0; k < m; ++k) {
+      pooled.clear();
+      for (int j = std::max(0, k - half); j <= std::min(m - 1, k + half); ++j)
+        pooled.insert(pooled.end(), perNode[chain[j]].begin(), perNode[chain[j]].end());
+      if (pooled.size() < kMinPoints) continue;
+      const double med = quantile(pooled, 0.5);
+      for (double& d : pooled) d = std::abs(d - med);
+      spread[chain[k]] = kMadToSigma * quantile(pooled, 0.5);
+    }
+  }
+  return spread;
+}
+
 double fitSpread(const fit::NodeResult& f, const geom::PointCloud& cloud) {
   std::vector<double> residuals;
   return fitNoise(f, cloud, residuals);

@@ -30,6 +30,12 @@ double measuredNoise(const std::vector<fit::NodeResult>& fits, const std::vector
 /// test points (a robust σ of the points about the circle), NaN with fewer than 12.
 double fitSpread(const fit::NodeResult& f, const geom::PointCloud& cloud);
 
+/// Per node of `model`: the robust spread (1.4826 × median absolute deviation) of its points'
+/// distances to the axis, the points of the `window` nodes around it along its branch pooled (as
+/// boundRadiiBySurface assigns them); NaN with fewer than 12 points.
+std::vector<double> surfaceSpreads(const std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
+                                   double voxel, int window);
+
 /// The scan's noise measured on the stem (cloud units): the points of the tracked stem's tubes
 /// (model nodes with `stem`), in windows of three nodes, their distances to the axis' robust
 /// spread (1.4826 × the median absolute deviation from their median); the median over the

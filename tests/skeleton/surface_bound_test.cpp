@@ -152,3 +152,20 @@ TEST(SurfaceBound, ATwigThinnerThanTheNoiseIsNotRaisedByTheNoise) {
   EXPECT_EQ(stats.nodesThickened, 0u);
   for (std::size_t i = 21; i < model.size(); ++i) EXPECT_DOUBLE_EQ(model[i].radius, 0.001) << i;
 }
+
+TEST(SurfaceBound, ATubesSpreadIsItsPointsNoiseAboutTheAxis) {
+  // Points with 2 mm and 6 mm of radial noise about the trunk and the branch: each node's spread
+  // is its own surface's noise, whatever the model's radius; a node without points has none.
+  const std::vector<test::Cyl> trunk = {kTree[0]};
+  const std::vector<test::Cyl> branch = {kTree[1]};
+  geom::PointCloud cloud = test::sampleCylinders(trunk, 0.01, 0.002, 8);
+  const geom::PointCloud twig = test::sampleCylinders(branch, 0.004, 0.006, 9);
+  cloud.positions.insert(cloud.positions.end(), twig.positions.begin(), twig.positions.end());
+  const auto model = trunkAndBranch(0.09, 0.01);
+  const std::vector<double> spread = skeleton::detail::surfaceSpreads(model, cloud, 0.002, 0.02, 5);
+  for (std::size_t i = 2; i <= 18; ++i) EXPECT_NEAR(spread[i], 0.002, 0.0008) << i;
+  for (std::size_t i = 23; i < model.size() - 1; ++i) EXPECT_NEAR(spread[i], 0.006, 0.002) << i;
+  auto far = model;
+  for (auto& n : far) n.position += Vec3(5, 0, 0);  // no point near any tube
+  for (double s : skeleton::detail::surfaceSpreads(far, cloud, 0.002, 0.02, 5)) EXPECT_TRUE(std::isnan(s));
+}
