@@ -26,21 +26,6 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// The points of `cloud` the wood/leaf classification calls wood, as `reconstruct --auto
-/// --wood-only` takes them (apps/cli/tree_job.cpp): fewer than a hundred is no tree's wood.
-geom::PointCloud woodPoints(const geom::PointCloud& cloud, geom::UpAxis up, const std::string& source) {
-  constexpr std::size_t kMinWoodPoints = 100;
-  const classify::Classification c = classify::classifyWood(cloud, up);
-  std::vector<std::uint32_t> wood;
-  for (std::size_t i = 0; i < cloud.size() && i < c.wood.size(); ++i)
-    if (c.wood[i]) wood.push_back(static_cast<std::uint32_t>(i));
-  if (wood.size() < kMinWoodPoints)
-    throw DegenerateInputError(source + ": --wood-only: " + std::to_string(wood.size()) + " of " +
-                               std::to_string(cloud.size()) +
-                               " points classified as wood, too few to model (run without --wood-only)");
-  return cloud::selectPoints(cloud, wood);
-}
-
 std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bool woodOnly, const py::object& up,
                                      std::uint64_t seed, int ring, const py::object& inlierThreshold, double unitMetres,
                                      const py::object& progressFn) {
@@ -62,7 +47,7 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bo
     // With wood_only the wood points are modelled with the leaf-off settings and the model is
     // measured against every point, as `reconstruct --auto --wood-only`.
     geom::PointCloud woodStore;
-    if (woodOnly) woodStore = woodPoints(*cloud, choice.up, t.source);
+    if (woodOnly) woodStore = model::woodOnlyCloud(*cloud, choice.up, t.source);
     const geom::PointCloud& modelled = woodOnly ? woodStore : *cloud;
     skeleton::AutoSkeletonOptions opt = skeleton::autoSkeletonPreset(
         leafOn && !woodOnly ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, choice.up);

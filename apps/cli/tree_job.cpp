@@ -51,21 +51,6 @@ nlohmann::json reportHeader(const TreeJob& a, const TreeJobResult& r, const skel
   return header;
 }
 
-/// The points of `cloud` the wood/leaf classification calls wood. Fewer than a hundred is no tree's
-/// wood: DegenerateInputError naming `source`.
-geom::PointCloud woodPoints(const geom::PointCloud& cloud, geom::UpAxis up, const std::string& source) {
-  constexpr std::size_t kMinWoodPoints = 100;
-  const classify::Classification c = classify::classifyWood(cloud, up);
-  std::vector<std::uint32_t> wood;
-  for (std::size_t i = 0; i < cloud.size() && i < c.wood.size(); ++i)
-    if (c.wood[i]) wood.push_back(static_cast<std::uint32_t>(i));
-  if (wood.size() < kMinWoodPoints)
-    throw DegenerateInputError(source + ": --wood-only: " + std::to_string(wood.size()) + " of " +
-                               std::to_string(cloud.size()) +
-                               " points classified as wood, too few to model (run without --wood-only)");
-  return cloud::selectPoints(cloud, wood);
-}
-
 }  // namespace
 
 TreeJobResult runTreeJob(const TreeJob& a) {
@@ -92,7 +77,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   // With --wood-only the wood points are modelled with the leaf-off settings (what is left is
   // meant to be wood), and the model is measured against every point.
   geom::PointCloud woodStore;
-  if (a.woodOnly) woodStore = woodPoints(cloud, up.up, a.cloud);
+  if (a.woodOnly) woodStore = model::woodOnlyCloud(cloud, up.up, a.cloud);
   const geom::PointCloud& modelled = a.woodOnly ? woodStore : cloud;
   r.woodPoints = a.woodOnly ? woodStore.size() : 0;
   skeleton::AutoSkeletonOptions opt = skeleton::autoSkeletonPreset(

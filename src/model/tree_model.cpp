@@ -8,6 +8,8 @@
 #include <map>
 #include <numbers>
 
+#include "treesketch/classify/classify.h"
+#include "treesketch/cloud/stray_points.h"
 #include "treesketch/io/cylinder_table.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/skeleton/skeleton_export.h"
@@ -175,6 +177,19 @@ TreeModel fromSkeletonNodes(const std::vector<skeleton::SkeletonNode>& nodes, co
   pieceAttributes(shape, ids, accepted.size() == nodes.size() ? accepted : std::vector<char>(nodes.size(), 1),
                   &model);
   return model;
+}
+
+geom::PointCloud woodOnlyCloud(const geom::PointCloud& cloud, geom::UpAxis up, const std::string& source) {
+  constexpr std::size_t kMinWoodPoints = 100;
+  const classify::Classification c = classify::classifyWood(cloud, up);
+  std::vector<std::uint32_t> wood;
+  for (std::size_t i = 0; i < cloud.size() && i < c.wood.size(); ++i)
+    if (c.wood[i]) wood.push_back(static_cast<std::uint32_t>(i));
+  if (wood.size() < kMinWoodPoints)
+    throw DegenerateInputError(source + ": --wood-only: " + std::to_string(wood.size()) + " of " +
+                               std::to_string(cloud.size()) +
+                               " points classified as wood, too few to model (run without --wood-only)");
+  return cloud::selectPoints(cloud, wood);
 }
 
 TreeModel fromAutoSkeleton(const skeleton::AutoSkeletonResult& r, geom::UpAxis up) {

@@ -76,6 +76,11 @@ TreeModel fromSkeletonNodes(const std::vector<skeleton::SkeletonNode>& nodes, co
 /// The automatic model (AutoSkeletonResult::model, its accepted fits and its mesh).
 TreeModel fromAutoSkeleton(const skeleton::AutoSkeletonResult& result, geom::UpAxis up);
 
+/// The points of `cloud` the wood/leaf classification (classify::classifyWood, `up` its up axis)
+/// calls wood: what `--wood-only` models. Fewer than a hundred is no tree's wood:
+/// DegenerateInputError naming `source`.
+geom::PointCloud woodOnlyCloud(const geom::PointCloud& cloud, geom::UpAxis up, const std::string& source);
+
 /// Share of the model's volume whose pieces rest on a fitted circle, in [0, 1] (0 for no volume).
 double measuredVolumeShare(const TreeModel& model);
 
