@@ -102,7 +102,7 @@ std::vector<Vec3> smoothChain(const std::vector<Sample>& samples, bool anchored,
 }  // namespace
 
 std::vector<Vec3> smoothAxes(const std::vector<SkeletonNode>& nodes, const std::vector<char>& fitted,
-                             const std::vector<double>& radii, double precision, const AxisRules& rules) {
+                             const std::vector<double>& radii, const AxisRules& rules) {
   std::vector<Vec3> pos(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) pos[i] = nodes[i].position;
   if (rules.halfWindowNodes <= 0) return pos;
@@ -120,11 +120,11 @@ std::vector<Vec3> smoothAxes(const std::vector<SkeletonNode>& nodes, const std::
     }
     const std::vector<Vec3> smoothed = smoothChain(samples, anchored, rules);
     for (std::size_t k = 0; k < chain.size(); ++k) {
-      // A centroid of surface points lies within one radius of the axis, and is only known to
-      // `precision`: a longer move would cut a real bend (or bend a twig thinner than that).
+      // A centroid of surface points lies within one radius of the axis: a longer move would cut
+      // a real bend.
       const std::int32_t i = chain[k];
       const Vec3 move = smoothed[k + (anchored ? 1 : 0)] - nodes[i].position;
-      const double limit = std::max(0.0, rules.maxShiftRadii * radii[i] - precision), len = move.norm();
+      const double limit = std::max(0.0, rules.maxShiftRadii * radii[i]), len = move.norm();
       pos[i] = nodes[i].position + (len > limit && len > 0 ? move * (limit / len) : move);
     }
   }

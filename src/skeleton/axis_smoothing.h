@@ -25,9 +25,8 @@ std::vector<std::vector<std::int32_t>> branchChains(const std::vector<SkeletonNo
 /// node is anchored at its (smoothed) parent, which it does not move. Returns one position per
 /// node; with rules.halfWindowNodes == 0 the positions are returned unchanged. A fitted node
 /// does not move (it weighs in its neighbours' fits); a node moves at most
-/// rules.maxShiftRadii × radii[i] − `precision` (the centroid's own precision, world units), so
-/// twigs thinner than that keep their course.
+/// rules.maxShiftRadii × radii[i], so a thin twig keeps its course.
 std::vector<geom::Vec3> smoothAxes(const std::vector<SkeletonNode>& nodes, const std::vector<char>& fitted,
-                                   const std::vector<double>& radii, double precision, const AxisRules& rules);
+                                   const std::vector<double>& radii, const AxisRules& rules);
 
 }  // namespace treesketch::skeleton::detail

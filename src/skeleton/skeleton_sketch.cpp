@@ -240,11 +240,9 @@ void checkOptions(const AutoSkeletonOptions& options) {
   if (!(options.minInlierBandVoxels >= 0) || !std::isfinite(options.minInlierBandVoxels))
     throw OptionsError("skeleton: minInlierBandVoxels must be a finite number >= 0");
   if (options.axes.halfWindowNodes < 0 || !(options.axes.unfittedWeight > 0 && options.axes.unfittedWeight <= 1) ||
-      !(options.axes.maxShiftRadii >= 0) || !std::isfinite(options.axes.maxShiftRadii) ||
-      !(options.axes.centroidPrecisionVoxels >= 0) || !std::isfinite(options.axes.centroidPrecisionVoxels))
+      !(options.axes.maxShiftRadii >= 0) || !std::isfinite(options.axes.maxShiftRadii))
     throw OptionsError(
-        "skeleton axes: halfWindowNodes must be >= 0, unfittedWeight in (0, 1], maxShiftRadii and "
-        "centroidPrecisionVoxels finite and >= 0");
+        "skeleton axes: halfWindowNodes must be >= 0, unfittedWeight in (0, 1], maxShiftRadii finite and >= 0");
   const CompletionRules& c = options.completion;
   if (!(c.marginVoxels >= 0) || !(c.maxGapVoxels >= 0) || !std::isfinite(c.marginVoxels) ||
       !std::isfinite(c.maxGapVoxels) || c.minPoints < 1 || c.maxParts < 0 || c.maxRounds < 0)
@@ -388,7 +386,7 @@ void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const geom::P
   if (radii.empty())
     radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, options.radii, &res.radiusMeasured);
   const std::vector<geom::Vec3> axes =
-      detail::smoothAxes(res.model, res.fitAccepted, radii, options.axes.centroidPrecisionVoxels * voxel, options.axes);
+      detail::smoothAxes(res.model, res.fitAccepted, radii, options.axes);
   for (std::size_t i = 0; i < res.model.size(); ++i) {
     res.model[i].radius = radii[i];
     res.model[i].position = axes[i];

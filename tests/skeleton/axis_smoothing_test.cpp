@@ -24,22 +24,24 @@ TEST(AxisSmoothing, AZigzagOfCentroidsOnAThickBranchBecomesStraight) {
   const auto nodes = chain(12, [](int k) { return k % 2 ? 0.6 : -0.6; });
   const std::vector<char> fitted(nodes.size(), 0);
   const std::vector<double> radii(nodes.size(), 1.0);
-  const auto p = detail::smoothAxes(nodes, fitted, radii, 0.1, AxisRules{});
+  const auto p = detail::smoothAxes(nodes, fitted, radii, AxisRules{});
   for (int k = 2; k < 10; ++k) EXPECT_LT(std::abs(p[k].x()), 0.25) << "node " << k;
   for (int k = 0; k < 12; ++k) EXPECT_NEAR(p[k].y(), k, 0.3) << "node " << k;
 }
 
-TEST(AxisSmoothing, TwigsThinnerThanAVoxelAndFittedNodesStay) {
+TEST(AxisSmoothing, FittedNodesStayAndNoNodeMovesMoreThanItsRadius) {
   const auto nodes = chain(12, [](int k) { return k % 2 ? 0.6 : -0.6; });
   std::vector<char> fitted(nodes.size(), 0);
   fitted[5] = 1;
   std::vector<double> radii(nodes.size(), 1.0);
-  radii[8] = 0.05;  // thinner than the 0.1 voxel
-  const auto p = detail::smoothAxes(nodes, fitted, radii, 0.1, AxisRules{});
+  radii[8] = 0.05;  // a twig: its centroid is within 0.05 of its axis
+  radii[3] = 0.3;   // a branch: within 0.3
+  const auto p = detail::smoothAxes(nodes, fitted, radii, AxisRules{});
   EXPECT_EQ(p[5], nodes[5].position);
-  EXPECT_EQ(p[8], nodes[8].position);
-  // The others move, but never more than radius − voxel.
-  for (int k = 0; k < 12; ++k) EXPECT_LE((p[k] - nodes[k].position).norm(), 0.9 + 1e-9);
+  EXPECT_LE((p[8] - nodes[8].position).norm(), 0.05 + 1e-9);
+  EXPECT_GT((p[3] - nodes[3].position).norm(), 0.25);  // towards the axis, as far as its radius allows
+  EXPECT_LE((p[3] - nodes[3].position).norm(), 0.3 + 1e-9);
+  for (int k = 0; k < 12; ++k) EXPECT_LE((p[k] - nodes[k].position).norm(), radii[k] + 1e-9) << "node " << k;
 }
 
 TEST(AxisSmoothing, ABendLongerThanTheWindowIsKept) {
@@ -52,7 +54,7 @@ TEST(AxisSmoothing, ABendLongerThanTheWindowIsKept) {
   }
   const std::vector<char> fitted(nodes.size(), 0);
   const std::vector<double> radii(nodes.size(), 1.0);
-  const auto p = detail::smoothAxes(nodes, fitted, radii, 0.1, AxisRules{});
+  const auto p = detail::smoothAxes(nodes, fitted, radii, AxisRules{});
   for (int k = 0; k < 16; ++k) {
     const double onCircle = (p[k] - Vec3(10, 0, 0)).norm();
     EXPECT_NEAR(onCircle, 10.0, 0.2) << "node " << k;
@@ -73,12 +75,12 @@ TEST(AxisSmoothing, ASideBranchStartsAtItsParent) {
   for (int k = 6; k < 9; ++k) nodes[k].children = {k + 1};
   const std::vector<char> fitted(nodes.size(), 0);
   const std::vector<double> radii(nodes.size(), 1.0);
-  const auto p = detail::smoothAxes(nodes, fitted, radii, 0.1, AxisRules{});
+  const auto p = detail::smoothAxes(nodes, fitted, radii, AxisRules{});
   for (int k = 0; k < 6; ++k) EXPECT_NEAR(p[k].x(), 0.0, 1e-9);
   for (int k = 6; k < 9; ++k) EXPECT_LT(std::abs(p[k].y() - 3), 0.3) << "node " << k;
   AxisRules off;
   off.halfWindowNodes = 0;
-  const auto same = detail::smoothAxes(nodes, fitted, radii, 0.1, off);
+  const auto same = detail::smoothAxes(nodes, fitted, radii, off);
   for (std::size_t k = 0; k < nodes.size(); ++k) EXPECT_EQ(same[k], nodes[k].position);
 }
 

@@ -86,13 +86,10 @@ struct AxisRules {
   /// Weight of a node without an accepted fit (its position is a piece's centroid), relative to
   /// a fitted circle's centre (1).
   double unfittedWeight = 0.25;
-  /// A node moves at most this many of its (regularised) radii ... : a piece's centroid lies on the
-  /// branch's surface, within one radius of its axis, so a longer move would cut a real bend
-  /// (a thin twig's centroid is on its axis to within a voxel and hardly moves).
+  /// A node moves at most this many of its (regularised) radii: a piece's centroid lies on the
+  /// branch's surface, within one radius of its axis, so a longer move would cut a real bend (a
+  /// thin twig's centroid is on its axis to within its radius and hardly moves).
   double maxShiftRadii = 1.0;
-  /// ... less this many voxels: a centroid is only known to about half a voxel, so a twig
-  /// thinner than that keeps its course.
-  double centroidPrecisionVoxels = 0.5;
 };
 
 /// Builds the sketch: node i of `skeleton.nodes` becomes sketch node id i (point node at the
