@@ -36,9 +36,11 @@ constexpr double kMedianStandardError = 1.2533;  // a normal sample's median: σ
 /// outside it (a triangle's; a square's 0.25), and the median needs its whole perimeter.
 constexpr double kCornerRadii = 0.6;
 /// A convex section's lower quartile over the radius with its area, at least: a triangle's 0.85 (a
-/// square's 0.91, a circle's 1). A tube whose points' lower quartile (less the noise's share) is
-/// lower holds more than one branch's section: several stems side by side in one tube (the
-/// synthetic bushes' base: the median alone took the 4-station scan of one from +37 to +61 %).
+/// square's 0.91, a circle's 1). Points whose lower quartile (less the noise's share) is lower are
+/// not one convex section about the tube's axis: an axis beside its branch (a circle fitted round
+/// a twig from the wrong centre, whose points' median is the offset), several stems in one tube, a
+/// joint's inside. On the 4-station scans of the tuning bush the median alone gave +61 % of its
+/// wood, with this +40 % (before: +37 %).
 constexpr double kConvexQuartile = 0.85;
 /// A normal distribution's lower quartile, in standard deviations below its mean.
 constexpr double kNoiseQuartile = 0.674;
@@ -224,9 +226,8 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
       const double own = chain[k] < static_cast<std::int32_t>(ownResidual.size()) ? ownResidual[chain[k]] : 0.0;
       bound[k] = quantile(pooled, kBoundQuantile) +
                  kMedianErrors * kMedianStandardError * noise / std::sqrt(static_cast<double>(pooled.size()));
-      // One convex section (round, or of three or more flat sides) has its lower quartile, less the
-      // noise's share, at 0.85 of its area's radius or more; points deeper are not one branch's:
-      // a tube round several stems, a joint seen through a tube's open end.
+      // One convex section (round, or of three or more flat sides) about the axis has its lower
+      // quartile, less the noise's share, at 0.85 of its area's radius or more.
       const double low = quantile(pooled, kRaiseQuantile);
       bound[k] = std::min(bound[k], (low + kNoiseQuartile * noise) / kConvexQuartile);
       if (!(own > 0) && !model[chain[k]].stem) raise[k] = low - kRaiseMarginNoise * noise;
