@@ -15,21 +15,37 @@ namespace {
 
 using geom::Vec3;
 
-/// The share of a tube's points allowed deeper than the margin inside it. Good wood has some:
-/// rough bark, a slightly off-centre axis, a fork's neighbouring tube, and in the synthetic test
-/// meshes (open tubes, a branch starting on its parent's axis) the insides of joints seen through
-/// a tube's open end, up to a tenth of a trunk's points. A shell of noise or a leaf cluster puts
-/// far more there. Of 0.1, 0.25 and 0.5, chosen on the tuning data: 0.1 thinned the built-in
-/// demo tree's trunk from 24.5 to 18.3 cm (true: 25.6 cm) and the synthetic sphere scans' volume by
-/// 15-25 %; 0.5 changed nothing on the tuning clouds (docs/notes/radii_and_volume.md).
-constexpr double kInsideQuantile = 0.25;
-/// The margin, in noise. A surface scanned with Gaussian noise σ has its lower quartile at
-/// r − 0.67σ, so any margin above that keeps a true radius; bark is rougher than a circle and a
-/// branch's axis is only known to about the noise. Of 1.5, 2 and 3 (with the noise of
-/// stemNoise / measuredNoise), chosen on the tuning clouds: 2 (3 left adtree_tree7 with 1.3 % of
-/// its points inside and 1.33× TreeQSM's volume; 1.5 took 2-3 more points of volume off the
-/// synthetic trees' sphere scans, docs/notes/radii_and_volume.md).
-constexpr double kMarginNoise = 2.0;
+/// A tube is at most the median of its points' distances to its axis. A round surface's points,
+/// with the scanner's noise symmetric about it, have their median on it, whatever the noise and
+/// wherever the axis sits within about a radius (the distances to an off-centre axis swing as much
+/// above the radius as below it). A branch of a few flat sides has its perimeter's median within a
+/// few percent of the radius of the circle with its area (a square's 1 % under it, a triangle's 3 %
+/// over), where its lower quartile lies 9 % (square) to 15 % (triangle) under it. The bound was
+/// the lower quartile plus two noises: on the synthetic trees, whose branches have 3-7 flat sides,
+/// the sphere scans' wood came out 12.8-13.5 % short on average (tuning half), 9.9-10.0 % with the
+/// median and the convex section's quartile below (docs/notes/radii_and_volume.md). A shell of
+/// noise about a twig or a leaf cluster still has its median well inside the circle fitted round it.
+constexpr double kBoundQuantile = 0.5;
+/// The bound's allowance for the median's own sampling error, in standard errors (1.2533 σ/√n for
+/// n points spread by the noise σ): a tube of the right radius is thinned by chance at about one
+/// node in 700.
+constexpr double kMedianErrors = 3.0;
+constexpr double kMedianStandardError = 1.2533;  // a normal sample's median: σ/√n times this
+/// A tube's points reach this many of its radii farther out than the scan's noise and a voxel: a
+/// flat-sided branch modelled at the radius with its area has its corners up to 0.56 of that radius
+/// outside it (a triangle's; a square's 0.25), and the median needs its whole perimeter.
+constexpr double kCornerRadii = 0.6;
+/// A convex section's lower quartile over the radius with its area, at least: a triangle's 0.85 (a
+/// square's 0.91, a circle's 1). Points whose lower quartile (less the noise's share) is lower are
+/// not one convex section about the tube's axis: an axis beside its branch (a circle fitted round
+/// a twig from the wrong centre, whose points' median is the offset), several stems in one tube, a
+/// joint's inside. On the 4-station scans of the tuning bush the median alone gave +61 % of its
+/// wood, with this +40 % (before: +37 %).
+constexpr double kConvexQuartile = 0.85;
+/// A normal distribution's lower quartile, in standard deviations below its mean.
+constexpr double kNoiseQuartile = 0.674;
+/// The quantile an inferred radius is raised to (less kRaiseMarginNoise noises).
+constexpr double kRaiseQuantile = 0.25;
 /// An inferred radius (no circle of its own) whose points lie outside it is raised to their lower
 /// quartile less this many noises. Points about a line with Gaussian noise σ in the plane across it
 /// (a twig thinner than the noise) have their distances' lower quartile at 0.76σ (Rayleigh), so a
@@ -56,9 +72,10 @@ double quantile(std::vector<double>& v, double q) {
   return v[k];
 }
 
-/// Per node: its points' distances to the axis of their nearest tube.
+/// Per node: its points' distances to the axis of their nearest tube, the points at most `band`
+/// plus `bandRadii` of the tube's radius outside it.
 std::vector<std::vector<double>> distancesPerNode(const std::vector<SkeletonNode>& model,
-                                                  const geom::PointCloud& cloud, double band) {
+                                                  const geom::PointCloud& cloud, double band, double bandRadii = 0.0) {
   const geom::CylinderModel pieces = cylinderModelFromSkeleton(model);
   std::vector<std::int32_t> nodeOf;  // piece -> node (pieces are the non-root nodes in order)
   for (std::size_t i = 0; i < model.size(); ++i)
@@ -75,12 +92,13 @@ std::vector<std::vector<double>> distancesPerNode(const std::vector<SkeletonNode
       const Vec3& p = cloud.positions[k * stride];
       std::int64_t piece = -1;
       const double d = index.signedDistance(p, &piece);
-      if (piece < 0 || !(d <= band)) continue;
+      if (piece < 0) continue;
       const geom::ModelCylinder& c = pieces.cylinders[static_cast<std::size_t>(piece)];
       const Vec3 axis = c.end - c.start;
       const double len2 = axis.squaredNorm();
       if (!(len2 > 0)) continue;
       const double t = std::clamp((p - c.start).dot(axis) / len2, 0.0, 1.0);
+      if (!(d <= band + bandRadii * (c.startRadius + t * (c.endRadius - c.startRadius)))) continue;
       const std::int32_t own = nodeOf[static_cast<std::size_t>(piece)];
       const std::int32_t parent = model[own].parent;
       // The lower half of a piece is its parent node's ring, unless the piece starts a branch.
@@ -187,8 +205,7 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
                                       double voxel, int window, const std::vector<double>& ownResidual) {
   SurfaceBoundStats stats;
   if (model.size() < 2 || cloud.empty() || !(noise > 0) || !(voxel > 0)) return stats;
-  const std::vector<std::vector<double>> perNode = distancesPerNode(model, cloud, noise + voxel);
-  const double margin = kMarginNoise * noise;
+  const std::vector<std::vector<double>> perNode = distancesPerNode(model, cloud, noise + voxel, kCornerRadii);
   // Each node is judged on the points of the nodes around it along its branch (a window of
   // `window` nodes): a sparse scan puts a few points on each node, a window enough for a quantile,
   // and one odd node does not decide alone. A branch's first node is capped by its parent's radius
@@ -205,11 +222,14 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
       for (int j = std::max(0, k - half); j <= std::min(m - 1, k + half); ++j)
         pooled.insert(pooled.end(), perNode[chain[j]].begin(), perNode[chain[j]].end());
       if (pooled.size() < kMinPoints) continue;
-      // A branch whose own circle fit left a larger residual than the scan's noise is not round
-      // (or rough): its points spread that much about its surface.
+      // A radius with a circle of its own (a residual) or on the tracked stem is measured: never raised.
       const double own = chain[k] < static_cast<std::int32_t>(ownResidual.size()) ? ownResidual[chain[k]] : 0.0;
-      const double low = quantile(pooled, kInsideQuantile);
-      bound[k] = low + std::max(margin, kMarginNoise * own);
+      bound[k] = quantile(pooled, kBoundQuantile) +
+                 kMedianErrors * kMedianStandardError * noise / std::sqrt(static_cast<double>(pooled.size()));
+      // One convex section (round, or of three or more flat sides) about the axis has its lower
+      // quartile, less the noise's share, at 0.85 of its area's radius or more.
+      const double low = quantile(pooled, kRaiseQuantile);
+      bound[k] = std::min(bound[k], (low + kNoiseQuartile * noise) / kConvexQuartile);
       if (!(own > 0) && !model[chain[k]].stem) raise[k] = low - kRaiseMarginNoise * noise;
       ++stats.nodesWithEvidence;
     }

@@ -2,9 +2,11 @@
 // so the points a tube explains lie on its surface, not inside it: where many of them lie deeper
 // than the scan's noise inside, the tube is thicker than the wood (a circle fitted to a shell of
 // noise or leaves, or a radius the pipe model inferred for a branch the points show thinner).
-// Each tube's radius is therefore bounded by the lower quartile of its points' distances to its axis
-// plus a margin of the noise, the noise being measured on the cloud itself (the residuals of the
-// circles fitted to it), never a figure in metres that assumes a scanner.
+// Each tube's radius is therefore bounded by the median of its points' distances to its axis (a
+// round surface's points have their median on it whatever the noise, a flat-sided one's within a
+// few percent of the radius with its area); the noise, measured on the cloud itself (the residuals
+// of the circles fitted to it), never a figure in metres that assumes a scanner, sets which points
+// are a tube's and how far an inferred radius is raised.
 #pragma once
 
 #include <cstdint>
@@ -52,13 +54,15 @@ struct SurfaceBoundStats {
 };
 
 /// Fits the radii of `model` (parent-first nodes) to the points about the tubes. Each point goes
-/// to the node of its nearest tube (points farther than `noise` plus `voxel` outside it are left
-/// out); a node is judged on the points of the `window` nodes around it along its branch: its
-/// radius is at most their distances to the axis' lower quartile plus two `noise` (or two of its
-/// own fit's residual, `ownResidual`, when larger). A node without a measured radius (no residual
-/// of its own, not on the tracked stem) whose points' lower quartile lies more than one `noise`
-/// outside it is raised to that, never above the node before it along its branch. A branch's
-/// first node is also capped by its parent's radius.
+/// to the node of its nearest tube (points farther than `noise` plus `voxel` plus 0.6 of the tube's
+/// radius outside it are left out: a flat-sided branch's corners); a node is judged on the points
+/// of the `window` nodes around it along its branch: its radius is at most their distances to the
+/// axis' median (plus three of the median's standard errors under `noise`), and at most their lower
+/// quartile plus 0.674 `noise` over 0.85 (a convex section's quartile: deeper points are several
+/// stems in one tube). A node without a measured radius (no residual of its own in `ownResidual`,
+/// not on the tracked stem) whose points' lower quartile lies more than one `noise` outside it is
+/// raised to that, never above the node before it along its branch. A branch's first node is also
+/// capped by its parent's radius.
 SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
                                       double voxel, int window, const std::vector<double>& ownResidual = {});
 
