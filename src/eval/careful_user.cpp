@@ -7,8 +7,8 @@
 
 #include "eval_methods.h"
 #include "treesketch/classify/classify.h"
-#include "treesketch/sketch/auto_sketch.h"
 #include "treesketch/eval/user_node_causes.h"
+#include "treesketch/sketch/auto_sketch.h"
 
 namespace treesketch::eval {
 
@@ -116,7 +116,8 @@ void setCauses(EvalRow& row, const NodeCauseCounts& c) {
   row.skippedHidden = count(NodeCause::Hidden);
   row.skippedClassedLeaf = count(NodeCause::ClassedLeaf);
   row.skippedRejected = count(NodeCause::Rejected);
-  for (const auto& [test, n] : c.tests) row.rejectedBy += (row.rejectedBy.empty() ? "" : ";") + test + ":" + std::to_string(n);
+  for (const auto& [test, n] : c.tests)
+    row.rejectedBy += (row.rejectedBy.empty() ? "" : ";") + test + ":" + std::to_string(n);
 }
 
 }  // namespace detail

@@ -95,7 +95,8 @@ std::vector<NodeCauseRecord> userNodeCauses(const NodeCauseInput& in, const Node
     auto res = in.results.find(id);
     if (res != in.results.end() && res->second.status == fit::NodeStatus::Fitted) {
       rec.cause = NodeCause::Fitted;
-      rec.onLimb = (res->second.centre - t.point).norm() <= options.nearRadii * t.radius + node.params.sliceHalfThickness;
+      rec.onLimb =
+          (res->second.centre - t.point).norm() <= options.nearRadii * t.radius + node.params.sliceHalfThickness;
     } else if (rec.offAxis > node.params.lineEpsilon) {
       rec.cause = NodeCause::OffLimb;
     } else if (rec.woodPoints < options.fewPoints) {
@@ -109,7 +110,8 @@ std::vector<NodeCauseRecord> userNodeCauses(const NodeCauseInput& in, const Node
       fit::NodeFitOptions fo = in.fit;
       fo.circle.seed = in.fit.circle.seed + std::uint64_t(std::int64_t(id));  // as recon seeds each node
       const fit::NodeResult once = fitNode(fitIndex, g, first, fo);
-      rec.test = once.status == fit::NodeStatus::Fitted ? "fits alone (grew past it)" : rejectionTest(once.reason);
+      // Fitted alone, the first region holds a circle the node's own fit refused: its parent's prior.
+      rec.test = once.status == fit::NodeStatus::Fitted ? "depth choice" : rejectionTest(once.reason);
     }
     out.push_back(rec);
   }

@@ -45,14 +45,11 @@ struct Limb {
     po.params = sketch::defaultSamplingFor(cloud.bounds());
     sketch = sketch::sketchFromPolylines(axes, cam, po);
     const sketch::Sketch ideal = sketch::pointNodesFromPolylines(axes, po);
-    for (const auto& [id, node] : ideal.nodes())
-      truth.push_back(TrueNode{node.point, node.normal, kRadius});
+    for (const auto& [id, node] : ideal.nodes()) truth.push_back(TrueNode{node.point, node.normal, kRadius});
   }
 };
 
-std::map<NodeCause, int> causesOf(const std::vector<NodeCauseRecord>& records) {
-  return countCauses(records).causes;
-}
+std::map<NodeCause, int> causesOf(const std::vector<NodeCauseRecord>& records) { return countCauses(records).causes; }
 
 TEST(UserNodeCauses, FittedNodesOnTheirLimb) {
   Limb l;
@@ -79,11 +76,12 @@ TEST(UserNodeCauses, TellsHiddenClassedLeafOffLimbAndRejectedApart) {
   const int n = static_cast<int>(l.sketch.size());
   std::vector<std::uint8_t> kept(l.cloud.size(), 1);
   // Wood there and kept, but no fit: the fit rejected it (here the fit was never run).
-  EXPECT_EQ(causesOf(userNodeCauses(NodeCauseInput{l.cloud, kept, l.sketch, l.truth, none, {}}))[NodeCause::Rejected], n);
+  EXPECT_EQ(causesOf(userNodeCauses(NodeCauseInput{l.cloud, kept, l.sketch, l.truth, none, {}}))[NodeCause::Rejected],
+            n);
   // The classification called every point leaf.
   const std::vector<std::uint8_t> leaf(l.cloud.size(), 0);
-  EXPECT_EQ(causesOf(userNodeCauses(NodeCauseInput{l.cloud, leaf, l.sketch, l.truth, none, {}}))[NodeCause::ClassedLeaf],
-            n);
+  EXPECT_EQ(
+      causesOf(userNodeCauses(NodeCauseInput{l.cloud, leaf, l.sketch, l.truth, none, {}}))[NodeCause::ClassedLeaf], n);
   // The scanner's rays hit leaves only.
   geom::PointCloud leaves = l.cloud;
   std::fill(leaves.meshId.begin(), leaves.meshId.end(), 1);
@@ -95,7 +93,8 @@ TEST(UserNodeCauses, TellsHiddenClassedLeafOffLimbAndRejectedApart) {
 }
 
 TEST(UserNodeCauses, NamesTheRejectingTest) {
-  EXPECT_EQ(rejectionTest("no circle found (the inliers cover only 40 degrees of the circle); lineEpsilon grew"), "arc");
+  EXPECT_EQ(rejectionTest("no circle found (the inliers cover only 40 degrees of the circle); lineEpsilon grew"),
+            "arc");
   EXPECT_EQ(rejectionTest("best circle has too few inliers (5 < 12 of 120)"), "support");
   EXPECT_EQ(rejectionTest("too few points for the minimum support (4 < 8)"), "too few points");
   EXPECT_EQ(rejectionTest("no admissible 3-point circle (collinear points, ...)"), "no admissible circle");

@@ -41,10 +41,10 @@ struct NodeCauseOptions {
 struct NodeCauseRecord {
   sketch::NodeId id = sketch::kNoNode;
   NodeCause cause = NodeCause::Fitted;
-  std::size_t woodPoints = 0;    ///< points with the scanner's wood label near the true axis point, in the slab
-  std::size_t classedWood = 0;   ///< of those, the ones the fit's cloud keeps (classed wood)
-  double offAxis = 0;            ///< distance from the true axis point to the node's line, world units
-  double radius = 0;             ///< the true radius there, world units
+  std::size_t woodPoints = 0;   ///< points with the scanner's wood label near the true axis point, in the slab
+  std::size_t classedWood = 0;  ///< of those, the ones the fit's cloud keeps (classed wood)
+  double offAxis = 0;           ///< distance from the true axis point to the node's line, world units
+  double radius = 0;            ///< the true radius there, world units
   /// Fitted, and the circle's centre lies on the limb: within nearRadii true radii plus one slice
   /// half-thickness of the true axis point (the region the points are counted in). A fitted node
   /// off its limb took another surface's circle (a limb behind, or one beside its line).
@@ -64,17 +64,18 @@ struct TrueNode {
 
 /// What the fit saw, for userNodeCauses.
 struct NodeCauseInput {
-  const geom::PointCloud& cloud;            ///< the scan, with meshId (0 = wood)
-  const std::vector<std::uint8_t>& kept;    ///< per point of `cloud`: 1 when the fit's cloud holds it (classed wood)
-  const sketch::Sketch& sketch;             ///< the user's screen sketch
-  const std::vector<TrueNode>& truth;       ///< one per sketch node, in id order
+  const geom::PointCloud& cloud;          ///< the scan, with meshId (0 = wood)
+  const std::vector<std::uint8_t>& kept;  ///< per point of `cloud`: 1 when the fit's cloud holds it (classed wood)
+  const sketch::Sketch& sketch;           ///< the user's screen sketch
+  const std::vector<TrueNode>& truth;     ///< one per sketch node, in id order
   const std::map<sketch::NodeId, fit::NodeResult>& results;  ///< the fits, by node id
   /// The options the nodes were fitted with; circle.seed is the base seed (recon's: node id added).
   fit::NodeFitOptions fit;
 };
 
 /// The cause of every node of `in.sketch` (in id order). A skipped node's rejecting test is read
-/// from a fit of its first test region alone (no growth) on the kept points. Throws OptionsError
+/// from a fit of its first test region alone (no growth, no parent's prior) on the kept points;
+/// when that fit succeeds, the node's own fit was refused by its depth choice ("depth choice"). Throws OptionsError
 /// when truth, kept or meshId do not match the sketch and the cloud in size.
 std::vector<NodeCauseRecord> userNodeCauses(const NodeCauseInput& in, const NodeCauseOptions& options = {});
 
