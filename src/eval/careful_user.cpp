@@ -116,6 +116,7 @@ void setCauses(EvalRow& row, const NodeCauseCounts& c) {
   row.skippedHidden = count(NodeCause::Hidden);
   row.skippedClassedLeaf = count(NodeCause::ClassedLeaf);
   row.skippedRejected = count(NodeCause::Rejected);
+  row.fittedOnLimb = c.onLimb;
   for (const auto& [test, n] : c.tests)
     row.rejectedBy += (row.rejectedBy.empty() ? "" : ";") + test + ":" + std::to_string(n);
 }

@@ -147,13 +147,14 @@ TEST(CarefulUserCauses, ReachTheCsv) {
   r.skippedClassedLeaf = 3;
   r.skippedRejected = 4;
   r.rejectedBy = "arc:3;support:1";
+  r.fittedOnLimb = 7;
   std::istringstream csv(csvTable({r}));
   std::string header, line;
   std::getline(csv, header);
   std::getline(csv, line);
-  EXPECT_NE(header.find("rejected_by,skipped_off_limb,skipped_hidden,skipped_classed_leaf,skipped_rejected"),
+  EXPECT_NE(header.find("rejected_by,skipped_off_limb,skipped_hidden,skipped_classed_leaf,skipped_rejected,fitted_on_limb"),
             std::string::npos);
-  EXPECT_NE(line.find(",arc:3;support:1,1,12,3,4"), std::string::npos) << line;
+  EXPECT_NE(line.find(",arc:3;support:1,1,12,3,4,7"), std::string::npos) << line;
 }
 
 }  // namespace

@@ -163,6 +163,9 @@ struct EvalRow {
   /// misses the limb, the limb is hidden from the scanner, its wood is classed leaf, or the circle
   /// fit rejects it; -1 for the other methods. rejectedBy: the rejecting tests, "arc:5;support:3".
   int skippedOffLimb = -1, skippedHidden = -1, skippedClassedLeaf = -1, skippedRejected = -1;
+  /// Of the fitted nodes, those whose circle lies on their own limb (NodeCauseRecord::onLimb); -1
+  /// for the other methods.
+  int fittedOnLimb = -1;
   std::string rejectedBy;
 };
 
