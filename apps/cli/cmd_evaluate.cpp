@@ -96,6 +96,11 @@ void addMethodOptions(CLI::App& cmd, EvaluateOpts& o) {
   cmd.add_flag_function("--user-every-point", [&o](std::int64_t) { o.e.userFitsOnWood = false; },
                "On leaf-on scans the simulated user's nodes are fitted to every point (the thesis) instead of "
                "the points the wood/leaf classification calls wood");
+  cmd.add_flag_function("--user-no-growth", [&o](std::int64_t) { o.e.userGrowth = false; },
+                        "The simulated user's nodes keep to their first test region (no growth until a circle is found)");
+  cmd.add_option("--user-band-metres", o.e.userInlierBandMetres,
+                 "Inlier band of the simulated user's circle fits, metres (0: the fit's default in scene units)")
+      ->check(CLI::NonNegativeNumber);
   cmd.add_flag("--correcting-user", o.correcting,
                "Run only the simulated correcting user: from the automatic skeleton, one edit at a time "
                "on the worst visible error; writes correcting_user.{csv,md} and correcting_user_*.svg");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <numeric>
 #include <set>
@@ -19,6 +20,7 @@
 #include "treesketch/sketch/polyline_sketch.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/stopwatch.h"
+#include "eval_methods.h"
 
 namespace treesketch::eval {
 
@@ -28,72 +30,14 @@ namespace {
 
 const geom::Viewport kViewport{0, 0, 1280, 800};
 
-double polylineLength(const sketch::BranchPolyline& b) {
-  double l = 0;
-  for (std::size_t i = 1; i < b.points.size(); ++i) l += (b.points[i] - b.points[i - 1]).norm();
-  return l;
-}
+}  // namespace
 
-/// A careful user with a budget of about `nodeCount` nodes draws the trunk and the branches long
-/// enough to deserve a node at the chosen spacing s: a branch (whose parent is drawn) is drawn when
-/// its length is at least s, with max(1, round(length / s)) nodes (as sketchFromPolylines places
-/// them). s is found by bisection so that the node count is as close to the budget as possible.
-std::vector<bool> branchesAtSpacing(const std::vector<sketch::BranchPolyline>& axes, double s, int* nodes) {
-  std::vector<bool> keep(axes.size(), false);
-  int count = 0;
-  for (std::size_t i = 0; i < axes.size(); ++i) {  // parents come before children in both sources
-    bool isRoot = axes[i].parent < 0;
-    double len = polylineLength(axes[i]);
-    bool parentKept = isRoot || (axes[i].parent < static_cast<int>(i) && keep[axes[i].parent]);
-    keep[i] = isRoot || (parentKept && len >= s);
-    if (keep[i]) count += std::max(1, static_cast<int>(std::lround(len / s))) + (isRoot ? 1 : 0);
-  }
-  *nodes = count;
-  return keep;
-}
+namespace detail {
 
-std::vector<sketch::BranchPolyline> branchesForBudget(const std::vector<sketch::BranchPolyline>& axes, int nodeCount,
-                                                      double* spacingOut) {
-  double total = 0;
-  for (const auto& a : axes) total += polylineLength(a);
-  double lo = total * 1e-4, hi = total;  // count(lo) >= budget >= count(hi), mostly
-  int n = 0;
-  for (int iter = 0; iter < 60; ++iter) {
-    double mid = std::sqrt(lo * hi);
-    branchesAtSpacing(axes, mid, &n);
-    if (n > nodeCount)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  int nLo = 0, nHi = 0;
-  auto keepLo = branchesAtSpacing(axes, lo, &nLo);
-  auto keepHi = branchesAtSpacing(axes, hi, &nHi);
-  bool useLo = std::abs(nLo - nodeCount) < std::abs(nHi - nodeCount);
-  const std::vector<bool>& keep = useLo ? keepLo : keepHi;
-  std::vector<int> newIndex(axes.size(), -1);
-  std::vector<sketch::BranchPolyline> out;
-  for (std::size_t i = 0; i < axes.size(); ++i) {
-    if (!keep[i]) continue;
-    newIndex[i] = static_cast<int>(out.size());
-    out.push_back(axes[i]);
-  }
-  for (auto& b : out)
-    if (b.parent >= 0) b.parent = newIndex[b.parent];
-  if (spacingOut) *spacingOut = useLo ? lo : hi;
-  return out;
-}
-
-/// chooseDepth: a person's screen nodes choose their depth along the view ray and radii are
-/// inferred along the limbs, as the viewer fits a sketch; the thesis's uniform baseline keeps the
-/// thesis's fit.
-MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud& cloud, std::uint64_t seed,
-                               const Stopwatch& timer, bool chooseDepth = false) {
-  recon::ReconstructionOptions ro;
-  ro.seed = seed;
-  ro.fit.chooseDepth = chooseDepth;
-  ro.radii.enabled = chooseDepth;  // as the viewer fits a person's sketch
-  recon::ReconstructionResult r = recon::reconstruct(cloud, sk, ro);
+MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud& cloud,
+                               const recon::ReconstructionOptions& options, const Stopwatch& timer,
+                               NodeResults* results) {
+  recon::ReconstructionResult r = recon::reconstruct(cloud, sk, options);
   MethodOutput out;
   out.mesh = std::move(r.mesh);
   out.sketch = sk;
@@ -108,6 +52,15 @@ MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud&
       out.root = sk.node(root).point;
   }
   out.ms = timer.ms();
+  if (results) *results = std::move(r.results);
+  return out;
+}
+
+geom::PointCloud pointsWhere(const geom::PointCloud& cloud, const std::vector<std::uint8_t>& flags) {
+  geom::PointCloud out;
+  out.up = cloud.up;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (flags[i]) out.positions.push_back(cloud.positions[i]);
   return out;
 }
 
@@ -115,51 +68,30 @@ geom::Camera viewCamera(const MethodInput& in) {
   return io::cameraForView(in.options.view, in.cloud.bounds(), in.tree.up, kViewport, false);
 }
 
+}  // namespace detail
+
+namespace {
+
+// The thesis's fit, as the uniform baseline and the ideal user's point nodes keep it.
+recon::ReconstructionOptions thesisOptions(std::uint64_t seed) {
+  recon::ReconstructionOptions ro;
+  ro.seed = seed;
+  return ro;
+}
+
+using detail::reconstructSketch;
+using detail::userOptions;
+using detail::viewCamera;
+
 MethodOutput methodUniform(const MethodInput& in) {
   const Stopwatch timer;
   sketch::Sketch sk = sketch::uniformAutoSketch(in.cloud, viewCamera(in), in.nodeCount, in.tree.up);
-  return reconstructSketch(sk, in.cloud, in.options.seed, timer);
-}
-
-sketch::PolylineSketchOptions userOptions(const MethodInput& in, std::vector<sketch::BranchPolyline>& axes) {
-  sketch::PolylineSketchOptions po;
-  double spacing = 0;
-  axes = branchesForBudget(in.tree.axes, in.nodeCount, &spacing);
-  po.nodeSpacing = spacing;
-  po.pixelNoise = in.options.pixelNoise;
-  po.seed = in.options.seed;
-  po.params = sketch::defaultSamplingFor(in.cloud.bounds());
-  po.up = in.tree.up;
-  return po;
-}
-
-geom::PointCloud classifiedWood(const geom::PointCloud& cloud, geom::UpAxis up);
-constexpr std::size_t kMinWoodPoints = 100;
-
-// The careful user draws over the whole cloud, as the person sees it; on a leaf-on scan its nodes
-// are fitted to the points the wood/leaf classification calls wood (EvalOptions::userFitsOnWood),
-// as the desktop tool fits a person's nodes once the cloud is classified.
-MethodOutput methodUser(const MethodInput& in) {
-  const Stopwatch timer;
-  std::vector<sketch::BranchPolyline> axes;
-  auto po = userOptions(in, axes);
-  sketch::Sketch sk = sketch::sketchFromPolylines(axes, viewCamera(in), po);
-  if (in.leafOn && in.options.userFitsOnWood) {
-    const geom::PointCloud wood = classifiedWood(in.cloud, in.tree.up);
-    if (wood.size() >= kMinWoodPoints)  // else no tree's wood: every point, as before
-      return reconstructSketch(sk, wood, in.options.seed, timer, in.options.chooseDepth);
-  }
-  return reconstructSketch(sk, in.cloud, in.options.seed, timer, in.options.chooseDepth);
+  return reconstructSketch(sk, in.cloud, thesisOptions(in.options.seed), timer);
 }
 
 /// The points of `cloud` the wood/leaf classification calls wood (empty when it finds none).
 geom::PointCloud classifiedWood(const geom::PointCloud& cloud, geom::UpAxis up) {
-  const classify::Classification c = classify::classifyWood(cloud, up);
-  geom::PointCloud wood;
-  wood.up = cloud.up;
-  for (std::size_t i = 0; i < cloud.size(); ++i)
-    if (c.wood[i]) wood.positions.push_back(cloud.positions[i]);
-  return wood;
+  return detail::pointsWhere(cloud, classify::classifyWood(cloud, up).wood);
 }
 
 MethodOutput methodIdeal(const MethodInput& in) {
@@ -167,7 +99,7 @@ MethodOutput methodIdeal(const MethodInput& in) {
   std::vector<sketch::BranchPolyline> axes;
   auto po = userOptions(in, axes);
   sketch::Sketch sk = sketch::pointNodesFromPolylines(axes, po);
-  return reconstructSketch(sk, in.cloud, in.options.seed, timer);
+  return reconstructSketch(sk, in.cloud, thesisOptions(in.options.seed), timer);
 }
 
 MethodOutput methodSkeleton(const MethodInput& in) {
@@ -196,7 +128,7 @@ MethodOutput methodSkeletonWood(const MethodInput& in) {
   if (!in.leafOn) return methodSkeleton(in);
   const Stopwatch timer;
   const geom::PointCloud wood = classifiedWood(in.cloud, in.tree.up);
-  if (wood.size() < kMinWoodPoints) return methodSkeleton(in);  // nothing to model as wood: as before
+  if (wood.size() < detail::kMinWoodPoints) return methodSkeleton(in);  // nothing to model as wood: as before
   MethodInput woodInput{in.tree, wood, in.options, in.nodeCount, false};
   MethodOutput out = methodSkeleton(woodInput);
   out.ms = timer.ms();
@@ -207,7 +139,7 @@ const std::map<std::string, Method>& registry() {
   static const std::map<std::string, Method> methods = [] {
     std::map<std::string, Method> m;
     m["uniform"] = methodUniform;
-    m["user"] = methodUser;
+    m["user"] = detail::methodUser;
     m["ideal"] = methodIdeal;
     m["skeleton"] = methodSkeleton;
     m["skeleton-wood"] = methodSkeletonWood;
@@ -448,6 +380,7 @@ EvalRow evaluateMethod(const EvalCase& k, const EvalOptions& o, const std::strin
   row.backwardMean = pct(bwd.mean);
   row.backwardRms = pct(bwd.rms);
   setVolumes(row, tree, out.model);
+  if (out.causes) detail::setCauses(row, *out.causes);
   if (o.log) {
     char buf[360];
     std::snprintf(buf, sizeof buf,
@@ -455,6 +388,7 @@ EvalRow evaluateMethod(const EvalCase& k, const EvalOptions& o, const std::strin
                   tree.name.c_str(), k.c.name.c_str(), row.leaf.c_str(), method.c_str(), row.fitted, row.nodes,
                   row.backwardRms, row.forwardRms, row.rootOffsetPct, row.reconstructMs, volumeText(row).c_str());
     o.log(buf);
+    if (out.causes) o.log("  " + out.causes->text());
   }
   return row;
 }

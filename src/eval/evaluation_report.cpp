@@ -296,7 +296,8 @@ std::string csvTable(const std::vector<EvalRow>& rows) {
        "stations,step_deg,range_noise_mm,metres_per_unit,reconstruct_ms,samples,bbox_diagonal,backward_max_pct,"
        "backward_mean_pct,backward_rms_pct,forward_max_pct,forward_mean_pct,forward_rms_pct,mesh_triangles,tips,"
        "reference_limbs,root_offset_pct,root_at_base,sparse,backward_only,true_volume,model_volume,volume_error,"
-       "measured_volume_share\n";
+       "measured_volume_share,rejected_by,skipped_off_limb,skipped_hidden,skipped_classed_leaf,skipped_rejected,"
+       "fitted_on_limb\n";
   s.precision(9);
   for (const auto& r : rows) {
     s << r.tree << "," << r.half << "," << r.condition << "," << r.factor << "," << r.pattern << "," << r.leaf << ","
@@ -307,7 +308,8 @@ std::string csvTable(const std::vector<EvalRow>& rows) {
       << r.forwardMean << "," << r.forwardRms << "," << r.meshTriangles << "," << r.tips << "," << r.referenceLimbs
       << "," << r.rootOffsetPct << "," << (r.rootAtBase ? 1 : 0) << "," << (r.sparse ? 1 : 0) << ","
       << (r.backwardOnly ? 1 : 0) << "," << r.trueVolume << "," << r.modelVolume << "," << r.volumeError << ","
-      << r.measuredVolumeShare << "\n";
+      << r.measuredVolumeShare << "," << r.rejectedBy << "," << r.skippedOffLimb << "," << r.skippedHidden << ","
+      << r.skippedClassedLeaf << "," << r.skippedRejected << "," << r.fittedOnLimb << "\n";
   }
   return s.str();
 }

@@ -404,7 +404,8 @@ NodeResult fitNode(const CloudIndex& index, const sketch::NodeGeometry& g, const
       covered = true;
       break;
     }
-    if (res.growthSteps >= options.maxGrowthSteps || (p.maxGrowthSteps >= 0 && res.growthSteps >= p.maxGrowthSteps))
+    if (res.growthSteps >= options.maxGrowthSteps || (p.maxGrowthSteps >= 0 && res.growthSteps >= p.maxGrowthSteps) ||
+        (g.hasLine && !options.growScreenNodes))
       break;
     eps += p.lineEpsilonStep;
     ++res.growthSteps;

@@ -152,6 +152,32 @@ TEST(FitNode, PerNodeGrowthCap) {
   EXPECT_EQ(fitNode(index, lineNode(1.55, 1.0), p).status, NodeStatus::Fitted);
 }
 
+TEST(FitNode, ScreenNodesWithoutGrowthKeepToTheirFirstTestRegion) {
+  Trunk t;
+  CloudIndex index(t.cloud);
+  sketch::SamplingParams p;
+  p.lineEpsilon = 0.1;  // the line passes 0.55 from the axis: the trunk is found only after growing
+  p.lineEpsilonStep = 0.2;
+  NodeFitOptions o;
+  o.growScreenNodes = false;
+  NodeResult r = fitNode(index, lineNode(1.55, 1.0), p, o);
+  EXPECT_EQ(r.status, NodeStatus::Skipped);
+  EXPECT_EQ(r.growthSteps, 0);
+  EXPECT_FALSE(r.reason.empty());
+  // A line through the trunk with a region wide enough for the trunk still fits in it.
+  sketch::SamplingParams wide = p;
+  wide.lineEpsilon = 0.4;
+  r = fitNode(index, lineNode(1.05, 1.0), wide, o);
+  EXPECT_EQ(r.status, NodeStatus::Fitted) << r.reason;
+  EXPECT_EQ(r.growthSteps, 0);
+  // Point nodes still grow (their own cap decides).
+  sketch::SamplingParams pp = p;
+  pp.lineEpsilon = 0.05;
+  r = fitNode(index, pointNode(Vec3(1.0, 1.0, -0.05), Vec3::UnitY()), pp, o);
+  EXPECT_EQ(r.status, NodeStatus::Fitted) << r.reason;
+  EXPECT_GT(r.growthSteps, 0);
+}
+
 TEST(FitNode, DisabledNodesAreNotFitted) {
   Trunk t;
   CloudIndex index(t.cloud);

@@ -34,9 +34,11 @@
 
 #include "treesketch/eval/condition_matrix.h"
 #include "treesketch/eval/tree_suite.h"
+#include "treesketch/eval/user_node_causes.h"
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/tri_mesh.h"
 #include "treesketch/model/tree_model.h"
+#include "treesketch/recon/reconstruction.h"
 #include "treesketch/sketch/sketch.h"
 
 namespace treesketch::eval {
@@ -94,6 +96,15 @@ struct EvalOptions {
   /// nodes fit against 4.4 (sphere) and 11.1 against 3.6 (TLS); forward RMS 13 % against 24 %,
   /// backward RMS 0.46-0.62 % against 0.26-0.36 %. Off: every point, as the thesis.
   bool userFitsOnWood = true;
+  /// The simulated careful user's screen nodes grow their test region until it holds a circle, as
+  /// the thesis's fit does (fit::NodeFitOptions::growScreenNodes). Off: each node keeps to its
+  /// first test region. Measured (docs/evaluation/README.md): off, fewer nodes fit but more of
+  /// them on their own limb; the RMS trade backward for forward error. On: the thesis.
+  bool userGrowth = true;
+  /// The circle fit's inlier band for the simulated careful user, metres (converted with the
+  /// tree's TreeCase::metresPerUnit); 0 = the fit's default (fit::CircleFitOptions::inlierThreshold,
+  /// 0.01 in scene units: 1 mm on the ez-tree trees, which are decimetres).
+  double userInlierBandMetres = 0.0;
   /// Comparison samples per direction; 0 = MeshLab's default (as many as the sampled mesh has
   /// vertices), raised to at least `minSamples`.
   std::uint64_t samples = 0;
@@ -148,6 +159,14 @@ struct EvalRow {
   /// Share of the model's volume whose pieces rest on a fitted circle (model::measuredVolumeShare;
   /// NaN without a cylinder model).
   double measuredVolumeShare = NAN;
+  /// The simulated careful user's skipped nodes by cause (eval/user_node_causes.h): its line
+  /// misses the limb, the limb is hidden from the scanner, its wood is classed leaf, or the circle
+  /// fit rejects it; -1 for the other methods. rejectedBy: the rejecting tests, "arc:5;support:3".
+  int skippedOffLimb = -1, skippedHidden = -1, skippedClassedLeaf = -1, skippedRejected = -1;
+  /// Of the fitted nodes, those whose circle lies on their own limb (NodeCauseRecord::onLimb); -1
+  /// for the other methods.
+  int fittedOnLimb = -1;
+  std::string rejectedBy;
 };
 
 /// What a method returns: the reconstructed mesh, the sketch node counts and its time.
@@ -163,6 +182,8 @@ struct MethodOutput {
   /// The cylinder model behind the mesh, for the outputs a user gets (the skeleton method's;
   /// empty for the others).
   model::TreeModel model;
+  /// The "user" method on a simulated scan: why its nodes have or lack a circle.
+  std::optional<NodeCauseCounts> causes;
 };
 
 struct MethodInput {
@@ -181,6 +202,12 @@ using Method = std::function<MethodOutput(const MethodInput&)>;
 std::vector<std::string> methodNames();
 /// The methods an evaluation runs when none are named: all but "skeleton-wood".
 std::vector<std::string> defaultMethodNames();
+/// How the simulated careful user's nodes are fitted (seed: options.seed): the thesis's fit, with
+/// the depth choice and radius inference of the desktop tool when options.chooseDepth, no growth
+/// of a screen node's test region unless options.userGrowth, and the inlier band
+/// options.userInlierBandMetres in the tree's units (`metresPerUnit`) when it is > 0.
+recon::ReconstructionOptions carefulUserFitOptions(const EvalOptions& options, double metresPerUnit);
+
 /// Runs one method by name; throws OptionsError for an unknown name.
 MethodOutput runMethod(const std::string& name, const MethodInput& input);
 

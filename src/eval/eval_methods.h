@@ -1,0 +1,36 @@
+// The evaluation's sketch methods shared between evaluation.cpp and careful_user.cpp (internal).
+#pragma once
+
+#include <map>
+#include <vector>
+
+#include "treesketch/eval/evaluation.h"
+#include "treesketch/recon/reconstruction.h"
+#include "treesketch/sketch/polyline_sketch.h"
+#include "treesketch/util/stopwatch.h"
+
+namespace treesketch::eval::detail {
+
+using NodeResults = std::map<sketch::NodeId, fit::NodeResult>;
+
+/// Fewer points called wood than this: the classification found no tree's wood (every point is used).
+constexpr std::size_t kMinWoodPoints = 100;
+
+/// Reconstructs `sk` on `cloud` with `options`; the fits go to *results when given.
+MethodOutput reconstructSketch(const sketch::Sketch& sk, const geom::PointCloud& cloud,
+                               const recon::ReconstructionOptions& options, const Stopwatch& timer,
+                               NodeResults* results = nullptr);
+/// The points of `cloud` whose flag is non-zero (one flag per point).
+geom::PointCloud pointsWhere(const geom::PointCloud& cloud, const std::vector<std::uint8_t>& flags);
+/// The camera of the view the sketches are drawn in.
+geom::Camera viewCamera(const MethodInput& in);
+/// The simulated user's branches (into `axes`) and polyline options for in.nodeCount nodes.
+sketch::PolylineSketchOptions userOptions(const MethodInput& in, std::vector<sketch::BranchPolyline>& axes);
+
+/// The row's skipped-node counts from the user's causes.
+void setCauses(EvalRow& row, const NodeCauseCounts& causes);
+
+/// The "user" method (careful_user.cpp).
+MethodOutput methodUser(const MethodInput& in);
+
+}  // namespace treesketch::eval::detail
