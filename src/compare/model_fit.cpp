@@ -169,6 +169,47 @@ struct CylinderModelIndex::Impl {
     if (piece) *piece = bestPiece;
     return best;
   }
+
+  /// query(), also collecting the pieces within max(best, 0) + slack (the bound shrinks as `best`
+  /// does; a box is skipped only when beyond it, so `best` is still the exact minimum).
+  double collect(const Vec3& p, double slack, std::vector<NearPiece>& near) const {
+    near.clear();
+    double best = kInf;
+    if (nodes.empty()) return best;
+    std::uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes[stack[--top]];
+      if (lowerBound(p, n.box) > std::max(best, 0.0) + slack) continue;
+      if (n.count > 0) {
+        for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+          const std::uint32_t k = order[i];
+          const double d = compare::signedDistance(p, pieces[k], open[k][0], open[k][1]);
+          best = std::min(best, d);
+          if (d <= std::max(best, 0.0) + slack) {
+            near.push_back({k, modelIndex[k], d});
+          }
+        }
+        continue;
+      }
+      const double dl = lowerBound(p, nodes[n.left].box), dr = lowerBound(p, nodes[n.right].box);
+      if (dl < dr) {
+        stack[top++] = n.right;
+        stack[top++] = n.left;
+      } else {
+        stack[top++] = n.left;
+        stack[top++] = n.right;
+      }
+    }
+    // Entries taken under an earlier, looser bound.
+    const double bound = std::max(best, 0.0) + slack;
+    std::size_t kept = 0;
+    for (std::size_t j = 0; j < near.size(); ++j)
+      if (near[j].distance <= bound) near[kept++] = near[j];
+    near.resize(kept);
+    return best;
+  }
 };
 
 CylinderModelIndex::CylinderModelIndex(const geom::CylinderModel& model) : impl_(std::make_unique<Impl>()) {
@@ -209,6 +250,31 @@ CylinderModelIndex& CylinderModelIndex::operator=(CylinderModelIndex&&) noexcept
 double CylinderModelIndex::signedDistance(const Vec3& p, std::int64_t* piece) const { return impl_->query(p, piece); }
 
 std::size_t CylinderModelIndex::size() const { return impl_->pieces.size(); }
+
+double CylinderModelIndex::nearPieces(const Vec3& p, double reach, std::vector<NearPiece>& near) const {
+  return impl_->collect(p, 2 * std::max(reach, 0.0), near);
+}
+
+double CylinderModelIndex::signedDistanceAmong(const Vec3& p, const std::vector<NearPiece>& near, std::int64_t* piece,
+                                               bool* tied) const {
+  double best = kInf;
+  std::int64_t bestPiece = -1;
+  bool tie = false;
+  for (const NearPiece& c : near) {
+    const std::uint32_t k = c.slot;
+    const double d = compare::signedDistance(p, impl_->pieces[k], impl_->open[k][0], impl_->open[k][1]);
+    if (d < best) {
+      best = d;
+      bestPiece = c.piece;
+      tie = false;
+    } else if (d == best) {
+      tie = true;
+    }
+  }
+  if (piece) *piece = bestPiece;
+  if (tied) *tied = tie;
+  return best;
+}
 
 // ---- the report -------------------------------------------------------------------------------
 

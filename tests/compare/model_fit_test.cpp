@@ -5,6 +5,7 @@
 
 #include "test_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -119,6 +120,51 @@ TEST(ModelFitIndex, MatchesBruteForce) {
     EXPECT_EQ(signedDistance(p, m.cylinders[idx]), brute);
   }
   EXPECT_TRUE(std::isinf(CylinderModelIndex(CylinderModel{}).signedDistance({0, 0, 0})));
+}
+
+// nearPieces holds the piece nearest to every point within its reach (and signedDistanceAmong
+// over them gives that point's signed distance), and every piece it names is within its bound.
+TEST(ModelFitIndex, NearPiecesHoldTheNearestPieceOfEveryPointWithinReach) {
+  std::mt19937_64 rng(12);
+  const CylinderModel m = test::randomJoinedModel(11, 150);
+  const CylinderModelIndex index(m);
+  const std::vector<std::array<bool, 2>> open = jointCaps(m);
+  std::uniform_real_distribution<double> pos(-1.3, 1.3), reachOf(0.0, 0.15), u(-1, 1);
+  std::vector<CylinderModelIndex::NearPiece> near;
+  int inside = 0, tiedOrMissing = 0;
+  for (int i = 0; i < 2000; ++i) {
+    // Half the points on a piece's axis or about it, half anywhere.
+    const ModelCylinder& c = m.cylinders[rng() % m.size()];
+    const Vec3 p = i % 2 ? Vec3(pos(rng), pos(rng), pos(rng))
+                         : c.start + (0.5 + 0.6 * u(rng)) * (c.end - c.start) + 0.05 * Vec3(u(rng), u(rng), u(rng));
+    const double reach = reachOf(rng);
+    const double d = index.nearPieces(p, reach, near);
+    ASSERT_EQ(d, index.signedDistance(p)) << i;
+    // Exactly the pieces within max(d, 0) + 2 reach.
+    std::vector<std::int64_t> expected, got;
+    for (std::size_t k = 0; k < m.size(); ++k)
+      if (signedDistance(p, m.cylinders[k], open[k][0], open[k][1]) <= std::max(d, 0.0) + 2 * reach)
+        expected.push_back(static_cast<std::int64_t>(k));
+    for (const auto& n : near) got.push_back(n.piece);
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(got, expected) << i;
+    for (int j = 0; j < 10; ++j) {
+      Vec3 step(u(rng), u(rng), u(rng));
+      if (step.norm() > 1) step /= step.norm();
+      const Vec3 q = p + reach * step;
+      std::int64_t piece = -1, among = -1;
+      bool tied = false;
+      const double e = index.signedDistance(q, &piece);
+      inside += e < 0;
+      ASSERT_EQ(index.signedDistanceAmong(q, near, &among, &tied), e) << i << " " << j;
+      tiedOrMissing += tied || std::find(got.begin(), got.end(), piece) == got.end();
+      if (!tied) EXPECT_EQ(among, piece) << i << " " << j;
+    }
+  }
+  EXPECT_GT(inside, 1000);       // the points inside the model were tried too
+  EXPECT_EQ(tiedOrMissing, 0);   // ties are exact equalities: none on random points
+  EXPECT_TRUE(std::isinf(CylinderModelIndex(CylinderModel{}).nearPieces({0, 0, 0}, 1, near)));
+  EXPECT_TRUE(near.empty());
 }
 
 TEST(ModelFitIndex, RejectsBadPieces) {
