@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <numeric>
 #include <string>
+#include <utility>
 
 #include "treesketch/util/error.h"
 
@@ -23,17 +24,44 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Distance in the (axial t, radial ρ) half-plane from (t, ρ) to the segment a→b.
-double segmentDistance2d(double t, double rho, double at, double arho, double bt, double brho) {
+/// Squared distance in the (axial t, radial ρ) half-plane from (t, ρ) to the segment a→b.
+double segmentDistance2dSquared(double t, double rho, double at, double arho, double bt, double brho) {
   const double et = bt - at, er = brho - arho;
   const double wt = t - at, wr = rho - arho;
   const double ee = et * et + er * er;
   const double s = ee > 0 ? std::clamp((wt * et + wr * er) / ee, 0.0, 1.0) : 0.0;
   const double dt = wt - s * et, dr = wr - s * er;
-  // Not std::hypot: nothing overflows at tree scales, and its care made the whole measure 1.5×
-  // slower (bench_model_fit).
-  return std::sqrt(dt * dt + dr * dr);
+  return dt * dt + dr * dr;
 }
+
+/// A frustum's frame, computed once (CylinderModelIndex): signedDistance's arithmetic, step for
+/// step, so its values are the same to the last bit.
+struct Frame {
+  Vec3 start, u;  // u: the unit axis
+  double len = 0, r0 = 0, r1 = 0;
+  bool openStart = false, openEnd = false;
+
+  Frame(const geom::ModelCylinder& c, bool open0, bool open1) : start(c.start), r0(c.startRadius), r1(c.endRadius) {
+    const Vec3 d = c.end - c.start;
+    len = d.norm();
+    u = d / len;
+    openStart = open0;
+    openEnd = open1;
+  }
+  double signedDistance(const Vec3& p) const {
+    const Vec3 w = p - start;
+    const double t = w.dot(u);
+    const double rho = (w - t * u).norm();
+    // The smallest of three distances is the root of the smallest square (the rounded square
+    // root never decreases), one root instead of three.
+    const double cap0 = segmentDistance2dSquared(t, rho, 0, 0, 0, r0);
+    const double cap1 = segmentDistance2dSquared(t, rho, len, 0, len, r1);
+    const double side = segmentDistance2dSquared(t, rho, 0, r0, len, r1);
+    const bool inside = t >= 0 && t <= len && rho <= r0 + (r1 - r0) * (t / len);
+    if (!inside) return std::sqrt(std::min({cap0, cap1, side}));
+    return -std::sqrt(std::min({openStart ? kInf : cap0, openEnd ? kInf : cap1, side}));
+  }
+};
 
 }  // namespace
 
@@ -49,9 +77,11 @@ double signedDistance(const Vec3& p, const geom::ModelCylinder& c, bool openStar
   const double t = w.dot(u);
   const double rho = (w - t * u).norm();
   const double r0 = c.startRadius, r1 = c.endRadius;
-  const double cap0 = segmentDistance2d(t, rho, 0, 0, 0, r0);
-  const double cap1 = segmentDistance2d(t, rho, len, 0, len, r1);
-  const double side = segmentDistance2d(t, rho, 0, r0, len, r1);
+  // Not std::hypot: nothing overflows at tree scales, and its care made the whole measure 1.5×
+  // slower (bench_model_fit).
+  const double cap0 = std::sqrt(segmentDistance2dSquared(t, rho, 0, 0, 0, r0));
+  const double cap1 = std::sqrt(segmentDistance2dSquared(t, rho, len, 0, len, r1));
+  const double side = std::sqrt(segmentDistance2dSquared(t, rho, 0, r0, len, r1));
   const bool inside = t >= 0 && t <= len && rho <= r0 + (r1 - r0) * (t / len);
   if (!inside) return std::min({cap0, cap1, side});
   // Inside, an open cap (joined to the next piece) is no surface: the depth is to the rest.
@@ -92,6 +122,8 @@ struct CylinderModelIndex::Impl {
   std::vector<geom::BBox> boxes;
   std::vector<std::uint32_t> order;  // pieces, grouped by leaf
   std::vector<Node> nodes;
+  std::vector<Frame> frames;             // per slot (position in `order`): its piece's frame
+  std::vector<std::int64_t> slotPiece;   // per slot: its piece's index in the model
 
   static constexpr std::uint32_t kLeafSize = 4;
 
@@ -139,19 +171,20 @@ struct CylinderModelIndex::Impl {
       if (piece) *piece = -1;
       return best;
     }
-    std::uint32_t stack[128];
+    // Each node with its lower bound, computed once when its parent orders its children.
+    std::pair<std::uint32_t, double> stack[128];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, lowerBound(p, nodes[0].box)};
     while (top > 0) {
-      const Node& n = nodes[stack[--top]];
-      if (lowerBound(p, n.box) >= best) continue;
+      const auto [id, bound] = stack[--top];
+      const Node& n = nodes[id];
+      if (bound >= best) continue;
       if (n.count > 0) {
         for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-          const std::uint32_t k = order[i];
-          const double d = compare::signedDistance(p, pieces[k], open[k][0], open[k][1]);
+          const double d = frames[i].signedDistance(p);
           if (d < best) {
             best = d;
-            bestPiece = modelIndex[order[i]];
+            bestPiece = slotPiece[i];
           }
         }
         continue;
@@ -159,11 +192,11 @@ struct CylinderModelIndex::Impl {
       // Nearer child last, so it is searched first and tightens `best` for the other.
       const double dl = lowerBound(p, nodes[n.left].box), dr = lowerBound(p, nodes[n.right].box);
       if (dl < dr) {
-        stack[top++] = n.right;
-        stack[top++] = n.left;
+        stack[top++] = {n.right, dr};
+        stack[top++] = {n.left, dl};
       } else {
-        stack[top++] = n.left;
-        stack[top++] = n.right;
+        stack[top++] = {n.left, dl};
+        stack[top++] = {n.right, dr};
       }
     }
     if (piece) *piece = bestPiece;
@@ -176,30 +209,28 @@ struct CylinderModelIndex::Impl {
     near.clear();
     double best = kInf;
     if (nodes.empty()) return best;
-    std::uint32_t stack[128];
+    std::pair<std::uint32_t, double> stack[128];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, lowerBound(p, nodes[0].box)};
     while (top > 0) {
-      const Node& n = nodes[stack[--top]];
-      if (lowerBound(p, n.box) > std::max(best, 0.0) + slack) continue;
+      const auto [id, bound] = stack[--top];
+      const Node& n = nodes[id];
+      if (bound > std::max(best, 0.0) + slack) continue;
       if (n.count > 0) {
         for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-          const std::uint32_t k = order[i];
-          const double d = compare::signedDistance(p, pieces[k], open[k][0], open[k][1]);
+          const double d = frames[i].signedDistance(p);
           best = std::min(best, d);
-          if (d <= std::max(best, 0.0) + slack) {
-            near.push_back({k, modelIndex[k], d});
-          }
+          if (d <= std::max(best, 0.0) + slack) near.push_back({i, slotPiece[i], d});
         }
         continue;
       }
       const double dl = lowerBound(p, nodes[n.left].box), dr = lowerBound(p, nodes[n.right].box);
       if (dl < dr) {
-        stack[top++] = n.right;
-        stack[top++] = n.left;
+        stack[top++] = {n.right, dr};
+        stack[top++] = {n.left, dl};
       } else {
-        stack[top++] = n.left;
-        stack[top++] = n.right;
+        stack[top++] = {n.left, dl};
+        stack[top++] = {n.right, dr};
       }
     }
     // Entries taken under an earlier, looser bound.
@@ -241,6 +272,11 @@ CylinderModelIndex::CylinderModelIndex(const geom::CylinderModel& model) : impl_
   std::iota(impl_->order.begin(), impl_->order.end(), 0u);
   impl_->nodes.reserve(2 * (n / Impl::kLeafSize + 1));
   impl_->build(0, n, centres);
+  impl_->frames.reserve(n);
+  for (const std::uint32_t k : impl_->order) {
+    impl_->frames.emplace_back(impl_->pieces[k], impl_->open[k][0], impl_->open[k][1]);
+    impl_->slotPiece.push_back(impl_->modelIndex[k]);
+  }
 }
 
 CylinderModelIndex::~CylinderModelIndex() = default;
@@ -261,8 +297,7 @@ double CylinderModelIndex::signedDistanceAmong(const Vec3& p, const std::vector<
   std::int64_t bestPiece = -1;
   bool tie = false;
   for (const NearPiece& c : near) {
-    const std::uint32_t k = c.slot;
-    const double d = compare::signedDistance(p, impl_->pieces[k], impl_->open[k][0], impl_->open[k][1]);
+    const double d = impl_->frames[c.slot].signedDistance(p);
     if (d < best) {
       best = d;
       bestPiece = c.piece;
