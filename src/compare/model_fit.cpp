@@ -124,6 +124,13 @@ struct CylinderModelIndex::Impl {
   std::vector<Node> nodes;
   std::vector<Frame> frames;             // per slot (position in `order`): its piece's frame
   std::vector<std::int64_t> slotPiece;   // per slot: its piece's index in the model
+  std::vector<geom::BBox> slotBox;       // per slot: its piece's box
+  /// An entry of the search's stack: a node and its squared distance from the point asked about
+  /// (squaredBoxDistance).
+  struct Pending {
+    std::uint32_t node;
+    double bound;
+  };
 
   static constexpr std::uint32_t kLeafSize = 4;
 
@@ -155,14 +162,58 @@ struct CylinderModelIndex::Impl {
     return id;
   }
 
-  /// A lower bound of the signed distance from p to anything inside `box`: its distance outside
-  /// the box, -inf inside (a piece there may hold p).
-  static double lowerBound(const Vec3& p, const geom::BBox& box) {
+  /// The squared distance from p to `box`, 0 inside it. Its root (rootBound) is a lower bound of
+  /// the signed distance from p to anything inside the box; -inf inside (a piece there may hold p).
+  static double squaredBoxDistance(const Vec3& p, const geom::BBox& box) {
     const Vec3 below = (box.min - p).cwiseMax(0.0);
     const Vec3 above = (p - box.max).cwiseMax(0.0);
-    const double d2 = below.squaredNorm() + above.squaredNorm();
-    return d2 > 0 ? std::sqrt(d2) : -kInf;
+    return below.squaredNorm() + above.squaredNorm();
   }
+  static double rootBound(double d2) { return d2 > 0 ? std::sqrt(d2) : -kInf; }
+  /// rootBound(d2) >= v, mostly without the root: where d2 lies clearly above or below v² the
+  /// answer is plain; near v² (or at extreme magnitudes) the rounded root decides, as it would.
+  static bool boundAtLeast(double d2, double v) {
+    if (!(d2 > 0)) return false;
+    if (v <= 0) return true;
+    if (v > 1e-100 && v < 1e100) {
+      const double v2 = v * v;
+      if (d2 >= v2 * (1 + 1e-12)) return true;
+      if (d2 < v2 * (1 - 1e-12)) return false;
+    }
+    return std::sqrt(d2) >= v;
+  }
+  /// rootBound(a) < rootBound(b), the same way.
+  static bool boundBelow(double a, double b) {
+    if (!(b > 0)) return false;
+    if (!(a > 0)) return true;
+    if (a >= b) return false;
+    if (b > 1e-200 && a < b * (1 - 1e-12)) return true;
+    return std::sqrt(a) < std::sqrt(b);
+  }
+  /// Whether the piece in `slot` lies more than `limit` + `tol` from p (outside its box by that
+  /// much), so its signed distance exceeds `limit` whatever the rounding (`tol`: far above it) and
+  /// it need not be measured.
+  bool pieceBeyond(const Vec3& p, std::uint32_t slot, double limit, double tol) const {
+    const geom::BBox& box = slotBox[slot];
+    const Vec3 below = (box.min - p).cwiseMax(0.0);
+    const Vec3 above = (p - box.max).cwiseMax(0.0);
+    return std::sqrt(below.squaredNorm() + above.squaredNorm()) > std::max(limit, 0.0) + tol;
+  }
+  /// Pushes the children of inner node `n` that `keep` accepts by their squared distances, the
+  /// nearer on top (searched first, so it tightens the bound for the other). A child refused now
+  /// would be skipped when popped too: the bound only tightens.
+  template <class Keep>
+  void pushChildren(const Node& n, const Vec3& p, Pending* stack, int& top, Keep keep) const {
+    const Pending left{n.left, squaredBoxDistance(p, nodes[n.left].box)};
+    const Pending right{n.right, squaredBoxDistance(p, nodes[n.right].box)};
+    const bool leftFirst = boundBelow(left.bound, right.bound);
+    const Pending& first = leftFirst ? left : right;
+    const Pending& second = leftFirst ? right : left;
+    if (keep(second.bound)) stack[top++] = second;
+    if (keep(first.bound)) stack[top++] = first;
+  }
+  /// The rounding allowance of pieceBeyond near p.
+  static double tolerance(const Vec3& p) { return 1e-9 * (1 + p.cwiseAbs().maxCoeff()); }
 
   double query(const Vec3& p, std::int64_t* piece) const {
     double best = kInf;
@@ -171,16 +222,18 @@ struct CylinderModelIndex::Impl {
       if (piece) *piece = -1;
       return best;
     }
-    // Each node with its lower bound, computed once when its parent orders its children.
-    std::pair<std::uint32_t, double> stack[128];
+    // Each node with its squared distance, computed once when its parent orders its children.
+    Pending stack[128];
+    const double tol = tolerance(p);
     int top = 0;
-    stack[top++] = {0, lowerBound(p, nodes[0].box)};
+    stack[top++] = {0, squaredBoxDistance(p, nodes[0].box)};
     while (top > 0) {
       const auto [id, bound] = stack[--top];
       const Node& n = nodes[id];
-      if (bound >= best) continue;
+      if (boundAtLeast(bound, best)) continue;
       if (n.count > 0) {
         for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+          if (pieceBeyond(p, i, best, tol)) continue;  // it would not be below `best`
           const double d = frames[i].signedDistance(p);
           if (d < best) {
             best = d;
@@ -190,14 +243,7 @@ struct CylinderModelIndex::Impl {
         continue;
       }
       // Nearer child last, so it is searched first and tightens `best` for the other.
-      const double dl = lowerBound(p, nodes[n.left].box), dr = lowerBound(p, nodes[n.right].box);
-      if (dl < dr) {
-        stack[top++] = {n.right, dr};
-        stack[top++] = {n.left, dl};
-      } else {
-        stack[top++] = {n.left, dl};
-        stack[top++] = {n.right, dr};
-      }
+      pushChildren(n, p, stack, top, [best](double bound) { return !boundAtLeast(bound, best); });
     }
     if (piece) *piece = bestPiece;
     return best;
@@ -209,29 +255,25 @@ struct CylinderModelIndex::Impl {
     near.clear();
     double best = kInf;
     if (nodes.empty()) return best;
-    std::pair<std::uint32_t, double> stack[128];
+    Pending stack[128];
+    const double tol = tolerance(p);
     int top = 0;
-    stack[top++] = {0, lowerBound(p, nodes[0].box)};
+    stack[top++] = {0, squaredBoxDistance(p, nodes[0].box)};
     while (top > 0) {
       const auto [id, bound] = stack[--top];
       const Node& n = nodes[id];
-      if (bound > std::max(best, 0.0) + slack) continue;
+      if (rootBound(bound) > std::max(best, 0.0) + slack) continue;
       if (n.count > 0) {
         for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+          if (pieceBeyond(p, i, std::max(best, 0.0) + slack, tol)) continue;  // neither kept nor below `best`
           const double d = frames[i].signedDistance(p);
           best = std::min(best, d);
           if (d <= std::max(best, 0.0) + slack) near.push_back({i, slotPiece[i], d});
         }
         continue;
       }
-      const double dl = lowerBound(p, nodes[n.left].box), dr = lowerBound(p, nodes[n.right].box);
-      if (dl < dr) {
-        stack[top++] = {n.right, dr};
-        stack[top++] = {n.left, dl};
-      } else {
-        stack[top++] = {n.left, dl};
-        stack[top++] = {n.right, dr};
-      }
+      const double limit = std::max(best, 0.0) + slack;
+      pushChildren(n, p, stack, top, [limit](double bound) { return rootBound(bound) <= limit; });
     }
     // Entries taken under an earlier, looser bound.
     const double bound = std::max(best, 0.0) + slack;
@@ -276,6 +318,7 @@ CylinderModelIndex::CylinderModelIndex(const geom::CylinderModel& model) : impl_
   for (const std::uint32_t k : impl_->order) {
     impl_->frames.emplace_back(impl_->pieces[k], impl_->open[k][0], impl_->open[k][1]);
     impl_->slotPiece.push_back(impl_->modelIndex[k]);
+    impl_->slotBox.push_back(impl_->boxes[k]);
   }
 }
 

@@ -142,9 +142,13 @@ TEST(ModelFitIndex, NearPiecesHoldTheNearestPieceOfEveryPointWithinReach) {
     ASSERT_EQ(d, index.signedDistance(p)) << i;
     // Exactly the pieces within max(d, 0) + 2 reach.
     std::vector<std::int64_t> expected, got;
-    for (std::size_t k = 0; k < m.size(); ++k)
-      if (signedDistance(p, m.cylinders[k], open[k][0], open[k][1]) <= std::max(d, 0.0) + 2 * reach)
-        expected.push_back(static_cast<std::int64_t>(k));
+    double brute = std::numeric_limits<double>::infinity();  // the pieces' own distances, to the bit
+    for (std::size_t k = 0; k < m.size(); ++k) {
+      const double own = signedDistance(p, m.cylinders[k], open[k][0], open[k][1]);
+      brute = std::min(brute, own);
+      if (own <= std::max(d, 0.0) + 2 * reach) expected.push_back(static_cast<std::int64_t>(k));
+    }
+    ASSERT_EQ(d, brute) << i;
     for (const auto& n : near) got.push_back(n.piece);
     std::sort(got.begin(), got.end());
     ASSERT_EQ(got, expected) << i;
