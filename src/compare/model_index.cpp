@@ -2,7 +2,9 @@
 // through its axis) and the union's, through a bounding-volume hierarchy over the pieces' boxes.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <memory>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -116,9 +118,9 @@ struct CylinderModelIndex::Impl {
   std::vector<geom::BBox> boxes;
   std::vector<std::uint32_t> order;  // pieces, grouped by leaf
   std::vector<Node> nodes;
-  std::vector<Frame> frames;             // per slot (position in `order`): its piece's frame
-  std::vector<std::int64_t> slotPiece;   // per slot: its piece's index in the model
-  std::vector<geom::BBox> slotBox;       // per slot: its piece's box
+  std::vector<Frame> frames;            // per slot (position in `order`): its piece's frame
+  std::vector<std::int64_t> slotPiece;  // per slot: its piece's index in the model
+  std::vector<geom::BBox> slotBox;      // per slot: its piece's box
   /// An entry of the search's stack: a node and its squared distance from the point asked about
   /// (squaredBoxDistance).
   struct Pending {
@@ -127,6 +129,27 @@ struct CylinderModelIndex::Impl {
   };
 
   static constexpr std::uint32_t kLeafSize = 4;
+
+  // The cells (see "the cells" below): a cube's pieces, remembered once asked for.
+  static constexpr std::size_t kCellPieces = 8;      // more: the cell is left to the search
+  static constexpr std::size_t kMinCellPieces = 16;  // smaller models: no cells (a short search)
+  static constexpr double kCellRadii = 2;            // a cell's edge: this many median radii (or more)
+  static constexpr double kCellsPerPiece = 128;      // at most this many cells per piece (+ kExtraCells)
+  static constexpr double kExtraCells = 4096;
+  static constexpr double kMaxCells = 1 << 19;           // in all (a few tens of MB at most)
+  static constexpr std::uint64_t kCellRange = 1u << 21;  // cells per axis (21 bits of the key each)
+  static constexpr std::uint64_t kNoKey = ~std::uint64_t{0};
+  enum : std::uint8_t { kUnknown, kFilling, kReady, kCrowded };
+  struct Cell {
+    std::atomic<std::uint8_t> state{kUnknown};
+    std::uint8_t count = 0;
+    std::uint32_t slot[kCellPieces] = {};
+  };
+  double cellSize = 0;
+  Vec3 cellOrigin = Vec3::Zero();
+  std::vector<std::uint64_t> cellKeys;   // open addressing: kNoKey where free
+  std::vector<std::uint32_t> cellOfKey;  // per entry of cellKeys: its cell
+  std::unique_ptr<Cell[]> cells;
 
   std::uint32_t build(std::uint32_t first, std::uint32_t count, const std::vector<Vec3>& centres) {
     const auto id = static_cast<std::uint32_t>(nodes.size());
@@ -209,7 +232,9 @@ struct CylinderModelIndex::Impl {
   /// The rounding allowance of pieceBeyond near p.
   static double tolerance(const Vec3& p) { return 1e-9 * (1 + p.cwiseAbs().maxCoeff()); }
 
-  double query(const Vec3& p, std::int64_t* piece) const {
+  /// The search through the hierarchy: the smallest of the pieces' signed distances and, in
+  /// `piece`, the first piece in the search's order that gives it.
+  double search(const Vec3& p, std::int64_t* piece) const {
     double best = kInf;
     std::int64_t bestPiece = -1;
     if (nodes.empty()) {
@@ -243,7 +268,158 @@ struct CylinderModelIndex::Impl {
     return best;
   }
 
-  /// query(), also collecting the pieces within max(best, 0) + slack (the bound shrinks as `best`
+  // ---- the cells ------------------------------------------------------------------------------
+  // Most queries come in crowds about the model's surface (a cloud's points, many per piece).
+  // Cubic cells about the pieces (their boxes grown by a cell) remember, once a point in them is
+  // asked about, the pieces that can be nearest to any point in them (collect at the cell's
+  // centre, reach its half-diagonal: CylinderModelIndex::nearPieces), nearest first; a query there
+  // measures those few pieces only, skipping those whose box lies beyond the best so far. Its
+  // answer is the search's: the smallest of those pieces' values is the smallest of all (the same
+  // function, to the bit), and where one piece gives it the search names that piece too (it names
+  // the first in its order that gives the smallest value); where two give it, or the cell has more
+  // than kCellPieces pieces, the search answers. Filling is lock-free: the thread that claims an
+  // unknown cell fills it, others meanwhile search.
+
+  static std::uint64_t mix(std::uint64_t k) {  // splitmix64's finaliser
+    k ^= k >> 30;
+    k *= 0xbf58476d1ce4e5b9ull;
+    k ^= k >> 27;
+    k *= 0x94d049bb133111ebull;
+    return k ^ (k >> 31);
+  }
+  /// The key of the cell holding p; false outside the grid (or for a NaN).
+  bool cellKey(const Vec3& p, std::uint64_t& key) const {
+    const Vec3 g = (p - cellOrigin) / cellSize;
+    if (!(g.minCoeff() >= 0) || !(g.maxCoeff() < static_cast<double>(kCellRange))) return false;
+    key = (static_cast<std::uint64_t>(g.x()) << 42) | (static_cast<std::uint64_t>(g.y()) << 21) |
+          static_cast<std::uint64_t>(g.z());
+    return true;
+  }
+  Cell* findCell(std::uint64_t key) const {
+    const std::uint64_t mask = cellKeys.size() - 1;
+    for (std::uint64_t h = mix(key) & mask;; h = (h + 1) & mask) {
+      if (cellKeys[h] == key) return &cells[cellOfKey[h]];
+      if (cellKeys[h] == kNoKey) return nullptr;
+    }
+  }
+  void insertCell(std::uint64_t key, std::uint32_t& count) {
+    const std::uint64_t mask = cellKeys.size() - 1;
+    for (std::uint64_t h = mix(key) & mask;; h = (h + 1) & mask) {
+      if (cellKeys[h] == key) return;
+      if (cellKeys[h] == kNoKey) {
+        cellKeys[h] = key;
+        cellOfKey[h] = count++;
+        return;
+      }
+    }
+  }
+  /// The range of cells a piece's box, grown by a cell, covers (per axis, first and last).
+  void cellRange(const geom::BBox& box, std::array<std::uint64_t, 3>& lo, std::array<std::uint64_t, 3>& hi) const {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = static_cast<std::uint64_t>(std::max(0.0, std::floor((box.min[a] - cellOrigin[a]) / cellSize) - 1));
+      hi[a] = static_cast<std::uint64_t>(std::floor((box.max[a] - cellOrigin[a]) / cellSize) + 1);
+    }
+  }
+  /// Sets up the cells: their size (kCellRadii times the pieces' median radius, doubled until the
+  /// pieces' grown boxes cover at most kCellsPerPiece cells each on average, kMaxCells in all) and
+  /// their keys; none are filled.
+  void buildCells() {
+    const std::size_t n = frames.size();
+    if (n < kMinCellPieces) return;
+    std::vector<double> radius(n);
+    for (std::size_t i = 0; i < n; ++i) radius[i] = std::max(frames[i].r0, frames[i].r1);
+    std::nth_element(radius.begin(), radius.begin() + static_cast<std::ptrdiff_t>(n / 2), radius.end());
+    const geom::BBox& all = nodes[0].box;
+    cellSize = std::max(kCellRadii * radius[n / 2], 1e-6 * all.diagonal());
+    if (!(cellSize > 0)) return;
+    const double cap = std::min(kCellsPerPiece * static_cast<double>(n) + kExtraCells, kMaxCells);
+    double covered = 0;  // cells the grown boxes cover, counting overlaps: at least the cells set up
+    for (int attempt = 0;; ++attempt, cellSize *= 2) {
+      if (attempt == 60) return;
+      cellOrigin = all.min - Vec3::Constant(2 * cellSize);
+      if (!((all.max - cellOrigin).maxCoeff() / cellSize + 2 < static_cast<double>(kCellRange))) continue;
+      covered = 0;
+      std::array<std::uint64_t, 3> lo{}, hi{};
+      for (const geom::BBox& box : slotBox) {
+        cellRange(box, lo, hi);
+        covered += static_cast<double>(hi[0] - lo[0] + 1) * static_cast<double>(hi[1] - lo[1] + 1) *
+                   static_cast<double>(hi[2] - lo[2] + 1);
+      }
+      if (covered <= cap) break;
+    }
+    std::size_t tableSize = 1024;
+    while (static_cast<double>(tableSize) < 2 * covered) tableSize *= 2;
+    cellKeys.assign(tableSize, kNoKey);
+    cellOfKey.assign(tableSize, 0);
+    std::uint32_t count = 0;
+    std::array<std::uint64_t, 3> lo{}, hi{};
+    for (const geom::BBox& box : slotBox) {
+      cellRange(box, lo, hi);
+      for (std::uint64_t x = lo[0]; x <= hi[0]; ++x)
+        for (std::uint64_t y = lo[1]; y <= hi[1]; ++y)
+          for (std::uint64_t z = lo[2]; z <= hi[2]; ++z) insertCell((x << 42) | (y << 21) | z, count);
+    }
+    cells = std::make_unique<Cell[]>(count);
+  }
+  /// Fills a cell claimed by this thread (state kFilling) and publishes it.
+  void fillCell(Cell& cell, std::uint64_t key) const {
+    const Vec3 index(static_cast<double>(key >> 42), static_cast<double>((key >> 21) & (kCellRange - 1)),
+                     static_cast<double>(key & (kCellRange - 1)));
+    const Vec3 centre = cellOrigin + (index + Vec3::Constant(0.5)) * cellSize;
+    // Reach: the half-diagonal, and room for the rounding of a point's cell and of the distances.
+    const double reach = 0.5 * std::sqrt(3.0) * cellSize * (1 + 1e-6) + tolerance(centre);
+    std::vector<NearPiece> near;
+    collect(centre, 2 * reach, near);
+    if (near.empty() || near.size() > kCellPieces) {
+      cell.state.store(kCrowded, std::memory_order_release);
+      return;
+    }
+    // Nearest at the centre first: it likely sets a bound that lets the others be skipped.
+    std::sort(near.begin(), near.end(), [](const NearPiece& a, const NearPiece& b) { return a.distance < b.distance; });
+    cell.count = static_cast<std::uint8_t>(near.size());
+    for (std::size_t j = 0; j < near.size(); ++j) cell.slot[j] = near[j].slot;
+    cell.state.store(kReady, std::memory_order_release);
+  }
+  /// The query through p's cell: true with the answer when the cell gives it (see above).
+  bool cellAnswer(const Vec3& p, double& best, std::int64_t* piece) const {
+    std::uint64_t key = 0;
+    if (!cells || !cellKey(p, key)) return false;
+    Cell* cell = findCell(key);
+    if (!cell) return false;
+    std::uint8_t state = cell->state.load(std::memory_order_acquire);
+    if (state == kUnknown && cell->state.compare_exchange_strong(state, kFilling, std::memory_order_acq_rel)) {
+      fillCell(*cell, key);
+      state = cell->state.load(std::memory_order_acquire);
+    }
+    if (state != kReady) return false;
+    best = kInf;
+    std::uint32_t bestSlot = 0;
+    bool tie = false;
+    const double tol = tolerance(p);
+    for (std::uint8_t j = 0; j < cell->count; ++j) {
+      const std::uint32_t i = cell->slot[j];
+      if (pieceBeyond(p, i, best, tol)) continue;  // above `best`: neither the smallest nor a tie
+      const double d = frames[i].signedDistance(p);
+      if (d < best) {
+        best = d;
+        bestSlot = i;
+        tie = false;
+      } else if (d == best) {
+        tie = true;
+      }
+    }
+    if (tie || !(best < kInf)) return false;
+    if (piece) *piece = slotPiece[bestSlot];
+    return true;
+  }
+
+  double query(const Vec3& p, std::int64_t* piece) const {
+    double best = kInf;
+    if (cellAnswer(p, best, piece)) return best;
+    return search(p, piece);
+  }
+
+  /// search(), also collecting the pieces within max(best, 0) + slack (the bound shrinks as `best`
   /// does; a box is skipped only when beyond it, so `best` is still the exact minimum).
   double collect(const Vec3& p, double slack, std::vector<NearPiece>& near) const {
     near.clear();
@@ -279,7 +455,7 @@ struct CylinderModelIndex::Impl {
   }
 };
 
-CylinderModelIndex::CylinderModelIndex(const geom::CylinderModel& model) : impl_(std::make_unique<Impl>()) {
+CylinderModelIndex::CylinderModelIndex(const geom::CylinderModel& model, bool cells) : impl_(std::make_unique<Impl>()) {
   for (std::size_t i = 0; i < model.cylinders.size(); ++i) {
     const geom::ModelCylinder& c = model.cylinders[i];
     if (!c.start.allFinite() || !c.end.allFinite())
@@ -314,6 +490,7 @@ CylinderModelIndex::CylinderModelIndex(const geom::CylinderModel& model) : impl_
     impl_->slotPiece.push_back(impl_->modelIndex[k]);
     impl_->slotBox.push_back(impl_->boxes[k]);
   }
+  if (cells) impl_->buildCells();
 }
 
 CylinderModelIndex::~CylinderModelIndex() = default;

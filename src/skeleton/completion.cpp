@@ -91,7 +91,7 @@ struct PointTest {
       }
     }
     if (std::max(d, 0.0) + s + slack <= low) return;  // all explained
-    const bool none = d - s - slack > high;          // none explained
+    const bool none = d - s - slack > high;           // none explained
     for (std::uint32_t j = g.first[v]; j < g.first[v + 1]; ++j) {
       const std::uint32_t k = g.members[j];
       if (none) {

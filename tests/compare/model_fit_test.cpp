@@ -2,6 +2,7 @@
 #include "treesketch/compare/model_fit.h"
 
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include "test_support.h"
 
@@ -169,6 +170,43 @@ TEST(ModelFitIndex, NearPiecesHoldTheNearestPieceOfEveryPointWithinReach) {
   EXPECT_EQ(tiedOrMissing, 0);   // ties are exact equalities: none on random points
   EXPECT_TRUE(std::isinf(CylinderModelIndex(CylinderModel{}).nearPieces({0, 0, 0}, 1, near)));
   EXPECT_TRUE(near.empty());
+}
+
+// The cells answer as the search does, value and piece, point for point: on random models of
+// joined pieces, and on one whose pieces all come twice (every answer a tie, which the search
+// decides), for points on, inside and about the pieces and anywhere, asked twice (the first time
+// fills the cells), from several threads at once.
+TEST(ModelFitIndex, CellsAnswerAsTheSearchDoes) {
+  for (std::uint64_t seed = 21; seed <= 24; ++seed) {
+    CylinderModel m = test::randomJoinedModel(seed, seed == 24 ? 40 : 200);
+    if (seed == 24) {
+      const std::size_t n = m.size();
+      for (std::size_t k = 0; k < n; ++k) m.cylinders.push_back(m.cylinders[k]);
+    }
+    const CylinderModelIndex cells(m), plain(m, false);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> pos(-1.3, 1.3), u(-1, 1);
+    std::vector<Vec3> points(20000);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const ModelCylinder& c = m.cylinders[rng() % m.size()];
+      points[i] = i % 4 == 0 ? Vec3(pos(rng), pos(rng), pos(rng))
+                             : c.start + (0.5 + 0.6 * u(rng)) * (c.end - c.start) +
+                                   (i % 4 == 1 ? 0.02 : 0.12) * Vec3(u(rng), u(rng), u(rng));
+    }
+    std::vector<double> expected(points.size());
+    std::vector<std::int64_t> expectedPiece(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) expected[i] = plain.signedDistance(points[i], &expectedPiece[i]);
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<double> got(points.size());
+      std::vector<std::int64_t> gotPiece(points.size());
+      tbb::parallel_for(std::size_t{0}, points.size(),
+                        [&](std::size_t i) { got[i] = cells.signedDistance(points[i], &gotPiece[i]); });
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        ASSERT_EQ(got[i], expected[i]) << seed << " " << pass << " " << i;
+        ASSERT_EQ(gotPiece[i], expectedPiece[i]) << seed << " " << pass << " " << i;
+      }
+    }
+  }
 }
 
 TEST(ModelFitIndex, RejectsBadPieces) {

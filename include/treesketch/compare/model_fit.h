@@ -52,7 +52,12 @@ class CylinderModelIndex {
  public:
   /// Throws OptionsError when a piece has a non-finite coordinate, a negative or non-finite radius
   /// or a parent index out of range. Pieces of zero length are left out.
-  explicit CylinderModelIndex(const geom::CylinderModel& model);
+  ///
+  /// With `cells` (and 16 pieces or more), cubes about the pieces remember, once a point in them is
+  /// asked about, the few pieces that can be nearest to any point in them, and later queries there
+  /// measure only those: the answers are the same, value and piece. Without, every query searches
+  /// the hierarchy (an index asked about a few points saves setting the cells up).
+  explicit CylinderModelIndex(const geom::CylinderModel& model, bool cells = true);
   ~CylinderModelIndex();
   CylinderModelIndex(CylinderModelIndex&&) noexcept;
   CylinderModelIndex& operator=(CylinderModelIndex&&) noexcept;
