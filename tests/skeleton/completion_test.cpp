@@ -131,15 +131,15 @@ TEST(Completion, TheGridDecidesVoxelsAsThePointsWould) {
   }
 }
 
-// The voxels' shortcuts against the plain per-point test, point for point, on random models of
-// joined pieces (forks, radius steps, open caps at joints: where the signed distance inside is
-// not continuous) with a random margin per piece (some pieces beyond the list: the common
-// margin), on clouds about their surfaces, inside them and scattered, over voxels from a fifth of
-// the margins to twice them.
+// The voxels' shortcuts (and the index's cells) against the plain per-point test through the
+// index's search, point for point, on random models of joined pieces (forks, radius steps, open
+// caps at joints: where the signed distance inside is not continuous) with a random margin per
+// piece (some pieces beyond the list: the common margin), on clouds about their surfaces, inside
+// them and scattered, over voxels from a fifth of the margins to twice them.
 TEST(Completion, TheGridAgreesWithThePointsOnRandomModels) {
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     const geom::CylinderModel m = test::randomJoinedModel(seed, 60);
-    const compare::CylinderModelIndex index(m);
+    const compare::CylinderModelIndex index(m), searched(m, false);  // the reference: no cells
     gen::Rng rng(100 + seed);
     std::vector<double> margins(m.size() - seed);  // the last `seed` pieces: the common margin
     for (double& x : margins) x = rng.uniform(0.005, 0.04);
@@ -158,7 +158,7 @@ TEST(Completion, TheGridAgreesWithThePointsOnRandomModels) {
       cloud.positions.emplace_back(rng.uniform(-1.2, 1.2), rng.uniform(-1.2, 1.2), rng.uniform(-1.2, 1.2));
     const double common = 0.02;
     const std::vector<std::uint32_t> plain =
-        skeleton::detail::unexplainedPoints(cloud, index, common, nullptr, nullptr, &margins);
+        skeleton::detail::unexplainedPoints(cloud, searched, common, nullptr, nullptr, &margins);
     ASSERT_GT(plain.size(), cloud.size() / 20) << seed;
     ASSERT_LT(plain.size(), cloud.size() - cloud.size() / 5) << seed;
     std::vector<std::uint32_t> among, expected;
