@@ -38,4 +38,23 @@ std::string readText(const fs::path& path) {
   return ss.str();
 }
 
+geom::CylinderModel randomJoinedModel(std::uint64_t seed, int pieces) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> pos(-1, 1), rad(0.01, 0.1), len(0.05, 0.4), u(0, 1);
+  geom::CylinderModel m;
+  for (int i = 0; i < pieces; ++i) {
+    const geom::Vec3 dir = geom::Vec3(pos(rng), pos(rng), pos(rng)).normalized();
+    std::int64_t parent = -1;
+    geom::Vec3 a(pos(rng), pos(rng), pos(rng));
+    double r0 = rad(rng);
+    if (i > 0 && u(rng) < 0.85) {
+      parent = u(rng) < 0.7 ? i - 1 : static_cast<std::int64_t>(u(rng) * i);
+      a = m.cylinders[static_cast<std::size_t>(parent)].end;
+      if (u(rng) < 0.5) r0 = m.cylinders[static_cast<std::size_t>(parent)].endRadius;
+    }
+    m.cylinders.push_back(modelPiece(a, a + len(rng) * dir, r0, rad(rng), parent));
+  }
+  return m;
+}
+
 }  // namespace treesketch::test

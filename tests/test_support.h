@@ -41,5 +41,9 @@ inline geom::ModelCylinder modelPiece(geom::Vec3 a, geom::Vec3 b, double r0, dou
   c.branchOrder = order;
   return c;
 }
+/// A random model in the cube [-1, 1]³ of `pieces` pieces 5-40 cm long, radii 1-10 cm: chains of
+/// pieces, each starting at its parent's end (a joint: caps open), the radius there kept or
+/// stepped, and forks off earlier pieces; about one piece in seven starts a chain of its own.
+geom::CylinderModel randomJoinedModel(std::uint64_t seed, int pieces);
 
 }  // namespace treesketch::test

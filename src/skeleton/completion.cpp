@@ -1,6 +1,7 @@
 #include "skeleton/completion.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -10,61 +11,134 @@
 
 namespace treesketch::skeleton::detail {
 
+namespace {
+
+using Near = compare::CylinderModelIndex::NearPiece;
+
+/// The points of `among` (all points without it) grouped by voxel: voxel v holds the positions
+/// members[first[v]] .. members[first[v + 1]) (positions in `among`), and the spread of its points
+/// (the farthest from its centroid; < 0 when it holds none).
+struct VoxelMembers {
+  std::vector<std::uint32_t> first, members;
+  std::vector<double> spread;
+};
+
+VoxelMembers groupByVoxel(const geom::PointCloud& cloud, const VoxelGraph& grid, std::size_t n,
+                          const std::vector<std::uint32_t>* among) {
+  const std::size_t voxels = grid.positions.size();
+  VoxelMembers g;
+  g.first.assign(voxels + 1, 0);
+  g.spread.assign(voxels, -1.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = among ? (*among)[k] : static_cast<std::uint32_t>(k);
+    const std::uint32_t v = grid.pointVoxel[i];
+    ++g.first[v + 1];
+    g.spread[v] = std::max(g.spread[v], (cloud.positions[i] - grid.positions[v]).norm());
+  }
+  for (std::size_t v = 0; v < voxels; ++v) g.first[v + 1] += g.first[v];
+  g.members.resize(n);
+  std::vector<std::uint32_t> next(g.first.begin(), g.first.end() - 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = among ? (*among)[k] : static_cast<std::uint32_t>(k);
+    g.members[next[grid.pointVoxel[i]]++] = static_cast<std::uint32_t>(k);
+  }
+  return g;
+}
+
+/// The test of one point of `cloud` (the k-th of `among`, or of all points): its signed distance
+/// against the margin of the piece that gives it.
+struct PointTest {
+  const geom::PointCloud& cloud;
+  const compare::CylinderModelIndex& model;
+  double margin;
+  const std::vector<std::uint32_t>* among;
+  const std::vector<double>* pieceMargin;
+
+  std::uint32_t pointAt(std::size_t k) const { return among ? (*among)[k] : static_cast<std::uint32_t>(k); }
+  double marginOf(std::int64_t piece) const {
+    return pieceMargin && piece >= 0 && static_cast<std::size_t>(piece) < pieceMargin->size()
+               ? (*pieceMargin)[static_cast<std::size_t>(piece)]
+               : margin;
+  }
+  /// The plain test, through the whole index.
+  bool outside(const geom::Vec3& p) const {
+    std::int64_t piece = -1;
+    const double d = model.signedDistance(p, &piece);
+    return d > marginOf(piece);
+  }
+
+  /// The points of voxel v (centroid c, spread s, d the signed distance at c), out[k] = 1 for
+  /// those unexplained. Every point p of the voxel has a signed distance of at most
+  /// max(d, 0) + |p - c| (outside the model it is the distance to it, 1-Lipschitz) and, when
+  /// d > |p - c|, of at least d - |p - c|; the piece giving it is one of those nearPieces finds at
+  /// c with reach s. So a point, or the whole voxel with |p - c| = s, is decided against the
+  /// smallest and the largest margin of those pieces; the rest are measured against those pieces
+  /// only, or through the whole index where two of them tie. `slack` covers rounding (far below
+  /// any distance that matters).
+  void decideVoxel(const VoxelGraph& grid, const VoxelMembers& g, std::size_t v, std::vector<Near>& near,
+                   std::vector<char>& out) const {
+    const geom::Vec3& c = grid.positions[v];
+    const double s = g.spread[v];
+    const double slack = 1e-9 * (grid.voxelSize + c.cwiseAbs().maxCoeff());
+    const double d = model.nearPieces(c, s + slack, near);
+    double low = margin, high = margin;  // no piece: the margin of none (an empty model)
+    if (!near.empty()) {
+      low = std::numeric_limits<double>::infinity();
+      high = 0;
+      for (const Near& k : near) {
+        low = std::min(low, marginOf(k.piece));
+        high = std::max(high, marginOf(k.piece));
+      }
+    }
+    if (std::max(d, 0.0) + s + slack <= low) return;  // all explained
+    const bool none = d - s - slack > high;           // none explained
+    for (std::uint32_t j = g.first[v]; j < g.first[v + 1]; ++j) {
+      const std::uint32_t k = g.members[j];
+      if (none) {
+        out[k] = 1;
+        continue;
+      }
+      const geom::Vec3& p = cloud.positions[pointAt(k)];
+      const double off = (p - c).norm();
+      if (std::max(d, 0.0) + off + slack <= low) continue;
+      if (d - off - slack > high) {
+        out[k] = 1;
+        continue;
+      }
+      std::int64_t piece = -1;
+      bool tied = false;
+      const double e = model.signedDistanceAmong(p, near, &piece, &tied);
+      out[k] = tied ? outside(p) : e > marginOf(piece);
+    }
+  }
+};
+
+}  // namespace
+
 std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, const compare::CylinderModelIndex& model,
                                              double margin, const VoxelGraph* grid,
                                              const std::vector<std::uint32_t>* among,
                                              const std::vector<double>* pieceMargin) {
-  // With a margin per piece, a voxel is decided at once only against the smallest (all explained)
-  // and the largest (none explained) of them.
-  double lowMargin = margin, highMargin = margin;
-  if (pieceMargin && !pieceMargin->empty()) {
-    lowMargin = *std::min_element(pieceMargin->begin(), pieceMargin->end());
-    highMargin = *std::max_element(pieceMargin->begin(), pieceMargin->end());
-  }
-  const auto outside = [&](const geom::Vec3& p) {
-    std::int64_t piece = -1;
-    const double d = model.signedDistance(p, &piece);
-    const double m = pieceMargin && piece >= 0 && static_cast<std::size_t>(piece) < pieceMargin->size()
-                         ? (*pieceMargin)[static_cast<std::size_t>(piece)]
-                         : margin;
-    return d > m;
-  };
+  const PointTest test{cloud, model, margin, among, pieceMargin};
   const std::size_t n = among ? among->size() : cloud.size();
-  auto pointAt = [&](std::size_t k) { return among ? (*among)[k] : static_cast<std::uint32_t>(k); };
-  // Per voxel: 0 = measure each point, 1 = all explained, 2 = none explained.
-  std::vector<char> verdict;
-  const bool useGrid = grid && grid->pointVoxel.size() == cloud.size() && !grid->positions.empty();
-  if (useGrid) {
-    const std::size_t voxels = grid->positions.size();
-    std::vector<double> spread(voxels, -1.0);  // < 0: no point of `among` in it
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::uint32_t i = pointAt(k);
-      const std::uint32_t v = grid->pointVoxel[i];
-      spread[v] = std::max(spread[v], (cloud.positions[i] - grid->positions[v]).norm());
-    }
-    verdict.assign(voxels, 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t v = r.begin(); v < r.end(); ++v) {
-        if (spread[v] < 0) continue;
-        const double d = model.signedDistance(grid->positions[v]);
-        if (std::max(d, 0.0) + spread[v] <= lowMargin)
-          verdict[v] = 1;
-        else if (d - spread[v] > highMargin)
-          verdict[v] = 2;
-      }
+  std::vector<char> out(n, 0);
+  if (grid && grid->pointVoxel.size() == cloud.size() && !grid->positions.empty()) {
+    const VoxelMembers g = groupByVoxel(cloud, *grid, n, among);
+    tbb::enumerable_thread_specific<std::vector<Near>> buffers;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.spread.size(), 64),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        std::vector<Near>& near = buffers.local();
+                        for (std::size_t v = r.begin(); v < r.end(); ++v)
+                          if (g.spread[v] >= 0) test.decideVoxel(*grid, g, v, near, out);
+                      });
+  } else {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k < r.end(); ++k) out[k] = test.outside(cloud.positions[test.pointAt(k)]);
     });
   }
-  std::vector<char> out(n, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t k = r.begin(); k < r.end(); ++k) {
-      const std::uint32_t i = pointAt(k);
-      const char known = useGrid ? verdict[grid->pointVoxel[i]] : 0;
-      out[k] = known != 0 ? known == 2 : outside(cloud.positions[i]);
-    }
-  });
   std::vector<std::uint32_t> rest;
   for (std::size_t k = 0; k < n; ++k)
-    if (out[k]) rest.push_back(pointAt(k));
+    if (out[k]) rest.push_back(test.pointAt(k));
   return rest;
 }
 

@@ -20,14 +20,17 @@ namespace treesketch::skeleton::detail {
 /// Indices of the points of `cloud` farther than `margin` (cloud units) outside the model's
 /// surface: of all its points, or of those in `among` only (ascending indices).
 ///
+/// `pieceMargin`, when given, holds a margin per piece of the model (by the model's piece index;
+/// `margin` for pieces beyond it): a point is unexplained when its signed distance exceeds the
+/// margin of the piece that gives it (compare::CylinderModelIndex::signedDistance).
+///
 /// With `grid` (a voxel graph of `cloud`: each point's voxel and the centroid of its points), a
-/// voxel is decided for all its points at once from the distance d at its centroid and its
-/// points' spread s (farthest from the centroid): outside the model the signed distance is the
-/// exact distance to the surface, which changes no faster than the position, and a point within
-/// s of a centroid inside the model is no farther than s outside it. So max(d, 0) + s <= margin:
-/// all are explained; d - s > margin: none is. Only the other voxels' points are measured one by
-/// one. The result is the same as without `grid` (test Completion.*); on the 1M-point bench tree
-/// the completion took 0.18 s instead of 0.75 s (bench/README.md).
+/// voxel is searched once, at its centroid, for the pieces that can be nearest to any of its points
+/// (CylinderModelIndex::nearPieces, within its points' spread s); with d the signed distance at
+/// the centroid, max(d, 0) + s within the smallest of those pieces' margins: all its points are
+/// explained; d - s beyond the largest: none is; the same bounds per point with its own distance
+/// from the centroid, and the points still undecided are measured against those pieces only. The
+/// result is the same as without `grid`, point for point (tests Completion.*).
 std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, const compare::CylinderModelIndex& model,
                                              double margin, const VoxelGraph* grid = nullptr,
                                              const std::vector<std::uint32_t>* among = nullptr,

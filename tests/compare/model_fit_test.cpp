@@ -2,9 +2,11 @@
 #include "treesketch/compare/model_fit.h"
 
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include "test_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -119,6 +121,92 @@ TEST(ModelFitIndex, MatchesBruteForce) {
     EXPECT_EQ(signedDistance(p, m.cylinders[idx]), brute);
   }
   EXPECT_TRUE(std::isinf(CylinderModelIndex(CylinderModel{}).signedDistance({0, 0, 0})));
+}
+
+// nearPieces holds the piece nearest to every point within its reach (and signedDistanceAmong
+// over them gives that point's signed distance), and every piece it names is within its bound.
+TEST(ModelFitIndex, NearPiecesHoldTheNearestPieceOfEveryPointWithinReach) {
+  std::mt19937_64 rng(12);
+  const CylinderModel m = test::randomJoinedModel(11, 150);
+  const CylinderModelIndex index(m);
+  const std::vector<std::array<bool, 2>> open = jointCaps(m);
+  std::uniform_real_distribution<double> pos(-1.3, 1.3), reachOf(0.0, 0.15), u(-1, 1);
+  std::vector<CylinderModelIndex::NearPiece> near;
+  int inside = 0, tiedOrMissing = 0;
+  for (int i = 0; i < 2000; ++i) {
+    // Half the points on a piece's axis or about it, half anywhere.
+    const ModelCylinder& c = m.cylinders[rng() % m.size()];
+    const Vec3 p = i % 2 ? Vec3(pos(rng), pos(rng), pos(rng))
+                         : c.start + (0.5 + 0.6 * u(rng)) * (c.end - c.start) + 0.05 * Vec3(u(rng), u(rng), u(rng));
+    const double reach = reachOf(rng);
+    const double d = index.nearPieces(p, reach, near);
+    ASSERT_EQ(d, index.signedDistance(p)) << i;
+    // Exactly the pieces within max(d, 0) + 2 reach.
+    std::vector<std::int64_t> expected, got;
+    double brute = std::numeric_limits<double>::infinity();  // the pieces' own distances, to the bit
+    for (std::size_t k = 0; k < m.size(); ++k) {
+      const double own = signedDistance(p, m.cylinders[k], open[k][0], open[k][1]);
+      brute = std::min(brute, own);
+      if (own <= std::max(d, 0.0) + 2 * reach) expected.push_back(static_cast<std::int64_t>(k));
+    }
+    ASSERT_EQ(d, brute) << i;
+    for (const auto& n : near) got.push_back(n.piece);
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(got, expected) << i;
+    for (int j = 0; j < 10; ++j) {
+      Vec3 step(u(rng), u(rng), u(rng));
+      if (step.norm() > 1) step /= step.norm();
+      const Vec3 q = p + reach * step;
+      std::int64_t piece = -1, among = -1;
+      bool tied = false;
+      const double e = index.signedDistance(q, &piece);
+      inside += e < 0;
+      ASSERT_EQ(index.signedDistanceAmong(q, near, &among, &tied), e) << i << " " << j;
+      tiedOrMissing += tied || std::find(got.begin(), got.end(), piece) == got.end();
+      if (!tied) EXPECT_EQ(among, piece) << i << " " << j;
+    }
+  }
+  EXPECT_GT(inside, 1000);       // the points inside the model were tried too
+  EXPECT_EQ(tiedOrMissing, 0);   // ties are exact equalities: none on random points
+  EXPECT_TRUE(std::isinf(CylinderModelIndex(CylinderModel{}).nearPieces({0, 0, 0}, 1, near)));
+  EXPECT_TRUE(near.empty());
+}
+
+// The cells answer as the search does, value and piece, point for point: on random models of
+// joined pieces, and on one whose pieces all come twice (every answer a tie, which the search
+// decides), for points on, inside and about the pieces and anywhere, asked twice (the first time
+// fills the cells), from several threads at once.
+TEST(ModelFitIndex, CellsAnswerAsTheSearchDoes) {
+  for (std::uint64_t seed = 21; seed <= 24; ++seed) {
+    CylinderModel m = test::randomJoinedModel(seed, seed == 24 ? 40 : 200);
+    if (seed == 24) {
+      const std::size_t n = m.size();
+      for (std::size_t k = 0; k < n; ++k) m.cylinders.push_back(m.cylinders[k]);
+    }
+    const CylinderModelIndex cells(m), plain(m, false);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> pos(-1.3, 1.3), u(-1, 1);
+    std::vector<Vec3> points(20000);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const ModelCylinder& c = m.cylinders[rng() % m.size()];
+      points[i] = i % 4 == 0 ? Vec3(pos(rng), pos(rng), pos(rng))
+                             : c.start + (0.5 + 0.6 * u(rng)) * (c.end - c.start) +
+                                   (i % 4 == 1 ? 0.02 : 0.12) * Vec3(u(rng), u(rng), u(rng));
+    }
+    std::vector<double> expected(points.size());
+    std::vector<std::int64_t> expectedPiece(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) expected[i] = plain.signedDistance(points[i], &expectedPiece[i]);
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<double> got(points.size());
+      std::vector<std::int64_t> gotPiece(points.size());
+      tbb::parallel_for(std::size_t{0}, points.size(),
+                        [&](std::size_t i) { got[i] = cells.signedDistance(points[i], &gotPiece[i]); });
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        ASSERT_EQ(got[i], expected[i]) << seed << " " << pass << " " << i;
+        ASSERT_EQ(gotPiece[i], expectedPiece[i]) << seed << " " << pass << " " << i;
+      }
+    }
+  }
 }
 
 TEST(ModelFitIndex, RejectsBadPieces) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "test_support.h"
 #include "treesketch/gen/random.h"
 
 #include "treesketch/skeleton/skeleton_export.h"
@@ -127,5 +128,52 @@ TEST(Completion, TheGridDecidesVoxelsAsThePointsWould) {
     EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, limb.index, 0.05, &grid, nullptr, &margins),
               skeleton::detail::unexplainedPoints(cloud, limb.index, 0.05, nullptr, nullptr, &margins))
         << voxel;
+  }
+}
+
+// The voxels' shortcuts (and the index's cells) against the plain per-point test through the
+// index's search, point for point, on random models of joined pieces (forks, radius steps, open
+// caps at joints: where the signed distance inside is not continuous) with a random margin per
+// piece (some pieces beyond the list: the common margin), on clouds about their surfaces, inside
+// them and scattered, over voxels from a fifth of the margins to twice them.
+TEST(Completion, TheGridAgreesWithThePointsOnRandomModels) {
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const geom::CylinderModel m = test::randomJoinedModel(seed, 60);
+    const compare::CylinderModelIndex index(m), searched(m, false);  // the reference: no cells
+    gen::Rng rng(100 + seed);
+    std::vector<double> margins(m.size() - seed);  // the last `seed` pieces: the common margin
+    for (double& x : margins) x = rng.uniform(0.005, 0.04);
+    geom::PointCloud cloud;
+    for (int i = 0; i < 30000; ++i) {
+      const geom::ModelCylinder& c = m.cylinders[static_cast<std::size_t>(rng.uniformInt(m.size()))];
+      const double t = rng.uniform(0, 1);
+      const geom::Vec3 axis = (c.end - c.start).normalized();
+      geom::Vec3 across = rng.unitVector();
+      across = (across - across.dot(axis) * axis).normalized();
+      const double r = c.startRadius + t * (c.endRadius - c.startRadius);
+      const double off = i % 10 == 0 ? rng.uniform(-r, 0.2) : rng.normal(0, 0.02);  // deep inside to far out
+      cloud.positions.push_back(c.start + t * (c.end - c.start) + std::max(0.0, r + off) * across);
+    }
+    for (int i = 0; i < 3000; ++i)
+      cloud.positions.emplace_back(rng.uniform(-1.2, 1.2), rng.uniform(-1.2, 1.2), rng.uniform(-1.2, 1.2));
+    const double common = 0.02;
+    const std::vector<std::uint32_t> plain =
+        skeleton::detail::unexplainedPoints(cloud, searched, common, nullptr, nullptr, &margins);
+    ASSERT_GT(plain.size(), cloud.size() / 20) << seed;
+    ASSERT_LT(plain.size(), cloud.size() - cloud.size() / 5) << seed;
+    std::vector<std::uint32_t> among, expected;
+    for (std::uint32_t i = 0; i < cloud.size(); ++i)
+      if (i % 4 != 1) among.push_back(i);
+    for (std::uint32_t i : plain)
+      if (i % 4 != 1) expected.push_back(i);
+    for (double voxel : {0.005, 0.015, 0.04, 0.08}) {
+      skeleton::VoxelGraphOptions o;
+      o.voxelSize = voxel;
+      const skeleton::VoxelGraph grid = skeleton::buildVoxelGraph(cloud, o);
+      EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, index, common, &grid, nullptr, &margins), plain)
+          << seed << " " << voxel;
+      EXPECT_EQ(skeleton::detail::unexplainedPoints(cloud, index, common, &grid, &among, &margins), expected)
+          << seed << " " << voxel;
+    }
   }
 }

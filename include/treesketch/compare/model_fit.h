@@ -52,7 +52,12 @@ class CylinderModelIndex {
  public:
   /// Throws OptionsError when a piece has a non-finite coordinate, a negative or non-finite radius
   /// or a parent index out of range. Pieces of zero length are left out.
-  explicit CylinderModelIndex(const geom::CylinderModel& model);
+  ///
+  /// With `cells` (and 16 pieces or more), cubes about the pieces remember, once a point in them is
+  /// asked about, the few pieces that can be nearest to any point in them, and later queries there
+  /// measure only those: the answers are the same, value and piece. Without, every query searches
+  /// the hierarchy (an index asked about a few points saves setting the cells up).
+  explicit CylinderModelIndex(const geom::CylinderModel& model, bool cells = true);
   ~CylinderModelIndex();
   CylinderModelIndex(CylinderModelIndex&&) noexcept;
   CylinderModelIndex& operator=(CylinderModelIndex&&) noexcept;
@@ -62,6 +67,28 @@ class CylinderModelIndex {
   double signedDistance(const geom::Vec3& p, std::int64_t* piece = nullptr) const;
   /// Pieces held (the model's pieces of non-zero length).
   std::size_t size() const;
+
+  /// A piece found by nearPieces: its slot in the index (for signedDistanceAmong), its index in
+  /// the model and its own signed distance from the point asked about.
+  struct NearPiece {
+    std::uint32_t slot = 0;
+    std::int64_t piece = -1;
+    double distance = 0;
+  };
+  /// The pieces that can be nearest (give signedDistance) to some point q within `reach` of `p`
+  /// (model units, >= 0): `near` receives, in no particular order, every piece whose own signed
+  /// distance from p is at most max(d, 0) + 2 reach, where d = signedDistance(p) is returned.
+  /// Why that suffices: outside the model signedDistance is the distance to the union and, piece
+  /// by piece, to each solid, both 1-Lipschitz; a piece nearest to q lies within max(d, 0) + reach
+  /// of q, so within max(d, 0) + 2 reach of p; inside, it holds q, so it lies within reach of p.
+  /// An empty index gives +inf and no pieces.
+  double nearPieces(const geom::Vec3& p, double reach, std::vector<NearPiece>& near) const;
+  /// The smallest of the signed distances from `p` to the pieces `near` (from nearPieces), and in
+  /// `piece` the model index of the first piece in `near` that gives it; `tied` says whether
+  /// another piece in `near` gives exactly the same value (then signedDistance, which breaks ties
+  /// by its own search order, may name the other). +inf and -1 when `near` is empty.
+  double signedDistanceAmong(const geom::Vec3& p, const std::vector<NearPiece>& near, std::int64_t* piece,
+                             bool* tied) const;
 
  private:
   struct Impl;
