@@ -110,7 +110,8 @@ std::vector<ScanCondition> fullMatrix() {
     c.stepDeg = 0.5;
     m.push_back(c);
   }
-  for (double mm : {0.0, 2.0, 10.0}) {
+  // 25 mm: a mobile scanner's range noise (its trajectory and registration), leaf-off.
+  for (double mm : {0.0, 2.0, 10.0, 25.0}) {
     auto c = tlsVariant("tls-noise-" + num(mm) + "mm", "noise", mm == 10.0);
     c.rangeNoiseMm = mm;
     m.push_back(c);
