@@ -210,6 +210,10 @@ constexpr double kMaxFormFactor = 4.0;       ///< above: more wood than a tree o
 constexpr double kMaxMissed = 0.2;           ///< points > 5 cm outside: leaves, noise or other objects
 constexpr double kMaxLeafPieceShare = 0.2;   ///< flat pieces in a leaf-off model: a tree in leaf
 constexpr double kMinPointsPerMetre = 50.0;  ///< a circle fit needs a few dozen points per slice
+/// The model's DBH and the circle the points show at breast height are two measurements of one
+/// stem, each to about kMeasuredRadiusSpread: apart by more than both spreads together (√2 × 10 %),
+/// one of them is off (the model's axis beside the bark, a circle on a stem seen from one side).
+constexpr double kMaxDbhDisagreement = 0.14;
 
 std::string percent(double share) {
   char buf[32];
@@ -273,6 +277,18 @@ Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions&
         "modelled from the points classified as wood only: twigs and limbs the classification calls leaf are "
         "missing, so the volume is a lower figure",
         "");
+  const compare::CloudDbh& cloudDbh = m.metrics.cloudDbh;
+  const double modelDbh = m.metrics.figures.trunkDiameter;
+  if (m.metrics.hasCloud && cloudDbh.ok && modelDbh > 0 && cloudDbh.diameter > 0 &&
+      std::abs(modelDbh - cloudDbh.diameter) > kMaxDbhDisagreement * cloudDbh.diameter) {
+    char buf[240];
+    std::snprintf(buf, sizeof buf,
+                  "the model's stem is %.1f cm across at breast height and a circle through the points there %.1f cm "
+                  "(%zu points): one of the two is off (the model's axis beside the bark, or a circle on a stem seen "
+                  "from one side)",
+                  100.0 * modelDbh, 100.0 * cloudDbh.diameter, cloudDbh.inliers);
+    add(L::Uncertain, buf, "check the stem at breast height (treesketch gui) before using the DBH");
+  }
   const double length = m.figures.length;
   if (length > 0 && static_cast<double>(points) / length < kMinPointsPerMetre) {
     char buf[160];

@@ -58,6 +58,17 @@ TEST(TreeModel, TubesThickerThanThePointsAreNotTrustedAndSaySo) {
   EXPECT_EQ(measure(stem(0.2, true), cloud, leafOn).verdictLine().find("--leaf-on"), std::string::npos);
 }
 
+TEST(TreeModel, AStemThatDisagreesWithThePointsAtBreastHeightIsNamed) {
+  const geom::PointCloud cloud = stemScan(0.1);
+  const ModelMeasures thin = measure(stem(0.08, true), cloud);  // a DBH 20 % under the points' circle
+  ASSERT_TRUE(thin.metrics.cloudDbh.ok) << thin.metrics.cloudDbh.reason;
+  EXPECT_NEAR(thin.metrics.cloudDbh.diameter, 0.2, 0.01);
+  EXPECT_GE(thin.verdict.level, Verdict::Level::Uncertain);
+  EXPECT_NE(thin.verdictLine().find("at breast height"), std::string::npos) << thin.verdictLine();
+  const ModelMeasures close = measure(stem(0.092, true), cloud);  // 8 % under: within the two spreads
+  EXPECT_EQ(close.verdictLine().find("at breast height"), std::string::npos) << close.verdictLine();
+}
+
 TEST(TreeModel, InferredRadiiWidenTheRangeAndAreNamed) {
   const geom::PointCloud cloud = stemScan(0.1);
   const ModelMeasures m = measure(stem(0.1, false), cloud);
