@@ -7,7 +7,10 @@
 
 Prints one row per condition: the cases judged (and set aside as sparse) per half, the mean
 absolute volume error with the worst case and its tree, and the share of the volume on fitted
-circles. With --update, replaces the table between the report's volume-matrix markers.
+circles. A second table gives what a user of `reconstruct --report` would be told on the same
+scans: how many volume ranges hold the true volume, and how many models the verdict calls
+trusted, with the worst of those (a trusted model far off is a silent error). With --update,
+replaces the tables between the report's volume-matrix markers.
 """
 import argparse
 import csv
@@ -50,6 +53,27 @@ def table(summary_path):
         t, h = by.get((c, "tune")), by.get((c, "held-out"))
         lines.append("| %s | %s / %s | %s | %s | %s / %s |" % (c, judged(t), judged(h), error(t), error(h), share(t),
                                                               share(h)))
+    lines += ["", "| condition | range holds the true volume: tuning / held-out | trusted: tuning, worst % (tree) | "
+              "trusted: held-out, worst % (tree) |", "|---|---:|---|---|"]
+
+    def holds(r):
+        if not has_volume(r) or r.get("volume_ranged", "") in ("", "0"):
+            return "—"
+        return "%s of %s" % (r["volume_range_holds"], r["volume_ranged"])
+
+    def trusted(r):
+        if not has_volume(r) or r.get("verdict_trusted", "") == "":
+            return "—"
+        n = int(r["verdict_trusted"])
+        if n == 0:
+            return "0"
+        return "%d (%+.1f, %s)" % (n, float(r["volume_error_worst_trusted_pct"]), r["volume_worst_trusted_tree"])
+
+    for c in conditions:
+        t, h = by.get((c, "tune")), by.get((c, "held-out"))
+        if not (has_volume(t) or has_volume(h)):
+            continue
+        lines.append("| %s | %s / %s | %s | %s |" % (c, holds(t), holds(h), trusted(t), trusted(h)))
     return "\n".join(lines)
 
 

@@ -110,6 +110,13 @@ MethodOutput methodSkeleton(const MethodInput& in) {
   skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, so);
   MethodOutput out;
   out.model = model::fromAutoSkeleton(r, in.tree.up);
+  model::MeasureOptions mo;
+  mo.leafOn = in.leafOn;
+  mo.noise = r.noiseMeasured ? r.noise : -1.0;
+  std::size_t leafPieces = 0;
+  for (const auto& n : r.model) leafPieces += skeleton::isLeafPiece(n, so);
+  mo.leafPieceShare = r.model.empty() ? 0.0 : static_cast<double>(leafPieces) / static_cast<double>(r.model.size());
+  out.measure = mo;
   out.mesh = std::move(r.mesh);
   out.sketch = std::move(r.sketch);
   out.nodes = static_cast<int>(out.sketch.size());
@@ -131,6 +138,7 @@ MethodOutput methodSkeletonWood(const MethodInput& in) {
   if (wood.size() < detail::kMinWoodPoints) return methodSkeleton(in);  // nothing to model as wood: as before
   MethodInput woodInput{in.tree, wood, in.options, in.nodeCount, false};
   MethodOutput out = methodSkeleton(woodInput);
+  if (out.measure) out.measure->woodOnly = true;
   out.ms = timer.ms();
   return out;
 }
@@ -332,7 +340,10 @@ EvalRow caseRow(const EvalCase& k, const std::string& method, bool sweep) {
 }
 
 // The model's volume against the tree's (a method with no cylinder model leaves them NaN).
-void setVolumes(EvalRow& row, const TreeCase& tree, const model::TreeModel& m) {
+// With measure options, also its range and verdict as `reconstruct --report` gives them, measured
+// against the scan at the tree's scale (so the verdict's figures in metres mean what they say).
+void setVolumes(EvalRow& row, const TreeCase& tree, const MethodOutput& out, const geom::PointCloud& cloud) {
+  const model::TreeModel& m = out.model;
   row.trueVolume = tree.woodVolume;
   if (m.empty()) return;
   double volume = 0;
@@ -340,6 +351,14 @@ void setVolumes(EvalRow& row, const TreeCase& tree, const model::TreeModel& m) {
   row.modelVolume = volume;
   row.measuredVolumeShare = model::measuredVolumeShare(m);
   if (row.trueVolume > 0) row.volumeError = row.modelVolume / row.trueVolume - 1.0;
+  if (!out.measure || !(tree.metresPerUnit > 0)) return;
+  model::MeasureOptions mo = *out.measure;
+  mo.unitMetres = tree.metresPerUnit;
+  const model::ModelMeasures measures = model::measure(m, cloud, mo);
+  const double cubic = tree.metresPerUnit * tree.metresPerUnit * tree.metresPerUnit;
+  row.volumeLow = measures.volumeLow / cubic;
+  row.volumeHigh = measures.volumeHigh / cubic;
+  row.verdict = model::toString(measures.verdict.level);
 }
 
 // "  volume +3.2 % (81 % measured)" for the log, or nothing without a volume error.
@@ -379,7 +398,7 @@ EvalRow evaluateMethod(const EvalCase& k, const EvalOptions& o, const std::strin
   row.backwardMax = pct(bwd.max);
   row.backwardMean = pct(bwd.mean);
   row.backwardRms = pct(bwd.rms);
-  setVolumes(row, tree, out.model);
+  setVolumes(row, tree, out, k.scan.cloud);
   if (out.causes) detail::setCauses(row, *out.causes);
   if (o.log) {
     char buf[360];
@@ -464,6 +483,17 @@ void addJudgedRow(ConditionSummary& s, const EvalRow& r, SummarySums& sums) {
     if (!(std::abs(r.volumeError) <= std::abs(s.volumeErrorWorst))) {
       s.volumeErrorWorst = r.volumeError;
       s.volumeWorstTree = r.tree;
+    }
+    if (std::isfinite(r.volumeLow) && std::isfinite(r.volumeHigh)) {
+      ++s.volumeRanged;
+      s.volumeRangeHolds += r.volumeLow <= r.trueVolume && r.trueVolume <= r.volumeHigh;
+    }
+    if (r.verdict == "trusted") {
+      ++s.verdictTrusted;
+      if (!(std::abs(r.volumeError) <= std::abs(s.volumeErrorWorstTrusted))) {
+        s.volumeErrorWorstTrusted = r.volumeError;
+        s.volumeWorstTrustedTree = r.tree;
+      }
     }
   }
 }

@@ -248,9 +248,11 @@ void writeVolumeTable(std::ostream& s, const std::vector<ConditionSummary>& summ
   s << "## Volume, " << method << ", " << leaf << "\n\n";
   s << "The model's wood volume against the tree's (its branch mesh's exact volume), judged cases: mean of the "
        "absolute relative error, the worst case with its tree, and the mean share of the model's volume on "
-       "fitted circles.\n\n";
-  s << "| condition | judged | volume error mean abs. % | volume error worst % (tree) | measured share % |\n";
-  s << "|---|---:|---:|---:|---:|\n";
+       "fitted circles; then how many of the cases with a volume range (`reconstruct --report`'s) have the true "
+       "volume inside it, and how many the model's verdict calls trusted, with the worst of those.\n\n";
+  s << "| condition | judged | volume error mean abs. % | volume error worst % (tree) | measured share % | range holds "
+       "the truth | trusted: cases, worst % (tree) |\n";
+  s << "|---|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& cond : conds) {
     s << "| " << cond << " | " << cell(cond, [](const ConditionSummary& m) { return std::to_string(m.volumeJudged); })
       << " | " << cell(cond, [](const ConditionSummary& m) { return pct1(m.volumeErrorMeanAbs); }) << " | "
@@ -259,7 +261,21 @@ void writeVolumeTable(std::ostream& s, const std::vector<ConditionSummary>& summ
                 return m.volumeJudged == 0 ? std::string("—")
                                            : signedPct1(m.volumeErrorWorst) + " (" + m.volumeWorstTree + ")";
               })
-      << " | " << cell(cond, [](const ConditionSummary& m) { return pct1(m.measuredVolumeShareMean); }) << " |\n";
+      << " | " << cell(cond, [](const ConditionSummary& m) { return pct1(m.measuredVolumeShareMean); }) << " | "
+      << cell(cond,
+              [](const ConditionSummary& m) {
+                return m.volumeRanged == 0 ? std::string("—")
+                                           : std::to_string(m.volumeRangeHolds) + " of " + std::to_string(m.volumeRanged);
+              })
+      << " | "
+      << cell(cond,
+              [](const ConditionSummary& m) {
+                return m.verdictTrusted == 0 ? std::string("0")
+                                             : std::to_string(m.verdictTrusted) + ", " +
+                                                   signedPct1(m.volumeErrorWorstTrusted) + " (" +
+                                                   m.volumeWorstTrustedTree + ")";
+              })
+      << " |\n";
   }
   s << "\n";
 }
@@ -297,7 +313,7 @@ std::string csvTable(const std::vector<EvalRow>& rows) {
        "backward_mean_pct,backward_rms_pct,forward_max_pct,forward_mean_pct,forward_rms_pct,mesh_triangles,tips,"
        "reference_limbs,root_offset_pct,root_at_base,sparse,backward_only,true_volume,model_volume,volume_error,"
        "measured_volume_share,rejected_by,skipped_off_limb,skipped_hidden,skipped_classed_leaf,skipped_rejected,"
-       "fitted_on_limb\n";
+       "fitted_on_limb,verdict,volume_low,volume_high\n";
   s.precision(9);
   for (const auto& r : rows) {
     s << r.tree << "," << r.half << "," << r.condition << "," << r.factor << "," << r.pattern << "," << r.leaf << ","
@@ -309,7 +325,8 @@ std::string csvTable(const std::vector<EvalRow>& rows) {
       << "," << r.rootOffsetPct << "," << (r.rootAtBase ? 1 : 0) << "," << (r.sparse ? 1 : 0) << ","
       << (r.backwardOnly ? 1 : 0) << "," << r.trueVolume << "," << r.modelVolume << "," << r.volumeError << ","
       << r.measuredVolumeShare << "," << r.rejectedBy << "," << r.skippedOffLimb << "," << r.skippedHidden << ","
-      << r.skippedClassedLeaf << "," << r.skippedRejected << "," << r.fittedOnLimb << "\n";
+      << r.skippedClassedLeaf << "," << r.skippedRejected << "," << r.fittedOnLimb << "," << r.verdict << ","
+      << r.volumeLow << "," << r.volumeHigh << "\n";
   }
   return s.str();
 }
@@ -319,7 +336,8 @@ std::string csvSummary(const std::vector<ConditionSummary>& summaries) {
   s << "condition,factor,leaf,method,half,cases,sparse,no_mesh,judged,forward_judged,wood_points_min,wood_points_max,"
        "backward_rms_mean_pct,backward_rms_worst_pct,backward_worst_tree,forward_rms_mean_pct,forward_rms_worst_pct,"
        "forward_worst_tree,tips_ratio_min,tips_ratio_max,tips_ratio_in_band,root_at_base,root_offset_worst_pct,"
-       "volume_judged,volume_error_mean_abs_pct,volume_error_worst_pct,volume_worst_tree,measured_volume_share_mean\n";
+       "volume_judged,volume_error_mean_abs_pct,volume_error_worst_pct,volume_worst_tree,measured_volume_share_mean,"
+       "volume_ranged,volume_range_holds,verdict_trusted,volume_error_worst_trusted_pct,volume_worst_trusted_tree\n";
   s.precision(9);
   for (const auto& m : summaries) {
     s << m.condition << "," << m.factor << "," << m.leaf << "," << m.method << "," << m.half << "," << m.cases << ","
@@ -328,7 +346,8 @@ std::string csvSummary(const std::vector<ConditionSummary>& summaries) {
       << m.forwardMean << "," << m.forwardWorst << "," << m.forwardWorstTree << "," << m.tipsRatioMin << ","
       << m.tipsRatioMax << "," << m.tipsRatioInBand << "," << m.rootAtBase << "," << m.rootOffsetWorst << ","
       << m.volumeJudged << "," << 100.0 * m.volumeErrorMeanAbs << "," << 100.0 * m.volumeErrorWorst << ","
-      << m.volumeWorstTree << "," << m.measuredVolumeShareMean << "\n";
+      << m.volumeWorstTree << "," << m.measuredVolumeShareMean << "," << m.volumeRanged << "," << m.volumeRangeHolds
+      << "," << m.verdictTrusted << "," << 100.0 * m.volumeErrorWorstTrusted << "," << m.volumeWorstTrustedTree << "\n";
   }
   return s.str();
 }

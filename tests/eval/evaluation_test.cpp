@@ -294,7 +294,20 @@ TEST(Evaluation, SummaryHasVolumeMeanAndWorstPerHalf) {
   EXPECT_EQ(s[2].volumeJudged, 4);
   EXPECT_NEAR(s[2].volumeErrorMeanAbs, 0.65 / 4, 1e-12);
 
+  // The ranges and verdicts: a range holds the truth or not; the worst trusted case is named.
+  rows[0].volumeLow = 9.0, rows[0].volumeHigh = 12.0, rows[0].verdict = "trusted";   // holds 10
+  rows[1].volumeLow = 5.0, rows[1].volumeHigh = 6.0, rows[1].verdict = "uncertain";  // -30 %: not
+  rows[2].volumeLow = 10.5, rows[2].volumeHigh = 14.0, rows[2].verdict = "trusted";  // +20 %: not
+  const ConditionSummary ranged = summarize(rows)[0];
+  EXPECT_EQ(ranged.volumeRanged, 3);
+  EXPECT_EQ(ranged.volumeRangeHolds, 1);
+  EXPECT_EQ(ranged.verdictTrusted, 2);
+  EXPECT_DOUBLE_EQ(ranged.volumeErrorWorstTrusted, 0.20);
+  EXPECT_EQ(ranged.volumeWorstTrustedTree, "c");
+
   const std::string md = markdownSummary(rows);
+  EXPECT_NE(md.find("1 of 3"), std::string::npos) << md;
+  EXPECT_NE(md.find("2, +20.0 (c)"), std::string::npos) << md;
   EXPECT_NE(md.find("## Volume, skeleton, leaf-off"), std::string::npos) << md;
   EXPECT_NE(md.find("| tls-base | 3 / 1 | 20.0 / 5.0 | -30.0 (b) / +5.0 (e) | 70.0 / 90.0 |"), std::string::npos)
       << md;
@@ -364,9 +377,24 @@ TEST(Evaluation, CsvHasTheMatrixColumns) {
   EXPECT_EQ(col("model_volume"), "10");
   EXPECT_EQ(col("volume_error"), "0.25");
   EXPECT_EQ(col("measured_volume_share"), "0.75");
+  EXPECT_EQ(col("verdict"), "");  // not measured
+  EXPECT_EQ(col("volume_low"), "nan");
+  r.volumeLow = 7;
+  r.volumeHigh = 12.5;
+  r.verdict = "uncertain";
+  {
+    std::istringstream again(csvTable({r}));
+    std::getline(again, header);
+    std::getline(again, line);
+    cells = split(line);
+  }
+  EXPECT_EQ(col("verdict"), "uncertain");
+  EXPECT_EQ(col("volume_low"), "7");
+  EXPECT_EQ(col("volume_high"), "12.5");
   std::string sum = csvSummary(summarize({r}));
   EXPECT_EQ(sum.substr(0, sum.find('\n')).find("backward_rms_worst_pct") != std::string::npos, true);
-  EXPECT_NE(sum.find(",1,25,25,t,0.75\n"), std::string::npos) << sum;  // volume judged, mean, worst, tree, share
+  // volume judged, mean, worst, tree, share; one ranged case holding the truth, none trusted
+  EXPECT_NE(sum.find(",1,25,25,t,0.75,1,1,0,nan,\n"), std::string::npos) << sum;
   EXPECT_EQ(std::count(sum.begin(), sum.end(), '\n'), 3);  // header + held-out + all
 }
 

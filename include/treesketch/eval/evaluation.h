@@ -159,6 +159,11 @@ struct EvalRow {
   /// Share of the model's volume whose pieces rest on a fitted circle (model::measuredVolumeShare;
   /// NaN without a cylinder model).
   double measuredVolumeShare = NAN;
+  /// The model's volume range (model::ModelMeasures::volumeLow/High, in scene units³, NaN when the
+  /// method gives none) and its verdict on the scan ("trusted", "uncertain", "not trusted"; empty
+  /// when none): what a user of `reconstruct --report` would be told, judged against the truth.
+  double volumeLow = NAN, volumeHigh = NAN;
+  std::string verdict;
   /// The simulated careful user's skipped nodes by cause (eval/user_node_causes.h): its line
   /// misses the limb, the limb is hidden from the scanner, its wood is classed leaf, or the circle
   /// fit rejects it; -1 for the other methods. rejectedBy: the rejecting tests, "arc:5;support:3".
@@ -184,6 +189,9 @@ struct MethodOutput {
   model::TreeModel model;
   /// The "user" method on a simulated scan: why its nodes have or lack a circle.
   std::optional<NodeCauseCounts> causes;
+  /// How to measure `model` against the scan for its volume range and verdict (the automatic
+  /// model's noise and leaf settings; unitMetres is the tree's); empty: not measured.
+  std::optional<model::MeasureOptions> measure;
 };
 
 struct MethodInput {
@@ -262,6 +270,12 @@ struct ConditionSummary {
   double volumeErrorMeanAbs = NAN, volumeErrorWorst = NAN;
   std::string volumeWorstTree;
   double measuredVolumeShareMean = NAN;
+  /// Of the judged volume cases: how many have a range holding the true volume, and how many the
+  /// verdict calls trusted; the trusted cases' error of the largest magnitude with its tree (NaN
+  /// when none is trusted): a case beyond the goal that is called trusted is a silent error.
+  int volumeRangeHolds = 0, volumeRanged = 0, verdictTrusted = 0;
+  double volumeErrorWorstTrusted = NAN;
+  std::string volumeWorstTrustedTree;
 };
 /// Summaries in the rows' order of conditions, leaf states and methods; for each, the halves
 /// present ("tune" first, then "held-out") and then "all".
