@@ -221,15 +221,34 @@ std::string percent(double share) {
   return buf;
 }
 
-void volumeRange(const TreeModel& model, double unit3, ModelMeasures* m) {
+/// Noise adds to a radius in quadrature: points scattered by σ about a circle of radius r lie at a
+/// mean square distance r² + σ² from its centre, so a circle fitted to them is too thick, and a
+/// circle round a twig thinner than the noise is the noise's own blob. A measured radius R may be
+/// as thin as √(R² − (kσ)²), two noises for a 95 % allowance (a blob of R < 2σ: down to nothing).
+constexpr double kNoiseRadiusAllowance = 2.0;
+
+/// `noise`: the scan's noise in model units, or < 0 when unknown.
+void volumeRange(const TreeModel& model, double unit3, double noise, ModelMeasures* m) {
   double low = 0, high = 0;
+  const double allowance = noise > 0 ? kNoiseRadiusAllowance * noise : 0.0;
   for (std::size_t i = 0; i < model.cylinders.size(); ++i) {
-    const double v = model.cylinders.cylinders[i].volume() * unit3;
+    const geom::ModelCylinder& c = model.cylinders.cylinders[i];
+    const double v = c.volume() * unit3;
     const bool measured = i < model.measured.size() && model.measured[i];
-    const double lo = measured ? 1 - kMeasuredRadiusSpread : kInferredRadiusLow;
     const double hi = measured ? 1 + kMeasuredRadiusSpread : kInferredRadiusHigh;
-    low += v * lo * lo;
     high += v * hi * hi;
+    if (!measured) {
+      low += v * kInferredRadiusLow * kInferredRadiusLow;
+      continue;
+    }
+    geom::ModelCylinder thin = c;
+    auto lower = [&](double r) {
+      const double r2 = r * r - allowance * allowance;
+      return r2 > 0 ? (1 - kMeasuredRadiusSpread) * std::sqrt(r2) : 0.0;
+    };
+    thin.startRadius = lower(c.startRadius);
+    thin.endRadius = lower(c.endRadius);
+    low += thin.volume() * unit3;
   }
   m->volumeLow = low;
   m->volumeHigh = high;
@@ -348,7 +367,7 @@ ModelMeasures measure(const TreeModel& model, const geom::PointCloud& cloud, con
     m.hasFit = true;
   }
   const double u = options.unitMetres;
-  volumeRange(model, u * u * u, &m);
+  volumeRange(model, u * u * u, std::isfinite(options.noise) ? options.noise : -1.0, &m);
   const double dbh = m.metrics.figures.trunkDiameter, height = m.metrics.height;
   const double cylinder = std::numbers::pi / 4 * dbh * dbh * height;
   m.formFactor = cylinder > 0 ? m.figures.volume / cylinder : std::numeric_limits<double>::quiet_NaN();

@@ -69,6 +69,19 @@ TEST(TreeModel, AStemThatDisagreesWithThePointsAtBreastHeightIsNamed) {
   EXPECT_EQ(close.verdictLine().find("at breast height"), std::string::npos) << close.verdictLine();
 }
 
+TEST(TreeModel, TheScansNoiseLowersTheRangeOfMeasuredRadiiInQuadrature) {
+  const geom::PointCloud cloud = stemScan(0.1);
+  MeasureOptions noisy;
+  noisy.noise = 0.03;  // 3 cm: the radius may be √(0.1² − 0.06²) = 0.08, less its 10 %
+  const ModelMeasures m = measure(stem(0.1, true), cloud, noisy);
+  EXPECT_NEAR(m.volumeLow / m.figures.volume, 0.8 * 0.8 * 0.81, 1e-9);
+  EXPECT_NEAR(m.volumeHigh / m.figures.volume, 1.21, 1e-9);  // noise thickens a circle, never thins it
+  noisy.noise = 0.06;  // a tube under two noises thick may be the noise's own blob
+  EXPECT_NEAR(measure(stem(0.1, true), cloud, noisy).volumeLow, 0.0, 1e-12);
+  // Inferred radii keep their own range.
+  EXPECT_NEAR(measure(stem(0.1, false), cloud, noisy).volumeLow / m.figures.volume, 4.0 / 9.0, 1e-9);
+}
+
 TEST(TreeModel, InferredRadiiWidenTheRangeAndAreNamed) {
   const geom::PointCloud cloud = stemScan(0.1);
   const ModelMeasures m = measure(stem(0.1, false), cloud);
