@@ -145,8 +145,10 @@ std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, cons
 bool graftPart(std::vector<SkeletonNode>& nodes, const std::vector<SkeletonNode>& part,
                const std::vector<SkeletonNode>& model, const geom::CylinderModel& pieces,
                const compare::CylinderModelIndex& index, double maxGap) {
+  // A part of one node is a stub shorter than two level sets (a short shoot, a twig's tip past
+  // the model's end): its tube runs from the node it grows from to that node.
   const std::size_t m = part.size();
-  if (m < 2 || model.empty() || model.size() > nodes.size()) return false;
+  if (m < 1 || model.empty() || model.size() > nodes.size()) return false;
   // Each node's distance outside the model, and whether it lies farther out than the radius of
   // the piece nearest to it.
   std::vector<double> gap(m);
