@@ -142,6 +142,19 @@ std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, cons
   return rest;
 }
 
+void reachStubTip(std::vector<SkeletonNode>& part, const geom::PointCloud& points,
+                  const compare::CylinderModelIndex& index) {
+  if (part.size() != 1 || points.empty()) return;
+  double farthest = -std::numeric_limits<double>::infinity();
+  for (const geom::Vec3& p : points.positions) {
+    const double d = index.signedDistance(p);
+    if (d > farthest) {
+      farthest = d;
+      part[0].position = p;
+    }
+  }
+}
+
 bool graftPart(std::vector<SkeletonNode>& nodes, const std::vector<SkeletonNode>& part,
                const std::vector<SkeletonNode>& model, const geom::CylinderModel& pieces,
                const compare::CylinderModelIndex& index, double maxGap) {

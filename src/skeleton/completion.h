@@ -36,6 +36,13 @@ std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, cons
                                              const std::vector<std::uint32_t>* among = nullptr,
                                              const std::vector<double>* pieceMargin = nullptr);
 
+/// A part of one node (`part`, the skeleton of `points`) is a stub shorter than two level sets,
+/// and its node the centroid of its points, halfway along it: a tube ending there leaves the
+/// stub's outer half past its end. The node is moved to the point of `points` farthest outside
+/// the model (`index`), the stub's tip. A part of any other size is left as it is.
+void reachStubTip(std::vector<SkeletonNode>& part, const geom::PointCloud& points,
+                  const compare::CylinderModelIndex& index);
+
 /// Grafts `part` (the skeleton of some unexplained points: parent-first, root 0) onto `nodes`
 /// (the skeleton; `model` is its fitted model, index for index up to the parts grafted since,
 /// `pieces` that model's frustums and `index` their surface): the part is re-rooted at its node

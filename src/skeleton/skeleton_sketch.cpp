@@ -460,7 +460,8 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
     points.up = rest.up;
     points.positions.reserve(members[k].size());
     for (std::uint32_t i : members[k]) points.positions.push_back(rest.positions[i]);
-    const Skeleton part = extractSkeleton(points, partOptions);
+    Skeleton part = extractSkeleton(points, partOptions);
+    detail::reachStubTip(part.nodes, points, index);
     grafted |= detail::graftPart(res.skeleton.nodes, part.nodes, res.model, pieces, index, c.maxGapVoxels * voxel);
   }
   res.completionMs += t0.ms();

@@ -100,6 +100,29 @@ TEST(Completion, AStubOfOneNodeIsATubeFromTheNodeItGrowsFrom) {
   EXPECT_LT(index.signedDistance(Vec3(0, 3.1, 0)), 0.0);
 }
 
+TEST(Completion, AStubReachesItsTip) {
+  Limb limb;
+  // A shoot's points from 0.12 to 0.28 m out of the limb at y = 1 (its surface at 0.1): one level
+  // set, one node at their centroid, 0.2 m out.
+  geom::PointCloud points;
+  for (int i = 0; i <= 4; ++i) points.positions.push_back(Vec3(0.12 + 0.04 * i, 1.0, 0.01 * (i % 2)));
+  const Vec3 tip = points.positions.back();
+  auto stub = chain({Vec3(0.2, 1.0, 0.005)}, 0.02);
+  skeleton::detail::reachStubTip(stub, points, limb.index);
+  EXPECT_EQ(stub[0].position, tip);
+  // Grafted, its tube now holds the shoot's outer points too.
+  std::vector<skeleton::SkeletonNode> nodes = limb.nodes;
+  ASSERT_TRUE(skeleton::detail::graftPart(nodes, stub, limb.nodes, limb.pieces, limb.index, 0.2));
+  const compare::CylinderModelIndex grown(skeleton::cylinderModelFromSkeleton(nodes));
+  EXPECT_LT(grown.signedDistance(Vec3(0.27, 1.0, 0)), 0.02);
+  // A part of two nodes is a skeleton of its own: left as it is.
+  auto twig = chain({Vec3(0.2, 1.0, 0), Vec3(0.3, 1.0, 0)}, 0.02);
+  const auto before = twig;
+  skeleton::detail::reachStubTip(twig, points, limb.index);
+  EXPECT_EQ(twig[0].position, before[0].position);
+  EXPECT_EQ(twig[1].position, before[1].position);
+}
+
 TEST(Completion, UnexplainedPointsAreThoseBeyondTheMargin) {
   Limb limb;
   geom::PointCloud cloud;
