@@ -142,11 +142,26 @@ std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, cons
   return rest;
 }
 
+void reachStubTip(std::vector<SkeletonNode>& part, const geom::PointCloud& points,
+                  const compare::CylinderModelIndex& index) {
+  if (part.size() != 1 || points.empty()) return;
+  double farthest = -std::numeric_limits<double>::infinity();
+  for (const geom::Vec3& p : points.positions) {
+    const double d = index.signedDistance(p);
+    if (d > farthest) {
+      farthest = d;
+      part[0].position = p;
+    }
+  }
+}
+
 bool graftPart(std::vector<SkeletonNode>& nodes, const std::vector<SkeletonNode>& part,
                const std::vector<SkeletonNode>& model, const geom::CylinderModel& pieces,
                const compare::CylinderModelIndex& index, double maxGap) {
+  // A part of one node is a stub shorter than two level sets (a short shoot, a twig's tip past
+  // the model's end): its tube runs from the node it grows from to that node.
   const std::size_t m = part.size();
-  if (m < 2 || model.empty() || model.size() > nodes.size()) return false;
+  if (m < 1 || model.empty() || model.size() > nodes.size()) return false;
   // Each node's distance outside the model, and whether it lies farther out than the radius of
   // the piece nearest to it.
   std::vector<double> gap(m);

@@ -36,13 +36,21 @@ std::vector<std::uint32_t> unexplainedPoints(const geom::PointCloud& cloud, cons
                                              const std::vector<std::uint32_t>* among = nullptr,
                                              const std::vector<double>* pieceMargin = nullptr);
 
+/// A part of one node (`part`, the skeleton of `points`) is a stub shorter than two level sets,
+/// and its node the centroid of its points, halfway along it: a tube ending there leaves the
+/// stub's outer half past its end. The node is moved to the point of `points` farthest outside
+/// the model (`index`), the stub's tip. A part of any other size is left as it is.
+void reachStubTip(std::vector<SkeletonNode>& part, const geom::PointCloud& points,
+                  const compare::CylinderModelIndex& index);
+
 /// Grafts `part` (the skeleton of some unexplained points: parent-first, root 0) onto `nodes`
 /// (the skeleton; `model` is its fitted model, index for index up to the parts grafted since,
 /// `pieces` that model's frustums and `index` their surface): the part is re-rooted at its node
-/// nearest to the surface (its foot), which becomes a child of the node nearest to it. The part's
-/// radius estimates are capped by the node it grows from. Refused (returns false, `nodes`
-/// unchanged) when
-/// - the part has fewer than two nodes (no tube);
+/// nearest to the surface (its foot), which becomes a child of the node nearest to it. A part of
+/// one node (a stub shorter than two level sets: a short shoot, a twig's tip past the model's
+/// end) is one tube from the node it grows from to that node. The part's radius estimates are
+/// capped by the node it grows from. Refused (returns false, `nodes` unchanged) when
+/// - the part has no node;
 /// - its foot lies farther than `maxGap` outside the model;
 /// - none of its nodes lies farther outside than the radius of the piece nearest to it: a part
 ///   along a limb's side is that limb's own surface, missed by a tube too thin or off the limb's

@@ -460,7 +460,8 @@ bool complete(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
     points.up = rest.up;
     points.positions.reserve(members[k].size());
     for (std::uint32_t i : members[k]) points.positions.push_back(rest.positions[i]);
-    const Skeleton part = extractSkeleton(points, partOptions);
+    Skeleton part = extractSkeleton(points, partOptions);
+    detail::reachStubTip(part.nodes, points, index);
     grafted |= detail::graftPart(res.skeleton.nodes, part.nodes, res.model, pieces, index, c.maxGapVoxels * voxel);
   }
   res.completionMs += t0.ms();
@@ -537,8 +538,16 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
     std::vector<double> own(res.model.size(), 0.0);
     for (std::size_t i = 0; i < own.size() && i < res.fits.size(); ++i)
       if (res.radiusMeasured[i] && res.fitAccepted[i]) own[i] = res.fits[i].rms;
+    // Without circles or a stem to measure the noise, the tubes' own points give it (no more than
+    // the half voxel that stands in for it): the allowance of the median and the convex section's
+    // quartile is then the scan's, not a guess (docs/notes/radii_and_volume.md).
+    double boundNoise = res.noise;
+    if (!res.noiseMeasured) {
+      const double spread = detail::spreadNoise(res.model, cloud, res.noise, voxel, options.radii.medianWindow);
+      if (spread > 0) boundNoise = std::min(boundNoise, spread);
+    }
     const detail::SurfaceBoundStats bound =
-        detail::boundRadiiBySurface(res.model, cloud, res.noise, voxel, options.radii.medianWindow, own);
+        detail::boundRadiiBySurface(res.model, cloud, boundNoise, voxel, options.radii.medianWindow, own);
     res.thinnedBySurface = bound.nodesThinned;
     res.thickenedBySurface = bound.nodesThickened;
   }

@@ -158,6 +158,15 @@ std::vector<double> surfaceSpreads(const std::vector<SkeletonNode>& model, const
   return spread;
 }
 
+double spreadNoise(const std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double standIn, double voxel,
+                   int window) {
+  std::vector<double> spreads;
+  for (double s : surfaceSpreads(model, cloud, standIn, voxel, window))
+    if (std::isfinite(s) && s > 0) spreads.push_back(s);
+  if (spreads.size() < 3) return -1.0;
+  return quantile(spreads, kFitNoiseQuantile);
+}
+
 double fitSpread(const fit::NodeResult& f, const geom::PointCloud& cloud) {
   std::vector<double> residuals;
   return fitNoise(f, cloud, residuals);

@@ -38,6 +38,15 @@ double fitSpread(const fit::NodeResult& f, const geom::PointCloud& cloud);
 std::vector<double> surfaceSpreads(const std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
                                    double voxel, int window);
 
+/// The scan's noise read from the tubes' own points (cloud units), for a cloud where neither
+/// circles nor a tracked stem measure it (a sparse airborne scan: limbs as lines of points): the
+/// lower quartile of the nodes' spreads (surfaceSpreads, `standIn` the noise they assume), the
+/// same reading as the circles' (measuredNoise): the cleanest surfaces show the scanner's noise,
+/// a limb with a twig or a neighbour beside it a wider spread. -1 when fewer than three nodes have
+/// a spread.
+double spreadNoise(const std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double standIn, double voxel,
+                   int window);
+
 /// The scan's noise measured on the stem (cloud units): the points of the tracked stem's tubes
 /// (model nodes with `stem`), in windows of three nodes, their distances to the axis' robust
 /// spread (1.4826 × the median absolute deviation from their median); the median over the

@@ -66,10 +66,61 @@ TEST(Completion, APartAlongTheLimbsSideIsNotGrafted) {
   // Farther than maxGap from the model at its nearest: a neighbour or noise.
   const auto far = chain({Vec3(0.5, 1.0, 0), Vec3(0.9, 1.2, 0)}, 0.02);
   EXPECT_FALSE(skeleton::detail::graftPart(nodes, far, limb.nodes, limb.pieces, limb.index, 0.2));
-  // One node: no tube.
-  const auto one = chain({Vec3(0.3, 1.0, 0)}, 0.02);
+  // One node beside the limb's side: its surface too.
+  const auto one = chain({Vec3(0.15, 1.0, 0)}, 0.02);
   EXPECT_FALSE(skeleton::detail::graftPart(nodes, one, limb.nodes, limb.pieces, limb.index, 0.2));
+  // No node at all.
+  EXPECT_FALSE(skeleton::detail::graftPart(nodes, {}, limb.nodes, limb.pieces, limb.index, 0.2));
   EXPECT_EQ(nodes.size(), limb.nodes.size());
+}
+
+TEST(Completion, AStubOfOneNodeIsATubeFromTheNodeItGrowsFrom) {
+  Limb limb;
+  // A short shoot 0.2 m off the limb's surface at y = 1.1 (its points one level set: one node),
+  // and a twig's tip 0.15 m past the limb's end.
+  const auto shoot = chain({Vec3(0.3, 1.1, 0)}, 0.5);
+  const auto tip = chain({Vec3(0, 3.15, 0)}, 0.03);
+  std::vector<skeleton::SkeletonNode> nodes = limb.nodes;
+  ASSERT_TRUE(skeleton::detail::graftPart(nodes, shoot, limb.nodes, limb.pieces, limb.index, 0.2));
+  ASSERT_TRUE(skeleton::detail::graftPart(nodes, tip, limb.nodes, limb.pieces, limb.index, 0.2));
+  ASSERT_EQ(nodes.size(), 6u);
+  EXPECT_EQ(nodes[4].position, shoot[0].position);
+  EXPECT_EQ(nodes[4].parent, 1);  // the limb's node nearest to it, at y = 1
+  EXPECT_LE(nodes[4].radius, 0.1);  // no thicker than that node
+  EXPECT_EQ(nodes[5].parent, 3);  // the tip continues the limb's last node
+  EXPECT_EQ(nodes[3].children, (std::vector<std::int32_t>{5}));
+  for (std::size_t i = 4; i < 6; ++i) {
+    EXPECT_TRUE(nodes[i].grafted) << i;
+    EXPECT_EQ(nodes[i].branchOrder, 1) << i;
+  }
+  // The model of the grafted skeleton holds both: a tube from the limb to each.
+  const geom::CylinderModel grown = skeleton::cylinderModelFromSkeleton(nodes);
+  const compare::CylinderModelIndex index(grown);
+  EXPECT_LT(index.signedDistance(Vec3(0.25, 1.09, 0)), 0.0);
+  EXPECT_LT(index.signedDistance(Vec3(0, 3.1, 0)), 0.0);
+}
+
+TEST(Completion, AStubReachesItsTip) {
+  Limb limb;
+  // A shoot's points from 0.12 to 0.28 m out of the limb at y = 1 (its surface at 0.1): one level
+  // set, one node at their centroid, 0.2 m out.
+  geom::PointCloud points;
+  for (int i = 0; i <= 4; ++i) points.positions.push_back(Vec3(0.12 + 0.04 * i, 1.0, 0.01 * (i % 2)));
+  const Vec3 tip = points.positions.back();
+  auto stub = chain({Vec3(0.2, 1.0, 0.005)}, 0.02);
+  skeleton::detail::reachStubTip(stub, points, limb.index);
+  EXPECT_EQ(stub[0].position, tip);
+  // Grafted, its tube now holds the shoot's outer points too.
+  std::vector<skeleton::SkeletonNode> nodes = limb.nodes;
+  ASSERT_TRUE(skeleton::detail::graftPart(nodes, stub, limb.nodes, limb.pieces, limb.index, 0.2));
+  const compare::CylinderModelIndex grown(skeleton::cylinderModelFromSkeleton(nodes));
+  EXPECT_LT(grown.signedDistance(Vec3(0.27, 1.0, 0)), 0.02);
+  // A part of two nodes is a skeleton of its own: left as it is.
+  auto twig = chain({Vec3(0.2, 1.0, 0), Vec3(0.3, 1.0, 0)}, 0.02);
+  const auto before = twig;
+  skeleton::detail::reachStubTip(twig, points, limb.index);
+  EXPECT_EQ(twig[0].position, before[0].position);
+  EXPECT_EQ(twig[1].position, before[1].position);
 }
 
 TEST(Completion, UnexplainedPointsAreThoseBeyondTheMargin) {

@@ -170,6 +170,23 @@ TEST(SurfaceBound, ATubesSpreadIsItsPointsNoiseAboutTheAxis) {
   for (double s : skeleton::detail::surfaceSpreads(far, cloud, 0.002, 0.02, 5)) EXPECT_TRUE(std::isnan(s));
 }
 
+TEST(SurfaceBound, WithoutCirclesTheTubesOwnPointsGiveTheNoise) {
+  // A trunk with 4 mm of radial noise and a branch with 12 mm (a neighbour's points beside it):
+  // the cleanest surfaces give the scan's noise, whatever the half voxel standing in for it, and
+  // whatever the model's radii.
+  const std::vector<test::Cyl> trunk = {kTree[0]};
+  const std::vector<test::Cyl> branch = {kTree[1]};
+  geom::PointCloud cloud = test::sampleCylinders(trunk, 0.01, 0.004, 10);
+  const geom::PointCloud twig = test::sampleCylinders(branch, 0.004, 0.012, 11);
+  cloud.positions.insert(cloud.positions.end(), twig.positions.begin(), twig.positions.end());
+  const auto model = trunkAndBranch(0.11, 0.03);
+  EXPECT_NEAR(skeleton::detail::spreadNoise(model, cloud, 0.01, 0.02, 5), 0.004, 0.0015);
+  EXPECT_NEAR(skeleton::detail::spreadNoise(model, cloud, 0.03, 0.02, 5), 0.004, 0.0015);
+  auto far = model;
+  for (auto& n : far) n.position += Vec3(5, 0, 0);  // no point near any tube: nothing measured
+  EXPECT_LT(skeleton::detail::spreadNoise(far, cloud, 0.01, 0.02, 5), 0);
+}
+
 namespace {
 
 /// A branch along y (0 to 2) whose cross-section is a regular polygon of `sides` corners on a

@@ -126,7 +126,8 @@ inline fit::NodeFitOptions autoNodeFitOptions() {
 /// twigs cross or lie within a voxel or two of each other, a level set holds them as one piece and
 /// one node, and the twigs off that node's tube are left out. The same pipeline is run on the
 /// points farther than a margin outside the model, one connected part at a time (largest first),
-/// and each part is grafted onto the model at its nearest node; then again on what is still out
+/// and each part is grafted onto the model at its nearest node (a part of one node, a stub
+/// shorter than two level sets, as one tube to its tip); then again on what is still out
 /// (CompletionRules::maxRounds). On leaf-off, off in the leaf-on
 /// preset (leaf clusters off the twigs are not wood).
 struct CompletionRules {
@@ -136,7 +137,7 @@ struct CompletionRules {
   /// completed from the points it leaves out"): 0.75 let 10 mm range noise through as twigs (tips up to 2× the limbs), 1.5 left most of the
   /// gain on the table.
   double marginVoxels = 1.0;
-  /// A part needs this many points (fewer cannot hold two level sets of a twig).
+  /// A part needs this many points (fewer are a scatter beside the model, not a stub or a twig).
   int minPoints = 10;
   /// A part's nearest node lies within this many voxels of the model's surface, and its voxel
   /// graph bridges no longer gaps: a part farther out is a neighbour or noise and its bridge a
