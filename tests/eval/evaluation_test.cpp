@@ -363,16 +363,17 @@ TEST(Evaluation, CsvHasTheMatrixColumns) {
   EXPECT_EQ(col("sparse"), "0");
   EXPECT_EQ(col("backward_only"), "0");
   EXPECT_EQ(col("true_volume"), "nan");  // not given: unknown
-  r.trueVolume = 8;
-  r.modelVolume = 10;
-  r.volumeError = 0.25;
-  r.measuredVolumeShare = 0.75;
-  {
+  auto reread = [&] {  // the row's cells again, after a change to it
     std::istringstream again(csvTable({r}));
     std::getline(again, header);
     std::getline(again, line);
     cells = split(line);
-  }
+  };
+  r.trueVolume = 8;
+  r.modelVolume = 10;
+  r.volumeError = 0.25;
+  r.measuredVolumeShare = 0.75;
+  reread();
   EXPECT_EQ(col("true_volume"), "8");
   EXPECT_EQ(col("model_volume"), "10");
   EXPECT_EQ(col("volume_error"), "0.25");
@@ -382,12 +383,7 @@ TEST(Evaluation, CsvHasTheMatrixColumns) {
   r.volumeLow = 7;
   r.volumeHigh = 12.5;
   r.verdict = "uncertain";
-  {
-    std::istringstream again(csvTable({r}));
-    std::getline(again, header);
-    std::getline(again, line);
-    cells = split(line);
-  }
+  reread();
   EXPECT_EQ(col("verdict"), "uncertain");
   EXPECT_EQ(col("volume_low"), "7");
   EXPECT_EQ(col("volume_high"), "12.5");
