@@ -300,7 +300,9 @@ std::vector<StemSample> stemFromColumn(const VoxelGraph& g, const std::vector<st
 
 }  // namespace
 
-std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis upAxis) {
+std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis upAxis,
+                                  bool* besideRoot) {
+  if (besideRoot) *besideRoot = false;
   if (root.empty() || g.size() == 0 || !(g.voxelSize > 0)) return {};
   const double voxel = g.voxelSize;
   const Vec3 up = geom::upVector(upAxis);
@@ -348,6 +350,7 @@ std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::ui
   // A stem found from the column with the root region at its foot after all is one the root
   // region did not show as a ring: thinner than kMinStemRadiusVoxels, left to the level sets.
   if (fromColumn && rootOnStem(g, stem, root)) return {};
+  if (besideRoot) *besideRoot = fromColumn;
   return stem;
 }
 

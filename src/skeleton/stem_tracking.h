@@ -32,8 +32,10 @@ struct StemSample {
 
 /// The tracked stem, from its base up: at least three samples, or none (no ring at the base and no
 /// stem found beside the root region: a stem too thin for a ring standing on it, a bush's stems,
-/// too few voxels). `root`: the Dijkstra sources (the base region), `up`: the tree's up axis.
-std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis up);
+/// too few voxels). `root`: the Dijkstra sources (the base region), `up`: the tree's up axis;
+/// `besideRoot`, when given, is set to whether the stem was found beside the root region.
+std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis up,
+                                  bool* besideRoot = nullptr);
 
 /// Per voxel: 1 when it lies in the tracked stem's tube (within its radius plus a margin of the
 /// axis, between the first and last samples' slabs).
