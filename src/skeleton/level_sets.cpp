@@ -170,15 +170,24 @@ void snapToStem(const GeodesicLevels& lv, const std::vector<char>& tube, const s
 }
 
 // Connected pieces of each level set, as union-find sets; all of level 0 is one piece (a single
-// root), the stem's rings are whole and split rings are joined.
-UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv, const std::vector<char>& stemTube) {
+// root), the stem's rings are whole and split rings are joined. With `cutAtTube` a level set's
+// voxels in the stem's tube and those outside it are apart: the stem stands beside the root
+// region (stem_tracking.h), the geodesic distance reaches it along a branch, and a level set
+// holds the stem's voxels with those of the whorls' branches at the same distance from that
+// branch's tip, whose centroid lay off the stem; the stem's part is its cross-section, the rest
+// are the branches leaving it.
+UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv, const std::vector<char>& stemTube,
+                      bool cutAtTube) {
   UnionFind uf(g.size());
   const std::uint32_t anchor = lv.rootVertices.front();
   for (std::size_t v = 0; v < g.size(); ++v) {
     if (lv.level[v] < 0) continue;
     if (lv.level[v] == 0) uf.unite(anchor, static_cast<std::uint32_t>(v));
-    for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k)
-      if (lv.level[g.targets[k]] == lv.level[v]) uf.unite(static_cast<std::uint32_t>(v), g.targets[k]);
+    for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+      const std::uint32_t w = g.targets[k];
+      if (lv.level[w] != lv.level[v] || (cutAtTube && stemTube[v] != stemTube[w])) continue;
+      uf.unite(static_cast<std::uint32_t>(v), w);
+    }
   }
   joinStemRings(lv, stemTube, uf);
   mergeSplitRings(g, lv, uf);
@@ -188,15 +197,27 @@ UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv, const std::
 // One node per piece, ordered by level, then by the piece's lowest vertex (deterministic; parents
 // first): support, linearity, level, the centroid of `at` over the piece, the geodesic distance of
 // its vertex nearest the root and the parent through that vertex's predecessor. Sets
-// lv.vertexNode; `count` receives each node's number of voxels.
+// lv.vertexNode; `count` receives each node's number of voxels. With `cutAtTube` (levelPieces) a
+// piece's parent may be a piece of its own level: within a level, pieces nearer the root first.
 std::vector<SkeletonNode> pieceNodes(const VoxelGraph& g, GeodesicLevels& lv, UnionFind& uf,
-                                     const std::vector<Vec3>& at, std::vector<std::uint32_t>& count) {
+                                     const std::vector<Vec3>& at, bool cutAtTube, std::vector<std::uint32_t>& count) {
   const std::size_t n = g.size();
   std::vector<std::uint32_t> reps;
   for (std::size_t v = 0; v < n; ++v)
     if (lv.level[v] >= 0 && uf.find(static_cast<std::uint32_t>(v)) == v) reps.push_back(static_cast<std::uint32_t>(v));
-  std::stable_sort(reps.begin(), reps.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return lv.level[a] < lv.level[b]; });
+  std::vector<double> nearest;
+  if (cutAtTube) {
+    nearest.assign(n, std::numeric_limits<double>::infinity());
+    for (std::size_t v = 0; v < n; ++v) {
+      if (lv.level[v] < 0) continue;
+      double& d = nearest[uf.find(static_cast<std::uint32_t>(v))];
+      d = std::min(d, lv.distance[v]);
+    }
+  }
+  std::stable_sort(reps.begin(), reps.end(), [&](std::uint32_t a, std::uint32_t b) {
+    if (lv.level[a] != lv.level[b]) return lv.level[a] < lv.level[b];
+    return cutAtTube && nearest[a] < nearest[b];
+  });
   std::vector<std::int32_t> repNode(n, -1);
   for (std::size_t i = 0; i < reps.size(); ++i) repNode[reps[i]] = static_cast<std::int32_t>(i);
   std::vector<SkeletonNode> nodes(reps.size());
@@ -308,13 +329,15 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
   if (centroids && centroids->size() != g.size())
     throw OptionsError("skeleton: levelSetNodes needs one centroid position per voxel");
   if (g.size() == 0 || lv.rootVertices.empty()) return {};
-  const std::vector<detail::StemSample> stem =
-      options.trackStem ? detail::trackStem(g, lv.rootVertices, options.up) : std::vector<detail::StemSample>{};
+  bool besideRoot = false;
+  const std::vector<detail::StemSample> stem = options.trackStem
+                                                   ? detail::trackStem(g, lv.rootVertices, options.up, &besideRoot)
+                                                   : std::vector<detail::StemSample>{};
   const std::vector<char> tube = stem.empty() ? std::vector<char>{} : detail::stemTube(g, stem);
-  UnionFind uf = levelPieces(g, lv, tube);
+  UnionFind uf = levelPieces(g, lv, tube, besideRoot);
   std::vector<std::uint32_t> count;
   const std::vector<Vec3>& at = centroids ? *centroids : g.positions;
-  std::vector<SkeletonNode> nodes = pieceNodes(g, lv, uf, at, count);
+  std::vector<SkeletonNode> nodes = pieceNodes(g, lv, uf, at, besideRoot, count);
   if (options.splitMergedForks) detail::splitMergedForks(g, lv, at, tube, options, nodes, count);
   if (!stem.empty()) snapToStem(lv, tube, stem, nodes);
   setDirections(nodes, options.up);

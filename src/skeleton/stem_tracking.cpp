@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
+#include <utility>
 
 #include "skeleton/node_tree.h"
 #include "treesketch/fit/circle_fit.h"
@@ -60,6 +62,23 @@ constexpr double kMaxLeanDeg = 45.0;
 constexpr int kMaxMisses = 1;
 // The tube holds voxels within this many radii plus a voxel of the axis.
 constexpr double kTubeRadii = 1.0;
+// When no stem is found from the root region, it may stand beside it: a conifer's lowest
+// branches reach the ground beside its foot and lower than it. The stem is then looked for where
+// the tree is most continuously vertical: the block of 3×3 voxel columns (a stem up to 1.5 voxels
+// in radius lies in one; a thicker one's wall does) occupied over the longest run of heights, runs
+// bridging gaps of this many layers (an occlusion). A stem rises through the crown; a branch
+// leaves a column within a few layers. The run must be at least one base slab tall...
+constexpr int kColumnGapLayers = 1;
+// ...and the root region's own blocks must rise less than this share of it: it is then no stem's
+// foot (branch tips on the ground), where a bush's other stems, or the foot of a stem too thin to
+// show a ring from the root region, rise about as far (spruce 0.14; bush, thin stems 0.62-1.0).
+constexpr double kMaxRootRunShare = 0.5;
+// There the stem's rings may be as small as this many voxels in radius (the smallest whose voxel
+// centroids circle an empty centre), where kMinStemRadiusVoxels holds from the root region: with
+// its foot in the root region a thinner stem's level sets are its cross-sections, centred on its
+// axis (tracking such stems from the root region measured worse: docs/notes/leaf_on_skeleton.md);
+// beside it, the level sets near the stem's foot are not its cross-sections, however thin it is.
+constexpr double kMinColumnRingVoxels = 1.0;
 
 struct Frame {
   Vec3 u, w;
@@ -160,9 +179,130 @@ std::vector<StemSample> followStem(const VoxelGraph& g, const StemSample& base, 
   return stem;
 }
 
+// A 3×3 block of voxel columns (indices along the frame's u and w) and its longest run of
+// occupied layers (layer 0: the tree's lowest voxel).
+struct Column {
+  long iu = 0, iw = 0;
+  int first = 0, layers = 0;
+};
+
+std::pair<long, long> columnOf(const Vec3& p, const Frame& f, double voxel) {
+  return {static_cast<long>(std::floor(p.dot(f.u) / voxel)), static_cast<long>(std::floor(p.dot(f.w) / voxel))};
+}
+
+// The longest run in sorted, unique layers, gaps of kColumnGapLayers bridged: {first, length}.
+std::pair<int, int> longestRun(const std::vector<int>& layers) {
+  std::pair<int, int> best{0, 0};
+  std::size_t start = 0;
+  for (std::size_t k = 1; k <= layers.size(); ++k) {
+    if (k < layers.size() && layers[k] - layers[k - 1] <= kColumnGapLayers + 1) continue;
+    const int length = layers[k - 1] - layers[start] + 1;
+    if (length > best.second) best = {layers[start], length};
+    start = k;
+  }
+  return best;
+}
+
+// Each occupied voxel column's layers (unsorted, repeated).
+using ColumnLayers = std::map<std::pair<long, long>, std::vector<int>>;
+
+ColumnLayers columnLayers(const VoxelGraph& g, double lowest, const Frame& f, geom::UpAxis upAxis) {
+  ColumnLayers layersOf;
+  for (const Vec3& p : g.positions)
+    layersOf[columnOf(p, f, g.voxelSize)].push_back(
+        static_cast<int>(std::floor((geom::height(p, upAxis) - lowest) / g.voxelSize)));
+  return layersOf;
+}
+
+// The block of columns around `key` and its longest run.
+Column blockRun(const ColumnLayers& layersOf, const std::pair<long, long>& key) {
+  std::vector<int> block;
+  for (long du = -1; du <= 1; ++du)
+    for (long dw = -1; dw <= 1; ++dw) {
+      const auto it = layersOf.find({key.first + du, key.second + dw});
+      if (it != layersOf.end()) block.insert(block.end(), it->second.begin(), it->second.end());
+    }
+  std::sort(block.begin(), block.end());
+  block.erase(std::unique(block.begin(), block.end()), block.end());
+  const auto [first, length] = longestRun(block);
+  return {key.first, key.second, first, length};
+}
+
+// The block of columns with the longest run (ties: the first in index order).
+Column longestColumn(const ColumnLayers& layersOf) {
+  Column best;
+  for (const auto& entry : layersOf) {
+    const Column c = blockRun(layersOf, entry.first);
+    if (c.layers > best.layers) best = c;
+  }
+  return best;
+}
+
+// The stem's cross-section in the slab of `column` from `bottom` (one base slab tall, doubled
+// while too few voxels): circles of radius about rho, doubled from the smallest ring, looked for
+// within rho's search of the block's voxels' centroid in the slab, as followStem looks.
+bool columnBase(const VoxelGraph& g, const Column& column, const Frame& f, double bottom, geom::UpAxis upAxis,
+                double maxSearch, StemSample& base) {
+  const double voxel = g.voxelSize;
+  const Vec3 up = geom::upVector(upAxis);
+  for (int k = 0; k <= kMaxSlabDoublings; ++k) {
+    const double half = 0.5 * kBaseSlabVoxels * voxel * std::ldexp(1.0, k);
+    Vec3 sum = Vec3::Zero();
+    int count = 0;
+    for (const Vec3& p : g.positions) {
+      const auto [iu, iw] = columnOf(p, f, voxel);
+      const double h = geom::height(p, upAxis) - bottom;
+      if (std::abs(iu - column.iu) > 1 || std::abs(iw - column.iw) > 1 || h < 0 || h > 2 * half) continue;
+      sum += p;
+      ++count;
+    }
+    if (count == 0) continue;
+    const Vec3 centroid = sum / count;
+    const Vec3 centre = centroid + (bottom + half - geom::height(centroid, upAxis)) * up;
+    bool tooFew = true;
+    for (double rho = kMinColumnRingVoxels * voxel; kSearchRadii * rho + voxel <= maxSearch; rho *= 2) {
+      const Slab slab =
+          fitSlab(g, centre, up, half, kSearchRadii * rho + voxel,
+                  std::max(kMinColumnRingVoxels * voxel, kMinRadiusRatio * rho), kMaxRadiusRatio * rho, base);
+      if (slab == Slab::Stem) return true;
+      tooFew = tooFew && slab == Slab::TooFew;
+    }
+    if (!tooFew) return false;
+  }
+  return false;
+}
+
+// The stem found where the tree is most continuously vertical (see kColumnGapLayers) and followed
+// from there down and up, when the root region is beside it; the samples, lowest first, or none.
+std::vector<StemSample> stemFromColumn(const VoxelGraph& g, const std::vector<std::uint32_t>& root, double lowest,
+                                       geom::UpAxis upAxis, double maxSearch) {
+  const double voxel = g.voxelSize;
+  const Vec3 up = geom::upVector(upAxis);
+  const Frame f = frameFor(up);
+  const ColumnLayers layersOf = columnLayers(g, lowest, f, upAxis);
+  const Column column = longestColumn(layersOf);
+  if (column.layers < kBaseSlabVoxels) return {};
+  int rootRun = 0;  // the root region's own rise (see kMaxRootRunShare)
+  for (std::uint32_t v : root)
+    rootRun = std::max(rootRun, blockRun(layersOf, columnOf(g.positions[v], f, voxel)).layers);
+  if (rootRun >= kMaxRootRunShare * column.layers) return {};
+  for (int j = 0; j < kBaseTries; ++j) {
+    StemSample base;
+    const double bottom = lowest + (column.first + j * kBaseSlabVoxels) * voxel;
+    if (!columnBase(g, column, f, bottom, upAxis, maxSearch, base)) continue;
+    const std::vector<StemSample> below = followStem(g, base, -up), above = followStem(g, base, up);
+    std::vector<StemSample> stem(below.rbegin(), below.rend() - 1);
+    stem.insert(stem.end(), above.begin(), above.end());
+    if (stem.size() >= 3) return stem;
+  }
+  return {};
+}
+
 }  // namespace
 
-std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis upAxis) {
+std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis upAxis,
+                                  bool* besideRoot) {
+  if (besideRoot) *besideRoot = false;
   if (root.empty() || g.size() == 0 || !(g.voxelSize > 0)) return {};
   const double voxel = g.voxelSize;
   const Vec3 up = geom::upVector(upAxis);
@@ -195,6 +335,10 @@ std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::ui
     }
     stem = found == Slab::Stem ? followStem(g, base, up) : std::vector<StemSample>{};
   }
+  // No stem from the root region: it may lie beside the stem's foot (see kColumnGapLayers).
+  const bool fromColumn = stem.size() < 3;
+  if (fromColumn)
+    stem = stemFromColumn(g, root, lowest, upAxis, kBaseSearchSpreads * spread + kBaseSearchVoxels * voxel);
   if (stem.size() < 3) return {};
   // The stem reaches down to the tree's lowest voxel, along its first segment: the lowest slabs
   // may have been skipped (see kBaseTries) or made tall.
@@ -203,7 +347,17 @@ std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::ui
   const double drop = geom::height(stem[0].centre, upAxis) - lowest;
   if (drop > 0 && firstAxis.dot(up) > maxLeanCos)
     stem.insert(stem.begin(), StemSample{stem[0].centre - drop / firstAxis.dot(up) * firstAxis, stem[0].radius});
+  // A stem found from the column with the root region at its foot after all is one the root
+  // region did not show as a ring: thinner than kMinStemRadiusVoxels, left to the level sets.
+  if (fromColumn && rootOnStem(g, stem, root)) return {};
+  if (besideRoot) *besideRoot = fromColumn;
   return stem;
+}
+
+bool rootOnStem(const VoxelGraph& g, const std::vector<StemSample>& stem, const std::vector<std::uint32_t>& root) {
+  std::size_t in = 0;
+  for (std::uint32_t v : root) in += inStemTube(stem, g.voxelSize, g.positions[v]) ? 1 : 0;
+  return 2 * in > root.size();
 }
 
 StemSample stemAt(const std::vector<StemSample>& stem, const Vec3& p) {
@@ -227,31 +381,29 @@ StemSample stemAt(const std::vector<StemSample>& stem, const Vec3& p) {
   return best;
 }
 
+bool inStemTube(const std::vector<StemSample>& stem, double voxel, const Vec3& p) {
+  for (std::size_t k = 0; k + 1 < stem.size(); ++k) {
+    const Vec3 a = stem[k].centre, b = stem[k + 1].centre, ab = b - a;
+    const double len2 = ab.squaredNorm();
+    if (!(len2 > 0)) continue;
+    // The first and last segments reach half a slab past their samples.
+    const double len = std::sqrt(len2);
+    const double lo = k == 0 ? -0.5 * std::max(kBaseSlabVoxels * voxel, stem[k].radius) / len : 0.0;
+    const double hi =
+        k + 2 == stem.size() ? 1.0 + 0.5 * std::max(kMinSlabVoxels * voxel, stem[k + 1].radius) / len : 1.0;
+    const double t = (p - a).dot(ab) / len2;
+    if (t < lo || t > hi) continue;
+    const double tc = std::clamp(t, 0.0, 1.0);
+    const double r = stem[k].radius + tc * (stem[k + 1].radius - stem[k].radius);
+    if ((p - (a + t * ab)).norm() <= kTubeRadii * r + voxel) return true;
+  }
+  return false;
+}
+
 std::vector<char> stemTube(const VoxelGraph& g, const std::vector<StemSample>& stem) {
   std::vector<char> in(g.size(), 0);
   if (stem.size() < 2) return in;
-  const double voxel = g.voxelSize;
-  for (std::size_t v = 0; v < g.size(); ++v) {
-    const Vec3& p = g.positions[v];
-    for (std::size_t k = 0; k + 1 < stem.size(); ++k) {
-      const Vec3 a = stem[k].centre, b = stem[k + 1].centre, ab = b - a;
-      const double len2 = ab.squaredNorm();
-      if (!(len2 > 0)) continue;
-      // The first and last segments reach half a slab past their samples.
-      const double len = std::sqrt(len2);
-      const double lo = k == 0 ? -0.5 * std::max(kBaseSlabVoxels * voxel, stem[k].radius) / len : 0.0;
-      const double hi =
-          k + 2 == stem.size() ? 1.0 + 0.5 * std::max(kMinSlabVoxels * voxel, stem[k + 1].radius) / len : 1.0;
-      const double t = (p - a).dot(ab) / len2;
-      if (t < lo || t > hi) continue;
-      const double tc = std::clamp(t, 0.0, 1.0);
-      const double r = stem[k].radius + tc * (stem[k + 1].radius - stem[k].radius);
-      if ((p - (a + t * ab)).norm() <= kTubeRadii * r + voxel) {
-        in[v] = 1;
-        break;
-      }
-    }
-  }
+  for (std::size_t v = 0; v < g.size(); ++v) in[v] = inStemTube(stem, g.voxelSize, g.positions[v]) ? 1 : 0;
   return in;
 }
 

@@ -9,8 +9,12 @@
 // even when no single bin does. So the stem is followed from its base: a circle fitted to the
 // slab's voxels (RANSAC, thesis §4.4), a step of one radius along the axis of the last centres,
 // the next slab, until the circle no longer explains the slab (the crown's first fork, foliage,
-// the top). level_sets.cpp then joins the voxels of each level set that lie in this tube into one
-// piece: one node per level on the stem, centred on its axis, with the stem's radius.
+// the top). When the root region shows no stem (a stem under two voxels in radius, or one whose
+// lowest branches reach the ground beside and below its foot), the stem is looked for where the
+// tree is most continuously vertical, if the root region itself is not (a conifer's branch tips on
+// the ground), and followed from there both ways. level_sets.cpp then joins the voxels of each
+// level set that lie in this tube into one piece: one node per level on the stem, centred on its
+// axis, with the stem's radius.
 #pragma once
 
 #include <cstdint>
@@ -26,14 +30,23 @@ struct StemSample {
   double radius = 0;
 };
 
-/// The tracked stem, from its base up: at least three samples, or none (no ring at the base: a
-/// root region that is not a stem's cross-section, too few voxels). `root`: the Dijkstra sources
-/// (the base region), `up`: the tree's up axis.
-std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis up);
+/// The tracked stem, from its base up: at least three samples, or none (no ring at the base and no
+/// stem found beside the root region: a stem too thin for a ring standing on it, a bush's stems,
+/// too few voxels). `root`: the Dijkstra sources (the base region), `up`: the tree's up axis;
+/// `besideRoot`, when given, is set to whether the stem was found beside the root region.
+std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis up,
+                                  bool* besideRoot = nullptr);
 
 /// Per voxel: 1 when it lies in the tracked stem's tube (within its radius plus a margin of the
 /// axis, between the first and last samples' slabs).
 std::vector<char> stemTube(const VoxelGraph& g, const std::vector<StemSample>& stem);
+
+/// Whether `p` lies in the tracked stem's tube (as stemTube; `voxel`: the graph's voxel size).
+bool inStemTube(const std::vector<StemSample>& stem, double voxel, const geom::Vec3& p);
+
+/// Whether most of the root region's voxels lie in the tracked stem's tube: false when the stem
+/// was found beside the root region (a conifer's lowest branches reach below its foot).
+bool rootOnStem(const VoxelGraph& g, const std::vector<StemSample>& stem, const std::vector<std::uint32_t>& root);
 
 /// The point of the tracked stem's axis nearest `p`, with the stem's radius there (between
 /// samples linearly; past the ends, on the end segments' lines, with the end's radius).
