@@ -360,6 +360,21 @@ bool rootOnStem(const VoxelGraph& g, const std::vector<StemSample>& stem, const 
   return 2 * in > root.size();
 }
 
+std::vector<std::uint32_t> stemFoot(const VoxelGraph& g, const std::vector<StemSample>& stem,
+                                    const std::vector<char>& reachable, geom::UpAxis up, double height) {
+  std::vector<std::uint32_t> tube;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t v = 0; v < g.size(); ++v)
+    if (reachable[v] && inStemTube(stem, g.voxelSize, g.positions[v])) {
+      tube.push_back(static_cast<std::uint32_t>(v));
+      lowest = std::min(lowest, geom::height(g.positions[v], up));
+    }
+  std::vector<std::uint32_t> foot;
+  for (std::uint32_t v : tube)
+    if (geom::height(g.positions[v], up) <= lowest + height) foot.push_back(v);
+  return foot;
+}
+
 StemSample stemAt(const std::vector<StemSample>& stem, const Vec3& p) {
   StemSample best = stem.front();
   double bestDistance = (p - best.centre).squaredNorm();
