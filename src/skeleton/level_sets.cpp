@@ -191,12 +191,12 @@ void snapToStem(const GeodesicLevels& lv, const std::vector<char>& tube, const s
 }
 
 // Connected pieces of each level set, as union-find sets; all of level 0 is one piece (a single
-// root), the stem's rings are whole and split rings are joined. With `cutAtTube` a level set's
-// voxels in the stem's tube and those outside it are apart: the stem stands beside the root
-// region (stem_tracking.h), the geodesic distance reaches it along a branch, and a level set
-// holds the stem's voxels with those of the whorls' branches at the same distance from that
-// branch's tip, whose centroid lay off the stem; the stem's part is its cross-section, the rest
-// are the branches leaving it.
+// root), the stem's rings are whole and split rings are joined. With `cutAtTube` (the stem found
+// beside the root region: a conifer's, stem_tracking.h) a level set's voxels in the stem's tube
+// and those outside it are apart: at a whorl a level set holds the stem with the bases of the
+// branches leaving it, and their centroid lay off the stem; cut, the stem's part is its
+// cross-section and the rest are the branches. For every tracked stem the cut measured worse
+// (docs/notes/leaf_on_skeleton.md).
 UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv, const std::vector<char>& stemTube,
                       bool cutAtTube) {
   UnionFind uf(g.size());
