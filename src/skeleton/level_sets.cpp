@@ -43,6 +43,27 @@ std::vector<std::uint32_t> rootRegion(const VoxelGraph& g, const SkeletonOptions
   return root;
 }
 
+// The stem tracked from the root region (stem_tracking.h), kept in `lv`. When it stands beside the
+// root region, its foot becomes the root: from a branch tip on the ground the geodesic distance
+// reached the stem along that branch and ran down it as well as up.
+void trackStemFromRoot(const VoxelGraph& g, const SkeletonOptions& options, GeodesicLevels& lv) {
+  bool beside = false;
+  const std::vector<detail::StemSample> stem = detail::trackStem(g, lv.rootVertices, options.up, &beside);
+  for (const detail::StemSample& s : stem) {
+    lv.stemCentres.push_back(s.centre);
+    lv.stemRadii.push_back(s.radius);
+  }
+  lv.stemBesideRoot = beside;
+  if (!beside) return;
+  std::int32_t components = 0;
+  const std::vector<std::int32_t> label = util::labelComponents(g.offsets, g.targets, &components);
+  std::vector<char> reachable(g.size(), 0);
+  for (std::size_t v = 0; v < g.size(); ++v) reachable[v] = label[v] == label[lv.rootVertices.front()] ? 1 : 0;
+  std::vector<std::uint32_t> foot =
+      detail::stemFoot(g, stem, reachable, options.up, options.rootHeightVoxels * g.voxelSize);
+  if (!foot.empty()) lv.rootVertices = std::move(foot);
+}
+
 // Shortest paths from `lv.rootVertices` over the graph's edge lengths.
 void dijkstra(const VoxelGraph& g, GeodesicLevels& lv) {
   using Item = std::pair<double, std::uint32_t>;
@@ -170,12 +191,12 @@ void snapToStem(const GeodesicLevels& lv, const std::vector<char>& tube, const s
 }
 
 // Connected pieces of each level set, as union-find sets; all of level 0 is one piece (a single
-// root), the stem's rings are whole and split rings are joined. With `cutAtTube` a level set's
-// voxels in the stem's tube and those outside it are apart: the stem stands beside the root
-// region (stem_tracking.h), the geodesic distance reaches it along a branch, and a level set
-// holds the stem's voxels with those of the whorls' branches at the same distance from that
-// branch's tip, whose centroid lay off the stem; the stem's part is its cross-section, the rest
-// are the branches leaving it.
+// root), the stem's rings are whole and split rings are joined. With `cutAtTube` (the stem found
+// beside the root region: a conifer's, stem_tracking.h) a level set's voxels in the stem's tube
+// and those outside it are apart: at a whorl a level set holds the stem with the bases of the
+// branches leaving it, and their centroid lay off the stem; cut, the stem's part is its
+// cross-section and the rest are the branches. For every tracked stem the cut measured worse
+// (docs/notes/leaf_on_skeleton.md).
 UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv, const std::vector<char>& stemTube,
                       bool cutAtTube) {
   UnionFind uf(g.size());
@@ -316,6 +337,7 @@ GeodesicLevels computeGeodesicLevels(const VoxelGraph& g, const SkeletonOptions&
   lv.vertexNode.assign(n, -1);
   if (n == 0) return lv;
   lv.rootVertices = rootRegion(g, options);
+  if (options.trackStem) trackStemFromRoot(g, options, lv);
   dijkstra(g, lv);
   for (std::size_t i = 0; i < n; ++i)
     if (std::isfinite(lv.distance[i]))
@@ -329,10 +351,11 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
   if (centroids && centroids->size() != g.size())
     throw OptionsError("skeleton: levelSetNodes needs one centroid position per voxel");
   if (g.size() == 0 || lv.rootVertices.empty()) return {};
-  bool besideRoot = false;
-  const std::vector<detail::StemSample> stem = options.trackStem
-                                                   ? detail::trackStem(g, lv.rootVertices, options.up, &besideRoot)
-                                                   : std::vector<detail::StemSample>{};
+  std::vector<detail::StemSample> stem;
+  if (options.trackStem)
+    for (std::size_t k = 0; k < lv.stemCentres.size() && k < lv.stemRadii.size(); ++k)
+      stem.push_back({lv.stemCentres[k], lv.stemRadii[k]});
+  const bool besideRoot = !stem.empty() && lv.stemBesideRoot;
   const std::vector<char> tube = stem.empty() ? std::vector<char>{} : detail::stemTube(g, stem);
   UnionFind uf = levelPieces(g, lv, tube, besideRoot);
   std::vector<std::uint32_t> count;

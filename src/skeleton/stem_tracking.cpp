@@ -203,7 +203,7 @@ std::pair<int, int> longestRun(const std::vector<int>& layers) {
   return best;
 }
 
-// Each occupied voxel column's layers (unsorted, repeated).
+// Each occupied voxel column's layers, sorted, each once.
 using ColumnLayers = std::map<std::pair<long, long>, std::vector<int>>;
 
 ColumnLayers columnLayers(const VoxelGraph& g, double lowest, const Frame& f, geom::UpAxis upAxis) {
@@ -211,6 +211,11 @@ ColumnLayers columnLayers(const VoxelGraph& g, double lowest, const Frame& f, ge
   for (const Vec3& p : g.positions)
     layersOf[columnOf(p, f, g.voxelSize)].push_back(
         static_cast<int>(std::floor((geom::height(p, upAxis) - lowest) / g.voxelSize)));
+  for (auto& entry : layersOf) {
+    std::vector<int>& layers = entry.second;
+    std::sort(layers.begin(), layers.end());
+    layers.erase(std::unique(layers.begin(), layers.end()), layers.end());
+  }
   return layersOf;
 }
 
@@ -228,10 +233,24 @@ Column blockRun(const ColumnLayers& layersOf, const std::pair<long, long>& key) 
   return {key.first, key.second, first, length};
 }
 
-// The block of columns with the longest run (ties: the first in index order).
+// The block of columns with the longest run (ties: the first in index order). A run bridging
+// single gaps over n occupied layers is at most 2n - 1 long: blocks holding too few layers to
+// beat the block of the fullest column, or the best so far, are not merged.
 Column longestColumn(const ColumnLayers& layersOf) {
+  auto fullest = layersOf.begin();
+  for (auto it = layersOf.begin(); it != layersOf.end(); ++it)
+    if (it->second.size() > fullest->second.size()) fullest = it;
+  const int floor = fullest == layersOf.end() ? 0 : blockRun(layersOf, fullest->first).layers;
   Column best;
   for (const auto& entry : layersOf) {
+    std::size_t held = 0;
+    for (long du = -1; du <= 1; ++du)
+      for (long dw = -1; dw <= 1; ++dw) {
+        const auto it = layersOf.find({entry.first.first + du, entry.first.second + dw});
+        if (it != layersOf.end()) held += it->second.size();
+      }
+    const auto bound = static_cast<int>(2 * held) - 1;
+    if (bound < floor || bound <= best.layers) continue;
     const Column c = blockRun(layersOf, entry.first);
     if (c.layers > best.layers) best = c;
   }
@@ -358,6 +377,21 @@ bool rootOnStem(const VoxelGraph& g, const std::vector<StemSample>& stem, const 
   std::size_t in = 0;
   for (std::uint32_t v : root) in += inStemTube(stem, g.voxelSize, g.positions[v]) ? 1 : 0;
   return 2 * in > root.size();
+}
+
+std::vector<std::uint32_t> stemFoot(const VoxelGraph& g, const std::vector<StemSample>& stem,
+                                    const std::vector<char>& reachable, geom::UpAxis up, double height) {
+  std::vector<std::uint32_t> tube;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t v = 0; v < g.size(); ++v)
+    if (reachable[v] && inStemTube(stem, g.voxelSize, g.positions[v])) {
+      tube.push_back(static_cast<std::uint32_t>(v));
+      lowest = std::min(lowest, geom::height(g.positions[v], up));
+    }
+  std::vector<std::uint32_t> foot;
+  for (std::uint32_t v : tube)
+    if (geom::height(g.positions[v], up) <= lowest + height) foot.push_back(v);
+  return foot;
 }
 
 StemSample stemAt(const std::vector<StemSample>& stem, const Vec3& p) {

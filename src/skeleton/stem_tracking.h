@@ -48,6 +48,12 @@ bool inStemTube(const std::vector<StemSample>& stem, double voxel, const geom::V
 /// was found beside the root region (a conifer's lowest branches reach below its foot).
 bool rootOnStem(const VoxelGraph& g, const std::vector<StemSample>& stem, const std::vector<std::uint32_t>& root);
 
+/// The stem's foot: the voxels of its tube (those marked in `reachable`) within `height` (world
+/// units) of the lowest of them along `up`; the Dijkstra sources when the stem stands beside the
+/// root region. Empty when no reachable voxel is in the tube.
+std::vector<std::uint32_t> stemFoot(const VoxelGraph& g, const std::vector<StemSample>& stem,
+                                    const std::vector<char>& reachable, geom::UpAxis up, double height);
+
 /// The point of the tracked stem's axis nearest `p`, with the stem's radius there (between
 /// samples linearly; past the ends, on the end segments' lines, with the end's radius).
 StemSample stemAt(const std::vector<StemSample>& stem, const geom::Vec3& p);

@@ -92,14 +92,22 @@ TEST(StemTracking, LeavesANarrowStemStandingOnTheLowestVoxelsToTheLevelSets) {
   EXPECT_TRUE(skeleton::detail::trackStem(g, root, geom::UpAxis::Y).empty());
 }
 
-// The whole skeleton: the lowest branches beside the stem no longer carry the model's stem; its
-// nodes between the whorls lie on the stem's axis.
-TEST(StemTracking, TheSkeletonsStemNodesLieOnTheAxisAboveTheDroopingBranches) {
+// The whole skeleton: rooted at the stem's foot, not at the drooping branches' tips, and its
+// stem's nodes lie on the stem's axis.
+TEST(StemTracking, TheSkeletonIsRootedAtTheStemsFootBesideTheDroopingBranches) {
   const geom::PointCloud cloud = test::sampleCylinders(conifer(true), 0.012, 0.002, 7);
   skeleton::SkeletonOptions o;
   o.graph.voxelSize = kVoxel;
   const skeleton::Skeleton s = skeleton::extractSkeleton(cloud, o);
   ASSERT_FALSE(s.rawNodes.empty());
+  EXPECT_TRUE(s.levels.stemBesideRoot);
+  ASSERT_FALSE(s.levels.rootVertices.empty());
+  for (std::uint32_t v : s.levels.rootVertices) {
+    const Vec3& p = s.graph.positions[v];
+    EXPECT_LT(std::hypot(p.x(), p.z()), kStemRadius + 1.5 * kVoxel) << "root voxel at height " << p.y();
+  }
+  ASSERT_FALSE(s.nodes.empty());
+  EXPECT_LT(std::hypot(s.nodes.front().position.x(), s.nodes.front().position.z()), kStemRadius);
   int onStem = 0, off = 0;
   for (const auto& n : s.rawNodes) {
     if (!n.stem) continue;

@@ -196,6 +196,13 @@ struct GeodesicLevels {
   std::vector<std::int64_t> predecessor;    ///< per vertex; -1 for sources and unreachable
   std::vector<std::int32_t> level;          ///< per vertex; -1 when unreachable
   std::vector<std::int32_t> vertexNode;     ///< raw node of each vertex; -1 when none
+  /// The stem tracked by circle fits (SkeletonOptions::trackStem), base first: axis points (world
+  /// frame) and radii (world units); empty when none was found.
+  std::vector<geom::Vec3> stemCentres;
+  std::vector<double> stemRadii;
+  /// The stem was found beside the tree's lowest region (a conifer's lowest branch tips on the
+  /// ground): rootVertices are then the stem's foot.
+  bool stemBesideRoot = false;
 };
 
 struct Skeleton {
