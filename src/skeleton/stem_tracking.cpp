@@ -69,6 +69,10 @@ constexpr double kTubeRadii = 1.0;
 // bridging gaps of this many layers (an occlusion). A stem rises through the crown; a branch
 // leaves a column within a few layers. The run must be at least one base slab tall...
 constexpr int kColumnGapLayers = 1;
+// ...it must start where a stem's foot is, within the base slabs above the tree's lowest point (a
+// stem stands on the ground; a column starting higher is a limb or a bush's stem rising from the
+// crown: bush_2_s6644's sphere scan, whose column starts half way up, took one for its stem and
+// doubled its backward error)...
 // ...and the root region's own blocks must rise less than this share of it: it is then no stem's
 // foot (branch tips on the ground), where a bush's other stems, or the foot of a stem too thin to
 // show a ring from the root region, rise about as far (spruce 0.14; bush, thin stems 0.62-1.0).
@@ -300,7 +304,7 @@ std::vector<StemSample> stemFromColumn(const VoxelGraph& g, const std::vector<st
   const Frame f = frameFor(up);
   const ColumnLayers layersOf = columnLayers(g, lowest, f, upAxis);
   const Column column = longestColumn(layersOf);
-  if (column.layers < kBaseSlabVoxels) return {};
+  if (column.layers < kBaseSlabVoxels || column.first > kBaseTries * kBaseSlabVoxels) return {};
   int rootRun = 0;  // the root region's own rise (see kMaxRootRunShare)
   for (std::uint32_t v : root)
     rootRun = std::max(rootRun, blockRun(layersOf, columnOf(g.positions[v], f, voxel)).layers);

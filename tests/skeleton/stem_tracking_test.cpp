@@ -92,6 +92,22 @@ TEST(StemTracking, LeavesANarrowStemStandingOnTheLowestVoxelsToTheLevelSets) {
   EXPECT_TRUE(skeleton::detail::trackStem(g, root, geom::UpAxis::Y).empty());
 }
 
+// A vertical limb standing on a crooked stem two metres up is not a stem beside the lowest voxels:
+// a stem stands on the ground (without that rule this limb was taken for the tree's stem).
+TEST(StemTracking, AColumnStartingHighUpIsNoStemBesideTheBase) {
+  std::vector<Cyl> tree{{Vec3(-1.2, 0, 0), Vec3(-0.8, 2.0, 0), kStemRadius, -1},
+                        {Vec3(-0.8, 2.0, 0), Vec3(0, 2.0, 0), kStemRadius, 0},
+                        {Vec3(0, 2.0, 0), Vec3(0, 4.5, 0), kStemRadius, 1}};
+  for (int w = 0; w < 4; ++w) {
+    const double y = 2.4 + 0.5 * w;
+    tree.push_back({Vec3(0, y, 0), Vec3(0.7 * std::cos(w), y + 0.05, 0.7 * std::sin(w)), 0.015, 2});
+  }
+  const skeleton::VoxelGraph g = graphOf(tree);
+  const std::vector<std::uint32_t> root = lowestVoxels(g);
+  ASSERT_FALSE(root.empty());
+  EXPECT_TRUE(skeleton::detail::trackStem(g, root, geom::UpAxis::Y).empty());
+}
+
 // The whole skeleton: rooted at the stem's foot, not at the drooping branches' tips, and its
 // stem's nodes lie on the stem's axis.
 TEST(StemTracking, TheSkeletonIsRootedAtTheStemsFootBesideTheDroopingBranches) {
