@@ -108,12 +108,9 @@ TreeJobResult runTreeJob(const TreeJob& a) {
 
   const Stopwatch tm;
   const model::TreeModel tree = model::fromAutoSkeleton(s, up.up);
-  model::MeasureOptions mo;
+  model::MeasureOptions mo = model::autoMeasureOptions(s, opt, a.leafOn);
   mo.unitMetres = a.unitMetres;
-  mo.leafOn = a.leafOn;
   mo.woodOnly = a.woodOnly;
-  mo.noise = s.noiseMeasured ? s.noise : -1.0;
-  mo.leafPieceShare = r.skeletonNodes ? static_cast<double>(r.leafPieces) / static_cast<double>(r.skeletonNodes) : 0.0;
   const model::ModelMeasures measures = model::measure(tree, kept, mo);
   r.metricsMs = tm.ms();
 

@@ -110,13 +110,7 @@ MethodOutput methodSkeleton(const MethodInput& in) {
   skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, so);
   MethodOutput out;
   out.model = model::fromAutoSkeleton(r, in.tree.up);
-  model::MeasureOptions mo;
-  mo.leafOn = in.leafOn;
-  mo.noise = r.noiseMeasured ? r.noise : -1.0;
-  std::size_t leafPieces = 0;
-  for (const auto& n : r.model) leafPieces += skeleton::isLeafPiece(n, so);
-  mo.leafPieceShare = r.model.empty() ? 0.0 : static_cast<double>(leafPieces) / static_cast<double>(r.model.size());
-  out.measure = mo;
+  out.measure = model::autoMeasureOptions(r, so, in.leafOn);
   out.mesh = std::move(r.mesh);
   out.sketch = std::move(r.sketch);
   out.nodes = static_cast<int>(out.sketch.size());

@@ -198,6 +198,17 @@ TreeModel fromAutoSkeleton(const skeleton::AutoSkeletonResult& r, geom::UpAxis u
   return model;
 }
 
+MeasureOptions autoMeasureOptions(const skeleton::AutoSkeletonResult& r, const skeleton::AutoSkeletonOptions& options,
+                                  bool leafOn) {
+  MeasureOptions mo;
+  mo.leafOn = leafOn;
+  mo.noise = r.noiseMeasured ? r.noise : -1.0;
+  std::size_t leafPieces = 0;
+  for (const auto& n : r.model) leafPieces += skeleton::isLeafPiece(n, options);
+  mo.leafPieceShare = r.model.empty() ? 0.0 : static_cast<double>(leafPieces) / static_cast<double>(r.model.size());
+  return mo;
+}
+
 namespace {
 
 /// Relative radius spread of a piece on a fitted circle, and the factors of an inferred one.
@@ -231,6 +242,10 @@ constexpr double kNoiseRadiusAllowance = 2.0;
 void volumeRange(const TreeModel& model, double unit3, double noise, ModelMeasures* m) {
   double low = 0, high = 0;
   const double allowance = noise > 0 ? kNoiseRadiusAllowance * noise : 0.0;
+  auto lower = [&](double r) {
+    const double r2 = r * r - allowance * allowance;
+    return r2 > 0 ? (1 - kMeasuredRadiusSpread) * std::sqrt(r2) : 0.0;
+  };
   for (std::size_t i = 0; i < model.cylinders.size(); ++i) {
     const geom::ModelCylinder& c = model.cylinders.cylinders[i];
     const double v = c.volume() * unit3;
@@ -242,10 +257,6 @@ void volumeRange(const TreeModel& model, double unit3, double noise, ModelMeasur
       continue;
     }
     geom::ModelCylinder thin = c;
-    auto lower = [&](double r) {
-      const double r2 = r * r - allowance * allowance;
-      return r2 > 0 ? (1 - kMeasuredRadiusSpread) * std::sqrt(r2) : 0.0;
-    };
     thin.startRadius = lower(c.startRadius);
     thin.endRadius = lower(c.endRadius);
     low += thin.volume() * unit3;

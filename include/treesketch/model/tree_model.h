@@ -98,6 +98,12 @@ struct MeasureOptions {
   double noise = -1;
 };
 
+/// What the automatic model knows of its scan, for measure(): the noise it measured (when it
+/// measured one), whether it ran with the leaf-on settings (`options`'s foliage is not recorded),
+/// and the share of its pieces that looked like leaves. unitMetres and woodOnly are the caller's.
+MeasureOptions autoMeasureOptions(const skeleton::AutoSkeletonResult& result,
+                                  const skeleton::AutoSkeletonOptions& options, bool leafOn);
+
 /// Whether the model's figures can be trusted, with the measured reasons and what to do.
 struct Verdict {
   enum class Level { Trusted, Uncertain, NotTrusted };
