@@ -96,12 +96,10 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bo
         {"skeleton_ms", s.skeletonMs}, {"fit_ms", s.fitMs}, {"sweep_ms", s.sweepMs}, {"completion_ms", s.completionMs}};
     const auto tm = std::chrono::steady_clock::now();
     t.tree = model::fromAutoSkeleton(s, choice.up);
-    model::MeasureOptions mo;
+    // As the CLI measures it: the fit, the volume's range and the verdict.
+    model::MeasureOptions mo = model::autoMeasureOptions(s, opt, leafOn);
     mo.unitMetres = unitMetres;
-    mo.leafOn = leafOn;  // as the CLI measures it: the fit, the volume's range and the verdict
     mo.woodOnly = woodOnly;
-    mo.noise = s.noiseMeasured ? s.noise : -1.0;
-    mo.leafPieceShare = s.model.empty() ? 0.0 : static_cast<double>(leafPieces) / static_cast<double>(s.model.size());
     t.measures = model::measure(t.tree, kept, mo);
     t.measureOptions = mo;
     t.timings["metrics_ms"] = msSince(tm);

@@ -192,8 +192,18 @@ geom::PointCloud woodOnlyCloud(const geom::PointCloud& cloud, geom::UpAxis up, c
   return cloud::selectPoints(cloud, wood);
 }
 
+/// A radius under this many of the scanner's range noise is not measured, whatever fitted it: a
+/// section's points have their median distance to its axis within 3 % of its radius only above
+/// 1.5 noises (skeleton/range_noise.h); under that the points show the noise's blob, and a circle
+/// fitted round them its shape.
+constexpr double kResolvableNoises = 1.5;
+
 TreeModel fromAutoSkeleton(const skeleton::AutoSkeletonResult& r, geom::UpAxis up) {
-  TreeModel model = fromSkeletonNodes(r.model, r.radiusMeasured, up);
+  std::vector<char> measured = r.radiusMeasured;
+  if (r.rangeNoise > 0)
+    for (std::size_t i = 0; i < measured.size() && i < r.model.size(); ++i)
+      if (r.model[i].radius < kResolvableNoises * r.rangeNoise) measured[i] = 0;
+  TreeModel model = fromSkeletonNodes(r.model, measured, up);
   model.mesh = r.mesh;
   return model;
 }
@@ -202,7 +212,7 @@ MeasureOptions autoMeasureOptions(const skeleton::AutoSkeletonResult& r, const s
                                   bool leafOn) {
   MeasureOptions mo;
   mo.leafOn = leafOn;
-  mo.noise = r.noiseMeasured ? r.noise : -1.0;
+  mo.noise = r.rangeNoise > 0 ? r.rangeNoise : r.noiseMeasured ? r.noise : -1.0;
   std::size_t leafPieces = 0;
   for (const auto& n : r.model) leafPieces += skeleton::isLeafPiece(n, options);
   mo.leafPieceShare = r.model.empty() ? 0.0 : static_cast<double>(leafPieces) / static_cast<double>(r.model.size());

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "skeleton/axis_smoothing.h"
+#include "skeleton/range_noise.h"
 #include "treesketch/util/stopwatch.h"
 #include "skeleton/completion.h"
 #include "skeleton/radius_allometry.h"
@@ -546,8 +547,9 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
       const double spread = detail::spreadNoise(res.model, cloud, res.noise, voxel, options.radii.medianWindow);
       if (spread > 0) boundNoise = std::min(boundNoise, spread);
     }
-    const detail::SurfaceBoundStats bound =
-        detail::boundRadiiBySurface(res.model, cloud, boundNoise, voxel, options.radii.medianWindow, own);
+    res.rangeNoise = detail::rangeNoise(res.model, cloud, boundNoise + voxel);
+    const detail::SurfaceBoundStats bound = detail::boundRadiiBySurface(
+        res.model, cloud, boundNoise, voxel, options.radii.medianWindow, own, std::max(0.0, res.rangeNoise));
     res.thinnedBySurface = bound.nodesThinned;
     res.thickenedBySurface = bound.nodesThickened;
   }

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "skeleton/axis_smoothing.h"
+#include "skeleton/range_noise.h"
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/skeleton/skeleton_export.h"
 
@@ -211,7 +212,7 @@ double stemNoise(const std::vector<SkeletonNode>& model, const geom::PointCloud&
 }
 
 SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
-                                      double voxel, int window, const std::vector<double>& ownResidual) {
+                                      double voxel, int window, const std::vector<double>& ownResidual, double rangeNoise) {
   SurfaceBoundStats stats;
   if (model.size() < 2 || cloud.empty() || !(noise > 0) || !(voxel > 0)) return stats;
   const std::vector<std::vector<double>> perNode = distancesPerNode(model, cloud, noise + voxel, kCornerRadii);
@@ -233,7 +234,7 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
       if (pooled.size() < kMinPoints) continue;
       // A radius with a circle of its own (a residual) or on the tracked stem is measured: never raised.
       const double own = chain[k] < static_cast<std::int32_t>(ownResidual.size()) ? ownResidual[chain[k]] : 0.0;
-      bound[k] = quantile(pooled, kBoundQuantile) +
+      bound[k] = radiusUnderNoise(quantile(pooled, kBoundQuantile), rangeNoise) +
                  kMedianErrors * kMedianStandardError * noise / std::sqrt(static_cast<double>(pooled.size()));
       // One convex section (round, or of three or more flat sides) about the axis has its lower
       // quartile, less the noise's share, at 0.85 of its area's radius or more.

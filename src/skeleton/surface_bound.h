@@ -71,8 +71,11 @@ struct SurfaceBoundStats {
 /// stems in one tube). A node without a measured radius (no residual of its own in `ownResidual`,
 /// not on the tracked stem) whose points' lower quartile lies more than one `noise` outside it is
 /// raised to that, never above the node before it along its branch. A branch's first node is also
-/// capped by its parent's radius.
+/// capped by its parent's radius. With `rangeNoise` (the scanner's, range_noise.h) the median is read
+/// as the radius that shows it under that noise (radiusUnderNoise): a twig thinner than the noise
+/// has its points' median at 0.68 of the noise whatever its radius.
 SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
-                                      double voxel, int window, const std::vector<double>& ownResidual = {});
+                                      double voxel, int window, const std::vector<double>& ownResidual = {},
+                                      double rangeNoise = 0.0);
 
 }  // namespace treesketch::skeleton::detail

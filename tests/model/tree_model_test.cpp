@@ -82,6 +82,31 @@ TEST(TreeModel, TheScansNoiseLowersTheRangeOfMeasuredRadiiInQuadrature) {
   EXPECT_NEAR(measure(stem(0.1, false), cloud, noisy).volumeLow / m.figures.volume, 4.0 / 9.0, 1e-9);
 }
 
+TEST(TreeModel, ARadiusUnderOneAndAHalfRangeNoisesIsNotMeasured) {
+  // An automatic model of a 10 cm stem and a 1 cm twig, both on fitted circles: under 10 mm of
+  // range noise the twig's points are a blob the circle took its shape from, so its radius counts
+  // as inferred; the stem's stays measured. Without a reading of the noise both stay measured.
+  skeleton::AutoSkeletonResult r;
+  for (int i = 0; i < 6; ++i) {
+    skeleton::SkeletonNode n;
+    n.position = i < 3 ? Vec3(0, 0, i) : Vec3(i - 2, 0, 2);
+    n.radius = i < 3 ? 0.1 : 0.01;
+    n.parent = i - 1;
+    n.branchOrder = i < 3 ? 0 : 1;
+    r.model.push_back(n);
+  }
+  r.radiusMeasured.assign(r.model.size(), 1);
+  const TreeModel clean = fromAutoSkeleton(r, geom::UpAxis::Z);
+  for (char m : clean.measured) EXPECT_TRUE(m);
+  r.rangeNoise = 0.01;
+  const TreeModel noisy = fromAutoSkeleton(r, geom::UpAxis::Z);
+  ASSERT_EQ(noisy.measured.size(), 5u);
+  EXPECT_TRUE(noisy.measured[0] && noisy.measured[1]);
+  for (std::size_t i = 3; i < 5; ++i) EXPECT_FALSE(noisy.measured[i]) << i;
+  r.rangeNoise = 0.005;  // the twig is two noises thick: measured again
+  for (char m : fromAutoSkeleton(r, geom::UpAxis::Z).measured) EXPECT_TRUE(m);
+}
+
 TEST(TreeModel, InferredRadiiWidenTheRangeAndAreNamed) {
   const geom::PointCloud cloud = stemScan(0.1);
   const ModelMeasures m = measure(stem(0.1, false), cloud);

@@ -216,6 +216,12 @@ struct AutoSkeletonResult {
   /// measuredNoise), or half a voxel when neither could be measured (noiseMeasured false).
   double noise = 0;
   bool noiseMeasured = false;
+  /// The scanner's range noise read from the points about the model's tubes (cloud units; -1 when
+  /// fewer than three tubes hold enough points): the differences between neighbouring points'
+  /// distances to their tube's axis (skeleton/range_noise.h). The circles' residuals above see
+  /// little of it (a circle fitted to a noisy arc takes the noise into its own shape); this reading
+  /// sets which radii the points can measure and is the noise the report gives.
+  double rangeNoise = -1;
   /// Nodes whose radius was lowered because the points around their tube lie inside it (a scanner
   /// sees the surface; see surface_bound.h).
   std::size_t thinnedBySurface = 0;
