@@ -234,13 +234,17 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
       if (pooled.size() < kMinPoints) continue;
       // A radius with a circle of its own (a residual) or on the tracked stem is measured: never raised.
       const double own = chain[k] < static_cast<std::int32_t>(ownResidual.size()) ? ownResidual[chain[k]] : 0.0;
-      bound[k] = radiusUnderNoise(quantile(pooled, kBoundQuantile), rangeNoise) +
-                 kMedianErrors * kMedianStandardError * noise / std::sqrt(static_cast<double>(pooled.size()));
+      // The allowance for the median's sampling error keeps a measured radius from being thinned by
+      // chance; an inferred one is the pipe model's guess, and its points say more than it does.
+      const bool inferred = !(own > 0) && !model[chain[k]].stem;
+      bound[k] = radiusUnderNoise(quantile(pooled, kBoundQuantile), rangeNoise);
+      if (!inferred)
+        bound[k] += kMedianErrors * kMedianStandardError * noise / std::sqrt(static_cast<double>(pooled.size()));
       // One convex section (round, or of three or more flat sides) about the axis has its lower
       // quartile, less the noise's share, at 0.85 of its area's radius or more.
       const double low = quantile(pooled, kRaiseQuantile);
       bound[k] = std::min(bound[k], (low + kNoiseQuartile * noise) / kConvexQuartile);
-      if (!(own > 0) && !model[chain[k]].stem) raise[k] = low - kRaiseMarginNoise * noise;
+      if (inferred) raise[k] = low - kRaiseMarginNoise * noise;
       ++stats.nodesWithEvidence;
     }
     const std::int32_t parent = model[chain.front()].parent;
