@@ -33,7 +33,7 @@ struct ClassifyArgs {
   bool noGraph = false;
   std::string model;  // a trained JSON instead of the built-in model
   // labelled scans
-  std::string train, evaluate, trees, split = "held-out";
+  std::string train, trainContext, evaluate, trees, split = "held-out";
   std::vector<std::string> conditions;
   double metresPerUnit = eval::kEzTreeMetresPerUnit;
   int leafVariants = 2;
@@ -65,16 +65,18 @@ std::vector<eval::ScanCondition> conditions(const ClassifyArgs& a) {
 }
 
 void runTrain(const ClassifyArgs& a) {
-  checkOutputWritable(a.train);
+  const std::string& out = a.train.empty() ? a.trainContext : a.train;
+  checkOutputWritable(out);
   eval::ClassifierTraining t;
   t.conditions = conditions(a);
   t.leafVariants = a.leafVariants;
   t.features.positionFeatures = !a.noPosition;
   t.features.normalFeatures = !a.noNormal;
   t.log = [](const std::string& line) { std::cerr << line << "\n"; };
-  const classify::BoostedTrees m = eval::trainClassifier(labelledTrees(a, true), t);
-  writeFileAtomically(a.train, [&](std::ostream& out) { out << classify::toJson(m); });
-  std::printf("wrote %s (%zu trees, threshold %.3f)\n", a.train.c_str(), m.trees.size(), m.threshold);
+  const classify::BoostedTrees m = a.train.empty() ? eval::trainContextClassifier(labelledTrees(a, true), t)
+                                                   : eval::trainClassifier(labelledTrees(a, true), t);
+  writeFileAtomically(out, [&](std::ostream& o) { o << classify::toJson(m); });
+  std::printf("wrote %s (%zu trees, threshold %.3f)\n", out.c_str(), m.trees.size(), m.threshold);
 }
 
 void runEvaluate(const ClassifyArgs& a, const classify::BoostedTrees* model) {
@@ -123,8 +125,9 @@ void runClassifyCloud(const ClassifyArgs& a, const classify::BoostedTrees* model
 }
 
 void runClassify(const ClassifyArgs& a) {
-  if (!a.train.empty() && !a.evaluate.empty()) throw OptionsError("--train and --evaluate are separate runs");
-  if (!a.train.empty()) return runTrain(a);
+  if ((!a.train.empty()) + (!a.trainContext.empty()) + (!a.evaluate.empty()) > 1)
+    throw OptionsError("--train, --train-context and --evaluate are separate runs");
+  if (!a.train.empty() || !a.trainContext.empty()) return runTrain(a);
   std::unique_ptr<classify::BoostedTrees> model;
   if (!a.model.empty()) {
     std::ifstream in(a.model, std::ios::binary);
@@ -156,6 +159,9 @@ void registerClassify(CLI::App& app, Action& action) {
   cmd->add_option("--evaluate", a->evaluate,
                   "Score the classifier on labelled leaf-on scans of --trees and write a Markdown report here");
   cmd->add_option("--train", a->train, "Train a classifier on the tuning half of --trees and write it here (JSON)");
+  cmd->add_option("--train-context", a->trainContext,
+                  "Train the context model (the second pass the wood-only model classifies with) on the tuning half "
+                  "of --trees and write it here (JSON)");
   cmd->add_option("--trees", a->trees, "Folder of test trees (ez-tree layout), e.g. ../shared/data/trees");
   cmd->add_option("--split", a->split, "--evaluate: tune, held-out or all")
       ->capture_default_str()
