@@ -50,7 +50,7 @@ classify::ClassifyOptions classifyOptions(const ClassifyArgs& a) {
 }
 
 std::vector<eval::TreeCase> labelledTrees(const ClassifyArgs& a, bool tuning) {
-  if (a.trees.empty()) throw OptionsError("--train and --evaluate need --trees FOLDER (e.g. ../shared/data/trees)");
+  if (a.trees.empty()) throw OptionsError("--train, --train-context and --evaluate need --trees FOLDER (e.g. ../shared/data/trees)");
   std::vector<eval::TreeCase> out;
   for (auto& t : eval::loadTreeFolder(a.trees, a.metresPerUnit))
     if (tuning ? eval::treeHalf(t.name) == eval::TreeHalf::Tune : eval::splitSelects(a.split, eval::treeHalf(t.name)))

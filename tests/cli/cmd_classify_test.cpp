@@ -76,6 +76,15 @@ TEST(ClassifyCli, BadInputAndOptionsGiveClearErrors) {
       << out;
   EXPECT_NE(out.find("m.json"), std::string::npos) << out;
   EXPECT_EQ(test::runCli("classify --evaluate " + quoted(dir / "r.md"), &out), 2) << out;  // no --trees
+  EXPECT_EQ(test::runCli("classify --train-context " + quoted(dir / "c.json"), &out), 2) << out;
+  EXPECT_NE(out.find("--trees"), std::string::npos) << out;
+  EXPECT_EQ(test::runCli("classify --train-context " + quoted(dir / "c.json") + " --evaluate " + quoted(dir / "r.md") +
+                             " --trees " + quoted(dir.path()),
+                         &out),
+            2)
+      << out;
+  EXPECT_NE(out.find("separate runs"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.json"));
   EXPECT_FALSE(std::filesystem::exists(dir / "o.ply"));
 }
 
