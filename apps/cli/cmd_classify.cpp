@@ -31,6 +31,7 @@ struct ClassifyArgs {
   double threshold = NAN;
   double promote = 1.0;
   bool noGraph = false;
+  bool context = false;  // the context pass, as the wood-only model classifies
   std::string model;  // a trained JSON instead of the built-in model
   // labelled scans
   std::string train, trainContext, evaluate, trees, split = "held-out";
@@ -42,8 +43,8 @@ struct ClassifyArgs {
 };
 
 classify::ClassifyOptions classifyOptions(const ClassifyArgs& a) {
-  classify::ClassifyOptions o;
-  o.threshold = a.threshold;
+  classify::ClassifyOptions o = a.context ? classify::woodModellingOptions() : classify::ClassifyOptions{};
+  if (!std::isnan(a.threshold)) o.threshold = a.threshold;
   o.connect = !a.noGraph;
   o.graph.promoteProbability = a.promote;
   return o;
@@ -112,9 +113,9 @@ void runClassifyCloud(const ClassifyArgs& a, const classify::BoostedTrees* model
   io::writeClassifiedCloud(a.output, cloud, classify::classCodes(c), c.woodProbability);
   std::printf("up axis: %s\n", up.reason.c_str());
   std::printf("%zu points (%zu core points), spacing %.4g (features at %.4g): %zu wood (%.1f %%), %zu leaf; "
-              "threshold %.3f\n",
+              "threshold %.3f%s\n",
               cloud.size(), c.cores, c.measuredSpacing, c.spacing, c.woodPoints, 100.0 * c.woodPoints / cloud.size(),
-              cloud.size() - c.woodPoints, c.threshold);
+              cloud.size() - c.woodPoints, c.threshold, c.contextPass ? " (context pass)" : "");
   if (!a.noGraph)
     std::printf("graph step: %zu wood points reached from %zu at the base, %zu in pieces of their own, %zu demoted\n",
                 c.graph.reached, c.graph.seeds, c.graph.kept, c.graph.demoted);
@@ -154,6 +155,9 @@ void registerClassify(CLI::App& app, Action& action) {
   cmd->add_option("--promote", a->promote,
                   "Points at least this probable become wood where the growth from the base reaches them")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_flag("--context", a->context,
+                "Classify as --wood-only does: with the context pass (the first pass's wood around each point) at the "
+                "modelling threshold 0.75 (--threshold changes it)");
   cmd->add_flag("--no-graph", a->noGraph, "The classifier's call alone, without keeping wood connected to the stem");
   cmd->add_option("--model", a->model, "A model trained with --train instead of the built-in one");
   cmd->add_option("--evaluate", a->evaluate,

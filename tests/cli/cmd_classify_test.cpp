@@ -54,6 +54,18 @@ TEST(ClassifyCli, WritesEveryPointWithItsClassAsPlyAndLas) {
       << text;
 }
 
+TEST(ClassifyCli, TheContextPassClassifiesAsTheWoodOnlyModelDoes) {
+  test::TempDir dir;
+  io::writePointCloud(dir / "tree.ply", test::sampleCylinders(test::threeLevelTree(), 0.02, 0.002, 3));
+  std::string plain, context;
+  ASSERT_EQ(test::runCli("classify " + quoted(dir / "tree.ply") + " -o " + quoted(dir / "a.ply"), &plain), 0) << plain;
+  ASSERT_EQ(test::runCli("classify " + quoted(dir / "tree.ply") + " --context -o " + quoted(dir / "b.ply"), &context), 0)
+      << context;
+  EXPECT_EQ(plain.find("(context pass)"), std::string::npos) << plain;
+  EXPECT_NE(context.find("threshold 0.750 (context pass)"), std::string::npos) << context;
+  EXPECT_EQ(io::readPointCloud(dir / "b.ply").classification.size(), io::readPointCloud(dir / "a.ply").size());
+}
+
 TEST(ClassifyCli, BadInputAndOptionsGiveClearErrors) {
   test::TempDir dir;
   std::string out;
