@@ -3,7 +3,7 @@
 lie deeper than 2 cm inside the wood-only model (a scanner sees bark, so wood points inside the
 model mean tubes thicker than the wood).
 
-Usage: scripts/wood_inside.py [--build build] [--only NAME ...]
+Usage: scripts/wood_inside.py [--build build] [--only NAME ...] [--context]
 
 For each cloud: `treesketch classify` (PLY out), the wood points written to a text cloud,
 `treesketch reconstruct --auto --up z --leaf-on --wood-only --cylinders`, and `treesketch
@@ -84,6 +84,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default="build", help="build folder holding the treesketch binary")
     ap.add_argument("--only", nargs="*", help="only these clouds (names as listed)")
+    ap.add_argument("--context", action="store_true",
+                    help="the wood as the wood-only model classifies it (classify --context) instead of classify's")
     args = ap.parse_args()
     binary = os.path.join(HERE, args.build, "treesketch")
     if not os.path.exists(binary):
@@ -100,7 +102,7 @@ def main():
                 continue
             ply, xyz = os.path.join(tmp, name + ".ply"), os.path.join(tmp, name + ".xyz")
             table, report = os.path.join(tmp, name + ".csv"), os.path.join(tmp, name + ".json")
-            run([binary, "classify", cloud, "--up", "z", "-o", ply])
+            run([binary, "classify", cloud, "--up", "z", "-o", ply] + (["--context"] if args.context else []))
             wood, count = wood_points(ply, xyz)
             run([binary, "reconstruct", cloud, "--auto", "--up", "z", "--leaf-on", "--wood-only",
                  "-o", os.path.join(tmp, name + ".obj"), "--cylinders", table])

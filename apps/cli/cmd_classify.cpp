@@ -31,9 +31,10 @@ struct ClassifyArgs {
   double threshold = NAN;
   double promote = 1.0;
   bool noGraph = false;
+  bool context = false;  // the context pass, as the wood-only model classifies
   std::string model;  // a trained JSON instead of the built-in model
   // labelled scans
-  std::string train, evaluate, trees, split = "held-out";
+  std::string train, trainContext, evaluate, trees, split = "held-out";
   std::vector<std::string> conditions;
   double metresPerUnit = eval::kEzTreeMetresPerUnit;
   int leafVariants = 2;
@@ -42,15 +43,15 @@ struct ClassifyArgs {
 };
 
 classify::ClassifyOptions classifyOptions(const ClassifyArgs& a) {
-  classify::ClassifyOptions o;
-  o.threshold = a.threshold;
+  classify::ClassifyOptions o = a.context ? classify::woodModellingOptions() : classify::ClassifyOptions{};
+  if (!std::isnan(a.threshold)) o.threshold = a.threshold;
   o.connect = !a.noGraph;
   o.graph.promoteProbability = a.promote;
   return o;
 }
 
 std::vector<eval::TreeCase> labelledTrees(const ClassifyArgs& a, bool tuning) {
-  if (a.trees.empty()) throw OptionsError("--train and --evaluate need --trees FOLDER (e.g. ../shared/data/trees)");
+  if (a.trees.empty()) throw OptionsError("--train, --train-context and --evaluate need --trees FOLDER (e.g. ../shared/data/trees)");
   std::vector<eval::TreeCase> out;
   for (auto& t : eval::loadTreeFolder(a.trees, a.metresPerUnit))
     if (tuning ? eval::treeHalf(t.name) == eval::TreeHalf::Tune : eval::splitSelects(a.split, eval::treeHalf(t.name)))
@@ -65,16 +66,18 @@ std::vector<eval::ScanCondition> conditions(const ClassifyArgs& a) {
 }
 
 void runTrain(const ClassifyArgs& a) {
-  checkOutputWritable(a.train);
+  const std::string& out = a.train.empty() ? a.trainContext : a.train;
+  checkOutputWritable(out);
   eval::ClassifierTraining t;
   t.conditions = conditions(a);
   t.leafVariants = a.leafVariants;
   t.features.positionFeatures = !a.noPosition;
   t.features.normalFeatures = !a.noNormal;
   t.log = [](const std::string& line) { std::cerr << line << "\n"; };
-  const classify::BoostedTrees m = eval::trainClassifier(labelledTrees(a, true), t);
-  writeFileAtomically(a.train, [&](std::ostream& out) { out << classify::toJson(m); });
-  std::printf("wrote %s (%zu trees, threshold %.3f)\n", a.train.c_str(), m.trees.size(), m.threshold);
+  const classify::BoostedTrees m = a.train.empty() ? eval::trainContextClassifier(labelledTrees(a, true), t)
+                                                   : eval::trainClassifier(labelledTrees(a, true), t);
+  writeFileAtomically(out, [&](std::ostream& o) { o << classify::toJson(m); });
+  std::printf("wrote %s (%zu trees, threshold %.3f)\n", out.c_str(), m.trees.size(), m.threshold);
 }
 
 void runEvaluate(const ClassifyArgs& a, const classify::BoostedTrees* model) {
@@ -110,9 +113,9 @@ void runClassifyCloud(const ClassifyArgs& a, const classify::BoostedTrees* model
   io::writeClassifiedCloud(a.output, cloud, classify::classCodes(c), c.woodProbability);
   std::printf("up axis: %s\n", up.reason.c_str());
   std::printf("%zu points (%zu core points), spacing %.4g (features at %.4g): %zu wood (%.1f %%), %zu leaf; "
-              "threshold %.3f\n",
+              "threshold %.3f%s\n",
               cloud.size(), c.cores, c.measuredSpacing, c.spacing, c.woodPoints, 100.0 * c.woodPoints / cloud.size(),
-              cloud.size() - c.woodPoints, c.threshold);
+              cloud.size() - c.woodPoints, c.threshold, c.contextPass ? " (context pass)" : "");
   if (!a.noGraph)
     std::printf("graph step: %zu wood points reached from %zu at the base, %zu in pieces of their own, %zu demoted\n",
                 c.graph.reached, c.graph.seeds, c.graph.kept, c.graph.demoted);
@@ -123,8 +126,9 @@ void runClassifyCloud(const ClassifyArgs& a, const classify::BoostedTrees* model
 }
 
 void runClassify(const ClassifyArgs& a) {
-  if (!a.train.empty() && !a.evaluate.empty()) throw OptionsError("--train and --evaluate are separate runs");
-  if (!a.train.empty()) return runTrain(a);
+  if ((!a.train.empty()) + (!a.trainContext.empty()) + (!a.evaluate.empty()) > 1)
+    throw OptionsError("--train, --train-context and --evaluate are separate runs");
+  if (!a.train.empty() || !a.trainContext.empty()) return runTrain(a);
   std::unique_ptr<classify::BoostedTrees> model;
   if (!a.model.empty()) {
     std::ifstream in(a.model, std::ios::binary);
@@ -151,11 +155,17 @@ void registerClassify(CLI::App& app, Action& action) {
   cmd->add_option("--promote", a->promote,
                   "Points at least this probable become wood where the growth from the base reaches them")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_flag("--context", a->context,
+                "Classify as --wood-only does: with the context pass (the first pass's wood around each point) at the "
+                "modelling threshold 0.75 (--threshold changes it)");
   cmd->add_flag("--no-graph", a->noGraph, "The classifier's call alone, without keeping wood connected to the stem");
   cmd->add_option("--model", a->model, "A model trained with --train instead of the built-in one");
   cmd->add_option("--evaluate", a->evaluate,
                   "Score the classifier on labelled leaf-on scans of --trees and write a Markdown report here");
   cmd->add_option("--train", a->train, "Train a classifier on the tuning half of --trees and write it here (JSON)");
+  cmd->add_option("--train-context", a->trainContext,
+                  "Train the context model (the second pass the wood-only model classifies with) on the tuning half "
+                  "of --trees and write it here (JSON)");
   cmd->add_option("--trees", a->trees, "Folder of test trees (ez-tree layout), e.g. ../shared/data/trees");
   cmd->add_option("--split", a->split, "--evaluate: tune, held-out or all")
       ->capture_default_str()

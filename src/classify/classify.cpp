@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "treesketch/classify/context_pass.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/stopwatch.h"
 
@@ -57,6 +58,13 @@ std::vector<float> predictWood(const FeatureTable& f, const BoostedTrees& model)
   return p;
 }
 
+ClassifyOptions woodModellingOptions() {
+  ClassifyOptions o;
+  o.contextPass = true;
+  o.threshold = kWoodModellingThreshold;
+  return o;
+}
+
 Classification classifyWood(const geom::PointCloud& cloud, geom::UpAxis up, const ClassifyOptions& options,
                             const BoostedTrees* model) {
   const BoostedTrees& m = model ? *model : trainedModel();
@@ -68,10 +76,16 @@ Classification classifyWood(const geom::PointCloud& cloud, geom::UpAxis up, cons
   c.spacing = f.spacing;
   c.measuredSpacing = f.measuredSpacing;
   c.cores = f.points();
-  const std::vector<float> coreP = predictWood(f, m);
+  std::vector<float> coreP = predictWood(f, m);
+  double ownThreshold = m.threshold;
+  if (options.contextPass) {
+    coreP = predictWood(withContext(f, coreP), contextModel());
+    ownThreshold = contextModel().threshold;
+    c.contextPass = true;
+  }
   c.predictMs = clock.ms();
   clock.restart();
-  c.threshold = std::isnan(options.threshold) ? m.threshold : options.threshold;
+  c.threshold = std::isnan(options.threshold) ? ownThreshold : options.threshold;
   std::vector<std::uint8_t> coreWood;
   if (options.connect) {
     c.graph = connectWood(f, coreP, c.threshold, options.graph);

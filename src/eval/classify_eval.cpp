@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <random>
 
+#include "treesketch/classify/context_pass.h"
 #include "treesketch/eval/evaluation.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/stopwatch.h"
@@ -256,10 +258,13 @@ std::uint64_t nameHash(const std::string& name) {
 
 }  // namespace
 
-classify::BoostedTrees trainClassifier(const std::vector<TreeCase>& trees, const ClassifierTraining& o) {
-  Samples s;
-  std::mt19937_64 rng(o.seed);
-  std::uint32_t scanId = 0;
+namespace {
+
+/// Calls `scanned(tree index, its scan, the scan's features)` for every training scan of `trees`
+/// (each tree, leaf variant and condition, in that order).
+void forEachTrainingScan(
+    const std::vector<TreeCase>& trees, const ClassifierTraining& o,
+    const std::function<void(std::size_t, const TreeScan&, const classify::FeatureTable&)>& scanned) {
   for (std::size_t t = 0; t < trees.size(); ++t) {
     const TreeCase& tree = trees[t];
     for (int v = 0; v < o.leafVariants; ++v) {
@@ -272,19 +277,71 @@ classify::BoostedTrees trainClassifier(const std::vector<TreeCase>& trees, const
       for (const auto& c : o.conditions) {
         const TreeScan scan = scanLeafOn(variant, c, o.seed + v);
         const classify::FeatureTable f = classify::computeFeatures(scan.cloud, tree.up, o.features);
-        sampleScan(f, scan.cloud, o.rowsPerScan, scanId++, static_cast<std::uint8_t>(t % 2), rng, s);
+        scanned(t, scan, f);
         if (o.log)
           o.log(tree.name + " variant " + std::to_string(v) + " " + c.name + ": " + std::to_string(scan.cloud.size()) +
                 " points");
       }
     }
   }
+}
+
+/// The model trained on the rows of the other half of the trees than `fold`.
+classify::BoostedTrees foldModel(const Samples& s, const std::vector<std::string>& names, std::uint8_t fold,
+                                 const classify::BoostOptions& o) {
+  Samples in;
+  const std::size_t f = names.size();
+  for (std::size_t i = 0; i < s.labels.size(); ++i)
+    if (s.fold[i] != fold) {
+      in.rows.insert(in.rows.end(), s.rows.begin() + i * f, s.rows.begin() + (i + 1) * f);
+      in.labels.push_back(s.labels[i]);
+      in.weights.push_back(s.weights[i]);
+    }
+  return classify::trainBoostedTrees(in.rows, names, in.labels, in.weights, o);
+}
+
+/// Samples of every training scan with the first pass's features (fold: the tree's half).
+Samples firstPassSamples(const std::vector<TreeCase>& trees, const ClassifierTraining& o, std::uint64_t seed) {
+  Samples s;
+  std::mt19937_64 rng(seed);
+  std::uint32_t scanId = 0;
+  forEachTrainingScan(trees, o, [&](std::size_t t, const TreeScan& scan, const classify::FeatureTable& f) {
+    sampleScan(f, scan.cloud, o.rowsPerScan, scanId++, static_cast<std::uint8_t>(t % 2), rng, s);
+  });
+  return s;
+}
+
+}  // namespace
+
+classify::BoostedTrees trainClassifier(const std::vector<TreeCase>& trees, const ClassifierTraining& o) {
+  const Samples s = firstPassSamples(trees, o, o.seed);
   const std::vector<std::string> names = classify::featureNames(o.features);
   classify::BoostedTrees m = classify::trainBoostedTrees(s.rows, names, s.labels, s.weights, o.boost);
   m.threshold = trees.size() >= 2 ? chooseThreshold(outOfFold(s, names, o.boost), s) : 0.5;
   if (o.log)
-    o.log("trained on " + std::to_string(s.labels.size()) + " points of " + std::to_string(scanId) +
+    o.log("trained on " + std::to_string(s.labels.size()) + " points of " + std::to_string(s.scan.empty() ? 0 : s.scan.back() + 1) +
           " scans; threshold " + std::to_string(m.threshold));
+  return m;
+}
+
+classify::BoostedTrees trainContextClassifier(const std::vector<TreeCase>& trees, const ClassifierTraining& o) {
+  if (trees.size() < 2) throw OptionsError("classify: the context model is trained by two folds, on two trees or more");
+  const Samples first = firstPassSamples(trees, o, o.seed);
+  const std::vector<std::string> names = classify::featureNames(o.features);
+  const classify::BoostedTrees folds[2] = {foldModel(first, names, 0, o.boost), foldModel(first, names, 1, o.boost)};
+  Samples s;
+  std::mt19937_64 rng(o.seed + 17);
+  std::uint32_t scanId = 0;
+  forEachTrainingScan(trees, o, [&](std::size_t t, const TreeScan& scan, const classify::FeatureTable& f) {
+    // The first pass of a model that did not see this tree: as unsure as on a new one.
+    const classify::FeatureTable withContext = classify::withContext(f, classify::predictWood(f, folds[t % 2]));
+    sampleScan(withContext, scan.cloud, o.rowsPerScan, scanId++, static_cast<std::uint8_t>(t % 2), rng, s);
+  });
+  std::vector<std::string> contextNames = names;
+  for (const auto& n : classify::contextFeatureNames()) contextNames.push_back(n);
+  classify::BoostedTrees m = classify::trainBoostedTrees(s.rows, contextNames, s.labels, s.weights, o.boost);
+  m.threshold = chooseThreshold(outOfFold(s, contextNames, o.boost), s);
+  if (o.log) o.log("context model: trained on " + std::to_string(s.labels.size()) + " points; threshold " + std::to_string(m.threshold));
   return m;
 }
 

@@ -91,7 +91,7 @@ MethodOutput methodUniform(const MethodInput& in) {
 
 /// The points of `cloud` the wood/leaf classification calls wood (empty when it finds none).
 geom::PointCloud classifiedWood(const geom::PointCloud& cloud, geom::UpAxis up) {
-  return detail::pointsWhere(cloud, classify::classifyWood(cloud, up).wood);
+  return detail::pointsWhere(cloud, classify::classifyWood(cloud, up, classify::woodModellingOptions()).wood);
 }
 
 MethodOutput methodIdeal(const MethodInput& in) {

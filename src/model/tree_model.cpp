@@ -181,7 +181,7 @@ TreeModel fromSkeletonNodes(const std::vector<skeleton::SkeletonNode>& nodes, co
 
 geom::PointCloud woodOnlyCloud(const geom::PointCloud& cloud, geom::UpAxis up, const std::string& source) {
   constexpr std::size_t kMinWoodPoints = 100;
-  const classify::Classification c = classify::classifyWood(cloud, up);
+  const classify::Classification c = classify::classifyWood(cloud, up, classify::woodModellingOptions());
   std::vector<std::uint32_t> wood;
   for (std::size_t i = 0; i < cloud.size() && i < c.wood.size(); ++i)
     if (c.wood[i]) wood.push_back(static_cast<std::uint32_t>(i));

@@ -54,6 +54,18 @@ TEST(ClassifyCli, WritesEveryPointWithItsClassAsPlyAndLas) {
       << text;
 }
 
+TEST(ClassifyCli, TheContextPassClassifiesAsTheWoodOnlyModelDoes) {
+  test::TempDir dir;
+  io::writePointCloud(dir / "tree.ply", test::sampleCylinders(test::threeLevelTree(), 0.02, 0.002, 3));
+  std::string plain, context;
+  ASSERT_EQ(test::runCli("classify " + quoted(dir / "tree.ply") + " -o " + quoted(dir / "a.ply"), &plain), 0) << plain;
+  ASSERT_EQ(test::runCli("classify " + quoted(dir / "tree.ply") + " --context -o " + quoted(dir / "b.ply"), &context), 0)
+      << context;
+  EXPECT_EQ(plain.find("(context pass)"), std::string::npos) << plain;
+  EXPECT_NE(context.find("threshold 0.750 (context pass)"), std::string::npos) << context;
+  EXPECT_EQ(io::readPointCloud(dir / "b.ply").classification.size(), io::readPointCloud(dir / "a.ply").size());
+}
+
 TEST(ClassifyCli, BadInputAndOptionsGiveClearErrors) {
   test::TempDir dir;
   std::string out;
@@ -76,6 +88,15 @@ TEST(ClassifyCli, BadInputAndOptionsGiveClearErrors) {
       << out;
   EXPECT_NE(out.find("m.json"), std::string::npos) << out;
   EXPECT_EQ(test::runCli("classify --evaluate " + quoted(dir / "r.md"), &out), 2) << out;  // no --trees
+  EXPECT_EQ(test::runCli("classify --train-context " + quoted(dir / "c.json"), &out), 2) << out;
+  EXPECT_NE(out.find("--trees"), std::string::npos) << out;
+  EXPECT_EQ(test::runCli("classify --train-context " + quoted(dir / "c.json") + " --evaluate " + quoted(dir / "r.md") +
+                             " --trees " + quoted(dir.path()),
+                         &out),
+            2)
+      << out;
+  EXPECT_NE(out.find("separate runs"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.json"));
   EXPECT_FALSE(std::filesystem::exists(dir / "o.ply"));
 }
 

@@ -30,7 +30,19 @@ struct ClassifyOptions {
   bool connect = true;
   /// Wood at and above this probability; NaN = the model's own threshold (chosen in training).
   double threshold = NAN;
+  /// Classify again with the context pass (context_pass.h): the first pass's probabilities around
+  /// each point as features of the context model, whose probability and threshold then stand.
+  bool contextPass = false;
 };
+
+/// The threshold of the context pass for the points a wood-only model is made from: lower than the
+/// context model's own (chosen for the best F1 of the classes), because a model of the wood loses
+/// more by a twig called leaf than it gains by a leaf kept out. Chosen on the tuning half's
+/// wood-only models (docs/classify.md, "Modelling the wood").
+inline constexpr double kWoodModellingThreshold = 0.75;
+
+/// The options the wood-only model classifies with: the context pass at kWoodModellingThreshold.
+ClassifyOptions woodModellingOptions();
 
 struct Classification {
   std::vector<float> woodProbability;  ///< the classifier's, one per point, 0..1
@@ -40,6 +52,7 @@ struct Classification {
   double spacing = 0;      ///< the spacing the features worked at (FeatureTable::spacing, cloud units)
   double measuredSpacing = 0;  ///< the cloud's median spacing (cloud units)
   std::size_t cores = 0;   ///< core points the features, classifier and graph ran on
+  bool contextPass = false;  ///< the probabilities are the context pass's (ClassifyOptions::contextPass)
   WoodGraphResult graph;   ///< what the graph step did, in cores (its `wood` is moved to `wood` above)
   double featuresMs = 0, predictMs = 0, graphMs = 0;
 };

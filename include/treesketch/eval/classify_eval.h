@@ -89,4 +89,10 @@ struct ClassifierTraining {
 /// other half of the trees (two folds by tree; 0.5 with a single tree).
 classify::BoostedTrees trainClassifier(const std::vector<TreeCase>& trees, const ClassifierTraining& options);
 
+/// Trains the context model (classify/context_pass.h) on the same scans: the first pass on each
+/// tree's scans is a model trained on the other half of the trees (two folds by tree), its
+/// probabilities give the context columns, and the threshold is chosen as trainClassifier's (by
+/// two folds over the context rows). Throws OptionsError for fewer than two trees.
+classify::BoostedTrees trainContextClassifier(const std::vector<TreeCase>& trees, const ClassifierTraining& options);
+
 }  // namespace treesketch::eval
