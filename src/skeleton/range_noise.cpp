@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "skeleton/nearest_tube.h"
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/skeleton/skeleton_export.h"
 
@@ -105,33 +106,22 @@ double rangeNoise(const std::vector<SkeletonNode>& model, const geom::PointCloud
   const geom::CylinderModel pieces = cylinderModelFromSkeleton(model);
   if (pieces.empty() || cloud.empty()) return -1.0;
   const compare::CylinderModelIndex index(pieces);
-  const std::size_t stride = std::max<std::size_t>(1, (cloud.size() + kMaxPoints - 1) / kMaxPoints);
-  const std::size_t count = (cloud.size() + stride - 1) / stride;
-  std::vector<std::int64_t> pieceOf(count, -1);
-  std::vector<TubePoint> where(count);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t k = r.begin(); k < r.end(); ++k) {
-      const Vec3& p = cloud.positions[k * stride];
-      std::int64_t piece = -1;
-      const double d = index.signedDistance(p, &piece);
-      if (piece < 0) continue;
-      const geom::ModelCylinder& c = pieces.cylinders[static_cast<std::size_t>(piece)];
-      Vec3 axis = c.end - c.start;
-      const double len = axis.norm();
-      if (!(len > 0)) continue;
-      axis /= len;
-      const double along = (p - c.start).dot(axis);
-      if (along < 0 || along > len || !(d <= band + kCornerRadii * std::max(c.startRadius, c.endRadius))) continue;
-      const Vec3 u = axis.unitOrthogonal();
-      const Vec3 v = axis.cross(u);
-      const Vec3 q = p - c.start - along * axis;
-      pieceOf[k] = piece;
-      where[k] = {along, std::atan2(q.dot(v), q.dot(u)), q.norm()};
-    }
-  });
   std::vector<std::vector<TubePoint>> perPiece(pieces.size());
-  for (std::size_t k = 0; k < count; ++k)
-    if (pieceOf[k] >= 0) perPiece[static_cast<std::size_t>(pieceOf[k])].push_back(where[k]);
+  for (const NearestTube& n : nearestTubes(index, cloud, kMaxPoints)) {
+    const Vec3& p = cloud.positions[n.point];
+    const geom::ModelCylinder& c = pieces.cylinders[static_cast<std::size_t>(n.piece)];
+    Vec3 axis = c.end - c.start;
+    const double len = axis.norm();
+    if (!(len > 0)) continue;
+    axis /= len;
+    const double along = (p - c.start).dot(axis);
+    if (along < 0 || along > len || !(n.distance <= band + kCornerRadii * std::max(c.startRadius, c.endRadius)))
+      continue;
+    const Vec3 u = axis.unitOrthogonal();
+    const Vec3 v = axis.cross(u);
+    const Vec3 q = p - c.start - along * axis;
+    perPiece[static_cast<std::size_t>(n.piece)].push_back({along, std::atan2(q.dot(v), q.dot(u)), q.norm()});
+  }
   std::vector<double> perTube(pieces.size(), std::nan(""));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) {

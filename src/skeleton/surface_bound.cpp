@@ -1,12 +1,11 @@
 #include "skeleton/surface_bound.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "skeleton/axis_smoothing.h"
+#include "skeleton/nearest_tube.h"
 #include "skeleton/range_noise.h"
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/skeleton/skeleton_export.h"
@@ -84,32 +83,21 @@ std::vector<std::vector<double>> distancesPerNode(const std::vector<SkeletonNode
   std::vector<std::vector<double>> perNode(model.size());
   if (pieces.empty()) return perNode;
   const compare::CylinderModelIndex index(pieces);
-  const std::size_t stride = std::max<std::size_t>(1, (cloud.size() + kMaxPoints - 1) / kMaxPoints);
-  const std::size_t count = (cloud.size() + stride - 1) / stride;
-  std::vector<std::int32_t> node(count, -1);
-  std::vector<double> rho(count, 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t k = r.begin(); k < r.end(); ++k) {
-      const Vec3& p = cloud.positions[k * stride];
-      std::int64_t piece = -1;
-      const double d = index.signedDistance(p, &piece);
-      if (piece < 0) continue;
-      const geom::ModelCylinder& c = pieces.cylinders[static_cast<std::size_t>(piece)];
-      const Vec3 axis = c.end - c.start;
-      const double len2 = axis.squaredNorm();
-      if (!(len2 > 0)) continue;
-      const double t = std::clamp((p - c.start).dot(axis) / len2, 0.0, 1.0);
-      if (!(d <= band + bandRadii * (c.startRadius + t * (c.endRadius - c.startRadius)))) continue;
-      const std::int32_t own = nodeOf[static_cast<std::size_t>(piece)];
-      const std::int32_t parent = model[own].parent;
-      // The lower half of a piece is its parent node's ring, unless the piece starts a branch.
-      const bool startsBranch = model[own].branchOrder != model[parent].branchOrder;
-      node[k] = (t >= 0.5 || startsBranch) ? own : parent;
-      rho[k] = (p - (c.start + t * axis)).norm();
-    }
-  });
-  for (std::size_t k = 0; k < count; ++k)
-    if (node[k] >= 0) perNode[static_cast<std::size_t>(node[k])].push_back(rho[k]);
+  for (const NearestTube& n : nearestTubes(index, cloud, kMaxPoints)) {
+    const Vec3& p = cloud.positions[n.point];
+    const geom::ModelCylinder& c = pieces.cylinders[static_cast<std::size_t>(n.piece)];
+    const Vec3 axis = c.end - c.start;
+    const double len2 = axis.squaredNorm();
+    if (!(len2 > 0)) continue;
+    const double t = std::clamp((p - c.start).dot(axis) / len2, 0.0, 1.0);
+    if (!(n.distance <= band + bandRadii * (c.startRadius + t * (c.endRadius - c.startRadius)))) continue;
+    const std::int32_t own = nodeOf[static_cast<std::size_t>(n.piece)];
+    const std::int32_t parent = model[own].parent;
+    // The lower half of a piece is its parent node's ring, unless the piece starts a branch.
+    const bool startsBranch = model[own].branchOrder != model[parent].branchOrder;
+    perNode[static_cast<std::size_t>((t >= 0.5 || startsBranch) ? own : parent)].push_back(
+        (p - (c.start + t * axis)).norm());
+  }
   return perNode;
 }
 
