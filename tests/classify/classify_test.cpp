@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "leaf_on_scan.h"
 #include "treesketch/accel/ray_scene.h"
 #include "treesketch/gen/tree_generator.h"
 #include "treesketch/scan/sphere_scan.h"
@@ -15,15 +16,7 @@
 namespace treesketch::classify {
 namespace {
 
-geom::PointCloud leafOnScan() {
-  const gen::GeneratedTree tree = gen::generateTree(gen::presetOptions("default"));
-  scan::SphereScanOptions s;
-  s.rays = 300000;
-  s.jitterDeg = 26.0;  // the cone over the whole tree
-  s.rangeNoise = 0.003;
-  s.recordMesh = true;
-  return scan::sphereScan(std::vector<geom::TriMesh>{tree.branches.mesh, tree.leaves}, s).cloud;
-}
+using test::leafOnScan;
 
 TEST(Classify, BuiltInModelSeparatesWoodFromLeavesOnAnotherGeneratorsTree) {
   const BoostedTrees& m = trainedModel();
@@ -33,15 +26,12 @@ TEST(Classify, BuiltInModelSeparatesWoodFromLeavesOnAnotherGeneratorsTree) {
   const Classification c = classifyWood(cloud, geom::UpAxis::Y);
   ASSERT_EQ(c.wood.size(), cloud.size());
   ASSERT_EQ(c.woodProbability.size(), cloud.size());
-  std::size_t tp = 0, fp = 0, fn = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const bool truth = cloud.meshId[i] == 0;
-    tp += truth && c.wood[i];
-    fp += !truth && c.wood[i];
-    fn += truth && !c.wood[i];
     ASSERT_GE(c.woodProbability[i], 0.0f);
     ASSERT_LE(c.woodProbability[i], 1.0f);
   }
+  const test::WoodCounts n = test::woodCounts(cloud, c.wood);
+  const std::size_t tp = n.truePositives, fp = n.falsePositives, fn = n.falseNegatives;
   const double f1 = 2.0 * tp / (2.0 * tp + fp + fn);
   EXPECT_GT(f1, 0.8) << "tp " << tp << " fp " << fp << " fn " << fn;
   EXPECT_EQ(c.woodPoints, tp + fp);

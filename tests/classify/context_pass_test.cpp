@@ -4,9 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "leaf_on_scan.h"
 #include "treesketch/classify/classify.h"
-#include "treesketch/gen/tree_generator.h"
-#include "treesketch/scan/sphere_scan.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::classify {
@@ -49,24 +48,13 @@ TEST(ContextPass, BuiltInModelReadsTheFirstModelsFeaturesAndTheContext) {
 }
 
 TEST(ContextPass, TheWoodOnlyModelsClassificationFindsMoreOfTheWood) {
-  const gen::GeneratedTree tree = gen::generateTree(gen::presetOptions("default"));
-  scan::SphereScanOptions s;
-  s.rays = 300000;
-  s.jitterDeg = 26.0;  // the cone over the whole tree
-  s.rangeNoise = 0.003;
-  s.recordMesh = true;
-  const geom::PointCloud cloud = scan::sphereScan(std::vector<geom::TriMesh>{tree.branches.mesh, tree.leaves}, s).cloud;
+  const geom::PointCloud cloud = test::leafOnScan();
   struct Score {
     double precision, recall;
   };
   auto score = [&](const Classification& c) {
-    std::size_t tp = 0, fp = 0, fn = 0;
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      const bool truth = cloud.meshId[i] == 0;
-      tp += truth && c.wood[i];
-      fp += !truth && c.wood[i];
-      fn += truth && !c.wood[i];
-    }
+    const test::WoodCounts n = test::woodCounts(cloud, c.wood);
+    const std::size_t tp = n.truePositives, fp = n.falsePositives, fn = n.falseNegatives;
     return Score{static_cast<double>(tp) / static_cast<double>(tp + fp), static_cast<double>(tp) / static_cast<double>(tp + fn)};
   };
   const Classification plain = classifyWood(cloud, geom::UpAxis::Y);

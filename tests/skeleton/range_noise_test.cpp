@@ -8,6 +8,7 @@
 #include <random>
 
 #include "skeleton/surface_bound.h"
+#include "synthetic_tree.h"
 
 using namespace treesketch;
 using geom::Vec3;
@@ -35,18 +36,7 @@ geom::PointCloud scanOval(double a, double b, double noise, std::size_t count, u
 }
 
 /// The branch as model nodes every 0.1 along y, of radius `radius`.
-std::vector<skeleton::SkeletonNode> branch(double radius) {
-  std::vector<skeleton::SkeletonNode> nodes;
-  for (int k = 0; k <= 10; ++k) {
-    skeleton::SkeletonNode n;
-    n.position = Vec3(0, 0.1 * k, 0);
-    n.radius = radius;
-    n.parent = k - 1;
-    nodes.push_back(n);
-  }
-  for (std::size_t i = 1; i < nodes.size(); ++i) nodes[i - 1].children.push_back(static_cast<std::int32_t>(i));
-  return nodes;
-}
+std::vector<skeleton::SkeletonNode> branch(double radius) { return test::uprightChain(11, 0.1, radius); }
 
 double medianDistanceToAxis(const geom::PointCloud& cloud) {
   std::vector<double> rho;

@@ -250,15 +250,7 @@ TEST(SurfaceBound, AFlatSidedBranchKeepsTheRadiusOfItsArea) {
   for (const int sides : {3, 4}) {
     const double circumradius = 0.1;
     const double areaRadius = circumradius * std::sqrt(sides / (2 * M_PI) * std::sin(2 * M_PI / sides));
-    std::vector<skeleton::SkeletonNode> model;
-    for (int k = 0; k <= 20; ++k) {
-      skeleton::SkeletonNode n;
-      n.position = Vec3(0, 0.1 * k, 0);
-      n.radius = areaRadius;
-      n.parent = k - 1;
-      model.push_back(n);
-    }
-    for (std::size_t i = 1; i < model.size(); ++i) model[i - 1].children.push_back(static_cast<std::int32_t>(i));
+    std::vector<skeleton::SkeletonNode> model = test::uprightChain(21, 0.1, areaRadius);
     const geom::PointCloud cloud = polygonalBranch(sides, circumradius, 0.0005, 10 + sides);
     const auto stats = skeleton::detail::boundRadiiBySurface(model, cloud, 0.001, 0.02, 5);
     EXPECT_GE(stats.nodesWithEvidence, 20u) << sides;

@@ -10,6 +10,7 @@
 
 #include "treesketch/geom/point_cloud.h"
 #include "treesketch/geom/types.h"
+#include "treesketch/skeleton/skeleton.h"
 
 namespace treesketch::test {
 
@@ -61,6 +62,20 @@ inline geom::PointCloud sampleCylinders(const std::vector<Cyl>& cyls, double spa
     }
   }
   return cloud;
+}
+
+/// One upright branch as model nodes: `count` nodes every `spacing` along y from the origin, each of
+/// radius `radius`, parent before child.
+inline std::vector<skeleton::SkeletonNode> uprightChain(int count, double spacing, double radius) {
+  std::vector<skeleton::SkeletonNode> nodes(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k) {
+    skeleton::SkeletonNode& n = nodes[static_cast<std::size_t>(k)];
+    n.position = geom::Vec3(0, spacing * k, 0);
+    n.radius = radius;
+    n.parent = k - 1;
+    if (k > 0) nodes[static_cast<std::size_t>(k - 1)].children.push_back(k);
+  }
+  return nodes;
 }
 
 /// A Y: trunk and two branches from its top.
