@@ -240,13 +240,48 @@ geom::PointCloud keptPoints(const geom::PointCloud& cloud, const StrayPoints& st
   return selectPoints(cloud, keep);
 }
 
+void addGround(StrayPoints& strays, const std::vector<std::uint32_t>& ground) {
+  if (ground.empty()) return;
+  std::vector<std::uint32_t> points;
+  std::vector<StrayReason> reasons;
+  points.reserve(strays.setAside.size() + ground.size());
+  reasons.reserve(points.capacity());
+  std::size_t a = 0, b = 0;
+  while (a < strays.setAside.size() || b < ground.size()) {
+    const bool takeStray = b == ground.size() || (a < strays.setAside.size() && strays.setAside[a] <= ground[b]);
+    if (takeStray) {
+      if (b < ground.size() && ground[b] == strays.setAside[a]) ++b;
+      points.push_back(strays.setAside[a]);
+      reasons.push_back(strays.reasons[a++]);
+    } else {
+      points.push_back(ground[b++]);
+      reasons.push_back(StrayReason::Ground);
+      ++strays.ground;
+    }
+  }
+  strays.setAside = std::move(points);
+  strays.reasons = std::move(reasons);
+}
+
+double measurePointSpacing(const geom::PointCloud& cloud, const StrayPointOptions& options) {
+  if (cloud.empty()) return 0.0;
+  const geom::BBox core = coreBox(cloud, options.coreQuantile);
+  if (!(core.diagonal() > 0)) return 0.0;
+  return measureSpacing(cloud, core, options.spacingCellsPerDiagonal);
+}
+
 std::string strayPointsLine(const StrayPoints& s) {
   if (s.tooSparse) return "no stray point set aside (the cloud is too sparse for the rule)";
   if (s.empty()) return "no stray point set aside";
-  char buf[200];
-  std::snprintf(buf, sizeof buf,
-                "%zu stray point%s set aside (%zu far from the tree, %zu isolated; linking distance %.3g)", s.count(),
-                s.count() == 1 ? "" : "s", s.far, s.isolated, s.linkDistance);
+  char buf[240];
+  if (s.ground > 0)
+    std::snprintf(buf, sizeof buf,
+                  "%zu point%s set aside (%zu on the ground, %zu far from the tree, %zu isolated; linking distance %.3g)",
+                  s.count(), s.count() == 1 ? "" : "s", s.ground, s.far, s.isolated, s.linkDistance);
+  else
+    std::snprintf(buf, sizeof buf,
+                  "%zu stray point%s set aside (%zu far from the tree, %zu isolated; linking distance %.3g)", s.count(),
+                  s.count() == 1 ? "" : "s", s.far, s.isolated, s.linkDistance);
   return buf;
 }
 

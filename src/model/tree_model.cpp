@@ -432,6 +432,7 @@ nlohmann::json strayPointsJson(const cloud::StrayPoints& s) {
   return {{"setAside", s.count()},
           {"far", s.far},
           {"isolated", s.isolated},
+          {"ground", s.ground},
           {"spacing", s.spacing},
           {"linkDistance", s.linkDistance},
           {"tooSparse", s.tooSparse}};

@@ -567,6 +567,7 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
                                       const ProgressFn& progress) {
   checkOptions(options);
   cloud::StrayPoints strays = cloud::findStrayPoints(cloud, options.strays);
+  cloud::addGround(strays, cloud::findGround(cloud, options.skeleton.up, strays.spacing, options.ground).points);
   AutoSkeletonResult res =
       strays.empty() ? modelKeptPoints(cloud, options, progress)
                      : modelKeptPoints(cloud::keptPoints(cloud, strays), options, progress);

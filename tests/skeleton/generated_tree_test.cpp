@@ -7,6 +7,7 @@
 
 #include "treesketch/gen/tree_generator.h"
 #include "treesketch/scan/sphere_scan.h"
+#include "treesketch/scan/tls_scan.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 
 using namespace treesketch;
@@ -213,4 +214,70 @@ TEST(GeneratedTree, ASparselyScannedTrunkIsOneStraightChain) {
   EXPECT_LT(on.rms, 0.6 * off.rms);
   EXPECT_LT(on.rms, 0.25 * baseRadius);
   EXPECT_LT(on.thinChains, off.thinChains);
+}
+
+namespace {
+/// A square of terrain `half` out from the origin across Y (up), rising along x by `slope`, with
+/// bumps: a grid of triangles `step` apart.
+geom::TriMesh terrainMesh(double half, double step, double slope) {
+  geom::TriMesh m;
+  const int n = static_cast<int>(std::ceil(2 * half / step));
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double x = -half + i * step, z = -half + j * step;
+      m.vertices.emplace_back(x, slope * x + 0.02 * std::sin(3 * x) * std::cos(2 * z) - 0.01, z);
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const auto a = static_cast<std::uint32_t>(i * (n + 1) + j), b = a + 1, c = a + static_cast<std::uint32_t>(n + 1),
+                 d = c + 1;
+      m.triangles.push_back({a, c, b});
+      m.triangles.push_back({b, c, d});
+    }
+  return m;
+}
+
+/// Wood volume of an automatic model: its tubes as cylinders.
+double modelVolume(const std::vector<skeleton::SkeletonNode>& model) {
+  double v = 0;
+  for (const auto& n : model)
+    if (n.parent >= 0) v += std::acos(-1.0) * n.radius * n.radius * (n.position - model[n.parent].position).norm();
+  return v;
+}
+}  // namespace
+
+// A terrestrial scan keeps the terrain round the stem. Its points are set aside before the
+// skeleton (they started it from the terrain and wrapped the tree's foot in tubes), and the model
+// is the one of the same scan without terrain.
+TEST(GeneratedTree, TheTerrainUnderAScannedTreeIsSetAside) {
+  gen::TreeOptions to = gen::presetOptions("sparse");
+  to.leaves = false;
+  const gen::GeneratedTree tree = gen::generateTree(to);
+  const geom::BBox box = tree.branches.mesh.bounds();
+  const double half = 0.6 * std::max(box.extent().x(), box.extent().z());
+  scan::TlsScanOptions t;
+  t.stationCount = 4;
+  t.stepDeg = 0.1;
+  t.rangeNoise = 0.003;
+  t.up = geom::UpAxis::Y;
+  t.recordMesh = true;
+  skeleton::AutoSkeletonOptions o;
+  o.skeleton.up = geom::UpAxis::Y;
+  const geom::PointCloud bare = scan::tlsScan(std::vector<geom::TriMesh>{tree.branches.mesh}, t).cloud;
+  const double without = modelVolume(skeleton::autoSkeletonSketch(bare, o).model);
+  for (const double slope : {0.0, 0.25}) {
+    const geom::PointCloud cloud = scan::tlsScan(std::vector<geom::TriMesh>{tree.branches.mesh, terrainMesh(half, 0.05, slope)}, t).cloud;
+    std::size_t terrain = 0;
+    for (std::int32_t id : cloud.meshId) terrain += id == 1 ? 1 : 0;
+    ASSERT_GT(terrain, cloud.size() / 10) << "the scan should see the terrain";
+    const auto res = skeleton::autoSkeletonSketch(cloud, o);
+    std::size_t terrainSetAside = 0, woodSetAside = 0;
+    for (std::size_t k = 0; k < res.strays.setAside.size(); ++k)
+      if (res.strays.reasons[k] == cloud::StrayReason::Ground)
+        ++(cloud.meshId[res.strays.setAside[k]] == 1 ? terrainSetAside : woodSetAside);
+    EXPECT_GE(terrainSetAside, terrain * 95 / 100) << "slope " << slope << ": " << terrainSetAside << " of " << terrain;
+    EXPECT_LE(woodSetAside, (cloud.size() - terrain) / 50) << "slope " << slope;
+    const double with = modelVolume(res.model);
+    EXPECT_NEAR(with / without, 1.0, 0.1) << "slope " << slope << ": " << with << " against " << without;
+  }
 }

@@ -49,14 +49,14 @@ struct StrayPointOptions {
   double maxShare = 0.1;
 };
 
-/// Why a point was set aside.
-enum class StrayReason : std::uint8_t { Far, Isolated };
+/// Why a point was set aside: far from the tree, isolated near it, or the ground under it (ground.h).
+enum class StrayReason : std::uint8_t { Far, Isolated, Ground };
 
 struct StrayPoints {
   /// Indices into the input cloud, increasing: the points set aside, and why (one per index).
   std::vector<std::uint32_t> setAside;
   std::vector<StrayReason> reasons;
-  std::size_t far = 0, isolated = 0;  ///< counts by reason
+  std::size_t far = 0, isolated = 0, ground = 0;  ///< counts by reason
   /// The measured point spacing and the linking distance, in the cloud's units (0 when nothing
   /// was measured: the rule was off, or the cloud too small or of zero extent).
   double spacing = 0, linkDistance = 0;
@@ -74,6 +74,13 @@ struct StrayPoints {
 /// expected (the readers refuse them); such a point is set aside as far. Throws OptionsError for
 /// an option out of range.
 StrayPoints findStrayPoints(const geom::PointCloud& cloud, const StrayPointOptions& options = {});
+
+/// Adds `ground` (indices into the same cloud, increasing) to the points set aside, as ground; a
+/// point already set aside keeps its reason.
+void addGround(StrayPoints& strays, const std::vector<std::uint32_t>& ground);
+
+/// The cloud's point spacing as findStrayPoints measures it (0 for a cloud of zero extent).
+double measurePointSpacing(const geom::PointCloud& cloud, const StrayPointOptions& options = {});
 
 /// The points of `cloud` at `indices` (increasing), with their attributes and the cloud's up.
 geom::PointCloud selectPoints(const geom::PointCloud& cloud, const std::vector<std::uint32_t>& indices);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "treesketch/cloud/ground.h"
 #include "treesketch/cloud/stray_points.h"
 #include "treesketch/fit/node_fit.h"
 #include "treesketch/geom/point_cloud.h"
@@ -176,6 +177,9 @@ struct AutoSkeletonOptions {
   /// Points far from the tree are set aside before anything else (cloud/stray_points.h): one
   /// stray point 50 m out stretched the voxel size and the model with it.
   cloud::StrayPointOptions strays;
+  /// The ground under the tree is set aside with them (cloud/ground.h): left in, the skeleton
+  /// started from the terrain and its shell of tubes tripled a small tree's volume.
+  cloud::GroundOptions ground;
 };
 // The measurements behind these defaults: docs/notes/auto_sketch_options.md.
 
@@ -235,7 +239,8 @@ struct AutoSkeletonResult {
   double skeletonMs = 0, fitMs = 0, sweepMs = 0, completionMs = 0;
 };
 
-/// The automatic skeleton as a sketch source: the stray points set aside (options.strays), then
+/// The automatic skeleton as a sketch source: the stray points and the ground set aside
+/// (options.strays, options.ground), then
 /// on the kept points extractSkeleton, skeletonToSketch, then
 /// recon::Reconstruction fits every node (the fit pass, in parallel), the RadiusRules accept fits
 /// and regularise the radii, the model goes into the sketch as kept circles, and the same

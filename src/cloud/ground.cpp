@@ -1,0 +1,239 @@
+// The ground under a tree (see ground.h).
+#include "treesketch/cloud/ground.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include "treesketch/cloud/stray_points.h"
+#include "treesketch/util/error.h"
+#include "treesketch/util/union_find.h"
+
+namespace treesketch::cloud {
+namespace {
+
+/// ASPRS classification code for ground.
+constexpr std::uint8_t kGroundClass = 2;
+/// A cloud whose terrain would hold more than this share of its points is a surface, not a tree
+/// standing on the ground: nothing is set aside.
+constexpr double kMaxGroundShare = 0.95;
+/// The cloud's bottom: the height quantile below which a few points may lie under the terrain
+/// (noise, a mis-registered return).
+constexpr double kBottomQuantile = 0.001;
+/// A point more than this many column sides from any column is off the grid.
+constexpr double kMaxColumnCoordinate = 4.0e18;
+
+struct Key {
+  std::int64_t i = 0, j = 0;
+  bool operator==(const Key& o) const { return i == o.i && j == o.j; }
+};
+struct KeyHash {
+  std::size_t operator()(const Key& k) const {
+    std::uint64_t h = static_cast<std::uint64_t>(k.i) * 0x9E3779B97F4A7C15ULL;
+    h ^= static_cast<std::uint64_t>(k.j) * 0xC2B2AE3D27D4EB4FULL + (h << 6) + (h >> 2);
+    return static_cast<std::size_t>(h);
+  }
+};
+
+/// Horizontal coordinates (across `up`) and height of a point.
+struct Across {
+  double u, v, h;
+};
+Across across(const geom::Vec3& p, geom::UpAxis up) {
+  return up == geom::UpAxis::Y ? Across{p.x(), p.z(), p.y()} : Across{p.x(), p.y(), p.z()};
+}
+
+/// A column of the grid: its points, and the plane h = a + b (u − u0) + c (v − v0) of its lowest
+/// points when it is terrain.
+struct Column {
+  Key key;
+  std::vector<std::uint32_t> points;
+  double u0 = 0, v0 = 0;  ///< its centre
+  double a = 0, b = 0, c = 0, roughness = 0;
+  bool terrain = false;
+  double at(double u, double v) const { return a + b * (u - u0) + c * (v - v0); }
+};
+
+void checkOptions(const GroundOptions& o) {
+  if (!(o.columnSpacings > 0) || o.subColumns < 2 || !(o.minFilledShare > 0 && o.minFilledShare <= 1) ||
+      !(o.maxSlopeDeg > 0 && o.maxSlopeDeg < 90) || !(o.maxRoughnessColumns > 0) || o.minColumns < 1 ||
+      !(o.heightSpacings >= 0))
+    throw OptionsError(
+        "ground: options out of range (columnSpacings > 0, subColumns >= 2, minFilledShare in (0, 1], maxSlopeDeg "
+        "in (0, 90), maxRoughnessColumns > 0, minColumns >= 1, heightSpacings >= 0)");
+}
+
+/// Whether `col`'s lowest points fill it and lie on a plane that is not steep; sets its plane.
+void fitTerrain(Column& col, const std::vector<Across>& at, double side, const GroundOptions& o) {
+  const int n = o.subColumns;
+  std::vector<double> lowest(static_cast<std::size_t>(n * n), std::numeric_limits<double>::infinity());
+  std::vector<std::uint32_t> which(lowest.size(), 0);
+  const double sub = side / n;
+  for (std::uint32_t p : col.points) {
+    const int si = std::clamp(static_cast<int>(std::floor((at[p].u - (col.u0 - 0.5 * side)) / sub)), 0, n - 1);
+    const int sj = std::clamp(static_cast<int>(std::floor((at[p].v - (col.v0 - 0.5 * side)) / sub)), 0, n - 1);
+    const std::size_t k = static_cast<std::size_t>(si * n + sj);
+    if (at[p].h < lowest[k]) {
+      lowest[k] = at[p].h;
+      which[k] = p;
+    }
+  }
+  // A sub-column where the scanner missed the terrain (a gap between scan lines, a shadow) has its
+  // lowest point on whatever stands above: only the lowest points within the steepest slope's rise
+  // of the column's lowest are the terrain's.
+  const double bottom = *std::min_element(lowest.begin(), lowest.end());
+  const double rise = side * std::tan(o.maxSlopeDeg * M_PI / 180.0);
+  for (double& h : lowest)
+    if (h > bottom + rise) h = std::numeric_limits<double>::infinity();
+  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+  int filled = 0;
+  for (std::size_t k = 0; k < lowest.size(); ++k) {
+    if (!std::isfinite(lowest[k])) continue;
+    ++filled;
+    const Eigen::Vector3d row(1.0, at[which[k]].u - col.u0, at[which[k]].v - col.v0);
+    ata += row * row.transpose();
+    atb += row * lowest[k];
+  }
+  if (filled < o.minFilledShare * n * n || filled < 3) return;
+  const Eigen::Vector3d x = ata.ldlt().solve(atb);
+  if (!x.allFinite()) return;
+  col.a = x[0];
+  col.b = x[1];
+  col.c = x[2];
+  double ss = 0;
+  for (std::size_t k = 0; k < lowest.size(); ++k)
+    if (std::isfinite(lowest[k])) {
+      const double r = lowest[k] - col.at(at[which[k]].u, at[which[k]].v);
+      ss += r * r;
+    }
+  col.roughness = std::sqrt(ss / filled);
+  const double slope = std::atan(std::hypot(col.b, col.c)) * 180.0 / M_PI;
+  col.terrain = slope <= o.maxSlopeDeg && col.roughness <= o.maxRoughnessColumns * side;
+}
+
+/// The cloud's points in columns of side `side` (points off the grid in none).
+std::vector<Column> columnsOf(const std::vector<Across>& at, double side) {
+  std::unordered_map<Key, std::size_t, KeyHash> index;
+  std::vector<Column> cols;
+  for (std::size_t p = 0; p < at.size(); ++p) {
+    const double fi = std::floor(at[p].u / side), fj = std::floor(at[p].v / side);
+    if (!(std::fabs(fi) < kMaxColumnCoordinate && std::fabs(fj) < kMaxColumnCoordinate)) continue;
+    const Key key{static_cast<std::int64_t>(fi), static_cast<std::int64_t>(fj)};
+    auto [it, added] = index.emplace(key, cols.size());
+    if (added) {
+      Column c;
+      c.key = key;
+      c.u0 = (fi + 0.5) * side;
+      c.v0 = (fj + 0.5) * side;
+      cols.push_back(std::move(c));
+    }
+    cols[it->second].points.push_back(static_cast<std::uint32_t>(p));
+  }
+  return cols;
+}
+
+/// Marks terrain only where it is wide and reaches the cloud's bottom: the terrain columns joined
+/// to their neighbours (8 around, planes meeting within the steepest slope), in groups of at least
+/// minColumns whose lowest plane lies within one column's rise of `bottom`.
+void keepWideTerrain(std::vector<Column>& cols, double side, double bottom, const GroundOptions& o) {
+  std::unordered_map<Key, std::size_t, KeyHash> index;
+  for (std::size_t k = 0; k < cols.size(); ++k)
+    if (cols[k].terrain) index.emplace(cols[k].key, k);
+  const double rise = side * std::tan(o.maxSlopeDeg * M_PI / 180.0);
+  util::UnionFind sets(cols.size());
+  for (const auto& [key, k] : index)
+    for (int di = -1; di <= 1; ++di)
+      for (int dj = -1; dj <= 1; ++dj) {
+        auto it = index.find({key.i + di, key.j + dj});
+        if (it == index.end() || it->second == k) continue;
+        const Column& a = cols[k];
+        const Column& b = cols[it->second];
+        if (std::fabs(a.at(a.u0, a.v0) - b.at(b.u0, b.v0)) <= rise + a.roughness + b.roughness)
+          sets.unite(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(it->second));
+      }
+  std::unordered_map<std::uint32_t, std::pair<int, double>> groups;  // columns, lowest plane
+  for (const auto& [key, k] : index) {
+    auto& g = groups.try_emplace(sets.find(static_cast<std::uint32_t>(k)), 0, std::numeric_limits<double>::infinity())
+                  .first->second;
+    ++g.first;
+    g.second = std::min(g.second, cols[k].at(cols[k].u0, cols[k].v0));
+  }
+  for (const auto& [key, k] : index) {
+    const auto& g = groups[sets.find(static_cast<std::uint32_t>(k))];
+    cols[k].terrain = g.first >= o.minColumns && g.second <= bottom + rise;
+  }
+}
+
+double quantileOf(std::vector<double> v, double q) {
+  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
+}  // namespace
+
+Ground findGround(const geom::PointCloud& cloud, geom::UpAxis up, double spacing, const GroundOptions& o) {
+  checkOptions(o);
+  Ground out;
+  if (!o.enabled || cloud.size() < 64) return out;
+  std::vector<char> ground(cloud.size(), 0);
+  if (cloud.classification.size() == cloud.size())
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+      if (cloud.classification[i] == kGroundClass) {
+        ground[i] = 1;
+        ++out.classified;
+      }
+  if (!(spacing > 0)) spacing = measurePointSpacing(cloud);
+  if (spacing > 0 && std::isfinite(spacing)) {
+    const double side = o.columnSpacings * spacing;
+    std::vector<Across> at(cloud.size());
+    std::vector<double> heights(cloud.size());
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      at[i] = across(cloud.positions[i], up);
+      heights[i] = at[i].h;
+    }
+    std::vector<Column> cols = columnsOf(at, side);
+    for (Column& c : cols) fitTerrain(c, at, side, o);
+    keepWideTerrain(cols, side, quantileOf(heights, kBottomQuantile), o);
+    std::unordered_map<Key, std::size_t, KeyHash> terrain;
+    for (std::size_t k = 0; k < cols.size(); ++k)
+      if (cols[k].terrain) terrain.emplace(cols[k].key, k);
+    out.columns = terrain.size();
+    out.columnSize = side;
+    // Each point against the plane of its own column when that is terrain, else the mean of the
+    // terrain columns' planes around it (a column under a stem's foot holds bark, not terrain).
+    for (const Column& c : cols) {
+      double sumPlane = 0, rough = 0;
+      int planes = 0;
+      for (int di = -1; di <= 1; ++di)
+        for (int dj = -1; dj <= 1; ++dj) {
+          if (c.terrain && (di != 0 || dj != 0)) continue;
+          auto it = terrain.find({c.key.i + di, c.key.j + dj});
+          if (it == terrain.end()) continue;
+          ++planes;
+          rough = std::max(rough, cols[it->second].roughness);
+        }
+      if (planes == 0) continue;
+      const double above = std::max(o.heightSpacings * spacing, 3.0 * rough);
+      for (std::uint32_t p : c.points) {
+        sumPlane = 0;
+        for (int di = -1; di <= 1; ++di)
+          for (int dj = -1; dj <= 1; ++dj) {
+            if (c.terrain && (di != 0 || dj != 0)) continue;
+            auto it = terrain.find({c.key.i + di, c.key.j + dj});
+            if (it != terrain.end()) sumPlane += cols[it->second].at(at[p].u, at[p].v);
+          }
+        if (at[p].h <= sumPlane / planes + above) ground[p] = 1;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (ground[i]) out.points.push_back(static_cast<std::uint32_t>(i));
+  if (static_cast<double>(out.points.size()) > kMaxGroundShare * static_cast<double>(cloud.size())) out = Ground{};
+  return out;
+}
+
+}  // namespace treesketch::cloud
