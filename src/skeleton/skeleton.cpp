@@ -10,6 +10,7 @@
 
 #include "skeleton/checks.h"
 #include "skeleton/leaf_planes.h"
+#include "skeleton/node_tree.h"
 #include "treesketch/util/error.h"
 
 namespace treesketch::skeleton {
@@ -138,6 +139,7 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
   }
   if (progress) progress(3, 4);
   s.nodes = simplifySkeleton(s.rawNodes, s.graph.voxelSize, s.levels.binWidth, options);
+  detail::chainTrackedStem(s.nodes);
   rootToBase(s, cloud);
   tipsToEnds(s);
   if (progress) progress(4, 4);

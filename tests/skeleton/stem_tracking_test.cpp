@@ -134,5 +134,43 @@ TEST(StemTracking, TheSkeletonIsRootedAtTheStemsFootBesideTheDroopingBranches) {
   EXPECT_EQ(off, 0);
 }
 
+// A conifer in leaf as its wood-only cloud shows it: at every whorl eight limbs rising from the
+// stem, so the slabs there hold as many limb voxels beside the stem as bark voxels on it, and no
+// circle holds most of a slab. The stem, found beside the drooping branches, is followed through
+// the whorls on its axis (each whorl's slab seen as its first surface from the axis: the bark,
+// with the limbs behind it); before, the tracker stopped at the first two whorls it met.
+std::vector<Cyl> denseWhorls() {
+  std::vector<Cyl> c = conifer(true);
+  c.resize(1);
+  for (int w = 0; w < 7; ++w) {
+    const double y = 0.8 + 0.5 * w;
+    for (int k = 0; k < 8; ++k) {
+      const double a = 2.0 * M_PI * (k + 0.37 * w) / 8.0;
+      c.push_back({Vec3(0, y, 0), Vec3(0.6 * std::cos(a), y + 0.35, 0.6 * std::sin(a)), 0.03, 0});
+    }
+  }
+  c.push_back({Vec3(0, 0.6, 0), Vec3(-1.0, 0.0, 0.15), 0.02, 0});
+  c.push_back({Vec3(0, 0.65, 0), Vec3(-0.9, 0.02, -0.35), 0.02, 0});
+  return c;
+}
+
+TEST(StemTracking, FollowsAStemBesideTheBaseThroughDenseWhorls) {
+  const skeleton::VoxelGraph g = graphOf(denseWhorls());
+  const std::vector<std::uint32_t> root = lowestVoxels(g);
+  ASSERT_FALSE(root.empty());
+  bool beside = false;
+  const std::vector<skeleton::detail::StemSample> stem =
+      skeleton::detail::trackStem(g, root, geom::UpAxis::Y, &beside);
+  ASSERT_GE(stem.size(), 3u);
+  EXPECT_TRUE(beside);
+  double high = -1e300;
+  for (const auto& s : stem) {
+    if (s.centre.y() < kFoot) continue;
+    EXPECT_LT(std::hypot(s.centre.x(), s.centre.z()), 0.5 * kStemRadius) << "sample at height " << s.centre.y();
+    high = std::max(high, s.centre.y());
+  }
+  EXPECT_GT(high, 3.0);
+}
+
 }  // namespace
 }  // namespace treesketch
