@@ -172,5 +172,28 @@ TEST(StemTracking, FollowsAStemBesideTheBaseThroughDenseWhorls) {
   EXPECT_GT(high, 3.0);
 }
 
+// The whole skeleton on the same conifer: up to the top whorl (where it goes on along a limb) the
+// stem's branch is the tracked stem's pieces, in its tube (its radius plus a voxel). The level sets
+// cut at the stem's tube leave limb pieces of a stem piece's own level; before the stem was
+// chained its branch went out through such a piece at a whorl (here one, 0.1 m off the axis; on
+// the spruce in leaf 0.2-0.5 m) and back.
+TEST(StemTracking, TheStemIsOneBranchInItsTubeThroughDenseWhorls) {
+  const geom::PointCloud cloud = test::sampleCylinders(denseWhorls(), 0.012, 0.002, 7);
+  skeleton::SkeletonOptions o;
+  o.graph.voxelSize = kVoxel;
+  const skeleton::Skeleton s = skeleton::extractSkeleton(cloud, o);
+  ASSERT_TRUE(s.levels.stemBesideRoot);
+  constexpr double kTopWhorl = 0.8 + 0.5 * 6;
+  double high = -1e300;
+  for (const auto& n : s.nodes) {
+    if (n.branchOrder != 0 || n.position.y() > kTopWhorl) continue;
+    EXPECT_TRUE(n.stem) << "a limb's piece on the stem's branch at height " << n.position.y();
+    EXPECT_LT(std::hypot(n.position.x(), n.position.z()), kStemRadius + kVoxel) << "stem node at height "
+                                                                                << n.position.y();
+    high = std::max(high, n.position.y());
+  }
+  EXPECT_GT(high, 3.5);
+}
+
 }  // namespace
 }  // namespace treesketch
