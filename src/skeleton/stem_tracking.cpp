@@ -409,6 +409,13 @@ std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::ui
   return stem;
 }
 
+std::vector<StemSample> trackedStem(const GeodesicLevels& levels) {
+  std::vector<StemSample> stem;
+  for (std::size_t k = 0; k < levels.stemCentres.size() && k < levels.stemRadii.size(); ++k)
+    stem.push_back({levels.stemCentres[k], levels.stemRadii[k]});
+  return stem;
+}
+
 bool rootOnStem(const VoxelGraph& g, const std::vector<StemSample>& stem, const std::vector<std::uint32_t>& root) {
   std::size_t in = 0;
   for (std::uint32_t v : root) in += inStemTube(stem, g.voxelSize, g.positions[v]) ? 1 : 0;

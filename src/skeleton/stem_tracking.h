@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "treesketch/geom/types.h"
+#include "treesketch/skeleton/skeleton.h"
 #include "treesketch/skeleton/voxel_graph.h"
 
 namespace treesketch::skeleton::detail {
@@ -36,6 +37,9 @@ struct StemSample {
 /// `besideRoot`, when given, is set to whether the stem was found beside the root region.
 std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis up,
                                   bool* besideRoot = nullptr);
+
+/// The stem samples kept in `levels` (GeodesicLevels::stemCentres, stemRadii), base first.
+std::vector<StemSample> trackedStem(const GeodesicLevels& levels);
 
 /// Per voxel: 1 when it lies in the tracked stem's tube (within its radius plus a margin of the
 /// axis, between the first and last samples' slabs).
