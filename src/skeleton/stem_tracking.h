@@ -12,7 +12,9 @@
 // the top). When the root region shows no stem (a stem under two voxels in radius, or one whose
 // lowest branches reach the ground beside and below its foot), the stem is looked for where the
 // tree is most continuously vertical, if the root region itself is not (a conifer's branch tips on
-// the ground), and followed from there both ways. level_sets.cpp then joins the voxels of each
+// the ground), and followed from there both ways; there, a slab where a whorl's limbs leave the
+// stem is looked at again as the first surface seen from the axis (the bark, the limbs behind
+// it). level_sets.cpp then joins the voxels of each
 // level set that lie in this tube into one piece: one node per level on the stem, centred on its
 // axis, with the stem's radius.
 #pragma once
