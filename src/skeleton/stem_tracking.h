@@ -14,9 +14,8 @@
 // tree is most continuously vertical, if the root region itself is not (a conifer's branch tips on
 // the ground), and followed from there both ways; there, a slab where a whorl's limbs leave the
 // stem is looked at again as the first surface seen from the axis (the bark, the limbs behind
-// it). level_sets.cpp then joins the voxels of each
-// level set that lie in this tube into one piece: one node per level on the stem, centred on its
-// axis, with the stem's radius.
+// it). level_sets.cpp then joins the voxels of each level set that lie in this tube into one
+// piece: one node per level on the stem, centred on its axis, with the stem's radius.
 #pragma once
 
 #include <cstdint>
