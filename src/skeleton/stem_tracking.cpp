@@ -197,7 +197,11 @@ std::vector<StemSample> followStem(const VoxelGraph& g, const StemSample& base, 
     if (slab == Slab::NoStem && throughWhorls)
       slab = fitSlab(g, predicted, axis, half, kSearchRadii * radius + voxel, kMinRadiusRatio * radius,
                      kMaxRadiusRatio * radius, next, true);
-    const bool ok = slab == Slab::Stem && (next.centre - predicted).norm() <= kMaxCentreMoveRadii * radius + voxel;
+    // Through whorls the centre's allowance beyond half a radius is the centroids' own scatter
+    // (half a voxel), not a whole voxel: a stem a voxel thick has a limb's near side a voxel off,
+    // and with a voxel the spruce's track walked into a limb above 7.5 m (notes/leaf_on_skeleton.md).
+    const double slack = throughWhorls ? kMinBandVoxels * voxel : voxel;
+    const bool ok = slab == Slab::Stem && (next.centre - predicted).norm() <= kMaxCentreMoveRadii * radius + slack;
     if (!ok) {
       if (++misses > kMaxMisses) break;
       centre = predicted;
