@@ -26,4 +26,12 @@ std::vector<double> subtreeLength(const std::vector<SkeletonNode>& nodes);
 /// longest path, or the total length carried) plus its segment (ties: lowest index); -1 for none.
 std::int32_t mainChild(const std::vector<SkeletonNode>& nodes, const std::vector<double>& reach, std::size_t i);
 
+/// The nodes on the tracked stem (SkeletonNode::stem) made one chain, the stem's branch (order 0
+/// where the stem starts at the root). A stem node whose parent is off the stem (the geodesic path
+/// reached it through a branch at a whorl, so the stem's chain left the stem and came back) is
+/// re-attached to the stem node below it, the one with the largest geodesic distance smaller than
+/// its own; a stem node's stem child then continues its branch, and the other children start
+/// branches of their own. Returns whether any node was re-attached. Nodes must be parent-first.
+bool chainTrackedStem(std::vector<SkeletonNode>& nodes);
+
 }  // namespace treesketch::skeleton::detail

@@ -12,15 +12,17 @@
 // the top). When the root region shows no stem (a stem under two voxels in radius, or one whose
 // lowest branches reach the ground beside and below its foot), the stem is looked for where the
 // tree is most continuously vertical, if the root region itself is not (a conifer's branch tips on
-// the ground), and followed from there both ways. level_sets.cpp then joins the voxels of each
-// level set that lie in this tube into one piece: one node per level on the stem, centred on its
-// axis, with the stem's radius.
+// the ground), and followed from there both ways; there, a slab where a whorl's limbs leave the
+// stem is looked at again as the first surface seen from the axis (the bark, the limbs behind
+// it). level_sets.cpp then joins the voxels of each level set that lie in this tube into one
+// piece: one node per level on the stem, centred on its axis, with the stem's radius.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "treesketch/geom/types.h"
+#include "treesketch/skeleton/skeleton.h"
 #include "treesketch/skeleton/voxel_graph.h"
 
 namespace treesketch::skeleton::detail {
@@ -36,6 +38,9 @@ struct StemSample {
 /// `besideRoot`, when given, is set to whether the stem was found beside the root region.
 std::vector<StemSample> trackStem(const VoxelGraph& g, const std::vector<std::uint32_t>& root, geom::UpAxis up,
                                   bool* besideRoot = nullptr);
+
+/// The stem samples kept in `levels` (GeodesicLevels::stemCentres, stemRadii), base first.
+std::vector<StemSample> trackedStem(const GeodesicLevels& levels);
 
 /// Per voxel: 1 when it lies in the tracked stem's tube (within its radius plus a margin of the
 /// axis, between the first and last samples' slabs).
