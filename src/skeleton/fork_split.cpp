@@ -170,11 +170,21 @@ bool wholeGroups(const VoxelGraph& g, const std::vector<Line>& lines,
 }
 
 // Back to level order (parents first), indices remapped (nodes, counts and the voxels' nodes).
+// Within a level, a piece whose parent is of its own level (levels cut at a conifer's stem tube:
+// level_sets.cpp) comes after that parent: a split parent's new piece is appended after its
+// children, and a child before its parent made a second root in the sketch.
 void sortByLevel(std::vector<SkeletonNode>& nodes, std::vector<std::uint32_t>& count, GeodesicLevels& lv) {
+  std::vector<std::int32_t> depth(nodes.size(), 0);  // same-level ancestors above each node
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    for (std::int32_t p = nodes[i].parent; p >= 0 && nodes[p].level == nodes[i].level &&
+                                           depth[i] <= static_cast<std::int32_t>(nodes.size());
+         p = nodes[p].parent)
+      ++depth[i];
   std::vector<std::int32_t> order(nodes.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::int32_t a, std::int32_t b) { return nodes[a].level < nodes[b].level; });
+  std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    return nodes[a].level != nodes[b].level ? nodes[a].level < nodes[b].level : depth[a] < depth[b];
+  });
   std::vector<std::int32_t> newIndex(nodes.size());
   for (std::size_t i = 0; i < order.size(); ++i) newIndex[order[i]] = static_cast<std::int32_t>(i);
   std::vector<SkeletonNode> sorted(nodes.size());
