@@ -46,8 +46,8 @@ void runInfo(const std::string& file) {
     if (!info.cloud.color.empty()) std::printf("per-point colour (RGB): yes\n");
     if (!info.cloud.classification.empty()) std::printf("per-point classification: yes\n");
     printBounds(info.cloud.bounds());
-    cloud::StrayPoints strays = cloud::findStrayPoints(info.cloud);
-    cloud::addGround(strays, cloud::findGround(info.cloud, info.cloud.up.value_or(geom::UpAxis::Z), strays.spacing).points);
+    const cloud::StrayPoints strays =
+        cloud::findStrayAndGroundPoints(info.cloud, info.cloud.up.value_or(geom::UpAxis::Z));
     if (strays.spacing > 0) std::printf("point spacing: %.6g\n", strays.spacing);
     std::printf("%s\n", cloud::strayPointsLine(strays).c_str());
     for (const std::string& w : cloud::checkScale(info.cloud, strays).warnings) std::printf("warning: %s\n", w.c_str());

@@ -16,9 +16,10 @@ namespace {
 
 /// ASPRS classification code for ground.
 constexpr std::uint8_t kGroundClass = 2;
-/// A cloud whose terrain would hold more than this share of its points is a surface, not a tree
-/// standing on the ground: nothing is set aside.
-constexpr double kMaxGroundShare = 0.95;
+/// A cloud whose terrain would leave fewer points than this is a surface, not a tree standing on
+/// the ground: nothing is set aside. (A share would not do: a terrestrial scan of a small tree
+/// from stations on open ground can hold 200 points of terrain for each of the tree's.)
+constexpr std::size_t kMinTreePoints = 64;
 /// The cloud's bottom: the height quantile below which a few points may lie under the terrain
 /// (noise, a mis-registered return).
 constexpr double kBottomQuantile = 0.001;
@@ -167,6 +168,42 @@ void keepWideTerrain(std::vector<Column>& cols, double side, double bottom, cons
   }
 }
 
+/// Columns searched round a column without terrain for the terrain's planes: a terrestrial
+/// scan's terrain far from its stations is lines of points too far apart to fill a column, and
+/// under a stem's foot it is hidden; the terrain beside them gives their height.
+constexpr int kReachColumns = 4;
+
+/// Sets `ground` for each point at most `above` over its terrain: the plane of its own column when
+/// that is terrain, else the mean of the planes of the nearest terrain columns round it (the first
+/// ring of columns, out to kReachColumns, that holds any).
+void markGround(const std::vector<Column>& cols, const std::vector<Across>& at, double spacing, const GroundOptions& o,
+                std::vector<char>& ground) {
+  std::unordered_map<Key, std::size_t, KeyHash> terrain;
+  for (std::size_t k = 0; k < cols.size(); ++k)
+    if (cols[k].terrain) terrain.emplace(cols[k].key, k);
+  std::vector<const Column*> near;
+  for (const Column& c : cols) {
+    near.clear();
+    if (c.terrain) near.push_back(&c);
+    for (int ring = 1; ring <= kReachColumns && near.empty(); ++ring)
+      for (int di = -ring; di <= ring; ++di)
+        for (int dj = -ring; dj <= ring; ++dj) {
+          if (std::max(std::abs(di), std::abs(dj)) != ring) continue;
+          auto it = terrain.find({c.key.i + di, c.key.j + dj});
+          if (it != terrain.end()) near.push_back(&cols[it->second]);
+        }
+    if (near.empty()) continue;
+    double rough = 0;
+    for (const Column* t : near) rough = std::max(rough, t->roughness);
+    const double above = std::max(o.heightSpacings * spacing, 3.0 * rough);
+    for (std::uint32_t p : c.points) {
+      double plane = 0;
+      for (const Column* t : near) plane += t->at(at[p].u, at[p].v);
+      if (at[p].h <= plane / static_cast<double>(near.size()) + above) ground[p] = 1;
+    }
+  }
+}
+
 double quantileOf(std::vector<double> v, double q) {
   const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
@@ -198,42 +235,33 @@ Ground findGround(const geom::PointCloud& cloud, geom::UpAxis up, double spacing
     std::vector<Column> cols = columnsOf(at, side);
     for (Column& c : cols) fitTerrain(c, at, side, o);
     keepWideTerrain(cols, side, quantileOf(heights, kBottomQuantile), o);
-    std::unordered_map<Key, std::size_t, KeyHash> terrain;
-    for (std::size_t k = 0; k < cols.size(); ++k)
-      if (cols[k].terrain) terrain.emplace(cols[k].key, k);
-    out.columns = terrain.size();
+    out.columns = static_cast<std::size_t>(std::count_if(cols.begin(), cols.end(), [](const Column& c) { return c.terrain; }));
     out.columnSize = side;
-    // Each point against the plane of its own column when that is terrain, else the mean of the
-    // terrain columns' planes around it (a column under a stem's foot holds bark, not terrain).
-    for (const Column& c : cols) {
-      double sumPlane = 0, rough = 0;
-      int planes = 0;
-      for (int di = -1; di <= 1; ++di)
-        for (int dj = -1; dj <= 1; ++dj) {
-          if (c.terrain && (di != 0 || dj != 0)) continue;
-          auto it = terrain.find({c.key.i + di, c.key.j + dj});
-          if (it == terrain.end()) continue;
-          ++planes;
-          rough = std::max(rough, cols[it->second].roughness);
-        }
-      if (planes == 0) continue;
-      const double above = std::max(o.heightSpacings * spacing, 3.0 * rough);
-      for (std::uint32_t p : c.points) {
-        sumPlane = 0;
-        for (int di = -1; di <= 1; ++di)
-          for (int dj = -1; dj <= 1; ++dj) {
-            if (c.terrain && (di != 0 || dj != 0)) continue;
-            auto it = terrain.find({c.key.i + di, c.key.j + dj});
-            if (it != terrain.end()) sumPlane += cols[it->second].at(at[p].u, at[p].v);
-          }
-        if (at[p].h <= sumPlane / planes + above) ground[p] = 1;
-      }
-    }
+    markGround(cols, at, spacing, o, ground);
   }
   for (std::size_t i = 0; i < cloud.size(); ++i)
     if (ground[i]) out.points.push_back(static_cast<std::uint32_t>(i));
-  if (static_cast<double>(out.points.size()) > kMaxGroundShare * static_cast<double>(cloud.size())) out = Ground{};
+  if (cloud.size() - out.points.size() < kMinTreePoints) out = Ground{};
   return out;
+}
+
+StrayPoints findStrayAndGroundPoints(const geom::PointCloud& cloud, geom::UpAxis up,
+                                     const StrayPointOptions& strays, const GroundOptions& ground) {
+  const Ground g = findGround(cloud, up, 0.0, ground);
+  if (g.points.empty()) return findStrayPoints(cloud, strays);
+  std::vector<std::uint32_t> rest;
+  rest.reserve(cloud.size() - g.points.size());
+  for (std::size_t i = 0, k = 0; i < cloud.size(); ++i) {
+    if (k < g.points.size() && g.points[k] == i) {
+      ++k;
+      continue;
+    }
+    rest.push_back(static_cast<std::uint32_t>(i));
+  }
+  StrayPoints s = findStrayPoints(selectPoints(cloud, rest), strays);
+  for (std::uint32_t& i : s.setAside) i = rest[i];
+  addGround(s, g.points);
+  return s;
 }
 
 }  // namespace treesketch::cloud

@@ -87,6 +87,33 @@ std::string count(std::uint64_t v) {
 
 }  // namespace
 
+geom::TriMesh terrainUnder(const geom::BBox& tree, geom::UpAxis up, double metresPerUnit, double halfWidth,
+                           double slopeDeg) {
+  constexpr int kCells = 120;
+  const int a = 0, b = up == geom::UpAxis::Y ? 2 : 1, h = up == geom::UpAxis::Y ? 1 : 2;
+  const geom::Vec3 centre = tree.centre();
+  const double bottom = tree.min[h], rise = std::tan(slopeDeg * M_PI / 180.0);
+  const double bump = metresToUnits(0.02, metresPerUnit), wave = 2 * M_PI / metresToUnits(1.0, metresPerUnit);
+  geom::TriMesh m;
+  for (int i = 0; i <= kCells; ++i)
+    for (int j = 0; j <= kCells; ++j) {
+      const double x = -halfWidth + 2 * halfWidth * i / kCells, y = -halfWidth + 2 * halfWidth * j / kCells;
+      geom::Vec3 p;
+      p[a] = centre[a] + x;
+      p[b] = centre[b] + y;
+      // The foot stands on the terrain: level with the tree's bottom under it, a bump's depth below.
+      p[h] = bottom - bump + rise * x + bump * std::sin(wave * x) * std::cos(0.7 * wave * y);
+      m.vertices.push_back(p);
+    }
+  for (int i = 0; i < kCells; ++i)
+    for (int j = 0; j < kCells; ++j) {
+      const auto v = static_cast<std::uint32_t>(i * (kCells + 1) + j), w = v + kCells + 1;
+      m.triangles.push_back({v, w, v + 1});
+      m.triangles.push_back({v + 1, w, w + 1});
+    }
+  return m;
+}
+
 std::vector<ScanCondition> fullMatrix() {
   std::vector<ScanCondition> m;
   m.push_back(referenceCondition());
@@ -114,6 +141,13 @@ std::vector<ScanCondition> fullMatrix() {
   for (double mm : {0.0, 2.0, 10.0, 25.0}) {
     auto c = tlsVariant("tls-noise-" + num(mm) + "mm", "noise", mm == 10.0);
     c.rangeNoiseMm = mm;
+    m.push_back(c);
+  }
+  {
+    // A terrestrial scan keeps the terrain round the stem: the tree on level, bumpy ground, clipped
+    // to the square under its crown (a tree cut out of a plot's scan).
+    auto c = tlsVariant("tls-terrain", "terrain", false);
+    c.terrainSlopeDeg = 0.0;
     m.push_back(c);
   }
   m.push_back(thesisSphere("sphere-73k", 6, true));
@@ -188,6 +222,7 @@ std::string describeCondition(const ScanCondition& c) {
     s << ", noise " << num(c.rangeNoiseDiagonal) << " × diagonal";
   else if (c.pattern == "tls" || c.rangeNoiseMm > 0)
     s << ", " << num(c.rangeNoiseMm) << " mm noise";
+  if (c.terrainSlopeDeg >= 0) s << ", on terrain at " << num(c.terrainSlopeDeg) << "°";
   return s.str();
 }
 

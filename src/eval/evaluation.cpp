@@ -223,6 +223,12 @@ TreeScan scanTree(const TreeCase& tree, const ScanCondition& c, bool leafOn, std
   std::vector<geom::TriMesh> meshes{tree.branches};
   if (leafOn && !tree.leaves.empty()) meshes.push_back(tree.leaves);
   const double diag = tree.branches.bounds().diagonal();
+  // The terrain a clip of the tree out of a plot's scan keeps: under its crown and a little past it.
+  if (c.terrainSlopeDeg >= 0) {
+    const geom::Vec3 extent = tree.branches.bounds().extent();
+    const double crown = tree.up == geom::UpAxis::Y ? std::max(extent.x(), extent.z()) : std::max(extent.x(), extent.y());
+    meshes.push_back(terrainUnder(tree.branches.bounds(), tree.up, tree.metresPerUnit, 0.6 * crown, c.terrainSlopeDeg));
+  }
   const double noise =
       c.rangeNoiseDiagonal > 0 ? c.rangeNoiseDiagonal * diag : mmToUnits(c.rangeNoiseMm, tree.metresPerUnit);
   TreeScan out;
@@ -277,6 +283,9 @@ TreeScan scanTree(const TreeCase& tree, const ScanCondition& c, bool leafOn, std
     }
     t.stepDeg = step;
     t.recordMesh = true;
+    // On terrain, the stations stand where they would round the tree alone (the terrain's wider
+    // box would move them out and down).
+    if (c.terrainSlopeDeg >= 0) t.stations = scan::tlsStationPositions(t, tree.branches.bounds());
     out.stepDeg = step;
     out.rays = scan::tlsRayCount(t);
     out.cloud = scan::tlsScan(meshes, t).cloud;

@@ -151,6 +151,7 @@ std::vector<SettingRow> completionRows() {
       TS_SETTING(strays.minComponentPoints, Integer, 1, 1e9, "components of fewer points go (1 = off)"),
       TS_SETTING(strays.maxShare, Real, 0, 1, "set nothing aside past this share"),
       TS_SETTING(ground.enabled, Boolean, 0, 1, "set aside the ground under the tree"),
+      TS_SETTING(ground.columnSpacings, Real, 1e-3, 1e6, "ground columns' side, point spacings"),
   };
 }
 

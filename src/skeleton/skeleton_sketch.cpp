@@ -581,8 +581,7 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
 AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
                                       const ProgressFn& progress) {
   checkOptions(options);
-  cloud::StrayPoints strays = cloud::findStrayPoints(cloud, options.strays);
-  cloud::addGround(strays, cloud::findGround(cloud, options.skeleton.up, strays.spacing, options.ground).points);
+  cloud::StrayPoints strays = cloud::findStrayAndGroundPoints(cloud, options.skeleton.up, options.strays, options.ground);
   AutoSkeletonResult res =
       strays.empty() ? modelKeptPoints(cloud, options, progress)
                      : modelKeptPoints(cloud::keptPoints(cloud, strays), options, progress);

@@ -69,7 +69,7 @@ TEST(ConditionMatrix, FullMatrixCoversEveryFactor) {
       EXPECT_EQ(c.rangeNoiseDiagonal, 0.0) << c.name;
       EXPECT_GT(c.stepDeg, 0.0) << c.name;
       // One factor at a time around the base.
-      int differs = (c.stations != 4) + (c.stepDeg != 0.2) + (c.rangeNoiseMm != 5.0);
+      int differs = (c.stations != 4) + (c.stepDeg != 0.2) + (c.rangeNoiseMm != 5.0) + (c.terrainSlopeDeg >= 0);
       EXPECT_LE(differs, 1) << c.name;
       EXPECT_EQ(differs == 0, c.factor == "base") << c.name;
     } else {

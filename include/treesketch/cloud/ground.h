@@ -12,7 +12,8 @@
 // lowest points: none of them is ground. Columns of ground joined side by side form the terrain;
 // only terrain wide against the grid (a few dozen columns) and reaching the cloud's bottom is kept.
 // A point is ground when it lies at most a few spacings (or three of the terrain's own roughness)
-// above the plane of its column or of the ground columns beside it. Points a LAS file classifies
+// above the plane of its column or, where its column is not terrain (sparse lines of points far
+// from a scanner, the shadow under a stem's foot), of the nearest terrain columns round it. Points a LAS file classifies
 // as ground (ASPRS class 2) are ground whatever their shape.
 #pragma once
 
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "treesketch/geom/point_cloud.h"
+#include "treesketch/cloud/stray_points.h"
 #include "treesketch/geom/types.h"
 
 namespace treesketch::cloud {
@@ -54,8 +56,14 @@ struct Ground {
 
 /// The ground points of `cloud` (see above). `spacing` is the cloud's point spacing (as
 /// StrayPoints measures it; not positive: measured here). Nothing is ground with the rule off, in a
-/// cloud of fewer than 64 points, or when the terrain would hold more than 95 % of the points (then
-/// the cloud is a surface, not a tree on the ground).
+/// cloud of fewer than 64 points, or when the terrain would leave fewer than 64 (then the cloud is a
+/// surface, not a tree on the ground).
 Ground findGround(const geom::PointCloud& cloud, geom::UpAxis up, double spacing, const GroundOptions& options = {});
+
+/// The points to set aside before modelling: the ground (findGround), then the stray points of the
+/// rest (findStrayPoints: with the terrain gone, what is left of it far from the tree is far from
+/// the tree), as one StrayPoints (indices into `cloud`, the ground counted apart).
+StrayPoints findStrayAndGroundPoints(const geom::PointCloud& cloud, geom::UpAxis up,
+                                     const StrayPointOptions& strays = {}, const GroundOptions& ground = {});
 
 }  // namespace treesketch::cloud

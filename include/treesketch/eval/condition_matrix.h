@@ -28,6 +28,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+
+#include "treesketch/geom/tri_mesh.h"
 #include <vector>
 
 namespace treesketch::eval {
@@ -92,6 +94,9 @@ struct ScanCondition {
   /// > 0: the noise sigma is this fraction of the branch bounding-box diagonal instead (former
   /// TLS reference).
   double rangeNoiseDiagonal = 0.0;
+  /// >= 0: the scan also sees a terrain under the tree, rising at this slope (degrees), with bumps
+  /// (terrainUnder); < 0: the tree alone.
+  double terrainSlopeDeg = -1.0;
 
   /// Forward error is not judged: one TLS station cannot see the far side of the tree.
   bool backwardOnly() const { return pattern == "tls" && stations == 1; }
@@ -100,6 +105,12 @@ struct ScanCondition {
 /// Scene units for a length in millimetres / metres at a scale of `metresPerUnit` (> 0).
 double mmToUnits(double mm, double metresPerUnit);
 double metresToUnits(double metres, double metresPerUnit);
+
+/// A square of terrain under a tree of bounds `tree` (its foot at the bounds' bottom, centred
+/// across `up`), out to `halfWidth` each way, rising at `slopeDeg` along the first axis across up,
+/// with bumps of 2 cm (at `metresPerUnit`) about a metre apart: a grid of triangles, 120 a side.
+geom::TriMesh terrainUnder(const geom::BBox& tree, geom::UpAxis up, double metresPerUnit, double halfWidth,
+                           double slopeDeg);
 
 /// The former evaluation setting, sphere pattern: jitter cone over the tree, ~160k points,
 /// node-count sweep on. Named "reference".
