@@ -136,10 +136,16 @@ std::vector<Column> columnsOf(const std::vector<Across>& at, double side) {
   return cols;
 }
 
+/// Terrain spans at least this share of the cloud's width across up: the surface the tree stands
+/// on, not a patch at its foot (a stem's cut face seen from below, as the thesis's sphere pattern
+/// sees a capped trunk, is a filled, level disc the stem's width).
+constexpr double kMinWidthShare = 0.25;
+
 /// Marks terrain only where it is wide and reaches the cloud's bottom: the terrain columns joined
 /// to their neighbours (8 around, planes meeting within the steepest slope), in groups of at least
-/// minColumns whose lowest plane lies within one column's rise of `bottom`.
-void keepWideTerrain(std::vector<Column>& cols, double side, double bottom, const GroundOptions& o) {
+/// minColumns, as wide as kMinWidthShare of `width`, whose lowest plane lies within one column's
+/// rise of `bottom`.
+void keepWideTerrain(std::vector<Column>& cols, double side, double bottom, double width, const GroundOptions& o) {
   std::unordered_map<Key, std::size_t, KeyHash> index;
   for (std::size_t k = 0; k < cols.size(); ++k)
     if (cols[k].terrain) index.emplace(cols[k].key, k);
@@ -155,16 +161,26 @@ void keepWideTerrain(std::vector<Column>& cols, double side, double bottom, cons
         if (std::fabs(a.at(a.u0, a.v0) - b.at(b.u0, b.v0)) <= rise + a.roughness + b.roughness)
           sets.unite(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(it->second));
       }
-  std::unordered_map<std::uint32_t, std::pair<int, double>> groups;  // columns, lowest plane
+  struct Group {
+    int columns = 0;
+    double lowest = std::numeric_limits<double>::infinity();
+    std::int64_t i0 = std::numeric_limits<std::int64_t>::max(), i1 = std::numeric_limits<std::int64_t>::min();
+    std::int64_t j0 = i0, j1 = i1;
+  };
+  std::unordered_map<std::uint32_t, Group> groups;
   for (const auto& [key, k] : index) {
-    auto& g = groups.try_emplace(sets.find(static_cast<std::uint32_t>(k)), 0, std::numeric_limits<double>::infinity())
-                  .first->second;
-    ++g.first;
-    g.second = std::min(g.second, cols[k].at(cols[k].u0, cols[k].v0));
+    Group& g = groups[sets.find(static_cast<std::uint32_t>(k))];
+    ++g.columns;
+    g.lowest = std::min(g.lowest, cols[k].at(cols[k].u0, cols[k].v0));
+    g.i0 = std::min(g.i0, key.i);
+    g.i1 = std::max(g.i1, key.i);
+    g.j0 = std::min(g.j0, key.j);
+    g.j1 = std::max(g.j1, key.j);
   }
   for (const auto& [key, k] : index) {
-    const auto& g = groups[sets.find(static_cast<std::uint32_t>(k))];
-    cols[k].terrain = g.first >= o.minColumns && g.second <= bottom + rise;
+    const Group& g = groups[sets.find(static_cast<std::uint32_t>(k))];
+    const double wide = side * static_cast<double>(std::max(g.i1 - g.i0, g.j1 - g.j0) + 1);
+    cols[k].terrain = g.columns >= o.minColumns && wide >= kMinWidthShare * width && g.lowest <= bottom + rise;
   }
 }
 
@@ -234,7 +250,14 @@ Ground findGround(const geom::PointCloud& cloud, geom::UpAxis up, double spacing
     }
     std::vector<Column> cols = columnsOf(at, side);
     for (Column& c : cols) fitTerrain(c, at, side, o);
-    keepWideTerrain(cols, side, quantileOf(heights, kBottomQuantile), o);
+    std::vector<double> us(cloud.size()), vs(cloud.size());
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      us[i] = at[i].u;
+      vs[i] = at[i].v;
+    }
+    const double width = std::max(quantileOf(us, 1 - kBottomQuantile) - quantileOf(us, kBottomQuantile),
+                                  quantileOf(vs, 1 - kBottomQuantile) - quantileOf(vs, kBottomQuantile));
+    keepWideTerrain(cols, side, quantileOf(heights, kBottomQuantile), width, o);
     out.columns = static_cast<std::size_t>(std::count_if(cols.begin(), cols.end(), [](const Column& c) { return c.terrain; }));
     out.columnSize = side;
     markGround(cols, at, spacing, o, ground);

@@ -111,6 +111,7 @@ MethodOutput methodSkeleton(const MethodInput& in) {
   MethodOutput out;
   out.model = model::fromAutoSkeleton(r, in.tree.up);
   out.measure = model::autoMeasureOptions(r, so, in.leafOn);
+  out.setAside = std::move(r.strays);
   out.mesh = std::move(r.mesh);
   out.sketch = std::move(r.sketch);
   out.nodes = static_cast<int>(out.sketch.size());
@@ -133,6 +134,7 @@ MethodOutput methodSkeletonWood(const MethodInput& in) {
   MethodInput woodInput{in.tree, wood, in.options, in.nodeCount, false};
   MethodOutput out = methodSkeleton(woodInput);
   if (out.measure) out.measure->woodOnly = true;
+  out.setAside = {};  // indices into the wood, not the scan: measured against every point, as the CLI does
   out.ms = timer.ms();
   return out;
 }
@@ -357,7 +359,8 @@ void setVolumes(EvalRow& row, const TreeCase& tree, const MethodOutput& out, con
   if (!out.measure || !(tree.metresPerUnit > 0)) return;
   model::MeasureOptions mo = *out.measure;
   mo.unitMetres = tree.metresPerUnit;
-  const model::ModelMeasures measures = model::measure(m, cloud, mo);
+  const model::ModelMeasures measures =
+      model::measure(m, out.setAside.empty() ? cloud : cloud::keptPoints(cloud, out.setAside), mo);
   const double cubic = tree.metresPerUnit * tree.metresPerUnit * tree.metresPerUnit;
   row.volumeLow = measures.volumeLow / cubic;
   row.volumeHigh = measures.volumeHigh / cubic;

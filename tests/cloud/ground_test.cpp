@@ -88,6 +88,22 @@ TEST(Ground, ATreeWithoutTerrainKeepsEveryPoint) {
   EXPECT_TRUE(g.points.empty()) << g.points.size() << " points taken for ground";
 }
 
+TEST(Ground, AStemsCutFaceSeenFromBelowIsNotGround) {
+  // A trunk capped at its foot, scanned from every side (the thesis's sphere pattern sees the cap
+  // from below): a filled, level disc at the cloud's bottom, the stem's width, under a wide crown.
+  geom::PointCloud c;
+  addStem(c, 0.4, 0.0, 6.0, 0.005);
+  for (double x = -0.4; x <= 0.4; x += 0.005)
+    for (double y = -0.4; y <= 0.4; y += 0.005)
+      if (x * x + y * y <= 0.16) c.positions.emplace_back(x, y, 0.0);
+  for (int limb = 0; limb < 36; ++limb) {  // limbs out to 4 m all round
+    const double a = 2 * std::numbers::pi * limb / 36;
+    for (double r = 0.4; r <= 4.0; r += 0.005) c.positions.emplace_back(r * std::cos(a), r * std::sin(a), 4.0 + 0.3 * r);
+  }
+  const Ground g = findGround(c, geom::UpAxis::Z, 0.0);
+  EXPECT_TRUE(g.points.empty()) << g.points.size() << " points taken for ground";
+}
+
 TEST(Ground, UpIsTheCloudsOwnAxis) {
   std::mt19937 rng(11);
   geom::PointCloud z;

@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "treesketch/cloud/stray_points.h"
 #include "treesketch/eval/condition_matrix.h"
 #include "treesketch/eval/tree_suite.h"
 #include "treesketch/eval/user_node_causes.h"
@@ -192,6 +193,9 @@ struct MethodOutput {
   /// How to measure `model` against the scan for its volume range and verdict (the automatic
   /// model's noise and leaf settings; unitMetres is the tree's); empty: not measured.
   std::optional<model::MeasureOptions> measure;
+  /// The points of the scan the automatic model set aside (strays, the ground), measured without
+  /// them as `reconstruct --report` measures; empty for the other methods.
+  cloud::StrayPoints setAside;
 };
 
 struct MethodInput {
