@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "treesketch/cloud/ground.h"
 #include "treesketch/gen/tree_generator.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
@@ -71,7 +72,7 @@ const geom::PointCloud& cloud1M() {
 
 /// An earlier leaf-off skeleton (no sparse links, bridges within 8 voxels along a piece's axis,
 /// the cross-section rule 0.6 / 0.3): the reference path for same-run ratios.
-void session9Skeleton(skeleton::SkeletonOptions& o) {
+void earlierLeafOffSkeleton(skeleton::SkeletonOptions& o) {
   o.graph.sparseLinkNeighbours = 0;
   o.graph.maxGapVoxels = 8;
   o.graph.coneAngleDeg = 45;
@@ -84,9 +85,9 @@ void BM_ExtractSkeleton1M(benchmark::State& state) {
   const auto& cloud = cloud1M();
   std::size_t nodes = 0;
   double voxel = 0;
-  // Arg 0: defaults. Arg 1: the earlier leaf-off skeleton (session9Skeleton).
+  // Arg 0: defaults. Arg 1: the earlier leaf-off skeleton (earlierLeafOffSkeleton).
   skeleton::SkeletonOptions o;
-  if (state.range(0) == 1) session9Skeleton(o);
+  if (state.range(0) == 1) earlierLeafOffSkeleton(o);
   for (auto _ : state) {
     auto s = skeleton::extractSkeleton(cloud, o);
     nodes = s.nodes.size();
@@ -104,13 +105,13 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   double skel = 0, fit = 0, sweep = 0, completion = 0;
   std::size_t nodes = 0, forks = 0;
   // Arg 0: defaults. Arg 1: the fits' inlier band 15 % of the hypothesis's radius (the earliest fits).
-  // Arg 2: the earlier leaf-off model (session9Skeleton, no allometric radius bound). Arg 3: no
+  // Arg 2: the earlier leaf-off model (earlierLeafOffSkeleton, no allometric radius bound). Arg 3: no
   // completion (the model before it). For same-run ratios.
   skeleton::AutoSkeletonOptions o;
   if (state.range(0) == 3) o.completion.enabled = false;
   if (state.range(0) == 1) o.fit.circle.inlierThresholdRelative = 0.15;
   if (state.range(0) == 2) {
-    session9Skeleton(o.skeleton);
+    earlierLeafOffSkeleton(o.skeleton);
     o.radii.allometryMaxRatio = 0;
   }
   for (auto _ : state) {
@@ -175,5 +176,33 @@ void BM_AutoSkeletonSketchLeafOn1M(benchmark::State& state) {
 BENCHMARK(BM_AutoSkeletonSketchLeafOn1M)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace
+
+// The points set aside before the automatic model: the strays alone (Arg 0) against the ground
+// and then the strays (Arg 1), on the 1M-point tree standing on 1M points of level, bumpy terrain
+// 12 m across (2M points), for a same-run ratio.
+void BM_GroundAndStrays(benchmark::State& state) {
+  static const geom::PointCloud cloud = [] {
+    geom::PointCloud c = cloud1M();
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> uni(-6.0, 6.0);
+    std::normal_distribution<double> gauss(0.0, 0.005);
+    for (int i = 0; i < 1000000; ++i) {
+      const double x = uni(rng), z = uni(rng);
+      if (x * x + z * z < 0.09) continue;  // under the trunk
+      c.positions.emplace_back(x, 0.02 * std::sin(3 * x) * std::cos(2 * z) - 0.02 + gauss(rng), z);
+    }
+    return c;
+  }();
+  std::size_t aside = 0;
+  for (auto _ : state) {
+    const cloud::StrayPoints s = state.range(0) == 0 ? cloud::findStrayPoints(cloud)
+                                                     : cloud::findStrayAndGroundPoints(cloud, geom::UpAxis::Y);
+    aside = s.count();
+    benchmark::DoNotOptimize(s);
+  }
+  state.counters["points"] = static_cast<double>(cloud.size());
+  state.counters["setAside"] = static_cast<double>(aside);
+}
+BENCHMARK(BM_GroundAndStrays)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
