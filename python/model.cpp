@@ -77,6 +77,7 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bo
                 {"fits_accepted", accepted},
                 {"leaf_pieces", leafPieces},
                 {"stray_points", s.strays.count()},
+                {"ground_points", s.strays.ground},
                 {"vertices", s.mesh.vertices.size()},
                 {"triangles", s.mesh.triangles.size()}};
     t.reportHeader = {{"cloud", t.source},
