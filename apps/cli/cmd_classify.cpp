@@ -40,7 +40,6 @@ struct ClassifyArgs {
   int leafVariants = 2;
   bool noPosition = false;
   bool noNormal = false;
-  bool noOptimalScale = false;
 };
 
 classify::ClassifyOptions classifyOptions(const ClassifyArgs& a) {
@@ -74,7 +73,6 @@ void runTrain(const ClassifyArgs& a) {
   t.leafVariants = a.leafVariants;
   t.features.positionFeatures = !a.noPosition;
   t.features.normalFeatures = !a.noNormal;
-  t.features.optimalScaleFeatures = !a.noOptimalScale;
   t.log = [](const std::string& line) { std::cerr << line << "\n"; };
   const classify::BoostedTrees m = a.train.empty() ? eval::trainContextClassifier(labelledTrees(a, true), t)
                                                    : eval::trainClassifier(labelledTrees(a, true), t);
@@ -180,8 +178,6 @@ void registerClassify(CLI::App& app, Action& action) {
                 "--train: leave out the height and distance from the stem (shape and paths only)");
   cmd->add_flag("--no-normal-features", a->noNormal,
                 "--train: leave out how the surface normals turn over each neighbourhood");
-  cmd->add_flag("--no-optimal-scale-features", a->noOptimalScale,
-                "--train: leave out the features at each point's own best neighbourhood size");
   cmd->add_option("--metres-per-unit", a->metresPerUnit, "Scale of the --trees meshes")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

@@ -21,8 +21,7 @@ const BoostedTrees& trainedModel() {
 }
 
 FeatureOptions featureOptionsFor(const BoostedTrees& model, FeatureOptions options) {
-  for (int off = 0; off < 16; ++off) {  // every setting of the four switches, all on first
-    options.optimalScaleFeatures = (off & 8) == 0;
+  for (int off = 0; off < 8; ++off) {  // every setting of the three switches, all on first
     options.normalFeatures = (off & 4) == 0;
     options.positionFeatures = (off & 2) == 0;
     options.graphFeatures = (off & 1) == 0;

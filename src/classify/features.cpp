@@ -10,7 +10,6 @@
 #include <cmath>
 
 #include "graph_features.h"
-#include "optimal_scale.h"
 #include "treesketch/accel/point_index.h"
 #include "treesketch/util/error.h"
 
@@ -97,12 +96,6 @@ void checkOptions(const FeatureOptions& o) {
       throw OptionsError("classify: coarse scales must be increasing and at least 3 points");
   if (!o.coarseScales.empty() && !(o.coarseHeightFraction > 0 && o.coarseHeightFraction < 1))
     throw OptionsError("classify: the coarse cube must be a fraction of the height between 0 and 1");
-  if (o.optimalScaleFeatures) {
-    if (o.optimalScales.empty()) throw OptionsError("classify: no optimal-scale candidates");
-    for (std::size_t s = 0; s < o.optimalScales.size(); ++s)
-      if (o.optimalScales[s] < 3 || (s > 0 && o.optimalScales[s] <= o.optimalScales[s - 1]))
-        throw OptionsError("classify: optimal-scale candidates must be increasing and at least 3 points");
-  }
 }
 
 void checkCores(std::size_t cores, std::size_t points, const FeatureOptions& o) {
@@ -153,13 +146,11 @@ std::vector<geom::Vec3> makeCores(const std::vector<geom::Vec3>& points, double 
 
 /// The covariance features of point i of `index` at every scale of `scales` (kPerScale each, into
 /// `out`); `nb` receives its neighbours, nearest first (itself included), and `normal` (when not
-/// null) the normal of the first scale's neighbourhood. `query`: how many neighbours to find (at
-/// least the largest scale + 1; more for the optimal-scale features).
+/// null) the normal of the first scale's neighbourhood.
 void pointFeatures(const accel::PointIndex& index, std::uint32_t i, const std::vector<int>& scales, double unit,
-                   const geom::Vec3& up, float* out, std::vector<accel::Neighbour>& nb, geom::Vec3* normal,
-                   std::size_t query) {
+                   const geom::Vec3& up, float* out, std::vector<accel::Neighbour>& nb, geom::Vec3* normal) {
   const geom::Vec3& p = index.point(i);
-  nb = index.nearest(p, std::max(query, static_cast<std::size_t>(scales.back()) + 1));
+  nb = index.nearest(p, static_cast<std::size_t>(scales.back()) + 1);
   geom::Vec3 sum = geom::Vec3::Zero();
   geom::Mat3 outer = geom::Mat3::Zero();
   std::size_t scale = 0;
@@ -216,7 +207,7 @@ void coarseFeatures(const std::vector<geom::Vec3>& cores, const FeatureOptions& 
                       std::vector<accel::Neighbour> nb;
                       for (std::size_t i = r.begin(); i != r.end(); ++i) {
                         pointFeatures(index, static_cast<std::uint32_t>(i), o.coarseScales, size, up,
-                                      values.data() + i * per, nb, &normals[i], 0);
+                                      values.data() + i * per, nb, &normals[i]);
                         if (turn > 0) keepNeighbours(nb, i, stride, lists);
                       }
                     });
@@ -310,8 +301,6 @@ std::vector<std::string> featureNames(const FeatureOptions& options) {
       for (const char* p : turn)
         names.push_back(std::string(p) + "_coarse_k" + std::to_string(options.coarseScales[s]));
   }
-  if (options.optimalScaleFeatures)
-    for (const auto& name : detail::optimalScaleFeatureNames()) names.push_back(name);
   if (options.graphFeatures)
     for (const auto& name : detail::graphFeatureNames()) names.push_back(name);
   if (options.positionFeatures) {
@@ -344,11 +333,7 @@ FeatureTable computeFeatures(const geom::PointCloud& cloud, geom::UpAxis up, con
   const std::size_t normalColumn = (options.scales.size() + options.coarseScales.size()) * kPerScale;
   const std::size_t fineTurn = options.normalFeatures ? normalColumns(options.scales) : 0;
   const std::size_t coarseTurn = options.normalFeatures ? normalColumns(options.coarseScales) : 0;
-  const std::size_t optimalColumn = normalColumn + fineTurn + coarseTurn;
-  const std::size_t graphColumn =
-      optimalColumn + (options.optimalScaleFeatures ? detail::optimalScaleFeatureNames().size() : 0);
-  const std::size_t query =
-      options.optimalScaleFeatures ? static_cast<std::size_t>(options.optimalScales.back()) + 1 : 0;
+  const std::size_t graphColumn = normalColumn + fineTurn + coarseTurn;
   const std::size_t stride = static_cast<std::size_t>(options.scales.back()) + 1;
   std::vector<geom::Vec3> normals(n);
   std::vector<std::uint32_t> lists(fineTurn > 0 ? n * stride : 0);
@@ -357,9 +342,7 @@ FeatureTable computeFeatures(const geom::PointCloud& cloud, geom::UpAxis up, con
     std::vector<accel::Neighbour> nb;
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       float* row = t.values.data() + i * t.count;
-      pointFeatures(index, static_cast<std::uint32_t>(i), options.scales, t.spacing, upv, row, nb, &normals[i], query);
-      if (options.optimalScaleFeatures)
-        detail::optimalScaleFeatures(index, cores[i], nb, options.optimalScales, t.spacing, upv, row + optimalColumn);
+      pointFeatures(index, static_cast<std::uint32_t>(i), options.scales, t.spacing, upv, row, nb, &normals[i]);
       if (fineTurn > 0) keepNeighbours(nb, i, stride, lists);
       keepGraphNeighbours(nb, i, t);
       if (options.positionFeatures) {

@@ -56,13 +56,6 @@ struct FeatureOptions {
   /// about one axis, so over a patch of a limb its normals fan out in one plane and never along the
   /// limb, however flat the limb looks to the point covariance at that scale.
   bool normalFeatures = true;
-  /// Features at each core's own best neighbourhood size (classify/optimal_scale.h, after Weinmann
-  /// et al. 2015): of these sizes (cores, increasing), the one whose normalised covariance
-  /// eigenvalues have the least entropy, the shape there and the size itself. A limb's best size
-  /// follows its radius, a leaf's the leaf. The largest size bounds the k-nearest query when it is
-  /// above the largest of `scales`.
-  bool optimalScaleFeatures = false;
-  std::vector<int> optimalScales = {10, 20, 40, 80, 160};
   /// The point's height above the base and distance from the base's vertical line, as fractions
   /// of the height: a prior on where wood is (the stem low and central) that the generator's trees
   /// teach and a bare crown or a conifer's needles contradict.
