@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -36,6 +37,22 @@ TEST(InfoCli, GoodFilePrintsCounts) {
   EXPECT_EQ(test::runCli("info " + test::quoted(dir / "c.xyz"), &out), 0) << out;
   EXPECT_NE(out.find("points: 7\n"), std::string::npos) << out;
   EXPECT_NE(out.find("bbox diagonal: 6.000000"), std::string::npos) << out;
+}
+
+// A stem standing on level terrain: the terrain's points are counted as ground (Z up, the field's
+// convention for a text cloud).
+TEST(InfoCli, CountsTheGroundUnderAStem) {
+  test::TempDir dir;
+  geom::PointCloud c;
+  for (double z = 0; z <= 4.0; z += 0.01)
+    for (int k = 0; k < 90; ++k) c.positions.emplace_back(0.15 * std::cos(k * 0.0698), 0.15 * std::sin(k * 0.0698), z);
+  for (double x = -2.0; x <= 2.0; x += 0.02)
+    for (double y = -2.0; y <= 2.0; y += 0.02)
+      if (x * x + y * y > 0.0225) c.positions.emplace_back(x, y, 0.002 * std::sin(7 * x));
+  io::writePointCloud(dir / "stem.xyz", c);
+  std::string out;
+  EXPECT_EQ(test::runCli("info " + test::quoted(dir / "stem.xyz"), &out), 0) << out;
+  EXPECT_NE(out.find(" on the ground, "), std::string::npos) << out;
 }
 
 // A LAZ file: the compressor, items, chunk size and point format (../shared/data/real; skipped
