@@ -220,10 +220,13 @@ void markGround(const std::vector<Column>& cols, const std::vector<Across>& at, 
   }
 }
 
-double quantileOf(std::vector<double> v, double q) {
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
+/// The q-quantile of one coordinate of `at` (`scratch` reused between calls).
+double quantileOf(const std::vector<Across>& at, double Across::*field, double q, std::vector<double>& scratch) {
+  scratch.resize(at.size());
+  for (std::size_t i = 0; i < at.size(); ++i) scratch[i] = at[i].*field;
+  const auto k = static_cast<std::size_t>(q * static_cast<double>(scratch.size() - 1));
+  std::nth_element(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(k), scratch.end());
+  return scratch[k];
 }
 
 }  // namespace
@@ -243,21 +246,15 @@ Ground findGround(const geom::PointCloud& cloud, geom::UpAxis up, double spacing
   if (spacing > 0 && std::isfinite(spacing)) {
     const double side = o.columnSpacings * spacing;
     std::vector<Across> at(cloud.size());
-    std::vector<double> heights(cloud.size());
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      at[i] = across(cloud.positions[i], up);
-      heights[i] = at[i].h;
-    }
+    for (std::size_t i = 0; i < cloud.size(); ++i) at[i] = across(cloud.positions[i], up);
     std::vector<Column> cols = columnsOf(at, side);
     for (Column& c : cols) fitTerrain(c, at, side, o);
-    std::vector<double> us(cloud.size()), vs(cloud.size());
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      us[i] = at[i].u;
-      vs[i] = at[i].v;
-    }
-    const double width = std::max(quantileOf(us, 1 - kBottomQuantile) - quantileOf(us, kBottomQuantile),
-                                  quantileOf(vs, 1 - kBottomQuantile) - quantileOf(vs, kBottomQuantile));
-    keepWideTerrain(cols, side, quantileOf(heights, kBottomQuantile), width, o);
+    std::vector<double> scratch;
+    auto span = [&](double Across::*field) {
+      return quantileOf(at, field, 1 - kBottomQuantile, scratch) - quantileOf(at, field, kBottomQuantile, scratch);
+    };
+    const double width = std::max(span(&Across::u), span(&Across::v));
+    keepWideTerrain(cols, side, quantileOf(at, &Across::h, kBottomQuantile, scratch), width, o);
     out.columns = static_cast<std::size_t>(std::count_if(cols.begin(), cols.end(), [](const Column& c) { return c.terrain; }));
     out.columnSize = side;
     markGround(cols, at, spacing, o, ground);
