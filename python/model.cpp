@@ -101,6 +101,7 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bo
     model::MeasureOptions mo = model::autoMeasureOptions(s, opt, leafOn);
     mo.unitMetres = unitMetres;
     mo.woodOnly = woodOnly;
+    model::lookForStems(mo, modelled, choice.up, s.strays);
     t.measures = model::measure(t.tree, kept, mo);
     t.measureOptions = mo;
     t.timings["metrics_ms"] = msSince(tm);

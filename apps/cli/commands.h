@@ -41,5 +41,6 @@ void registerReconstruct(CLI::App& app, Action& action);
 void registerRender(CLI::App& app, Action& action);
 void registerScan(CLI::App& app, Action& action);
 void registerSketch(CLI::App& app, Action& action);
+void registerSplit(CLI::App& app, Action& action);
 
 }  // namespace treesketch::cli

@@ -73,6 +73,7 @@ int main(int argc, char** argv) {
   registerRender(app, action);
   registerScan(app, action);
   registerSketch(app, action);
+  registerSplit(app, action);
   if (const std::string unknown = unknownCommandMessage(app, argc, argv); !unknown.empty()) {
     std::cerr << "treesketch: error: " << unknown << "\n";
     return kExitUsage;

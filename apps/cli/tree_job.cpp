@@ -111,6 +111,7 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   model::MeasureOptions mo = model::autoMeasureOptions(s, opt, a.leafOn);
   mo.unitMetres = a.unitMetres;
   mo.woodOnly = a.woodOnly;
+  model::lookForStems(mo, modelled, up.up, s.strays);
   const model::ModelMeasures measures = model::measure(tree, kept, mo);
   r.metricsMs = tm.ms();
 

@@ -359,6 +359,7 @@ void setVolumes(EvalRow& row, const TreeCase& tree, const MethodOutput& out, con
   if (!out.measure || !(tree.metresPerUnit > 0)) return;
   model::MeasureOptions mo = *out.measure;
   mo.unitMetres = tree.metresPerUnit;
+  model::lookForStems(mo, cloud, m.up, out.setAside);
   const model::ModelMeasures measures =
       model::measure(m, out.setAside.empty() ? cloud : cloud::keptPoints(cloud, out.setAside), mo);
   const double cubic = tree.metresPerUnit * tree.metresPerUnit * tree.metresPerUnit;

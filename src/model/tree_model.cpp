@@ -219,6 +219,17 @@ MeasureOptions autoMeasureOptions(const skeleton::AutoSkeletonResult& r, const s
   return mo;
 }
 
+void lookForStems(MeasureOptions& options, const geom::PointCloud& scan, geom::UpAxis up,
+                  const cloud::StrayPoints& strays) {
+  std::vector<std::uint32_t> ground;
+  for (std::size_t k = 0; k < strays.setAside.size() && k < strays.reasons.size(); ++k)
+    if (strays.reasons[k] == cloud::StrayReason::Ground) ground.push_back(strays.setAside[k]);
+  cloud::StemOptions so;
+  so.unitMetres = options.unitMetres;
+  options.stems = cloud::findStems(scan, up, ground, strays.spacing, so);
+  options.stemsLookedFor = true;
+}
+
 namespace {
 
 /// Relative radius spread of a piece on a fitted circle, and the factors of an inferred one.
@@ -235,6 +246,8 @@ constexpr double kMinPointsPerMetre = 50.0;  ///< a circle fit needs a few dozen
 /// stem, each to about kMeasuredRadiusSpread: apart by more than both spreads together (√2 × 10 %),
 /// one of them is off (the model's axis beside the bark, a circle on a stem seen from one side).
 constexpr double kMaxDbhDisagreement = 0.14;
+/// The verdict lists at most this many stems' diameters.
+constexpr std::size_t kListedStems = 8;
 
 std::string percent(double share) {
   char buf[32];
@@ -287,6 +300,26 @@ Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions&
   const std::string leafOn =
       !o.leafOn ? "if the tree was in leaf, run with --leaf-on"
                 : (o.woodOnly ? "" : "for the wood's volume, run with --wood-only (models the points classified as wood)");
+  if (o.stemsLookedFor && o.stems.trees > 1) {
+    std::string dbh;
+    std::size_t listed = 0;
+    for (const cloud::Stem& s : o.stems.stems) {
+      if (listed == kListedStems) {
+        dbh += ", ...";
+        break;
+      }
+      char d[32];
+      std::snprintf(d, sizeof d, "%s%.0f", listed ? ", " : "", 100.0 * s.diameter);
+      dbh += d;
+      ++listed;
+    }
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "the cloud holds %zu trees: %zu stems at breast height (DBH %s cm) that do not join between "
+                  "stump height and 1.3 m; the model joins them into one tree",
+                  o.stems.trees, o.stems.stems.size(), dbh.c_str());
+    add(L::NotTrusted, buf, "cut the cloud into trees first: treesketch split CLOUD -o FOLDER, then treesketch batch FOLDER");
+  }
   if (m.hasFit && m.fit.insideDeeper2cm > kMaxInside)
     add(L::NotTrusted,
         percent(m.fit.insideDeeper2cm) + " of the points lie deeper than 2 cm inside the model: its tubes are "
@@ -393,6 +426,8 @@ ModelMeasures measure(const TreeModel& model, const geom::PointCloud& cloud, con
   const double cylinder = std::numbers::pi / 4 * dbh * dbh * height;
   m.formFactor = cylinder > 0 ? m.figures.volume / cylinder : std::numeric_limits<double>::quiet_NaN();
   if (options.noise >= 0 && std::isfinite(options.noise)) m.noiseMetres = options.noise * u;
+  m.stemsLookedFor = options.stemsLookedFor;
+  m.stems = options.stems;
   m.verdict = assess(m, cloud.size(), options);
   return m;
 }
@@ -450,6 +485,16 @@ nlohmann::json reportJson(const ModelMeasures& m, nlohmann::json header) {
                      {"volumeRangeM3", {m.volumeLow, m.volumeHigh}},
                      {"formFactor", std::isfinite(m.formFactor) ? nlohmann::json(m.formFactor) : nlohmann::json()},
                      {"noiseM", std::isfinite(m.noiseMetres) ? nlohmann::json(m.noiseMetres) : nlohmann::json()}};
+  if (m.stemsLookedFor) {
+    nlohmann::json stems = nlohmann::json::array();
+    for (const cloud::Stem& s : m.stems.stems)
+      stems.push_back({{"centre", {s.centre.x(), s.centre.y(), s.centre.z()}},
+                       {"dbhM", s.diameter},
+                       {"circleRmsM", s.rms},
+                       {"pointsOnCircle", s.points},
+                       {"tree", s.tree}});
+    header["stemsAtBreastHeight"] = {{"trees", m.stems.trees}, {"stems", stems}};
+  }
   header["verdict"] = verdictJson(m.verdict);
   header["metrics"] = compare::toJson(m.metrics);
   return header;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "treesketch/cloud/stems.h"
 #include "treesketch/cloud/stray_points.h"
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/compare/tree_metrics.h"
@@ -96,7 +97,16 @@ struct MeasureOptions {
   /// The scan's noise measured while modelling (cloud units; the points' spread about the stem or
   /// the circles, AutoSkeletonResult::noise), or < 0 when not measured.
   double noise = -1;
+  /// The stems at breast height in the scan (lookForStems), when looked for: a cloud of two trees
+  /// or more is a plot, which one model joins into one tree.
+  bool stemsLookedFor = false;
+  cloud::Stems stems;
 };
+
+/// Looks for the stems at breast height in `scan` (cloud/stems.h; `strays`: the points set aside
+/// before modelling, the ground among them), in `options.unitMetres`, for the verdict and the report.
+void lookForStems(MeasureOptions& options, const geom::PointCloud& scan, geom::UpAxis up,
+                  const cloud::StrayPoints& strays);
 
 /// What the automatic model knows of its scan, for measure(): the noise it measured (when it
 /// measured one), whether it ran with the leaf-on settings (`options`'s foliage is not recorded),
@@ -132,6 +142,9 @@ struct ModelMeasures {
   double formFactor = 0;
   /// The scan's noise in metres (MeasureOptions::noise), NaN when not measured.
   double noiseMetres = std::numeric_limits<double>::quiet_NaN();
+  /// The stems at breast height (MeasureOptions::stems; empty when not looked for).
+  bool stemsLookedFor = false;
+  cloud::Stems stems;
   Verdict verdict;
   /// One line: the fit's shares (when measured) and the model's figures.
   std::string summary() const;
