@@ -294,9 +294,10 @@ std::string strayPointsLine(const StrayPoints& s) {
   if (s.ground > 0 || s.markedNoise > 0) {
     char noise[80] = "";
     if (s.markedNoise > 0) std::snprintf(noise, sizeof noise, "%zu marked as noise by the file, ", s.markedNoise);
-    std::snprintf(buf, sizeof buf,
-                  "%zu point%s set aside (%s%zu on the ground, %zu far from the tree, %zu isolated; linking distance %.3g)",
-                  s.count(), s.count() == 1 ? "" : "s", noise, s.ground, s.far, s.isolated, s.linkDistance);
+    std::snprintf(
+        buf, sizeof buf,
+        "%zu point%s set aside (%s%zu on the ground, %zu far from the tree, %zu isolated; linking distance %.3g)",
+        s.count(), s.count() == 1 ? "" : "s", noise, s.ground, s.far, s.isolated, s.linkDistance);
   } else {
     std::snprintf(buf, sizeof buf,
                   "%zu stray point%s set aside (%zu far from the tree, %zu isolated; linking distance %.3g)", s.count(),

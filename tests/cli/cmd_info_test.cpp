@@ -66,11 +66,10 @@ TEST(InfoCli, CountsWithheldPointsAndPointsMarkedAsNoise) {
     test::writeText(file, las.bytes);
     std::string out;
     ASSERT_EQ(test::runCli("info " + test::quoted(file), &out), 0) << out;
-    for (const std::string line :
-         {"withheld points: " + std::to_string(las.withheld) + " (dropped on read)\n",
-          "header point count: " + std::to_string(las.treePoints + las.withheld) + "\n",
-          "points: " + std::to_string(las.treePoints) + "\n",
-          "(" + std::to_string(las.marked) + " marked as noise by the file, "})
+    for (const std::string line : {"withheld points: " + std::to_string(las.withheld) + " (dropped on read)\n",
+                                   "header point count: " + std::to_string(las.treePoints + las.withheld) + "\n",
+                                   "points: " + std::to_string(las.treePoints) + "\n",
+                                   "(" + std::to_string(las.marked) + " marked as noise by the file, "})
       EXPECT_NE(out.find(line), std::string::npos) << "missing '" << line << "' in\n" << out;
     EXPECT_NE(out.find(", 0 far from the tree"), std::string::npos) << out;  // the withheld are gone
   }

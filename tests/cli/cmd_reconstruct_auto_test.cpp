@@ -1,11 +1,10 @@
 // `treesketch reconstruct --auto` and `sketch auto --method skeleton`, run as processes.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_support.h"

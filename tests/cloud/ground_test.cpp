@@ -164,8 +164,8 @@ TEST(Ground, PointsTheFileMarksAsNoiseAreSetAsideFirstAndKeptOnRequest) {
   const std::size_t stem = c.size();
   addTerrain(c, 2.0, 0.0, 0.005, 2500, 0.15, rng);
   const std::size_t terrain = c.size() - stem;
-  c.positions.emplace_back(0.5, 0.5, -1.5);  // a low point under the terrain
-  c.positions.emplace_back(0.0, 0.0, 40.0);  // a high one over the crown
+  c.positions.emplace_back(0.5, 0.5, -1.5);   // a low point under the terrain
+  c.positions.emplace_back(0.0, 0.0, 40.0);   // a high one over the crown
   c.positions.emplace_back(300.0, 0.0, 2.0);  // a stray the file did not mark
   c.classification.assign(c.size(), 1);
   std::vector<std::uint32_t> marked;
@@ -173,7 +173,8 @@ TEST(Ground, PointsTheFileMarksAsNoiseAreSetAsideFirstAndKeptOnRequest) {
   // above its foot (which the ground may take)
   marked.push_back(static_cast<std::uint32_t>(stem + terrain));
   marked.push_back(static_cast<std::uint32_t>(stem + terrain + 1));
-  for (std::size_t k = 0; k < marked.size(); ++k) c.classification[marked[k]] = k % 3 ? kLowNoiseClass : kHighNoiseClass;
+  for (std::size_t k = 0; k < marked.size(); ++k)
+    c.classification[marked[k]] = k % 3 ? kLowNoiseClass : kHighNoiseClass;
 
   const StrayPoints s = findStrayAndGroundPoints(c, geom::UpAxis::Z);
   EXPECT_EQ(s.markedNoise, marked.size());

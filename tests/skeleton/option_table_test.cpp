@@ -88,8 +88,8 @@ TEST(OptionTable, RefusesBadValuesAndLeavesOptionsUnchanged) {
   for (const char* bad :
        {"radii.medianWindow=0", "radii.medianWindow=2.5", "radii.medianWindow=", "radii.medianWindow", "=3",
         "skeleton.binWidthVoxels=nan", "skeleton.binWidthVoxels=inf", "skeleton.binWidthVoxels=2x",
-        "radii.surfaceBound=maybe", "skeleton.graph.reach=4", "maxFitFlatFraction=1.5",
-        "markedNoise.enabled=2", "markedNoise.enabled=noise", "markedNoise.enable=0"}) {
+        "radii.surfaceBound=maybe", "skeleton.graph.reach=4", "maxFitFlatFraction=1.5", "markedNoise.enabled=2",
+        "markedNoise.enabled=noise", "markedNoise.enable=0"}) {
     AutoSkeletonOptions o = base;
     EXPECT_THROW(applySetting(o, bad), OptionsError) << bad;
     for (const SettingInfo& s : settingTable()) EXPECT_EQ(settingValue(o, s.name), settingValue(base, s.name)) << bad;
