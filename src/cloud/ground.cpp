@@ -265,22 +265,43 @@ Ground findGround(const geom::PointCloud& cloud, geom::UpAxis up, double spacing
   return out;
 }
 
-StrayPoints findStrayAndGroundPoints(const geom::PointCloud& cloud, geom::UpAxis up,
-                                     const StrayPointOptions& strays, const GroundOptions& ground) {
-  const Ground g = findGround(cloud, up, 0.0, ground);
-  if (g.points.empty()) return findStrayPoints(cloud, strays);
+namespace {
+
+/// The indices 0 … n − 1 not in `out` (both increasing).
+std::vector<std::uint32_t> complementOf(std::size_t n, const std::vector<std::uint32_t>& out) {
   std::vector<std::uint32_t> rest;
-  rest.reserve(cloud.size() - g.points.size());
-  for (std::size_t i = 0, k = 0; i < cloud.size(); ++i) {
-    if (k < g.points.size() && g.points[k] == i) {
+  rest.reserve(n - out.size());
+  for (std::size_t i = 0, k = 0; i < n; ++i) {
+    if (k < out.size() && out[k] == i) {
       ++k;
       continue;
     }
     rest.push_back(static_cast<std::uint32_t>(i));
   }
+  return rest;
+}
+
+StrayPoints findStrayAndGround(const geom::PointCloud& cloud, geom::UpAxis up, const StrayPointOptions& strays,
+                               const GroundOptions& ground) {
+  const Ground g = findGround(cloud, up, 0.0, ground);
+  if (g.points.empty()) return findStrayPoints(cloud, strays);
+  const std::vector<std::uint32_t> rest = complementOf(cloud.size(), g.points);
   StrayPoints s = findStrayPoints(selectPoints(cloud, rest), strays);
   for (std::uint32_t& i : s.setAside) i = rest[i];
   addGround(s, g.points);
+  return s;
+}
+
+}  // namespace
+
+StrayPoints findStrayAndGroundPoints(const geom::PointCloud& cloud, geom::UpAxis up, const StrayPointOptions& strays,
+                                     const GroundOptions& ground, const MarkedNoiseOptions& noise) {
+  const std::vector<std::uint32_t> marked = findMarkedNoise(cloud, noise);
+  if (marked.empty()) return findStrayAndGround(cloud, up, strays, ground);
+  const std::vector<std::uint32_t> rest = complementOf(cloud.size(), marked);
+  StrayPoints s = findStrayAndGround(selectPoints(cloud, rest), up, strays, ground);
+  for (std::uint32_t& i : s.setAside) i = rest[i];
+  addSetAside(s, marked, StrayReason::MarkedNoise);
   return s;
 }
 

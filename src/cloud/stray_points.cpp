@@ -240,27 +240,44 @@ geom::PointCloud keptPoints(const geom::PointCloud& cloud, const StrayPoints& st
   return selectPoints(cloud, keep);
 }
 
-void addGround(StrayPoints& strays, const std::vector<std::uint32_t>& ground) {
-  if (ground.empty()) return;
+std::vector<std::uint32_t> findMarkedNoise(const geom::PointCloud& cloud, const MarkedNoiseOptions& options) {
+  std::vector<std::uint32_t> out;
+  if (!options.enabled || cloud.classification.size() != cloud.size()) return out;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (cloud.classification[i] == kLowNoiseClass || cloud.classification[i] == kHighNoiseClass)
+      out.push_back(static_cast<std::uint32_t>(i));
+  return out;
+}
+
+void addSetAside(StrayPoints& strays, const std::vector<std::uint32_t>& added, StrayReason reason) {
+  if (added.empty()) return;
+  std::size_t& counted = reason == StrayReason::Ground        ? strays.ground
+                         : reason == StrayReason::MarkedNoise ? strays.markedNoise
+                         : reason == StrayReason::Far         ? strays.far
+                                                              : strays.isolated;
   std::vector<std::uint32_t> points;
   std::vector<StrayReason> reasons;
-  points.reserve(strays.setAside.size() + ground.size());
+  points.reserve(strays.setAside.size() + added.size());
   reasons.reserve(points.capacity());
   std::size_t a = 0, b = 0;
-  while (a < strays.setAside.size() || b < ground.size()) {
-    const bool takeStray = b == ground.size() || (a < strays.setAside.size() && strays.setAside[a] <= ground[b]);
+  while (a < strays.setAside.size() || b < added.size()) {
+    const bool takeStray = b == added.size() || (a < strays.setAside.size() && strays.setAside[a] <= added[b]);
     if (takeStray) {
-      if (b < ground.size() && ground[b] == strays.setAside[a]) ++b;
+      if (b < added.size() && added[b] == strays.setAside[a]) ++b;
       points.push_back(strays.setAside[a]);
       reasons.push_back(strays.reasons[a++]);
     } else {
-      points.push_back(ground[b++]);
-      reasons.push_back(StrayReason::Ground);
-      ++strays.ground;
+      points.push_back(added[b++]);
+      reasons.push_back(reason);
+      ++counted;
     }
   }
   strays.setAside = std::move(points);
   strays.reasons = std::move(reasons);
+}
+
+void addGround(StrayPoints& strays, const std::vector<std::uint32_t>& ground) {
+  addSetAside(strays, ground, StrayReason::Ground);
 }
 
 double measurePointSpacing(const geom::PointCloud& cloud, const StrayPointOptions& options) {
@@ -271,17 +288,21 @@ double measurePointSpacing(const geom::PointCloud& cloud, const StrayPointOption
 }
 
 std::string strayPointsLine(const StrayPoints& s) {
-  if (s.tooSparse) return "no stray point set aside (the cloud is too sparse for the rule)";
+  if (s.tooSparse && s.empty()) return "no stray point set aside (the cloud is too sparse for the rule)";
   if (s.empty()) return "no stray point set aside";
-  char buf[240];
-  if (s.ground > 0)
-    std::snprintf(buf, sizeof buf,
-                  "%zu point%s set aside (%zu on the ground, %zu far from the tree, %zu isolated; linking distance %.3g)",
-                  s.count(), s.count() == 1 ? "" : "s", s.ground, s.far, s.isolated, s.linkDistance);
-  else
+  char buf[320];
+  if (s.ground > 0 || s.markedNoise > 0) {
+    char noise[80] = "";
+    if (s.markedNoise > 0) std::snprintf(noise, sizeof noise, "%zu marked as noise by the file, ", s.markedNoise);
+    std::snprintf(
+        buf, sizeof buf,
+        "%zu point%s set aside (%s%zu on the ground, %zu far from the tree, %zu isolated; linking distance %.3g)",
+        s.count(), s.count() == 1 ? "" : "s", noise, s.ground, s.far, s.isolated, s.linkDistance);
+  } else {
     std::snprintf(buf, sizeof buf,
                   "%zu stray point%s set aside (%zu far from the tree, %zu isolated; linking distance %.3g)", s.count(),
                   s.count() == 1 ? "" : "s", s.far, s.isolated, s.linkDistance);
+  }
   return buf;
 }
 

@@ -83,6 +83,8 @@ FileInfo inspectFile(const std::filesystem::path& path) {
     info.details.emplace_back("offset to point data", std::to_string(h.offsetToPointData) + " bytes");
     info.details.emplace_back("variable length records", std::to_string(h.numVlrs));
     info.details.emplace_back("header point count", std::to_string(h.pointCount));
+    info.details.emplace_back("withheld points",
+                              std::to_string(h.withheld) + (h.withheld > 0 ? " (dropped on read)" : ""));
     info.details.emplace_back("scale", vec(h.scale));
     info.details.emplace_back("offset", vec(h.offset));
     info.details.emplace_back("header min", vec(h.min));

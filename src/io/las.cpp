@@ -1,10 +1,12 @@
 // LAS reader. Format reference: ASPRS "LAS Specification 1.4 – R15" (2019) and the 1.0–1.3
-// specifications it supersedes; only the public header block and the X/Y/Z of each record are used.
+// specifications it supersedes; the public header block and, of each record, X/Y/Z, intensity,
+// classification, the withheld flag and RGB are used.
 #include "treesketch/io/las.h"
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <vector>
 
 #include "io/io_util.h"
 #include "treesketch/io/laz.h"
@@ -173,6 +175,42 @@ void readLasAttributes(const char* records, const LasHeader& h, geom::PointCloud
   if (!anyColor) cloud.color.clear();
 }
 
+/// Whether a record is flagged withheld: bit 7 of the classification byte (15) in formats 0–5,
+/// bit 2 of the classification flags (the low nibble of byte 15) in formats 6–10 (LAS 1.4 R15,
+/// tables 7 and 12).
+bool isWithheld(const char* record, bool extended) {
+  const auto flags = static_cast<std::uint8_t>(record[15]);
+  return extended ? (flags & 0x04) != 0 : (flags & 0x80) != 0;
+}
+
+/// Drops the points whose records are flagged withheld from `cloud` (positions and attributes read
+/// from `records`, one per record); returns how many there were.
+std::uint64_t dropWithheld(const char* records, const LasHeader& h, geom::PointCloud& cloud) {
+  const std::size_t n = cloud.size();
+  const bool extended = h.pointFormat >= 6;
+  std::vector<char> drop(n, 0);
+  std::uint64_t count = 0;
+  const char* p = records;
+  for (std::size_t i = 0; i < n; ++i, p += h.recordLength)
+    if (isWithheld(p, extended)) {
+      drop[i] = 1;
+      ++count;
+    }
+  if (count == 0) return 0;
+  auto compact = [&](auto& values) {
+    if (values.size() != n) return;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!drop[i]) values[kept++] = values[i];
+    values.resize(kept);
+  };
+  compact(cloud.positions);
+  compact(cloud.intensity);
+  compact(cloud.classification);
+  compact(cloud.color);
+  return count;
+}
+
 geom::PointCloud parseLas(std::string_view file, const std::string& source, const CloudReadOptions& options,
                           LasHeader* headerOut, int threads) {
   LasHeader h = parseLasHeader(file, source);
@@ -208,8 +246,15 @@ geom::PointCloud parseLas(std::string_view file, const std::string& source, cons
       throw InputError(atOffset(source, static_cast<std::uint64_t>(p - data.data()), what));
     }
   }
-  checkCloudSize(cloud, source, options.minPoints);
   readLasAttributes(data.data() + start, h, cloud);
+  h.withheld = dropWithheld(data.data() + start, h, cloud);
+  if (headerOut) headerOut->withheld = h.withheld;
+  if (h.withheld > 0 && cloud.size() < options.minPoints)
+    throw InputError(source + ": holds " + std::to_string(cloud.size()) + " point" + (cloud.size() == 1 ? "" : "s") +
+                     " not withheld (" + std::to_string(h.withheld) + " of its " + std::to_string(h.pointCount) +
+                     " are flagged withheld, which the LAS specification says are deleted), expected at least " +
+                     std::to_string(options.minPoints));
+  checkCloudSize(cloud, source, options.minPoints);
   cloud.up = geom::UpAxis::Z;  // LAS coordinates are Z-up by the format's specification
   return cloud;
 }

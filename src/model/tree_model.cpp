@@ -468,6 +468,7 @@ nlohmann::json strayPointsJson(const cloud::StrayPoints& s) {
           {"far", s.far},
           {"isolated", s.isolated},
           {"ground", s.ground},
+          {"markedNoise", s.markedNoise},
           {"spacing", s.spacing},
           {"linkDistance", s.linkDistance},
           {"tooSparse", s.tooSparse}};

@@ -152,6 +152,7 @@ std::vector<SettingRow> completionRows() {
       TS_SETTING(strays.maxShare, Real, 0, 1, "set nothing aside past this share"),
       TS_SETTING(ground.enabled, Boolean, 0, 1, "set aside the ground under the tree"),
       TS_SETTING(ground.columnSpacings, Real, 1e-3, 1e6, "ground columns' side, point spacings"),
+      TS_SETTING(markedNoise.enabled, Boolean, 0, 1, "set aside the points the file classifies as noise (7, 18)"),
   };
 }
 

@@ -581,7 +581,8 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
 AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
                                       const ProgressFn& progress) {
   checkOptions(options);
-  cloud::StrayPoints strays = cloud::findStrayAndGroundPoints(cloud, options.skeleton.up, options.strays, options.ground);
+  cloud::StrayPoints strays =
+      cloud::findStrayAndGroundPoints(cloud, options.skeleton.up, options.strays, options.ground, options.markedNoise);
   AutoSkeletonResult res =
       strays.empty() ? modelKeptPoints(cloud, options, progress)
                      : modelKeptPoints(cloud::keptPoints(cloud, strays), options, progress);

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "cli_support.h"
+#include "marked_las.h"
 #include "test_support.h"
 #include "treesketch/io/point_cloud_io.h"
 
@@ -53,6 +54,25 @@ TEST(InfoCli, CountsTheGroundUnderAStem) {
   std::string out;
   EXPECT_EQ(test::runCli("info " + test::quoted(dir / "stem.xyz"), &out), 0) << out;
   EXPECT_NE(out.find(" on the ground, "), std::string::npos) << out;
+}
+
+// LAS 1.2 and 1.4 files with points withheld and points classified as noise: the withheld are
+// dropped and counted, the noise counted with the points set aside.
+TEST(InfoCli, CountsWithheldPointsAndPointsMarkedAsNoise) {
+  test::TempDir dir;
+  for (int format : {1, 6}) {
+    const test::MarkedLas las = test::markedTreeLas(format);
+    const auto file = dir / ("tree" + std::to_string(format) + ".las");
+    test::writeText(file, las.bytes);
+    std::string out;
+    ASSERT_EQ(test::runCli("info " + test::quoted(file), &out), 0) << out;
+    for (const std::string line : {"withheld points: " + std::to_string(las.withheld) + " (dropped on read)\n",
+                                   "header point count: " + std::to_string(las.treePoints + las.withheld) + "\n",
+                                   "points: " + std::to_string(las.treePoints) + "\n",
+                                   "(" + std::to_string(las.marked) + " marked as noise by the file, "})
+      EXPECT_NE(out.find(line), std::string::npos) << "missing '" << line << "' in\n" << out;
+    EXPECT_NE(out.find(", 0 far from the tree"), std::string::npos) << out;  // the withheld are gone
+  }
 }
 
 // A LAZ file: the compressor, items, chunk size and point format (../shared/data/real; skipped

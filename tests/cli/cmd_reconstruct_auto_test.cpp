@@ -1,14 +1,14 @@
 // `treesketch reconstruct --auto` and `sketch auto --method skeleton`, run as processes.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_support.h"
+#include "marked_las.h"
 #include "skeleton/synthetic_tree.h"
 #include "test_support.h"
 #include "treesketch/io/mesh_io.h"
@@ -149,6 +149,34 @@ TEST(CmdAuto, StrayPointsAreSetAsideCountedAndWrittenOut) {
                          &out),
             2)
       << out;
+}
+
+// A LAS file's withheld points never reach the model; its points classified as noise are set
+// aside, counted in the summary line and the report, and kept with markedNoise.enabled=false; a
+// bad value for that setting is refused naming it.
+TEST(CmdAuto, MarkedNoiseIsSetAsideAndWithheldPointsNeverReachTheModel) {
+  test::TempDir dir;
+  const test::MarkedLas las = test::markedTreeLas(6);
+  test::writeText(dir / "tree.las", las.bytes);
+  const std::string base = "reconstruct " + quoted(dir / "tree.las") + " --auto --up z -o " + quoted(dir / "m.ply");
+  std::string out;
+  ASSERT_EQ(test::runCli(base + " --report " + quoted(dir / "r.json"), &out), 0) << out;
+  EXPECT_NE(out.find("(" + std::to_string(las.marked) + " marked as noise by the file, "), std::string::npos) << out;
+  ASSERT_EQ(test::runCli(base + " --report " + quoted(dir / "kept.json") + " --set markedNoise.enabled=false", &out), 0)
+      << out;
+  const auto r = nlohmann::json::parse(test::readText(dir / "r.json"));
+  const auto kept = nlohmann::json::parse(test::readText(dir / "kept.json"));
+  EXPECT_EQ(r["points"], las.treePoints);  // the withheld points are not read
+  EXPECT_EQ(r["strayPoints"]["far"], 0);
+  EXPECT_EQ(r["strayPoints"]["markedNoise"], las.marked);
+  EXPECT_GE(r["strayPoints"]["setAside"], las.marked);
+  EXPECT_EQ(kept["points"], las.treePoints);
+  EXPECT_EQ(kept["strayPoints"]["markedNoise"], 0);
+  EXPECT_LT(kept["strayPoints"]["setAside"], las.marked);  // the marked points on the tree are modelled
+  for (const char* bad : {"markedNoise.enabled=2", "markedNoise.enabled=perhaps"}) {
+    EXPECT_EQ(test::runCli(base + " --set " + bad, &out), 2) << bad << "\n" << out;
+    EXPECT_NE(out.find("markedNoise.enabled"), std::string::npos) << out;
+  }
 }
 
 /// The exact volume of an ez-tree test tree's branch mesh (its JSON skeleton's sections: frustums

@@ -155,6 +155,56 @@ TEST(Ground, JoinsTheStrayPointsAsGround) {
   EXPECT_LE(kept.size(), stem);
 }
 
+// Points the file marks as noise are set aside whatever their place (on the stem, where no
+// rule would find them; under the terrain; far above the crown), counted apart, and kept on request.
+TEST(Ground, PointsTheFileMarksAsNoiseAreSetAsideFirstAndKeptOnRequest) {
+  std::mt19937 rng(11);
+  geom::PointCloud c;
+  addStem(c, 0.15, 0.0, 6.0, 0.01);
+  const std::size_t stem = c.size();
+  addTerrain(c, 2.0, 0.0, 0.005, 2500, 0.15, rng);
+  const std::size_t terrain = c.size() - stem;
+  c.positions.emplace_back(0.5, 0.5, -1.5);   // a low point under the terrain
+  c.positions.emplace_back(0.0, 0.0, 40.0);   // a high one over the crown
+  c.positions.emplace_back(300.0, 0.0, 2.0);  // a stray the file did not mark
+  c.classification.assign(c.size(), 1);
+  std::vector<std::uint32_t> marked;
+  for (std::size_t i = stem / 10; i < stem; i += 97) marked.push_back(static_cast<std::uint32_t>(i));  // on the stem,
+  // above its foot (which the ground may take)
+  marked.push_back(static_cast<std::uint32_t>(stem + terrain));
+  marked.push_back(static_cast<std::uint32_t>(stem + terrain + 1));
+  for (std::size_t k = 0; k < marked.size(); ++k)
+    c.classification[marked[k]] = k % 3 ? kLowNoiseClass : kHighNoiseClass;
+
+  const StrayPoints s = findStrayAndGroundPoints(c, geom::UpAxis::Z);
+  EXPECT_EQ(s.markedNoise, marked.size());
+  EXPECT_TRUE(std::is_sorted(s.setAside.begin(), s.setAside.end()));
+  for (std::uint32_t m : marked) {
+    const auto it = std::lower_bound(s.setAside.begin(), s.setAside.end(), m);
+    ASSERT_TRUE(it != s.setAside.end() && *it == m) << m;
+    EXPECT_EQ(s.reasons[static_cast<std::size_t>(it - s.setAside.begin())], StrayReason::MarkedNoise) << m;
+  }
+  EXPECT_EQ(s.far, 1u);  // the unmarked stray
+  EXPECT_GT(s.ground, terrain / 2);
+  EXPECT_EQ(s.count(), s.markedNoise + s.ground + s.far + s.isolated);
+  EXPECT_NE(strayPointsLine(s).find(std::to_string(marked.size()) + " marked as noise by the file"), std::string::npos)
+      << strayPointsLine(s);
+
+  MarkedNoiseOptions keep;
+  keep.enabled = false;
+  const StrayPoints kept = findStrayAndGroundPoints(c, geom::UpAxis::Z, {}, {}, keep);
+  EXPECT_EQ(kept.markedNoise, 0u);
+  std::size_t stemSetAside = 0;
+  for (std::uint32_t i : kept.setAside) stemSetAside += i < stem && c.classification[i] != 1;
+  EXPECT_EQ(stemSetAside, 0u);  // the marked points on the stem stay in the model
+  // Without marks the cloud gives what it gives with the option off.
+  geom::PointCloud unmarked = c;
+  unmarked.classification.clear();
+  const StrayPoints plain = findStrayAndGroundPoints(unmarked, geom::UpAxis::Z);
+  EXPECT_EQ(plain.setAside, kept.setAside);
+  EXPECT_EQ(plain.reasons, kept.reasons);
+}
+
 TEST(Ground, OptionsOutOfRangeAreRefused) {
   geom::PointCloud c;
   addStem(c, 0.15, 0.0, 1.0, 0.01);

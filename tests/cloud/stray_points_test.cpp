@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "treesketch/util/error.h"
 
@@ -134,6 +136,45 @@ TEST(StrayPoints, SelectPointsKeepsTheAttributes) {
   EXPECT_EQ(s.classification[1], 3);
   EXPECT_TRUE(s.station.empty());
   EXPECT_EQ(s.up, geom::UpAxis::Z);
+}
+
+TEST(StrayPoints, MarkedNoiseIsTheFilesClassesSevenAndEighteen) {
+  geom::PointCloud c = cylinderSurface(0.2, 1.0, 0.05);
+  c.classification.assign(c.size(), 1);
+  const std::vector<std::uint32_t> marked{0, 3, 17, static_cast<std::uint32_t>(c.size() - 1)};
+  for (std::size_t k = 0; k < marked.size(); ++k)
+    c.classification[marked[k]] = k % 2 ? kHighNoiseClass : kLowNoiseClass;
+  c.classification[5] = 2;   // ground: not noise
+  c.classification[6] = 17;  // bridge deck, beside 18: not noise
+  c.classification[7] = 8;   // "model key-point" (LAS 1.0-1.3), beside 7: not noise
+  EXPECT_EQ(findMarkedNoise(c), marked);
+  MarkedNoiseOptions keep;
+  keep.enabled = false;
+  EXPECT_TRUE(findMarkedNoise(c, keep).empty());
+  c.classification.clear();  // a cloud without classes marks nothing
+  EXPECT_TRUE(findMarkedNoise(c).empty());
+  EXPECT_TRUE(findMarkedNoise(geom::PointCloud{}).empty());
+}
+
+TEST(StrayPoints, AddedPointsMergeInOrderAndCountUnderTheirReason) {
+  geom::PointCloud c = cylinderSurface(0.2, 3.0, 0.01);
+  c.positions.emplace_back(100.0, 0.0, 1.0);  // far
+  StrayPoints s = findStrayPoints(c);
+  ASSERT_EQ(s.far, 1u);
+  const auto far = s.setAside.front();
+  addSetAside(s, {2, 9, far}, StrayReason::MarkedNoise);  // the far point keeps its reason
+  addSetAside(s, {0, 5}, StrayReason::Ground);
+  EXPECT_EQ(s.markedNoise, 2u);
+  EXPECT_EQ(s.ground, 2u);
+  EXPECT_EQ(s.far, 1u);
+  ASSERT_EQ(s.count(), 5u);
+  EXPECT_EQ(s.setAside, (std::vector<std::uint32_t>{0, 2, 5, 9, far}));
+  EXPECT_EQ(s.reasons, (std::vector<StrayReason>{StrayReason::Ground, StrayReason::MarkedNoise, StrayReason::Ground,
+                                                 StrayReason::MarkedNoise, StrayReason::Far}));
+  const std::string line = strayPointsLine(s);
+  EXPECT_NE(line.find("5 points set aside (2 marked as noise by the file, 2 on the ground, 1 far"), std::string::npos)
+      << line;
+  EXPECT_EQ(keptPoints(c, s).size(), c.size() - 5);
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ TEST(CloudAttributes, LasFormat0IntensityAndClassInTheLowFiveBits) {
   std::string b = buildLas(s);
   for (std::size_t i = 0; i < 4; ++i) {
     poke<std::uint16_t>(b, s, i, 12, static_cast<std::uint16_t>(100 * i + 7));
-    poke<std::uint8_t>(b, s, i, 15, static_cast<std::uint8_t>(0xE0 | (i + 2)));  // flags in bits 5-7
+    poke<std::uint8_t>(b, s, i, 15, static_cast<std::uint8_t>(0x60 | (i + 2)));  // flags in bits 5-6
   }
   geom::PointCloud c = las(b);
   ASSERT_EQ(c.intensity.size(), 4u);
@@ -95,7 +95,7 @@ TEST(CloudAttributes, LasFormat7ClassIsAWholeByteAndRgbAt30) {
   LasSpec s = fourPoints(7, 4);
   std::string b = buildLas(s);
   for (std::size_t i = 0; i < 4; ++i) {
-    poke<std::uint8_t>(b, s, i, 15, 0xFF);  // classification flags, scanner channel: not the class
+    poke<std::uint8_t>(b, s, i, 15, 0xFB);  // classification flags (not withheld), scanner channel: not the class
     poke<std::uint8_t>(b, s, i, 16, static_cast<std::uint8_t>(64 + i));  // user-defined classes
     for (int k = 0; k < 3; ++k) poke<std::uint16_t>(b, s, i, 30 + 2 * k, static_cast<std::uint16_t>(10 * k + i));
   }

@@ -54,9 +54,29 @@ TEST(FileInfo, DescribesEachFormat) {
   EXPECT_EQ(detail(e, "point data format"), "6");
   EXPECT_EQ(detail(e, "scale"), "0.001 0.001 0.001");
   EXPECT_EQ(e.cloud.size(), 2u);
+  EXPECT_EQ(detail(e, "withheld points"), "0");
 
   expectError([&] { inspectFile(dir / "x.laz"); }, {"x.laz", "not found"});
   expectError([&] { inspectFile(dir / "x.doc"); }, {"x.doc", "unknown"});
+}
+
+// A LAS file's withheld records: dropped from the cloud, their count among the details.
+TEST(FileInfo, CountsTheWithheldPointsOfALasFile) {
+  test::TempDir dir;
+  for (int fmt : {1, 6}) {
+    testing::LasSpec s;
+    s.versionMinor = fmt >= 6 ? 4 : 2;
+    s.pointFormat = fmt;
+    for (std::int32_t i = 0; i < 9; ++i) s.points.push_back({i, 2 * i, 3 * i});
+    std::string b = testing::buildLas(s);
+    for (std::size_t i : {0u, 3u, 8u}) testing::setLasClass(b, s, i, 7, testing::kLasWithheld);
+    const auto path = dir / ("w" + std::to_string(fmt) + ".las");
+    test::writeText(path, b);
+    const FileInfo info = inspectFile(path);
+    EXPECT_EQ(detail(info, "header point count"), "9") << fmt;
+    EXPECT_EQ(detail(info, "withheld points"), "3 (dropped on read)") << fmt;
+    EXPECT_EQ(info.cloud.size(), 6u) << fmt;
+  }
 }
 
 }  // namespace

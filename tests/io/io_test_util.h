@@ -70,7 +70,7 @@ void put(std::string& s, T v, bool big = false) {
 }
 
 /// A tiny LAS writer for tests: the public header block and records whose first 12 bytes are
-/// X, Y, Z int32 (the rest filled with a byte pattern).
+/// X, Y, Z int32 (the rest filled with a byte pattern, no record withheld).
 struct LasSpec {
   int versionMinor = 2;
   int pointFormat = 0;
@@ -139,9 +139,37 @@ inline std::string buildLas(const LasSpec& s) {
   h.append(static_cast<std::size_t>(s.vlrBytes), '\x5a');
   for (const auto& p : s.points) {
     for (int k = 0; k < 3; ++k) put(h, p[k]);
-    for (int b = 12; b < recLen; ++b) h += static_cast<char>(0xA0 + b);
+    // Byte 15 carries no withheld flag (bit 7 in formats 0-5, bit 2 in 6-10): a test that wants
+    // one sets it.
+    for (int b = 12; b < recLen; ++b) h += static_cast<char>(b == 15 ? (0xA0 + b) & 0x7B : 0xA0 + b);
   }
   return h;
+}
+
+/// The classification flags of a LAS record (LAS 1.4 R15): synthetic, key-point, withheld and
+/// (formats 6-10 only) overlap.
+inline constexpr std::uint8_t kLasSynthetic = 1, kLasKeyPoint = 2, kLasWithheld = 4, kLasOverlap = 8;
+
+/// Byte offset of record `i` in buildLas(s).
+inline std::size_t lasRecordAt(const LasSpec& s, std::size_t i) {
+  static const int kMin[] = {20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67};
+  const std::size_t header = s.versionMinor >= 4 ? 375 : s.versionMinor == 3 ? 235 : 227;
+  const auto recLen = static_cast<std::size_t>(s.recordLength ? s.recordLength : kMin[s.pointFormat]);
+  return header + static_cast<std::size_t>(s.vlrBytes) + i * recLen;
+}
+
+/// Sets the class and the classification flags (kLas*) of record `i` in `las` = buildLas(s):
+/// formats 0-5 keep the class in the low five bits of byte 15 and synthetic, key-point, withheld
+/// in bits 5-7; formats 6-10 the flags in the low four bits of byte 15 (the rest kept) and the
+/// class in byte 16.
+inline void setLasClass(std::string& las, const LasSpec& s, std::size_t i, std::uint8_t cls, std::uint8_t flags = 0) {
+  const std::size_t at = lasRecordAt(s, i);
+  if (s.pointFormat >= 6) {
+    las[at + 15] = static_cast<char>((static_cast<std::uint8_t>(las[at + 15]) & 0xF0) | (flags & 0x0F));
+    las[at + 16] = static_cast<char>(cls);
+  } else {
+    las[at + 15] = static_cast<char>((cls & 0x1F) | ((flags & 0x07) << 5));
+  }
 }
 
 }  // namespace treesketch::io::testing

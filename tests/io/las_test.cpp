@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
 #include <sstream>
 
 #include "io_test_util.h"
@@ -176,6 +177,85 @@ TEST(Las, RealArchiTreeMatchesItsHeader) {
     EXPECT_NEAR(b.max[k], h.max[k], 0.5 * h.scale[k]);
   }
   EXPECT_NEAR(b.extent().z(), 6.20, 0.01);
+}
+
+// Withheld records ("should be considered deleted", LAS 1.4 R15) are dropped on read and
+// counted; the other flags keep their points; the attributes stay with their points.
+TEST(Las, WithheldRecordsAreDroppedAndCounted) {
+  struct Case {
+    int minor, format;
+  };
+  for (const Case c : {Case{2, 0}, Case{2, 1}, Case{3, 3}, Case{4, 6}, Case{4, 7}}) {
+    LasSpec s;
+    s.versionMinor = c.minor;
+    s.pointFormat = c.format;
+    for (std::int32_t i = 0; i < 12; ++i) s.points.push_back({1000 * i, -7 * i, 3 * i});
+    const std::set<std::size_t> withheld{1, 4, 5, 11};
+    std::string b = buildLas(s);
+    const std::uint8_t others = c.format >= 6 ? testing::kLasSynthetic | testing::kLasKeyPoint | testing::kLasOverlap
+                                              : testing::kLasSynthetic | testing::kLasKeyPoint;
+    for (std::size_t i = 0; i < s.points.size(); ++i)
+      testing::setLasClass(b, s, i, static_cast<std::uint8_t>(i + 1),
+                           withheld.count(i) ? testing::kLasWithheld : (i % 2 ? others : 0));
+    LasHeader h;
+    const geom::PointCloud cloud = lasFrom(b, &h);
+    EXPECT_EQ(h.pointCount, s.points.size()) << c.format;
+    EXPECT_EQ(h.withheld, withheld.size()) << c.format;
+    ASSERT_EQ(cloud.size(), s.points.size() - withheld.size()) << c.format;
+    ASSERT_EQ(cloud.classification.size(), cloud.size()) << c.format;
+    EXPECT_NO_THROW(cloud.checkConsistent());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+      if (withheld.count(i)) continue;
+      EXPECT_DOUBLE_EQ(cloud.positions[k].x(), s.points[i][0] * s.scale[0]) << c.format << " " << i;
+      EXPECT_EQ(cloud.classification[k], i + 1) << c.format << " " << i;
+      ++k;
+    }
+    // The same file with no record withheld: every point, none counted.
+    std::string none = buildLas(s);
+    LasHeader h0;
+    EXPECT_EQ(lasFrom(none, &h0).size(), s.points.size());
+    EXPECT_EQ(h0.withheld, 0u);
+  }
+}
+
+TEST(Las, AFileOfWithheldPointsOnlyIsAClearError) {
+  for (int fmt : {1, 6}) {
+    LasSpec s;
+    s.versionMinor = fmt >= 6 ? 4 : 2;
+    s.pointFormat = fmt;
+    s.points = somePoints();
+    std::string b = buildLas(s);
+    for (std::size_t i = 0; i < s.points.size(); ++i) testing::setLasClass(b, s, i, 1, testing::kLasWithheld);
+    expectError([&] { lasFrom(b); }, {"mem.las", "holds 0 points not withheld", "5 of its 5", "deleted"});
+    // One left: a clear error at the default minimum, a cloud of one point when any count will do.
+    testing::setLasClass(b, s, 2, 1, 0);
+    expectError([&] { lasFrom(b); }, {"mem.las", "holds 1 point not withheld", "4 of its 5"});
+    CloudReadOptions any;
+    any.minPoints = 1;
+    LasHeader h;
+    const geom::PointCloud one = lasFrom(b, &h, any);
+    ASSERT_EQ(one.size(), 1u);
+    EXPECT_EQ(h.withheld, 4u);
+    EXPECT_DOUBLE_EQ(one.positions[0].z(), s.points[2][2] * s.scale[2]);
+  }
+}
+
+// The ASPRS noise classes are read as the file gives them (7 in every format; 18, a LAS 1.4 class,
+// fits in the five bits of formats 0-5 too); setting them aside is the modelling's business.
+TEST(Las, NoiseClassesAreReadAsTheFileGivesThem) {
+  for (int fmt : {0, 6}) {
+    LasSpec s;
+    s.versionMinor = fmt >= 6 ? 4 : 2;
+    s.pointFormat = fmt;
+    s.points = somePoints();
+    std::string b = buildLas(s);
+    const std::uint8_t classes[] = {7, 1, 18, 2, 7};
+    for (std::size_t i = 0; i < 5; ++i) testing::setLasClass(b, s, i, classes[i]);
+    const geom::PointCloud c = lasFrom(b);
+    ASSERT_EQ(c.classification.size(), 5u);
+    for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(c.classification[i], classes[i]) << fmt << " " << i;
+  }
 }
 
 TEST(Las, DamagedFilesGiveInputErrorsOnly) {

@@ -36,6 +36,7 @@ TEST(OptionTable, NamesReachTheirFields) {
   applySetting(o, "skeleton.trackStem=0");
   applySetting(o, "fit.circle.maxIterations=123");
   applySetting(o, "strays.linkSpacings=12");
+  applySetting(o, "markedNoise.enabled=false");
   EXPECT_EQ(o.radii.medianWindow, 3);
   EXPECT_EQ(o.skeleton.graph.maxGapVoxels, 7.5);
   EXPECT_FALSE(o.completion.enabled);
@@ -43,6 +44,8 @@ TEST(OptionTable, NamesReachTheirFields) {
   EXPECT_FALSE(o.skeleton.trackStem);
   EXPECT_EQ(o.fit.circle.maxIterations, 123);
   EXPECT_EQ(o.strays.linkSpacings, 12.0);
+  EXPECT_FALSE(o.markedNoise.enabled);
+  EXPECT_TRUE(leafOff().markedNoise.enabled);
   // Untouched fields keep the preset's values.
   EXPECT_EQ(o.skeleton.radiusMedianWindow, leafOff().skeleton.radiusMedianWindow);
   EXPECT_EQ(settingValue(o, "radii.medianWindow"), 3.0);
@@ -85,7 +88,8 @@ TEST(OptionTable, RefusesBadValuesAndLeavesOptionsUnchanged) {
   for (const char* bad :
        {"radii.medianWindow=0", "radii.medianWindow=2.5", "radii.medianWindow=", "radii.medianWindow", "=3",
         "skeleton.binWidthVoxels=nan", "skeleton.binWidthVoxels=inf", "skeleton.binWidthVoxels=2x",
-        "radii.surfaceBound=maybe", "skeleton.graph.reach=4", "maxFitFlatFraction=1.5"}) {
+        "radii.surfaceBound=maybe", "skeleton.graph.reach=4", "maxFitFlatFraction=1.5", "markedNoise.enabled=2",
+        "markedNoise.enabled=noise", "markedNoise.enable=0"}) {
     AutoSkeletonOptions o = base;
     EXPECT_THROW(applySetting(o, bad), OptionsError) << bad;
     for (const SettingInfo& s : settingTable()) EXPECT_EQ(settingValue(o, s.name), settingValue(base, s.name)) << bad;

@@ -8,7 +8,9 @@
 //      occlusion gap); every other component is far from the tree;
 //   2. a radius rule (optional, off by default): a component of fewer than a few points is set
 //      aside even near the tree.
-// Everything is done on hashed grids in O(n): no k-d tree over millions of points.
+// Everything is done on hashed grids in O(n): no k-d tree over millions of points. Points the
+// file itself marks as noise (ASPRS classes 7 and 18, as vendors' pipelines write them) are set
+// aside on the file's word, before any rule is measured (findMarkedNoise).
 #pragma once
 
 #include <cstdint>
@@ -49,14 +51,27 @@ struct StrayPointOptions {
   double maxShare = 0.1;
 };
 
-/// Why a point was set aside: far from the tree, isolated near it, or the ground under it (ground.h).
-enum class StrayReason : std::uint8_t { Far, Isolated, Ground };
+/// ASPRS classification codes (LAS 1.4 R15, table 17) a file uses for noise: 7 "low point
+/// (noise)" (also LAS 1.0–1.3) and 18 "high noise" (LAS 1.4).
+inline constexpr std::uint8_t kLowNoiseClass = 7;
+inline constexpr std::uint8_t kHighNoiseClass = 18;
+
+struct MarkedNoiseOptions {
+  /// Set aside the points the file classifies as noise (kLowNoiseClass, kHighNoiseClass). On by
+  /// default: a vendor's pipeline marks returns off dust, birds and multipath this way, and a
+  /// low point under the terrain or a high one over the crown stretches the model as a stray does.
+  bool enabled = true;
+};
+
+/// Why a point was set aside: far from the tree, isolated near it, the ground under it (ground.h),
+/// or marked as noise by the file (findMarkedNoise).
+enum class StrayReason : std::uint8_t { Far, Isolated, Ground, MarkedNoise };
 
 struct StrayPoints {
   /// Indices into the input cloud, increasing: the points set aside, and why (one per index).
   std::vector<std::uint32_t> setAside;
   std::vector<StrayReason> reasons;
-  std::size_t far = 0, isolated = 0, ground = 0;  ///< counts by reason
+  std::size_t far = 0, isolated = 0, ground = 0, markedNoise = 0;  ///< counts by reason
   /// The measured point spacing and the linking distance, in the cloud's units (0 when nothing
   /// was measured: the rule was off, or the cloud too small or of zero extent).
   double spacing = 0, linkDistance = 0;
@@ -75,8 +90,14 @@ struct StrayPoints {
 /// an option out of range.
 StrayPoints findStrayPoints(const geom::PointCloud& cloud, const StrayPointOptions& options = {});
 
-/// Adds `ground` (indices into the same cloud, increasing) to the points set aside, as ground; a
-/// point already set aside keeps its reason.
+/// The points of `cloud` whose classification is kLowNoiseClass or kHighNoiseClass (indices,
+/// increasing). None when the cloud carries no classification or the option is off.
+std::vector<std::uint32_t> findMarkedNoise(const geom::PointCloud& cloud, const MarkedNoiseOptions& options = {});
+
+/// Adds `points` (indices into the same cloud, increasing) to the points set aside, for `reason`
+/// (counted under it); a point already set aside keeps its reason.
+void addSetAside(StrayPoints& strays, const std::vector<std::uint32_t>& points, StrayReason reason);
+/// addSetAside(strays, ground, StrayReason::Ground).
 void addGround(StrayPoints& strays, const std::vector<std::uint32_t>& ground);
 
 /// The cloud's point spacing as findStrayPoints measures it (0 for a cloud of zero extent).
@@ -89,7 +110,9 @@ geom::PointCloud selectPoints(const geom::PointCloud& cloud, const std::vector<s
 geom::PointCloud keptPoints(const geom::PointCloud& cloud, const StrayPoints& strays);
 
 /// One line for a person: "N stray points set aside (F far from the tree, I isolated; linking
-/// distance L)" or "no stray point set aside".
+/// distance L)", with the points marked as noise and the ground first when there are any
+/// ("N points set aside (M marked as noise by the file, G on the ground, ...)"), or "no stray
+/// point set aside".
 std::string strayPointsLine(const StrayPoints& strays);
 
 }  // namespace treesketch::cloud

@@ -3,7 +3,9 @@
 // than the extension. Read: the coordinates (X, Y, Z int32 at the start of every record, times
 // scale plus offset), intensity, classification and, in the formats that have it, RGB
 // (geom::PointCloud's optional attributes; one that is 0 in every record is dropped as "not
-// recorded").
+// recorded"). Records flagged withheld (LAS 1.0–1.3 formats 0–5: bit 7 of the classification
+// byte; formats 6–10: bit 2 of the classification flags) are dropped on read, as the
+// specification asks ("should be considered deleted"), and counted (LasHeader::withheld).
 #pragma once
 
 #include <cstdint>
@@ -37,6 +39,9 @@ struct LasHeader {
   geom::Vec3 min = geom::Vec3::Zero();  ///< header bounds (world units, as stored)
   geom::Vec3 max = geom::Vec3::Zero();
   LazInfo laz;  ///< compressed files: the LASzip VLR and chunk count (filled by readLas)
+  /// Records flagged withheld, dropped on read (filled by readLas; the cloud holds
+  /// pointCount − withheld points).
+  std::uint64_t withheld = 0;
 };
 
 /// Smallest record length of each point data record format 0..10, in bytes (LAS 1.4 R15 table).
@@ -50,10 +55,11 @@ LasHeader parseLasHeader(std::string_view data, const std::string& source);
 /// Reads the header of a LAS or LAZ file (the LASzip VLR is read by readLas only).
 LasHeader readLasHeader(const std::filesystem::path& path);
 
-/// Reads all points: X/Y/Z * scale + offset (world units, usually metres; Z up), decompressing
-/// LAZ on all cores. Throws InputError for a bad header (above), data shorter than pointCount
-/// records (naming the offset where it ends), bad LAZ data (see decompressLaz), fewer than
-/// options.minPoints points. Allocation is capped by the bytes present.
+/// Reads all points but the withheld: X/Y/Z * scale + offset (world units, usually metres; Z up),
+/// decompressing LAZ on all cores. Throws InputError for a bad header (above), data shorter than
+/// pointCount records (naming the offset where it ends), bad LAZ data (see decompressLaz), fewer
+/// than options.minPoints points once the withheld are dropped (saying how many were withheld).
+/// Allocation is capped by the bytes present.
 geom::PointCloud readLas(std::istream& in, const std::string& source, const CloudReadOptions& options = {},
                          LasHeader* header = nullptr);
 /// Same, from a file (.las or .laz).

@@ -180,6 +180,9 @@ struct AutoSkeletonOptions {
   /// The ground under the tree is set aside with them (cloud/ground.h): left in, the skeleton
   /// started from the terrain and its shell of tubes tripled a small tree's volume.
   cloud::GroundOptions ground;
+  /// Points the file classifies as noise (ASPRS classes 7 and 18) are set aside first
+  /// (cloud/stray_points.h).
+  cloud::MarkedNoiseOptions markedNoise;
 };
 // The measurements behind these defaults: docs/notes/auto_sketch_options.md.
 
@@ -239,8 +242,8 @@ struct AutoSkeletonResult {
   double skeletonMs = 0, fitMs = 0, sweepMs = 0, completionMs = 0;
 };
 
-/// The automatic skeleton as a sketch source: the stray points and the ground set aside
-/// (options.strays, options.ground), then
+/// The automatic skeleton as a sketch source: the points the file marks as noise, the ground and
+/// the stray points set aside (options.markedNoise, options.ground, options.strays), then
 /// on the kept points extractSkeleton, skeletonToSketch, then
 /// recon::Reconstruction fits every node (the fit pass, in parallel), the RadiusRules accept fits
 /// and regularise the radii, the model goes into the sketch as kept circles, and the same
