@@ -22,14 +22,12 @@ namespace {
 using geom::Vec2;
 using geom::Vec3;
 
-// The terrain's height is read on cells of a metre: a plot's ground varies over metres, a stem's
-// foot is narrower. A cell with no ground takes the ground of the nearest ring of cells with some,
-// up to this many cells out.
+// The terrain is read on cells of a metre (a plot's ground varies over metres, a stem's foot is
+// narrower); a cell with no ground takes the nearest ring of cells with some, this many out at most.
 constexpr double kTerrainCellMetres = 1.0;
 constexpr int kTerrainRings = 10;
-// Without ground points, the terrain rises at most this slope (tan 30°) from the lowest points
-// round it; grids of more cells than kMaxTerrainCells are not built (a cloud that large without
-// ground is not a tree or a plot on the ground).
+// Without ground points the terrain rises at most tan 30° from the lowest points round it; no grid
+// beyond kMaxTerrainCells (a cloud that large without ground is not a tree or a plot).
 constexpr double kMaxTerrainSlope = 0.577;
 constexpr double kMaxTerrainCells = 4.0e6;
 // A circle needs this many points on it (the circle fit's own minimum support).
@@ -38,24 +36,21 @@ constexpr int kMinCirclePoints = 8;
 constexpr double kMaxLeanTan = 0.36;
 // The circle's band: a centimetre of bark and scanner noise, or a point spacing when coarser.
 constexpr double kBandMetres = 0.01;
-// Radii of the confirming slices' circles against breast height's: a stem tapers or swells by
-// less than this over half a metre; a limb crossing the slice there is another size.
+// Radii of the confirming slices' circles against breast height's (a stem tapers or swells less).
 constexpr double kCheckRadiusLow = 0.5, kCheckRadiusHigh = 1.6;
 // The points that count round a circle: within this many radii of its centre.
 constexpr double kAroundRadii = 1.5;
-// Circle fits per group of points: each next one under kShrinkRadius of the last one's radius.
+// Circle fits per group of points, each under kShrinkRadius of the last one's radius.
 constexpr int kCircleAttempts = 4;
 constexpr double kShrinkRadius = 0.75;
 // Stems that join only below stump height are separate trees, as a forester fells them: at the
 // foot, grass, litter and what the ground rule left join neighbouring stems.
 constexpr double kStumpMetres = 0.3;
-// A stem's points reach down to this height above the terrain (stump height and a little more: a
-// stem's foot hidden by grass or a shrub).
+// A stem's points reach down to this height above the terrain (its foot may hide in grass).
 constexpr double kReachMetres = 0.5;
 // A tree reaches at least twice breast height above its terrain.
 constexpr double kMinTreeHeightMetres = 2.6;
-// The split's voxels: this many point spacings, so that the 26 neighbours link points a few
-// spacings apart.
+// The split's voxels, in point spacings: the 26 neighbours link points a few spacings apart.
 constexpr double kVoxelSpacings = 2.0;
 
 Vec2 across(const Vec3& p, geom::UpAxis up) { return up == geom::UpAxis::Y ? Vec2(p.x(), p.z()) : Vec2(p.x(), p.y()); }
@@ -317,10 +312,6 @@ void groupIntoTrees(const geom::PointCloud& cloud, geom::UpAxis up, const std::v
   out.trees = treeOf.size();
 }
 
-}  // namespace
-
-namespace {
-
 // A tree stands above its stem: the points the split gives a stem's tree reach at least
 // kMinTreeHeightMetres above its terrain (a limb whose tip rests on the ground, a stump with a
 // sprout, do not).
@@ -346,6 +337,72 @@ void keepTreesWithCrowns(const geom::PointCloud& cloud, geom::UpAxis up, const s
   out.trees = static_cast<std::size_t>(kept);
 }
 
+// The three slices of the points that are not ground, across the up axis, and every point's
+// height above the terrain (NaN for ground and where the terrain is unknown).
+struct Slices {
+  std::vector<Vec2> main, below, above;
+  std::vector<double> mainTerrain;  ///< the terrain under each point of `main`
+  std::vector<double> height;       ///< per point of the cloud
+};
+
+Slices slice(const geom::PointCloud& cloud, geom::UpAxis up, const std::vector<char>& isGround, const Terrain& terrain,
+             double bh, double half, double off) {
+  Slices sl;
+  sl.height.assign(cloud.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (isGround[i]) continue;
+    const Vec2 g = across(cloud.positions[i], up);
+    const double t = terrain.at(g);
+    const double h = geom::height(cloud.positions[i], up) - t;
+    sl.height[i] = h;
+    if (std::abs(h - bh) <= half) {
+      sl.main.push_back(g);
+      sl.mainTerrain.push_back(t);
+    } else if (std::abs(h - (bh - off)) <= half) {
+      sl.below.push_back(g);
+    } else if (std::abs(h - (bh + off)) <= half) {
+      sl.above.push_back(g);
+    }
+  }
+  return sl;
+}
+
+// A stem's circle in `pts` (one group of the breast-height slice), confirmed by the slices below
+// and above it; false when there is none.
+//
+// It shows in the slice below or above; in both where the terrain is the lowest points' (no ground:
+// a limb low in a crown could stand on its own leaves). The circle with the most points on it may
+// run along a limb leaving the stem: when the slices do not show it, the next try looks under three
+// quarters of its radius. A centimetre's band first (an arc in a wide band fits circles of many
+// radii), then a point spacing's (a sparse or noisy scan).
+bool stemCircle(const std::vector<Vec2>& pts, const Slices& sl, double narrowBand, double wideBand, double off,
+                bool either, const StemOptions& o, std::uint64_t& seed, fit::CircleFitResult& r) {
+  const double u = o.unitMetres;
+  for (const double band : {narrowBand, wideBand}) {
+    fit::CircleFitOptions c;
+    c.inlierThreshold = band;
+    c.minInliers = kMinCirclePoints;
+    c.minRadius = 0.5 * o.minDiameter / u;
+    c.maxRadius = 0.5 * o.maxDiameter / u;
+    for (int attempt = 0; attempt < kCircleAttempts && c.maxRadius > c.minRadius; ++attempt) {
+      c.seed = seed++;
+      r = fit::fitCircleRansac(pts, c);
+      if (!r.ok) break;
+      c.maxRadius = kShrinkRadius * r.radius;
+      // Most of the points round the circle lie on it: bark, with nothing inside (a limb crossing
+      // the slice obliquely is a filled blob). Points farther out are a limb leaving the stem.
+      const std::size_t around = pointsAround(pts, r.centre, r.radius, band);
+      if (static_cast<double>(r.inliers.size()) < o.minOnCircleShare * static_cast<double>(around)) continue;
+      const double reach = kMaxLeanTan * off + band;
+      const bool low = confirmed(sl.below, r.centre, r.radius, reach, band, o.minOnCircleShare, seed);
+      const bool high = confirmed(sl.above, r.centre, r.radius, reach, band, o.minOnCircleShare, seed);
+      if (either ? (low || high) : (low && high)) return true;
+    }
+    if (wideBand <= narrowBand) break;
+  }
+  return false;
+}
+
 }  // namespace
 
 Stems findStems(const geom::PointCloud& cloud, geom::UpAxis up, const std::vector<std::uint32_t>& ground,
@@ -362,84 +419,33 @@ Stems findStems(const geom::PointCloud& cloud, geom::UpAxis up, const std::vecto
     if (g < cloud.size()) isGround[g] = 1;
   const Terrain terrain(cloud, up, isGround, kTerrainCellMetres / u);
   out.terrainFromGround = terrain.fromGround();
-
-  // The three slices, each point with the terrain under it.
   const double bh = o.breastHeight / u, half = o.sliceHalfWidth / u, off = o.checkOffset / u;
-  std::vector<Vec2> main, below, above;
-  std::vector<double> mainTerrain;
-  std::vector<double> aboveTerrain(cloud.size(), std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (isGround[i]) continue;
-    const Vec2 g = across(cloud.positions[i], up);
-    const double t = terrain.at(g);
-    const double h = geom::height(cloud.positions[i], up) - t;
-    aboveTerrain[i] = h;
-    if (std::abs(h - bh) <= half) {
-      main.push_back(g);
-      mainTerrain.push_back(t);
-    } else if (std::abs(h - (bh - off)) <= half) {
-      below.push_back(g);
-    } else if (std::abs(h - (bh + off)) <= half) {
-      above.push_back(g);
-    }
-  }
+  const Slices sl = slice(cloud, up, isGround, terrain, bh, half, off);
 
   const double narrowBand = kBandMetres / u, wideBand = std::max(narrowBand, spacing);
   std::vector<Stem> found;
   std::uint64_t seed = 1;
-  for (const std::vector<std::uint32_t>& group : linkedGroups(main, o.linkSpacings * spacing)) {
-    if (group.size() < static_cast<std::size_t>(kMinCirclePoints)) continue;
+  for (const std::vector<std::uint32_t>& group : linkedGroups(sl.main, o.linkSpacings * spacing)) {
     std::vector<Vec2> pts;
-    pts.reserve(group.size());
     double t = 0;
     for (std::uint32_t i : group) {
-      pts.push_back(main[i]);
-      t += mainTerrain[i];
+      pts.push_back(sl.main[i]);
+      t += sl.mainTerrain[i] / static_cast<double>(group.size());
     }
-    t /= static_cast<double>(group.size());
     // A group may hold several stems (a fork, trees touching): once a stem is found its points
     // leave the group and the rest is searched again.
-    while (pts.size() >= static_cast<std::size_t>(kMinCirclePoints)) {
-    // The stem shows in the slice below or above breast height; in both where the terrain is the
-    // lowest points' (no ground found: a limb low in a crown could stand on its own leaves).
-    // The circle with the most points on it may run along a limb leaving the stem (a large arc
-    // through the bark and the limb): when the slices above and below do not show it, the next try
-    // looks for circles under three quarters of its radius. A band of a centimetre first (an arc
-    // in a wide band fits circles of many radii), then a point spacing's (a sparse or noisy scan).
     fit::CircleFitResult r;
-    bool stem = false;
-    for (const double band : {narrowBand, wideBand}) {
-      fit::CircleFitOptions c;
-      c.inlierThreshold = band;
-      c.minInliers = kMinCirclePoints;
-      c.minRadius = 0.5 * o.minDiameter / u;
-      c.maxRadius = 0.5 * o.maxDiameter / u;
-      for (int attempt = 0; attempt < kCircleAttempts && !stem && c.maxRadius > c.minRadius; ++attempt) {
-        c.seed = seed++;
-        r = fit::fitCircleRansac(pts, c);
-        if (!r.ok) break;
-        c.maxRadius = kShrinkRadius * r.radius;
-        // Most of the points round the circle lie on it: bark, with nothing inside (a limb
-        // crossing the slice obliquely is a filled blob). Points farther out are a limb leaving.
-        const std::size_t around = pointsAround(pts, r.centre, r.radius, band);
-        if (static_cast<double>(r.inliers.size()) < o.minOnCircleShare * static_cast<double>(around)) continue;
-        const double reach = kMaxLeanTan * off + band;
-        const bool low = confirmed(below, r.centre, r.radius, reach, band, o.minOnCircleShare, seed);
-        const bool high = confirmed(above, r.centre, r.radius, reach, band, o.minOnCircleShare, seed);
-        stem = out.terrainFromGround ? (low || high) : (low && high);
-      }
-      if (stem || wideBand <= narrowBand) break;
-    }
-    if (!stem) break;
-    Stem s;
-    s.terrain = t;
-    s.centre = lift(r.centre, s.terrain + bh, up);
-    s.diameter = 2 * r.radius * u;
-    s.rms = r.rms * u;
-    s.points = r.inliers.size();
-    found.push_back(s);
-    const double gone = r.radius + 2 * wideBand;
-    std::erase_if(pts, [&](const Vec2& q) { return (q - r.centre).squaredNorm() <= gone * gone; });
+    while (pts.size() >= static_cast<std::size_t>(kMinCirclePoints) &&
+           stemCircle(pts, sl, narrowBand, wideBand, off, out.terrainFromGround, o, seed, r)) {
+      Stem s;
+      s.terrain = t;
+      s.centre = lift(r.centre, t + bh, up);
+      s.diameter = 2 * r.radius * u;
+      s.rms = r.rms * u;
+      s.points = r.inliers.size();
+      found.push_back(s);
+      const double gone = r.radius + 2 * wideBand;
+      std::erase_if(pts, [&](const Vec2& q) { return (q - r.centre).squaredNorm() <= gone * gone; });
     }
   }
   // Overlapping circles are arcs of one stem: the one with the most points on it stays.
@@ -451,44 +457,47 @@ Stems findStems(const geom::PointCloud& cloud, geom::UpAxis up, const std::vecto
     if (!overlaps) out.stems.push_back(s);
   }
   std::sort(out.stems.begin(), out.stems.end(), [](const Stem& a, const Stem& b) { return a.diameter > b.diameter; });
-  groupIntoTrees(cloud, up, aboveTerrain, bh + half, half, wideBand, kVoxelSpacings * spacing, u, out);
+  groupIntoTrees(cloud, up, sl.height, bh + half, half, wideBand, kVoxelSpacings * spacing, u, out);
   if (out.trees > 1) keepTreesWithCrowns(cloud, up, ground, o, out);
   return out;
 }
 
-std::vector<std::int32_t> splitByTree(const geom::PointCloud& cloud, geom::UpAxis up, const Stems& stems,
-                                      const std::vector<std::uint32_t>& ground, const StemOptions& o) {
-  checkOptions(o);
-  std::vector<std::int32_t> label(cloud.size(), -1);
-  if (stems.stems.empty() || cloud.empty()) return label;
-  const double spacing = stems.spacing > 0 ? stems.spacing : measurePointSpacing(cloud);
-  if (!(spacing > 0)) return label;
-  std::vector<char> isGround(cloud.size(), 0);
-  for (std::uint32_t g : ground)
-    if (g < cloud.size()) isGround[g] = 1;
+namespace {
 
-  // Voxels of the points that are not ground.
-  const double v = kVoxelSpacings * spacing;
-  auto keyOf = [&](const Vec3& p) { return voxelKey(p, v); };
-  std::unordered_map<Key, std::uint32_t, KeyHash> voxelOf;
+// The occupied voxels of the points that are not ground.
+struct Voxels {
+  double size = 0;
+  std::unordered_map<Key, std::uint32_t, KeyHash> of;
   std::vector<Key> keys;
-  std::vector<std::uint32_t> pointVoxel(cloud.size(), std::numeric_limits<std::uint32_t>::max());
+  std::vector<std::uint32_t> pointVoxel;  ///< per point; kNone for ground
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  Vec3 centre(std::size_t a) const {
+    return Vec3((keys[a].x + 0.5) * size, (keys[a].y + 0.5) * size, (keys[a].z + 0.5) * size);
+  }
+};
+
+Voxels voxelise(const geom::PointCloud& cloud, const std::vector<char>& isGround, double size) {
+  Voxels vx;
+  vx.size = size;
+  vx.pointVoxel.assign(cloud.size(), Voxels::kNone);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     if (isGround[i]) continue;
-    const Key k = keyOf(cloud.positions[i]);
-    auto [it, added] = voxelOf.emplace(k, static_cast<std::uint32_t>(keys.size()));
-    if (added) keys.push_back(k);
-    pointVoxel[i] = it->second;
+    const Key k = voxelKey(cloud.positions[i], size);
+    auto [it, added] = vx.of.emplace(k, static_cast<std::uint32_t>(vx.keys.size()));
+    if (added) vx.keys.push_back(k);
+    vx.pointVoxel[i] = it->second;
   }
-  const std::size_t n = keys.size();
-  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
-  std::vector<std::int32_t> voxelLabel(n, -1);
-  using Item = std::pair<double, std::uint32_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  return vx;
+}
 
-  // Sources: each stem's voxels at breast height, on or inside its circle.
-  const double u = o.unitMetres, half = o.sliceHalfWidth / u, band = std::max(kBandMetres / u, spacing);
-  // The stems on a grid of cells as wide as the widest stem, so each point looks at 3 × 3 cells.
+using Queue = std::priority_queue<std::pair<double, std::uint32_t>, std::vector<std::pair<double, std::uint32_t>>,
+                                  std::greater<>>;
+
+// The sources: each stem's voxels at breast height, on or inside its circle, labelled with its
+// tree. The stems sit on a grid of cells as wide as the widest, so each point looks at 3 × 3 cells.
+void seedStems(const geom::PointCloud& cloud, geom::UpAxis up, const Stems& stems, const StemOptions& o, double band,
+               const Voxels& vx, std::vector<double>& dist, std::vector<std::int32_t>& label, Queue& queue) {
+  const double u = o.unitMetres, half = o.sliceHalfWidth / u;
   double widest = 0;
   for (const Stem& st : stems.stems) widest = std::max(widest, 0.5 * st.diameter / u + band);
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> stemCells;
@@ -500,7 +509,7 @@ std::vector<std::int32_t> splitByTree(const geom::PointCloud& cloud, geom::UpAxi
     stemCells[key2(a, b)].push_back(s);
   }
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (isGround[i]) continue;
+    if (vx.pointVoxel[i] == Voxels::kNone) continue;
     const Vec3& p = cloud.positions[i];
     const Vec2 g = across(p, up);
     const auto [a, b] = cellOf(g);
@@ -512,51 +521,73 @@ std::vector<std::int32_t> splitByTree(const geom::PointCloud& cloud, geom::UpAxi
           const Stem& st = stems.stems[s];
           if (std::abs(geom::height(p, up) - geom::height(st.centre, up)) > half) continue;
           if ((g - across(st.centre, up)).norm() > 0.5 * st.diameter / u + band) continue;
-          const std::uint32_t vx = pointVoxel[i];
-          if (dist[vx] > 0) {
-            dist[vx] = 0;
-            voxelLabel[vx] = st.tree;
-            queue.emplace(0.0, vx);
+          const std::uint32_t v = vx.pointVoxel[i];
+          if (dist[v] > 0) {
+            dist[v] = 0;
+            label[v] = st.tree;
+            queue.emplace(0.0, v);
           }
         }
       }
   }
+}
+
+// Shortest paths over the voxels' 26 neighbours from the sources: each voxel takes the label of
+// the nearest. Voxels no path reached take the label of the nearest voxel one reached.
+void spreadLabels(const Voxels& vx, std::vector<double>& dist, std::vector<std::int32_t>& label, Queue& queue) {
   while (!queue.empty()) {
     const auto [d, a] = queue.top();
     queue.pop();
     if (d > dist[a]) continue;
-    const Key k = keys[a];
+    const Key k = vx.keys[a];
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz) {
           if (dx == 0 && dy == 0 && dz == 0) continue;
-          const auto it = voxelOf.find(Key{k.x + dx, k.y + dy, k.z + dz});
-          if (it == voxelOf.end()) continue;
-          const double nd = d + v * std::sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
+          const auto it = vx.of.find(Key{k.x + dx, k.y + dy, k.z + dz});
+          if (it == vx.of.end()) continue;
+          const double nd = d + vx.size * std::sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
           if (nd < dist[it->second]) {
             dist[it->second] = nd;
-            voxelLabel[it->second] = voxelLabel[a];
+            label[it->second] = label[a];
             queue.emplace(nd, it->second);
           }
         }
   }
-  // Voxels no path reached: the stem of the nearest voxel one reached.
   std::vector<Vec3> reachedCentre;
   std::vector<std::int32_t> reachedLabel;
-  for (std::size_t a = 0; a < n; ++a)
-    if (voxelLabel[a] >= 0) {
-      reachedCentre.push_back(Vec3((keys[a].x + 0.5) * v, (keys[a].y + 0.5) * v, (keys[a].z + 0.5) * v));
-      reachedLabel.push_back(voxelLabel[a]);
+  for (std::size_t a = 0; a < vx.keys.size(); ++a)
+    if (label[a] >= 0) {
+      reachedCentre.push_back(vx.centre(a));
+      reachedLabel.push_back(label[a]);
     }
-  if (reachedCentre.empty()) return label;
+  if (reachedCentre.empty()) return;
   const accel::PointIndex index(reachedCentre);
-  for (std::size_t a = 0; a < n; ++a) {
-    if (voxelLabel[a] >= 0) continue;
-    const Vec3 c((keys[a].x + 0.5) * v, (keys[a].y + 0.5) * v, (keys[a].z + 0.5) * v);
-    if (const auto nb = index.nearest(c)) voxelLabel[a] = reachedLabel[nb->index];
-  }
+  for (std::size_t a = 0; a < vx.keys.size(); ++a)
+    if (label[a] < 0)
+      if (const auto nb = index.nearest(vx.centre(a))) label[a] = reachedLabel[nb->index];
+}
+
+}  // namespace
+
+std::vector<std::int32_t> splitByTree(const geom::PointCloud& cloud, geom::UpAxis up, const Stems& stems,
+                                      const std::vector<std::uint32_t>& ground, const StemOptions& o) {
+  checkOptions(o);
+  std::vector<std::int32_t> label(cloud.size(), -1);
+  if (stems.stems.empty() || cloud.empty()) return label;
+  const double spacing = stems.spacing > 0 ? stems.spacing : measurePointSpacing(cloud);
+  if (!(spacing > 0)) return label;
+  std::vector<char> isGround(cloud.size(), 0);
+  for (std::uint32_t g : ground)
+    if (g < cloud.size()) isGround[g] = 1;
+  const Voxels vx = voxelise(cloud, isGround, kVoxelSpacings * spacing);
+  std::vector<double> dist(vx.keys.size(), std::numeric_limits<double>::infinity());
+  std::vector<std::int32_t> voxelLabel(vx.keys.size(), -1);
+  Queue queue;
+  seedStems(cloud, up, stems, o, std::max(kBandMetres / o.unitMetres, spacing), vx, dist, voxelLabel, queue);
+  spreadLabels(vx, dist, voxelLabel, queue);
   for (std::size_t i = 0; i < cloud.size(); ++i)
-    if (pointVoxel[i] != std::numeric_limits<std::uint32_t>::max()) label[i] = voxelLabel[pointVoxel[i]];
+    if (vx.pointVoxel[i] != Voxels::kNone) label[i] = voxelLabel[vx.pointVoxel[i]];
   return label;
 }
 

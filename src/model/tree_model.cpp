@@ -288,6 +288,28 @@ void volumeRange(const TreeModel& model, double unit3, double noise, ModelMeasur
   m->volumeHigh = high;
 }
 
+/// "the cloud holds N trees: ..." with the stems' diameters.
+std::string severalTrees(const cloud::Stems& stems) {
+  std::string dbh;
+  std::size_t listed = 0;
+  for (const cloud::Stem& s : stems.stems) {
+    if (listed == kListedStems) {
+      dbh += ", ...";
+      break;
+    }
+    char d[32];
+    std::snprintf(d, sizeof d, "%s%.0f", listed ? ", " : "", 100.0 * s.diameter);
+    dbh += d;
+    ++listed;
+  }
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "the cloud holds %zu trees: %zu stems at breast height (DBH %s cm) that do not join between stump "
+                "height and 1.3 m; the model joins them into one tree",
+                stems.trees, stems.stems.size(), dbh.c_str());
+  return buf;
+}
+
 Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions& o) {
   Verdict v;
   auto add = [&](Verdict::Level level, std::string reason, std::string advice) {
@@ -300,26 +322,9 @@ Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions&
   const std::string leafOn =
       !o.leafOn ? "if the tree was in leaf, run with --leaf-on"
                 : (o.woodOnly ? "" : "for the wood's volume, run with --wood-only (models the points classified as wood)");
-  if (o.stemsLookedFor && o.stems.trees > 1) {
-    std::string dbh;
-    std::size_t listed = 0;
-    for (const cloud::Stem& s : o.stems.stems) {
-      if (listed == kListedStems) {
-        dbh += ", ...";
-        break;
-      }
-      char d[32];
-      std::snprintf(d, sizeof d, "%s%.0f", listed ? ", " : "", 100.0 * s.diameter);
-      dbh += d;
-      ++listed;
-    }
-    char buf[320];
-    std::snprintf(buf, sizeof buf,
-                  "the cloud holds %zu trees: %zu stems at breast height (DBH %s cm) that do not join between "
-                  "stump height and 1.3 m; the model joins them into one tree",
-                  o.stems.trees, o.stems.stems.size(), dbh.c_str());
-    add(L::NotTrusted, buf, "cut the cloud into trees first: treesketch split CLOUD -o FOLDER, then treesketch batch FOLDER");
-  }
+  if (o.stemsLookedFor && o.stems.trees > 1)
+    add(L::NotTrusted, severalTrees(o.stems),
+        "cut the cloud into trees first: treesketch split CLOUD -o FOLDER, then treesketch batch FOLDER");
   if (m.hasFit && m.fit.insideDeeper2cm > kMaxInside)
     add(L::NotTrusted,
         percent(m.fit.insideDeeper2cm) + " of the points lie deeper than 2 cm inside the model: its tubes are "

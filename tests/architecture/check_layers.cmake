@@ -4,7 +4,7 @@
 set(allowed_util "")
 set(allowed_geom "util")
 set(allowed_accel "geom;util")
-set(allowed_cloud "geom;util")
+set(allowed_cloud "fit;accel;geom;util")
 set(allowed_gen "geom;util")
 set(allowed_sketch "geom;util")
 set(allowed_io "sketch;geom;util")
