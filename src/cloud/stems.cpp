@@ -2,7 +2,6 @@
 #include "treesketch/cloud/stems.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstdlib>
 #include <cmath>
 #include <limits>
@@ -26,9 +25,9 @@ using geom::Vec3;
 // narrower); a cell with no ground takes the nearest ring of cells with some, this many out at most.
 constexpr double kTerrainCellMetres = 1.0;
 constexpr int kTerrainRings = 10;
-// Without ground points the terrain rises at most tan 30° from the lowest points round it; no grid
+// Without ground points the terrain rises at most tan 15° from the lowest points round it; no grid
 // beyond kMaxTerrainCells (a cloud that large without ground is not a tree or a plot).
-constexpr double kMaxTerrainSlope = 0.577;
+constexpr double kMaxTerrainSlope = 0.268;
 constexpr double kMaxTerrainCells = 4.0e6;
 // A circle needs this many points on it (the circle fit's own minimum support).
 constexpr int kMinCirclePoints = 8;
@@ -42,6 +41,8 @@ constexpr double kCheckRadiusLow = 0.5, kCheckRadiusHigh = 1.6;
 constexpr double kAroundRadii = 1.5;
 // Circle fits per group of points, each under kShrinkRadius of the last one's radius.
 constexpr int kCircleAttempts = 4;
+// Each slice is at least this many point spacings thick on either side (a few scan lines).
+constexpr double kSliceSpacings = 2.0;
 constexpr double kShrinkRadius = 0.75;
 // Stems that join only below stump height are separate trees, as a forester fells them: at the
 // foot, grass, litter and what the ground rule left join neighbouring stems.
@@ -419,7 +420,9 @@ Stems findStems(const geom::PointCloud& cloud, geom::UpAxis up, const std::vecto
     if (g < cloud.size()) isGround[g] = 1;
   const Terrain terrain(cloud, up, isGround, kTerrainCellMetres / u);
   out.terrainFromGround = terrain.fromGround();
-  const double bh = o.breastHeight / u, half = o.sliceHalfWidth / u, off = o.checkOffset / u;
+  const double bh = o.breastHeight / u, off = o.checkOffset / u;
+  // A slice holds a few scan lines: at least two point spacings each side.
+  const double half = std::min(std::max(o.sliceHalfWidth / u, kSliceSpacings * spacing), 0.5 * off);
   const Slices sl = slice(cloud, up, isGround, terrain, bh, half, off);
 
   const double narrowBand = kBandMetres / u, wideBand = std::max(narrowBand, spacing);
