@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,27 @@ struct SplitArgs {
   double unitMetres = 1.0;
   double minDiameter = 0.05;
 };
+
+// A folder split before holds that run's trees, listed in its stems.json: they go, so that a batch
+// of the folder sees only this run's (nothing else in the folder is touched).
+void removeEarlierTrees(const std::filesystem::path& table) {
+  std::ifstream in(table);
+  if (!in) return;
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception&) {
+    return;  // not a table this command wrote: left alone, and overwritten below
+  }
+  if (!doc.contains("trees") || !doc["trees"].is_array()) return;
+  for (const nlohmann::json& t : doc["trees"]) {
+    if (!t.contains("file") || !t["file"].is_string()) continue;
+    const std::filesystem::path name = t["file"].get<std::string>();
+    if (name.has_parent_path() || name.string().rfind("tree_", 0) != 0) continue;  // only our own names
+    std::error_code ec;
+    std::filesystem::remove(table.parent_path() / name, ec);
+  }
+}
 
 void runSplit(const SplitArgs& a) {
   namespace fs = std::filesystem;
@@ -66,6 +88,7 @@ void runSplit(const SplitArgs& a) {
     throw DegenerateInputError(a.cloud + why);
   }
   const std::vector<std::int32_t> label = cloud::splitByTree(cloud, up.up, stems, ground, so);
+  removeEarlierTrees(table);
 
   std::vector<std::vector<std::uint32_t>> members(stems.trees);
   for (std::uint32_t i = 0; i < label.size(); ++i)
@@ -97,6 +120,7 @@ void runSplit(const SplitArgs& a) {
                 first.centre.z(), dbhs.c_str(), members[t].size());
   }
   if (!a.ground.empty() && !ground.empty()) io::writePointCloud(a.ground, cloud::selectPoints(cloud, ground));
+  if (!a.ground.empty() && ground.empty()) std::printf("no ground points: %s not written\n", a.ground.c_str());
   const nlohmann::json doc = {{"cloud", a.cloud},
                               {"up", up.up == geom::UpAxis::Y ? "y" : "z"},
                               {"unitMetres", a.unitMetres},

@@ -67,6 +67,24 @@ TEST(SplitCli, APlotBecomesOneCloudPerTreeWithATableOfStems) {
   EXPECT_EQ(table["groundPoints"].get<std::size_t>(), ground.size());
 }
 
+TEST(SplitCli, ASecondSplitIntoTheSameFolderLeavesOnlyItsOwnTrees) {
+  test::TempDir dir;
+  io::writePointCloud(dir / "plot.xyz", threeTrees());
+  geom::PointCloud one;
+  for (const Vec3& p : threeTrees().positions)
+    if (p.x() < -2) one.positions.push_back(p);  // the first tree and its ground
+  io::writePointCloud(dir / "one.xyz", one);
+  std::string out;
+  ASSERT_EQ(test::runCli("split " + test::quoted(dir / "plot.xyz") + " -o " + test::quoted(dir / "t"), &out), 0) << out;
+  ASSERT_TRUE(std::filesystem::exists(dir / "t" / "tree_003.ply"));
+  { std::ofstream(dir / "t" / "notes.txt") << "mine\n"; }
+  ASSERT_EQ(test::runCli("split " + test::quoted(dir / "one.xyz") + " -o " + test::quoted(dir / "t"), &out), 0) << out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "t" / "tree_001.ply"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "t" / "tree_002.ply"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "t" / "tree_003.ply"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "t" / "notes.txt"));  // not this command's: kept
+}
+
 TEST(SplitCli, TheModelOfAWholePlotSaysItHoldsSeveralTrees) {
   test::TempDir dir;
   io::writePointCloud(dir / "plot.xyz", threeTrees());
