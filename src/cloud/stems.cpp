@@ -41,9 +41,9 @@ constexpr double kCheckRadiusLow = 0.5, kCheckRadiusHigh = 1.6;
 constexpr double kAroundRadii = 1.5;
 // Circle fits per group of points, each under kShrinkRadius of the last one's radius.
 constexpr int kCircleAttempts = 4;
+constexpr double kShrinkRadius = 0.75;
 // Each slice is at least this many point spacings thick on either side (a few scan lines).
 constexpr double kSliceSpacings = 2.0;
-constexpr double kShrinkRadius = 0.75;
 // Stems that join only below stump height are separate trees, as a forester fells them: at the
 // foot, grass, litter and what the ground rule left join neighbouring stems.
 constexpr double kStumpMetres = 0.3;
