@@ -201,10 +201,8 @@ void BM_GroundAndStrays(benchmark::State& state) {
     aside = s.count();
     benchmark::DoNotOptimize(s);
     if (state.range(0) == 2) {  // and the stems at breast height above that ground, as the verdict asks
-      std::vector<std::uint32_t> ground;
-      for (std::size_t k = 0; k < s.setAside.size(); ++k)
-        if (s.reasons[k] == cloud::StrayReason::Ground) ground.push_back(s.setAside[k]);
-      const cloud::Stems found = cloud::findStems(cloud, geom::UpAxis::Y, ground, s.spacing);
+      const cloud::Stems found =
+          cloud::findStems(cloud, geom::UpAxis::Y, cloud::setAsideFor(s, cloud::StrayReason::Ground), s.spacing);
       stems = found.stems.size();
       benchmark::DoNotOptimize(found);
     }

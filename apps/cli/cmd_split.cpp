@@ -69,9 +69,7 @@ void runSplit(const SplitArgs& a) {
   cloud::requireUsableExtent(cloud, a.cloud);
   const io::UpAxisChoice up = io::chooseUpAxis(a.up, cloud);
   const cloud::StrayPoints strays = cloud::findStrayAndGroundPoints(cloud, up.up);
-  std::vector<std::uint32_t> ground;
-  for (std::size_t k = 0; k < strays.setAside.size(); ++k)
-    if (strays.reasons[k] == cloud::StrayReason::Ground) ground.push_back(strays.setAside[k]);
+  const std::vector<std::uint32_t> ground = cloud::setAsideFor(strays, cloud::StrayReason::Ground);
   cloud::StemOptions so;
   so.unitMetres = a.unitMetres;
   so.minDiameter = a.minDiameter;

@@ -59,6 +59,14 @@ Vec3 lift(const Vec2& g, double h, geom::UpAxis up) {
   return up == geom::UpAxis::Y ? Vec3(g.x(), h, g.y()) : Vec3(g.x(), g.y(), h);
 }
 
+// One flag per point: set for the points `indices` names.
+std::vector<char> flags(const std::vector<std::uint32_t>& indices, std::size_t n) {
+  std::vector<char> f(n, 0);
+  for (std::uint32_t i : indices)
+    if (i < n) f[i] = 1;
+  return f;
+}
+
 std::int64_t key2(std::int64_t i, std::int64_t j) {
   return static_cast<std::int64_t>((static_cast<std::uint64_t>(i) << 32) ^ (static_cast<std::uint64_t>(j) & 0xffffffffULL));
 }
@@ -77,6 +85,33 @@ struct KeyHash {
 Key voxelKey(const Vec3& p, double v) {
   return Key{static_cast<std::int64_t>(std::floor(p.x() / v)), static_cast<std::int64_t>(std::floor(p.y() / v)),
              static_cast<std::int64_t>(std::floor(p.z() / v))};
+}
+
+// The occupied voxels of the points `keep(i)` accepts.
+struct Voxels {
+  double size = 0;
+  std::unordered_map<Key, std::uint32_t, KeyHash> of;
+  std::vector<Key> keys;
+  std::vector<std::uint32_t> pointVoxel;  ///< per point; kNone for ground
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  Vec3 centre(std::size_t a) const {
+    return Vec3((keys[a].x + 0.5) * size, (keys[a].y + 0.5) * size, (keys[a].z + 0.5) * size);
+  }
+};
+
+template <class Keep>
+Voxels voxelise(const geom::PointCloud& cloud, double size, Keep keep) {
+  Voxels vx;
+  vx.size = size;
+  vx.pointVoxel.assign(cloud.size(), Voxels::kNone);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (!keep(i)) continue;
+    const Key k = voxelKey(cloud.positions[i], size);
+    auto [it, added] = vx.of.emplace(k, static_cast<std::uint32_t>(vx.keys.size()));
+    if (added) vx.keys.push_back(k);
+    vx.pointVoxel[i] = it->second;
+  }
+  return vx;
 }
 
 // The terrain's height under a point. With ground points: their mean height in its cell, else in
@@ -259,28 +294,21 @@ bool confirmed(const std::vector<Vec2>& pts, const Vec2& centre, double radius, 
 void groupIntoTrees(const geom::PointCloud& cloud, geom::UpAxis up, const std::vector<double>& height, double top,
                     double half, double band, double voxel, double u, Stems& out) {
   const double floor = kStumpMetres / u;
-  std::unordered_map<Key, std::uint32_t, KeyHash> voxelOf;
-  std::vector<Key> keys;
-  std::vector<std::uint32_t> pointVoxel(cloud.size(), std::numeric_limits<std::uint32_t>::max());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (!(height[i] <= top) || height[i] < floor) continue;
-    const Key k = voxelKey(cloud.positions[i], voxel);
-    auto [it, added] = voxelOf.emplace(k, static_cast<std::uint32_t>(keys.size()));
-    if (added) keys.push_back(k);
-    pointVoxel[i] = it->second;
-  }
+  const Voxels vx = voxelise(cloud, voxel, [&](std::size_t i) { return height[i] <= top && height[i] >= floor; });
+  const std::vector<Key>& keys = vx.keys;
+  const std::vector<std::uint32_t>& pointVoxel = vx.pointVoxel;
   util::UnionFind pieces(keys.size());
   for (std::uint32_t a = 0; a < keys.size(); ++a)
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = voxelOf.find(Key{keys[a].x + dx, keys[a].y + dy, keys[a].z + dz});
-          if (it != voxelOf.end() && it->second > a) pieces.unite(a, it->second);
+          const auto it = vx.of.find(Key{keys[a].x + dx, keys[a].y + dy, keys[a].z + dz});
+          if (it != vx.of.end() && it->second > a) pieces.unite(a, it->second);
         }
   // How low each piece reaches.
   std::vector<double> lowest(keys.size(), std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < cloud.size(); ++i)
-    if (pointVoxel[i] != std::numeric_limits<std::uint32_t>::max()) {
+    if (pointVoxel[i] != Voxels::kNone) {
       double& l = lowest[pieces.find(pointVoxel[i])];
       l = std::min(l, height[i]);
     }
@@ -290,7 +318,7 @@ void groupIntoTrees(const geom::PointCloud& cloud, geom::UpAxis up, const std::v
   std::unordered_map<std::uint32_t, std::uint32_t> stemOfPiece;
   std::vector<double> reach(out.stems.size(), std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (pointVoxel[i] == std::numeric_limits<std::uint32_t>::max() || height[i] < top - 2 * half) continue;
+    if (pointVoxel[i] == Voxels::kNone || height[i] < top - 2 * half) continue;
     const Vec2 g = across(cloud.positions[i], up);
     for (std::uint32_t s = 0; s < out.stems.size(); ++s) {
       const Stem& st = out.stems[s];
@@ -415,9 +443,7 @@ Stems findStems(const geom::PointCloud& cloud, geom::UpAxis up, const std::vecto
   if (!(spacing > 0)) return out;
   out.spacing = spacing;
   const double u = o.unitMetres;
-  std::vector<char> isGround(cloud.size(), 0);
-  for (std::uint32_t g : ground)
-    if (g < cloud.size()) isGround[g] = 1;
+  const std::vector<char> isGround = flags(ground, cloud.size());
   const Terrain terrain(cloud, up, isGround, kTerrainCellMetres / u);
   out.terrainFromGround = terrain.fromGround();
   const double bh = o.breastHeight / u, off = o.checkOffset / u;
@@ -466,32 +492,6 @@ Stems findStems(const geom::PointCloud& cloud, geom::UpAxis up, const std::vecto
 }
 
 namespace {
-
-// The occupied voxels of the points that are not ground.
-struct Voxels {
-  double size = 0;
-  std::unordered_map<Key, std::uint32_t, KeyHash> of;
-  std::vector<Key> keys;
-  std::vector<std::uint32_t> pointVoxel;  ///< per point; kNone for ground
-  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-  Vec3 centre(std::size_t a) const {
-    return Vec3((keys[a].x + 0.5) * size, (keys[a].y + 0.5) * size, (keys[a].z + 0.5) * size);
-  }
-};
-
-Voxels voxelise(const geom::PointCloud& cloud, const std::vector<char>& isGround, double size) {
-  Voxels vx;
-  vx.size = size;
-  vx.pointVoxel.assign(cloud.size(), Voxels::kNone);
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (isGround[i]) continue;
-    const Key k = voxelKey(cloud.positions[i], size);
-    auto [it, added] = vx.of.emplace(k, static_cast<std::uint32_t>(vx.keys.size()));
-    if (added) vx.keys.push_back(k);
-    vx.pointVoxel[i] = it->second;
-  }
-  return vx;
-}
 
 using Queue = std::priority_queue<std::pair<double, std::uint32_t>, std::vector<std::pair<double, std::uint32_t>>,
                                   std::greater<>>;
@@ -580,10 +580,8 @@ std::vector<std::int32_t> splitByTree(const geom::PointCloud& cloud, geom::UpAxi
   if (stems.stems.empty() || cloud.empty()) return label;
   const double spacing = stems.spacing > 0 ? stems.spacing : measurePointSpacing(cloud);
   if (!(spacing > 0)) return label;
-  std::vector<char> isGround(cloud.size(), 0);
-  for (std::uint32_t g : ground)
-    if (g < cloud.size()) isGround[g] = 1;
-  const Voxels vx = voxelise(cloud, isGround, kVoxelSpacings * spacing);
+  const std::vector<char> isGround = flags(ground, cloud.size());
+  const Voxels vx = voxelise(cloud, kVoxelSpacings * spacing, [&](std::size_t i) { return !isGround[i]; });
   std::vector<double> dist(vx.keys.size(), std::numeric_limits<double>::infinity());
   std::vector<std::int32_t> voxelLabel(vx.keys.size(), -1);
   Queue queue;

@@ -280,6 +280,13 @@ void addGround(StrayPoints& strays, const std::vector<std::uint32_t>& ground) {
   addSetAside(strays, ground, StrayReason::Ground);
 }
 
+std::vector<std::uint32_t> setAsideFor(const StrayPoints& strays, StrayReason reason) {
+  std::vector<std::uint32_t> out;
+  for (std::size_t k = 0; k < strays.setAside.size() && k < strays.reasons.size(); ++k)
+    if (strays.reasons[k] == reason) out.push_back(strays.setAside[k]);
+  return out;
+}
+
 double measurePointSpacing(const geom::PointCloud& cloud, const StrayPointOptions& options) {
   if (cloud.empty()) return 0.0;
   const geom::BBox core = coreBox(cloud, options.coreQuantile);

@@ -221,9 +221,7 @@ MeasureOptions autoMeasureOptions(const skeleton::AutoSkeletonResult& r, const s
 
 void lookForStems(MeasureOptions& options, const geom::PointCloud& scan, geom::UpAxis up,
                   const cloud::StrayPoints& strays) {
-  std::vector<std::uint32_t> ground;
-  for (std::size_t k = 0; k < strays.setAside.size() && k < strays.reasons.size(); ++k)
-    if (strays.reasons[k] == cloud::StrayReason::Ground) ground.push_back(strays.setAside[k]);
+  const std::vector<std::uint32_t> ground = cloud::setAsideFor(strays, cloud::StrayReason::Ground);
   cloud::StemOptions so;
   so.unitMetres = options.unitMetres;
   options.stems = cloud::findStems(scan, up, ground, strays.spacing, so);

@@ -99,6 +99,8 @@ std::vector<std::uint32_t> findMarkedNoise(const geom::PointCloud& cloud, const 
 void addSetAside(StrayPoints& strays, const std::vector<std::uint32_t>& points, StrayReason reason);
 /// addSetAside(strays, ground, StrayReason::Ground).
 void addGround(StrayPoints& strays, const std::vector<std::uint32_t>& ground);
+/// The points set aside for `reason` (indices, increasing).
+std::vector<std::uint32_t> setAsideFor(const StrayPoints& strays, StrayReason reason);
 
 /// The cloud's point spacing as findStrayPoints measures it (0 for a cloud of zero extent).
 double measurePointSpacing(const geom::PointCloud& cloud, const StrayPointOptions& options = {});
