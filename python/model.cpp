@@ -79,6 +79,7 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bo
                 {"stray_points", s.strays.count()},
                 {"ground_points", s.strays.ground},
                 {"marked_noise_points", s.strays.markedNoise},
+                {"repeated_points", s.strays.repeated},
                 {"vertices", s.mesh.vertices.size()},
                 {"triangles", s.mesh.triangles.size()}};
     t.reportHeader = {{"cloud", t.source},

@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <unordered_map>
 
@@ -297,11 +298,15 @@ StrayPoints findStrayAndGround(const geom::PointCloud& cloud, geom::UpAxis up, c
 StrayPoints findStrayAndGroundPoints(const geom::PointCloud& cloud, geom::UpAxis up, const StrayPointOptions& strays,
                                      const GroundOptions& ground, const MarkedNoiseOptions& noise) {
   const std::vector<std::uint32_t> marked = findMarkedNoise(cloud, noise);
-  if (marked.empty()) return findStrayAndGround(cloud, up, strays, ground);
-  const std::vector<std::uint32_t> rest = complementOf(cloud.size(), marked);
+  const std::vector<std::uint32_t> repeated = findRepeatedPoints(cloud);
+  if (marked.empty() && repeated.empty()) return findStrayAndGround(cloud, up, strays, ground);
+  std::vector<std::uint32_t> out;
+  std::set_union(marked.begin(), marked.end(), repeated.begin(), repeated.end(), std::back_inserter(out));
+  const std::vector<std::uint32_t> rest = complementOf(cloud.size(), out);
   StrayPoints s = findStrayAndGround(selectPoints(cloud, rest), up, strays, ground);
   for (std::uint32_t& i : s.setAside) i = rest[i];
   addSetAside(s, marked, StrayReason::MarkedNoise);
+  addSetAside(s, repeated, StrayReason::Repeated);
   return s;
 }
 

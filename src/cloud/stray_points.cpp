@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -249,10 +251,26 @@ std::vector<std::uint32_t> findMarkedNoise(const geom::PointCloud& cloud, const 
   return out;
 }
 
+std::vector<std::uint32_t> findRepeatedPoints(const geom::PointCloud& cloud) {
+  std::vector<std::uint32_t> order(cloud.size());
+  std::iota(order.begin(), order.end(), 0u);
+  const auto key = [&](std::uint32_t i) {
+    const geom::Vec3& p = cloud.positions[i];
+    return std::tuple(p.x(), p.y(), p.z(), i);
+  };
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  std::vector<std::uint32_t> out;
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (cloud.positions[order[k]] == cloud.positions[order[k - 1]]) out.push_back(order[k]);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 void addSetAside(StrayPoints& strays, const std::vector<std::uint32_t>& added, StrayReason reason) {
   if (added.empty()) return;
   std::size_t& counted = reason == StrayReason::Ground        ? strays.ground
                          : reason == StrayReason::MarkedNoise ? strays.markedNoise
+                         : reason == StrayReason::Repeated    ? strays.repeated
                          : reason == StrayReason::Far         ? strays.far
                                                               : strays.isolated;
   std::vector<std::uint32_t> points;
@@ -298,13 +316,15 @@ std::string strayPointsLine(const StrayPoints& s) {
   if (s.tooSparse && s.empty()) return "no stray point set aside (the cloud is too sparse for the rule)";
   if (s.empty()) return "no stray point set aside";
   char buf[320];
-  if (s.ground > 0 || s.markedNoise > 0) {
-    char noise[80] = "";
+  if (s.ground > 0 || s.markedNoise > 0 || s.repeated > 0) {
+    char noise[80] = "", repeated[80] = "";
     if (s.markedNoise > 0) std::snprintf(noise, sizeof noise, "%zu marked as noise by the file, ", s.markedNoise);
+    if (s.repeated > 0)
+      std::snprintf(repeated, sizeof repeated, "%zu repeating an earlier point's position, ", s.repeated);
     std::snprintf(
         buf, sizeof buf,
-        "%zu point%s set aside (%s%zu on the ground, %zu far from the tree, %zu isolated; linking distance %.3g)",
-        s.count(), s.count() == 1 ? "" : "s", noise, s.ground, s.far, s.isolated, s.linkDistance);
+        "%zu point%s set aside (%s%s%zu on the ground, %zu far from the tree, %zu isolated; linking distance %.3g)",
+        s.count(), s.count() == 1 ? "" : "s", noise, repeated, s.ground, s.far, s.isolated, s.linkDistance);
   } else {
     std::snprintf(buf, sizeof buf,
                   "%zu stray point%s set aside (%zu far from the tree, %zu isolated; linking distance %.3g)", s.count(),

@@ -472,6 +472,7 @@ nlohmann::json strayPointsJson(const cloud::StrayPoints& s) {
           {"isolated", s.isolated},
           {"ground", s.ground},
           {"markedNoise", s.markedNoise},
+          {"repeated", s.repeated},
           {"spacing", s.spacing},
           {"linkDistance", s.linkDistance},
           {"tooSparse", s.tooSparse}};

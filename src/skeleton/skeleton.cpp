@@ -89,13 +89,24 @@ void tipsToEnds(Skeleton& s) {
   const std::size_t rawCount = s.rawNodes.size();
   if (s.nodes.empty() || rawCount == 0) return;
   std::vector<std::int32_t> endOf(rawCount, -1);
+  // Raw nodes on the way to a kept node are that node's, not dropped: only a raw subtree with no
+  // kept node in it hangs below an end (a raw stem that went on above a kept tip, with the kept
+  // stem reanchored beside it, gave that tip the whole stem's reach: a straight tube 11 m out of
+  // a spruce's crown).
+  std::vector<char> leadsToKept(rawCount, 0);
+  for (const auto& n : s.nodes)
+    if (n.raw >= 0) leadsToKept[n.raw] = 1;
+  for (std::size_t i = rawCount; i-- > 0;) {  // raw nodes are parent-first
+    const std::int32_t p = s.rawNodes[i].parent;
+    if (leadsToKept[i] && p >= 0) leadsToKept[p] = 1;
+  }
   for (std::size_t k = 0; k < s.nodes.size(); ++k) {
     const auto& n = s.nodes[k];
     if (n.parent >= 0 && n.children.empty() && n.raw >= 0) endOf[n.raw] = static_cast<std::int32_t>(k);
   }
-  for (std::size_t i = 0; i < rawCount; ++i) {  // raw nodes are parent-first
+  for (std::size_t i = 0; i < rawCount; ++i) {
     const std::int32_t p = s.rawNodes[i].parent;
-    if (endOf[i] < 0 && p >= 0) endOf[i] = endOf[p];
+    if (endOf[i] < 0 && p >= 0 && !leadsToKept[i]) endOf[i] = endOf[p];
   }
   std::vector<double> reach(s.nodes.size(), 0.0);
   for (std::size_t v = 0; v < s.graph.size(); ++v) {

@@ -156,6 +156,24 @@ TEST(StrayPoints, MarkedNoiseIsTheFilesClassesSevenAndEighteen) {
   EXPECT_TRUE(findMarkedNoise(geom::PointCloud{}).empty());
 }
 
+TEST(StrayPoints, RepeatedPointsAreTheLaterCopiesOfAPosition) {
+  geom::PointCloud c = cylinderSurface(0.2, 1.0, 0.05);
+  const std::size_t n = c.size();
+  c.positions.push_back(c.positions[3]);      // n: a copy of 3
+  c.positions.push_back(c.positions[0]);      // n + 1: a copy of 0
+  c.positions.push_back(c.positions[3]);      // n + 2: a second copy of 3
+  c.positions.emplace_back(c.positions[5].x() + 1e-9, c.positions[5].y(), c.positions[5].z());  // near, not equal
+  const auto repeated = findRepeatedPoints(c);
+  EXPECT_EQ(repeated, (std::vector<std::uint32_t>{static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(n + 1),
+                                                  static_cast<std::uint32_t>(n + 2)}));
+  EXPECT_TRUE(findRepeatedPoints(cylinderSurface(0.2, 1.0, 0.05)).empty());
+  EXPECT_TRUE(findRepeatedPoints(geom::PointCloud{}).empty());
+  StrayPoints s;
+  addSetAside(s, repeated, StrayReason::Repeated);
+  EXPECT_EQ(s.repeated, 3u);
+  EXPECT_NE(strayPointsLine(s).find("3 repeating an earlier point's position"), std::string::npos) << strayPointsLine(s);
+}
+
 TEST(StrayPoints, AddedPointsMergeInOrderAndCountUnderTheirReason) {
   geom::PointCloud c = cylinderSurface(0.2, 3.0, 0.01);
   c.positions.emplace_back(100.0, 0.0, 1.0);  // far

@@ -388,6 +388,23 @@ TEST(SkeletonSketch, FitsDoNotDependOnTheCloudsUnits) {
   EXPECT_THROW(skeleton::autoSkeletonSketch(metres, fixedBand), OptionsError);
 }
 
+// A cloud written twice (every point repeated, the copies after the originals) gives the model it
+// gives once: the repeats are set aside, and the voxels are sized by the surfaces' sampling. Before,
+// the doubled density made finer voxels and another model.
+TEST(SkeletonSketch, RepeatedPointsDoNotChangeTheModel) {
+  const auto once = test::sampleCylinders(test::yTree(), 0.02, 0.003, 7);
+  geom::PointCloud twice = once;
+  twice.positions.insert(twice.positions.end(), once.positions.begin(), once.positions.end());
+  const auto a = skeleton::autoSkeletonSketch(once);
+  const auto b = skeleton::autoSkeletonSketch(twice);
+  EXPECT_EQ(a.strays.repeated, 0u);
+  EXPECT_EQ(b.strays.repeated, once.size());
+  EXPECT_EQ(b.skeleton.graph.voxelSize, a.skeleton.graph.voxelSize);
+  ASSERT_EQ(b.model.size(), a.model.size());
+  for (std::size_t i = 0; i < a.model.size(); ++i) EXPECT_EQ(b.model[i].radius, a.model[i].radius) << "node " << i;
+  EXPECT_EQ(b.mesh.vertices.size(), a.mesh.vertices.size());
+}
+
 TEST(SkeletonSketch, EmptyCloud) {
   const auto res = skeleton::autoSkeletonSketch(geom::PointCloud{});
   EXPECT_TRUE(res.model.empty());

@@ -61,11 +61,11 @@ struct Ground {
 Ground findGround(const geom::PointCloud& cloud, geom::UpAxis up, double spacing, const GroundOptions& options = {});
 
 /// The points to set aside before modelling: those the file marks as noise (findMarkedNoise: a
-/// low point under the terrain would otherwise be the cloud's bottom), then the ground of the rest
-/// (findGround), then the stray points of what is left (findStrayPoints: with the terrain gone,
-/// what is left of it far from the tree is far from the tree), as one StrayPoints (indices into
-/// `cloud`, the marked noise and the ground counted apart). A cloud with no point marked as noise
-/// gives what it gave before marked noise was read.
+/// low point under the terrain would otherwise be the cloud's bottom) and those repeating an
+/// earlier point (findRepeatedPoints), then the ground of the rest (findGround), then the stray
+/// points of what is left (findStrayPoints: with the terrain gone, what is left of it far from the
+/// tree is far from the tree), as one StrayPoints (indices into `cloud`, each reason counted apart).
+/// A cloud with no point marked as noise and none repeated gives what the rules give on it alone.
 StrayPoints findStrayAndGroundPoints(const geom::PointCloud& cloud, geom::UpAxis up,
                                      const StrayPointOptions& strays = {}, const GroundOptions& ground = {},
                                      const MarkedNoiseOptions& noise = {});
