@@ -31,6 +31,7 @@ struct ClassifyArgs {
   double threshold = NAN;
   double promote = 1.0;
   bool noGraph = false;
+  bool noSmoothing = false;
   bool context = false;  // the context pass, as the wood-only model classifies
   std::string model;  // a trained JSON instead of the built-in model
   // labelled scans
@@ -46,6 +47,7 @@ classify::ClassifyOptions classifyOptions(const ClassifyArgs& a) {
   classify::ClassifyOptions o = a.context ? classify::woodModellingOptions() : classify::ClassifyOptions{};
   if (!std::isnan(a.threshold)) o.threshold = a.threshold;
   o.connect = !a.noGraph;
+  o.smoothing = !a.noSmoothing;
   o.graph.promoteProbability = a.promote;
   return o;
 }
@@ -115,7 +117,8 @@ void runClassifyCloud(const ClassifyArgs& a, const classify::BoostedTrees* model
   std::printf("%zu points (%zu core points), spacing %.4g (features at %.4g): %zu wood (%.1f %%), %zu leaf; "
               "threshold %.3f%s\n",
               cloud.size(), c.cores, c.measuredSpacing, c.spacing, c.woodPoints, 100.0 * c.woodPoints / cloud.size(),
-              cloud.size() - c.woodPoints, c.threshold, c.contextPass ? " (context pass)" : "");
+              cloud.size() - c.woodPoints, c.threshold,
+              c.contextPass ? " (context pass)" : c.smoothed ? " (probabilities smoothed over the graph)" : "");
   if (!a.noGraph)
     std::printf("graph step: %zu wood points reached from %zu at the base, %zu in pieces of their own, %zu demoted\n",
                 c.graph.reached, c.graph.seeds, c.graph.kept, c.graph.demoted);
@@ -159,6 +162,9 @@ void registerClassify(CLI::App& app, Action& action) {
                 "Classify as --wood-only does: with the context pass (the first pass's wood around each point) at the "
                 "modelling threshold 0.75 (--threshold changes it)");
   cmd->add_flag("--no-graph", a->noGraph, "The classifier's call alone, without keeping wood connected to the stem");
+  cmd->add_flag("--no-smoothing", a->noSmoothing,
+                "The built-in model's probabilities as they come, not averaged with their neighbours' (wood then at "
+                "the model's own threshold)");
   cmd->add_option("--model", a->model, "A model trained with --train instead of the built-in one");
   cmd->add_option("--evaluate", a->evaluate,
                   "Score the classifier on labelled leaf-on scans of --trees and write a Markdown report here");

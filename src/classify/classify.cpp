@@ -82,6 +82,10 @@ Classification classifyWood(const geom::PointCloud& cloud, geom::UpAxis up, cons
     coreP = predictWood(withContext(f, coreP), contextModel());
     ownThreshold = contextModel().threshold;
     c.contextPass = true;
+  } else if (options.smoothing && &m == &trainedModel()) {
+    coreP = smoothOverGraph(f, coreP, kSmoothingWeight, kSmoothingPasses, options.graph.maxEdgeSpacings);
+    ownThreshold = kSmoothedWoodThreshold;
+    c.smoothed = true;
   }
   c.predictMs = clock.ms();
   clock.restart();

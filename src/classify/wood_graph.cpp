@@ -10,6 +10,31 @@
 
 namespace treesketch::classify {
 
+std::vector<float> smoothOverGraph(const FeatureTable& f, const std::vector<float>& p, double weight, int passes,
+                                   double maxEdgeSpacings) {
+  const std::size_t n = f.heights.size();
+  if (p.size() != n) throw OptionsError("classify: one wood probability per point is needed");
+  if (!(weight >= 0.0 && weight <= 1.0)) throw OptionsError("classify: the smoothing weight must be between 0 and 1");
+  const float maxEdge = static_cast<float>(maxEdgeSpacings * f.spacing);
+  const int g = f.neighbourCount;
+  std::vector<float> cur = p, next(n);
+  for (int pass = 0; pass < passes; ++pass) {
+    for (std::size_t i = 0; i < n; ++i) {
+      double sum = 0;
+      int count = 0;
+      for (int k = 0; k < g; ++k) {
+        const std::uint32_t j = f.neighbours[i * g + k];
+        if (j == i || f.neighbourDistances[i * g + k] > maxEdge) continue;
+        sum += cur[j];
+        ++count;
+      }
+      next[i] = count == 0 ? cur[i] : static_cast<float>((1.0 - weight) * cur[i] + weight * sum / count);
+    }
+    cur.swap(next);
+  }
+  return cur;
+}
+
 WoodGraphResult connectWood(const FeatureTable& f, const std::vector<float>& p, double threshold,
                             const WoodGraphOptions& o) {
   const std::size_t n = f.heights.size();

@@ -1,5 +1,6 @@
 // The graph step: wood connected to the base stays, a small isolated patch of "wood" in the crown
-// is demoted, a large one stays, and growth crosses points the classifier is unsure of.
+// is demoted, a large one stays, growth crosses points the classifier is unsure of, and the smoothing
+// pulls each point's probability towards its neighbours'.
 #include "treesketch/classify/wood_graph.h"
 
 #include <gtest/gtest.h>
@@ -58,11 +59,34 @@ TEST(WoodGraph, GrowsFromTheBaseAndDemotesSmallIsolatedWood) {
   EXPECT_EQ(connectWood(t, p, 0.5, o).reached, 6u);  // heights 0..5: the base seeds alone
 }
 
+TEST(WoodGraph, SmoothingPullsEachPointTowardsItsNeighbours) {
+  FeatureTable t;
+  t.neighbourCount = 2;
+  t.spacing = 1.0;
+  t.treeHeight = 100;
+  addChain(t, 20, 0);  // 0..19: a limb
+  std::vector<float> p(20, 0.9f);
+  p[5] = 0.6f;   // a core of the limb the classifier is unsure of
+  p[19] = 0.1f;  // the limb's end, a leaf
+  const std::vector<float> once = smoothOverGraph(t, p, 0.5, 1);
+  EXPECT_FLOAT_EQ(once[5], 0.5f * 0.6f + 0.5f * 0.9f);  // up towards the limb
+  EXPECT_FLOAT_EQ(once[4], 0.5f * 0.9f + 0.5f * (0.9f + 0.6f) / 2);
+  EXPECT_FLOAT_EQ(once[0], 0.9f);  // one neighbour, as sure as itself
+  EXPECT_FLOAT_EQ(once[18], 0.5f * 0.9f + 0.5f * (0.9f + 0.1f) / 2);
+  // Two passes reach the neighbours' neighbours; none leaves the probabilities as they are.
+  EXPECT_LT(smoothOverGraph(t, p, 0.5, 2)[3], 0.9f);
+  EXPECT_EQ(smoothOverGraph(t, p, 0.5, 0), p);
+  // Edges longer than the gap limit are not neighbours: every point keeps its probability.
+  EXPECT_EQ(smoothOverGraph(t, p, 0.5, 2, 0.5), p);
+  EXPECT_THROW(smoothOverGraph(t, p, 1.5, 1), OptionsError);
+}
+
 TEST(WoodGraph, OneProbabilityPerPoint) {
   FeatureTable t;
   t.neighbourCount = 2;
   addChain(t, 5, 0);
   EXPECT_THROW(connectWood(t, std::vector<float>(4, 1.0f), 0.5), OptionsError);
+  EXPECT_THROW(smoothOverGraph(t, std::vector<float>(4, 1.0f), 0.5, 1), OptionsError);
 }
 
 }  // namespace

@@ -64,6 +64,13 @@ TEST(ClassifyCli, TheContextPassClassifiesAsTheWoodOnlyModelDoes) {
   EXPECT_EQ(plain.find("(context pass)"), std::string::npos) << plain;
   EXPECT_NE(context.find("threshold 0.750 (context pass)"), std::string::npos) << context;
   EXPECT_EQ(io::readPointCloud(dir / "b.ply").classification.size(), io::readPointCloud(dir / "a.ply").size());
+  // The first pass alone is smoothed over the graph and called at its own threshold; --no-smoothing
+  // gives the model's probabilities and threshold as they come.
+  EXPECT_NE(plain.find("threshold 0.825 (probabilities smoothed over the graph)"), std::string::npos) << plain;
+  std::string raw;
+  const std::string noSmoothing = "classify " + quoted(dir / "tree.ply") + " --no-smoothing -o " + quoted(dir / "c.ply");
+  ASSERT_EQ(test::runCli(noSmoothing, &raw), 0) << raw;
+  EXPECT_NE(raw.find("threshold 0.875\n"), std::string::npos) << raw;
 }
 
 TEST(ClassifyCli, BadInputAndOptionsGiveClearErrors) {

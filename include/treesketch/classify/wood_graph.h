@@ -1,4 +1,6 @@
-// The graph step of the wood/leaf classification: wood must hang together with the stem. Wood
+// The graph step of the wood/leaf classification: a core's wood probability is averaged with its
+// neighbours' (wood is continuous, one core's answer noisy), and wood must hang together with the
+// stem. Wood
 // grows from confident wood at the base of the tree along the neighbour graph, passing through
 // points the classifier is unsure of (a twig's points behind a leaf), and takes every wood point
 // it reaches; wood it does not reach stays wood only when it forms a piece large enough to stand
@@ -42,6 +44,16 @@ struct WoodGraphResult {
   std::size_t demoted = 0;         ///< wood points demoted to leaf
   std::size_t promoted = 0;        ///< points below the threshold made wood (promoteProbability)
 };
+
+/// Each core's probability averaged with its graph neighbours' (the `neighbourCount` nearest
+/// within `maxEdgeSpacings` spacings, the graph step's edges): p <- (1 - weight) p + weight *
+/// mean(p of the neighbours), `passes` times (each pass reads the previous one's answers, so
+/// two passes reach the neighbours' neighbours). Wood is continuous: a limb's cores agree with
+/// the cores along it, and one core's answer, from a neighbourhood of a few dozen cores, is noisy
+/// (a patch of bark as flat as a leaf, a leaf's edge seen edge-on); the neighbours' mean carries
+/// what the limb around it says. A core with no neighbour within reach keeps its probability.
+std::vector<float> smoothOverGraph(const FeatureTable& features, const std::vector<float>& probability, double weight,
+                                   int passes, double maxEdgeSpacings = WoodGraphOptions{}.maxEdgeSpacings);
 
 /// Applies the graph step to `probability` (one per core point of `features`, wood at >= `threshold`).
 /// With no wood at the base (a cloud cut above the ground, a branch alone) every piece is judged
