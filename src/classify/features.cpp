@@ -236,14 +236,20 @@ void keepGraphNeighbours(const std::vector<accel::Neighbour>& nb, std::size_t i,
   }
 }
 
-/// The median nearest-neighbour distance over up to ~20k evenly spread points.
+/// The median nearest-neighbour distance over up to ~20k evenly spread points. A point repeated at
+/// the same position (a file written twice, returns rounded together) is not a neighbour: with
+/// them the median was 0 on a cloud written twice.
 double medianSpacing(const std::vector<geom::Vec3>& points) {
+  constexpr std::size_t kLooked = 8;  // neighbours looked at for one at a distance
   const accel::PointIndex index(points);
   const std::size_t n = index.size(), step = std::max<std::size_t>(1, n / 20000);
   std::vector<double> d;
   for (std::size_t i = 0; i < n; i += step) {
-    auto nb = index.nearest(index.point(static_cast<std::uint32_t>(i)), 2);
-    if (nb.size() == 2) d.push_back(std::sqrt(nb[1].distance2));
+    for (const auto& nb : index.nearest(index.point(static_cast<std::uint32_t>(i)), kLooked))
+      if (nb.distance2 > 0) {
+        d.push_back(std::sqrt(nb.distance2));
+        break;
+      }
   }
   std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
   const double s = d.empty() ? 0.0 : d[d.size() / 2];

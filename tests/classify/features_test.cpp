@@ -83,6 +83,19 @@ TEST(Features, ASpacingFinerThanTheFloorIsRaisedToIt) {
   EXPECT_GT(floored.row(floored.coreOf[100])[ax], 0.95);
 }
 
+// Points repeated at the same position are no neighbours of each other: the cloud written twice
+// measures the spacing it measures once (it measured 0 and fell back to 1e-6).
+TEST(Features, RepeatedPointsDoNotShrinkTheMeasuredSpacing) {
+  const geom::PointCloud once = lineAndPlane(9);
+  geom::PointCloud twice = once;
+  twice.positions.insert(twice.positions.end(), once.positions.begin(), once.positions.end());
+  FeatureOptions o;
+  o.minSpacingHeightFraction = 0;
+  const FeatureTable a = computeFeatures(once, geom::UpAxis::Y, o);
+  const FeatureTable b = computeFeatures(twice, geom::UpAxis::Y, o);
+  EXPECT_NEAR(b.measuredSpacing, a.measuredSpacing, 0.01 * a.measuredSpacing);
+}
+
 /// A limb's bark (a cylinder of radius 0.15 m, 2 m long) and, beside it, a cluster of small flat
 /// leaves (3 cm squares) at random orientations, both sampled about 1 cm apart.
 geom::PointCloud barkAndLeaves(unsigned seed, std::size_t& barkPoints) {
