@@ -163,15 +163,17 @@ TEST(StrayPoints, RepeatedPointsAreTheLaterCopiesOfAPosition) {
   c.positions.push_back(c.positions[0]);      // n + 1: a copy of 0
   c.positions.push_back(c.positions[3]);      // n + 2: a second copy of 3
   c.positions.emplace_back(c.positions[5].x() + 1e-9, c.positions[5].y(), c.positions[5].z());  // near, not equal
+  c.positions.emplace_back(0.0, 5.0, 0.0);   // n + 4
+  c.positions.emplace_back(-0.0, 5.0, 0.0);  // n + 5: the same position
   const auto repeated = findRepeatedPoints(c);
   EXPECT_EQ(repeated, (std::vector<std::uint32_t>{static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(n + 1),
-                                                  static_cast<std::uint32_t>(n + 2)}));
+                                                  static_cast<std::uint32_t>(n + 2), static_cast<std::uint32_t>(n + 5)}));
   EXPECT_TRUE(findRepeatedPoints(cylinderSurface(0.2, 1.0, 0.05)).empty());
   EXPECT_TRUE(findRepeatedPoints(geom::PointCloud{}).empty());
   StrayPoints s;
   addSetAside(s, repeated, StrayReason::Repeated);
-  EXPECT_EQ(s.repeated, 3u);
-  EXPECT_NE(strayPointsLine(s).find("3 repeating an earlier point's position"), std::string::npos) << strayPointsLine(s);
+  EXPECT_EQ(s.repeated, 4u);
+  EXPECT_NE(strayPointsLine(s).find("4 repeating an earlier point's position"), std::string::npos) << strayPointsLine(s);
 }
 
 TEST(StrayPoints, AddedPointsMergeInOrderAndCountUnderTheirReason) {
