@@ -5,14 +5,13 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
-#include <vector>
 
 #include "cli_support.h"
 #include "marked_las.h"
 #include "skeleton/synthetic_tree.h"
 #include "test_support.h"
+#include "treesketch/io/cylinder_table.h"
 #include "treesketch/io/mesh_io.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/sketch_file.h"
@@ -290,24 +289,14 @@ TEST(CmdAuto, NoTubeLeavesTheCloud) {
       << out;
   const geom::BBox box = io::readPointCloud(file).bounds();
   const double margin = 0.1;  // metres: a tube's radius beyond the outermost points
-  std::ifstream csv(dir / "c.csv");
-  std::string line;
-  ASSERT_TRUE(std::getline(csv, line));
-  std::size_t rows = 0;
-  while (std::getline(csv, line)) {
-    std::stringstream fields(line);
-    std::string f;
-    std::vector<double> v;
-    while (std::getline(fields, f, ',')) v.push_back(std::atof(f.c_str()));
-    ASSERT_GE(v.size(), 8u) << line;
-    for (const geom::Vec3 end : {geom::Vec3(v[2], v[3], v[4]), geom::Vec3(v[5], v[6], v[7])})
+  const io::CylinderTable table = io::readCylinderTable(dir / "c.csv");
+  for (const geom::ModelCylinder& c : table.model.cylinders)
+    for (const geom::Vec3& end : {c.start, c.end})
       for (int a = 0; a < 3; ++a) {
-        EXPECT_GE(end[a], box.min[a] - margin) << line;
-        EXPECT_LE(end[a], box.max[a] + margin) << line;
+        EXPECT_GE(end[a], box.min[a] - margin) << end.transpose();
+        EXPECT_LE(end[a], box.max[a] + margin) << end.transpose();
       }
-    ++rows;
-  }
-  EXPECT_GT(rows, 100u);
+  EXPECT_GT(table.model.cylinders.size(), 100u);
 }
 
 }  // namespace
