@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "tree_job.h"
 #include "treesketch/eval/correcting_user.h"
 #include "treesketch/eval/evaluation.h"
 #include "treesketch/eval/evaluation_report.h"
@@ -110,6 +111,8 @@ void addMethodOptions(CLI::App& cmd, EvaluateOpts& o) {
   cmd.add_option("--target", o.c.targetPct, "--correcting-user: RMS target both ways, % of the diagonal")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  // The automatic model's settings, over its leaf-off or leaf-on preset (the skeleton methods).
+  addSettingOptions(&cmd, o.e.skeletonSettings);
 }
 
 // The simulated correcting user instead of the evaluation.
@@ -128,6 +131,7 @@ void runEvaluate(const EvaluateOpts& o, bool cmdRaysGiven, const std::string& le
     throw OptionsError(legacyGiven + " sets the former single condition; it does not combine with --matrix");
   if (o.matrix.empty() && (!o.conditions.empty() || o.list))
     throw OptionsError("--conditions and --list need --matrix quick|full");
+  checkSettings(o.e.skeletonSettings);  // before any scan
   eval::EvalOptions e = o.e;
   if (cmdRaysGiven) e.sphereTargetPoints = 0;
   e.patterns = o.patterns;
@@ -162,7 +166,7 @@ void runEvaluate(const EvaluateOpts& o, bool cmdRaysGiven, const std::string& le
     return;
   }
   std::vector<eval::EvalRow> rows = eval::runEvaluation(trees, e);
-  eval::writeReport(o.out, rows, conditions);
+  eval::writeReport(o.out, rows, conditions, e.skeletonSettings);
   std::cout << eval::markdownSummary(rows, conditions);
   std::cout << "wrote " << o.out
             << "/table.md, summary.md, results.csv, summary.csv and SVG plots (figures 5.12-5.14, RMS vs wood "

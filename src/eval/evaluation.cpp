@@ -15,6 +15,7 @@
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/scan/sphere_scan.h"
 #include "treesketch/scan/tls_scan.h"
+#include "treesketch/skeleton/option_table.h"
 #include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/sketch/auto_sketch.h"
 #include "treesketch/sketch/polyline_sketch.h"
@@ -107,6 +108,7 @@ MethodOutput methodSkeleton(const MethodInput& in) {
   skeleton::AutoSkeletonOptions so =
       skeleton::autoSkeletonPreset(in.leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, in.tree.up);
   so.seed = in.options.seed;
+  for (const std::string& s : in.options.skeletonSettings) skeleton::applySetting(so, s);
   skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, so);
   MethodOutput out;
   out.model = model::fromAutoSkeleton(r, in.tree.up);

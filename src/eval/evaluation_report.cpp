@@ -496,14 +496,23 @@ void writeRobustnessPlots(const fs::path& folder, const std::vector<EvalRow>& ro
 }  // namespace
 
 void writeReport(const fs::path& folder, const std::vector<EvalRow>& rows,
-                 const std::vector<ScanCondition>& conditions) {
+                 const std::vector<ScanCondition>& conditions, const std::vector<std::string>& settings) {
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (!fs::is_directory(folder)) throw OutputError(folder.string() + ": cannot create the directory");
   writeFileAtomically(
       folder / "table.md", [&](std::ostream& o) { o << markdownTable(rows); }, false);
   writeFileAtomically(
-      folder / "summary.md", [&](std::ostream& o) { o << markdownSummary(rows, conditions); }, false);
+      folder / "summary.md",
+      [&](std::ostream& o) {
+        if (!settings.empty()) {
+          o << "Automatic model settings changed from the defaults (`--set`):";
+          for (const std::string& s : settings) o << " `" << s << "`";
+          o << "\n\n";
+        }
+        o << markdownSummary(rows, conditions);
+      },
+      false);
   writeFileAtomically(
       folder / "results.csv", [&](std::ostream& o) { o << csvTable(rows); }, false);
   writeFileAtomically(

@@ -200,6 +200,30 @@ TEST(EvaluateMatrix, SplitRunsOneHalf) {
   EXPECT_NE(md.find("tuning half (0)"), std::string::npos) << md;
 }
 
+// --set changes the automatic model's settings in the skeleton methods, as reconstruct --set does,
+// and summary.md names them; an unknown setting is a usage error before any scan.
+TEST(EvaluateMatrix, SetChangesTheAutomaticModel) {
+  test::TempDir dir;
+  std::string out;
+  const std::string common =
+      "evaluate --matrix quick --conditions wood-5k --methods skeleton --builtin 2 --split held-out --out ";
+  ASSERT_EQ(test::runCli(common + (dir / "d").string(), &out), 0) << out;
+  ASSERT_EQ(test::runCli(common + (dir / "s").string() + " --set radii.allometryMaxRatio=0 --set radii.surfaceBound=false",
+                         &out),
+            0)
+      << out;
+  const Csv d = readCsv(dir / "d" / "results.csv"), s = readCsv(dir / "s" / "results.csv");
+  ASSERT_EQ(d.rows.size(), 1u);
+  ASSERT_EQ(s.rows.size(), 1u);
+  EXPECT_NE(d.rows[0].at("model_volume"), s.rows[0].at("model_volume")) << "the settings did not reach the model";
+  const std::string md = test::readText(dir / "s" / "summary.md");
+  EXPECT_NE(md.find("`radii.allometryMaxRatio=0` `radii.surfaceBound=false`"), std::string::npos) << md;
+  EXPECT_EQ(test::readText(dir / "d" / "summary.md").find("--set"), std::string::npos);
+  EXPECT_EQ(test::runCli(common + (dir / "x").string() + " --set radii.nope=1", &out), 2) << out;
+  EXPECT_NE(out.find("radii.nope"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x" / "results.csv"));
+}
+
 }  // namespace
 }  // namespace treesketch::eval
 

@@ -111,6 +111,10 @@ struct EvalOptions {
   std::uint64_t samples = 0;
   std::uint64_t minSamples = 20000;
   std::uint64_t seed = 1;
+  /// Settings of the automatic model (skeleton/option_table.h, NAME=VALUE as `reconstruct --set`),
+  /// applied after the leaf-off or leaf-on preset in the skeleton methods: an ablation of one rule
+  /// over the matrix. Empty: the defaults.
+  std::vector<std::string> skeletonSettings;
   /// Called with a one-line message as each case finishes (may be empty).
   std::function<void(const std::string&)> log;
 };

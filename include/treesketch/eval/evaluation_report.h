@@ -25,8 +25,10 @@ std::string csvSummary(const std::vector<ConditionSummary>& summaries);
 /// fig_5_13_user_vs_auto.svg, fig_5_14_rms_vs_nodes.svg) and the robustness plots
 /// (fig_{backward,forward}_vs_wood_points.svg: every case, log-log; fig_{backward,forward}_vs_noise.svg:
 /// mean per method and half over the noise conditions). `conditions` (optional) adds the
-/// matrix's settings to summary.md.
+/// matrix's settings to summary.md; `settings` (optional: the automatic model's `--set`
+/// assignments) heads summary.md.
 void writeReport(const std::filesystem::path& folder, const std::vector<EvalRow>& rows,
-                 const std::vector<ScanCondition>& conditions = {});
+                 const std::vector<ScanCondition>& conditions = {},
+                 const std::vector<std::string>& settings = {});
 
 }  // namespace treesketch::eval
