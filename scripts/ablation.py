@@ -59,7 +59,6 @@ CONFIGS = [
     ("allometry bound off", ["radii.allometryMaxRatio=0"]),
     ("surface bound off", ["radii.surfaceBound=off"]),
     ("axis smoothing off", ["axes.halfWindowNodes=0"]),
-    ("fork bridging off", ["bridgeUnfittedForks=off"]),
     ("completion off", ["completion.enabled=off"]),
     ("completion: one round", ["completion.maxRounds=1"]),
 ]

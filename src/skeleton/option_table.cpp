@@ -130,7 +130,6 @@ std::vector<SettingRow> modelRows() {
       TS_SETTING(axes.unfittedWeight, Real, 1e-6, 1,
                  "weight of a node without a fit (1: such nodes stay, no smoothing)"),
       TS_SETTING(axes.maxShiftRadii, Real, 0, 1e6, "largest axis move, radii"),
-      TS_SETTING(bridgeUnfittedForks, Boolean, 0, 1, "bridge forks without an accepted fit"),
       TS_SETTING(maxFitFlatFraction, Real, 0, 1, "pieces flatter than this are not fitted (1 = fit all)"),
       TS_SETTING(minInlierBandVoxels, Real, 0, 1e6, "least inlier band of the fits, voxels"),
   };

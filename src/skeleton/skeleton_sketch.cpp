@@ -327,19 +327,15 @@ std::vector<double> acceptFits(AutoSkeletonResult& res, const RadiusRules& rules
   return fitted;
 }
 
-/// Step 5: the model goes into the sketch: kept circles, bridged forks disabled.
-void handOver(AutoSkeletonResult& res, bool bridgeUnfittedForks) {
+/// Step 5: the model goes into the sketch, every node a kept circle (the model's position and
+/// radius). Forks without an accepted fit were once disabled, so the children's tubes joined the
+/// fork's parent ring; with the model's axes smoothed and its radii bounded by their points that
+/// bridging made the synthetic scans' backward error larger, not smaller
+/// (docs/notes/auto_sketch_options.md).
+void handOver(AutoSkeletonResult& res) {
   for (std::size_t i = 0; i < res.model.size(); ++i) {
     const auto& node = res.model[i];
-    const auto id = static_cast<sketch::NodeId>(i);
-    const bool fork = node.parent >= 0 && node.children.size() >= 2;
-    if (bridgeUnfittedForks && fork && !res.fitAccepted[i]) {
-      sketch::SamplingParams p = res.sketch.node(id).params;
-      p.enabled = false;
-      res.sketch.setParams(id, p);
-    } else {
-      res.sketch.setKeptCircle(id, sketch::KeptCircle{node.position, node.radius});
-    }
+    res.sketch.setKeptCircle(static_cast<sketch::NodeId>(i), sketch::KeptCircle{node.position, node.radius});
   }
 }
 
@@ -569,7 +565,7 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
     res.thickenedBySurface = bound.nodesThickened;
   }
   // 5.-6. The model into the sketch, and recon sweeps that sketch (kept circles need no fit).
-  handOver(res, options.bridgeUnfittedForks);
+  handOver(res);
   rec.update(res.sketch);
   res.mesh = rec.mesh();
   res.sweepMs += t1.ms();

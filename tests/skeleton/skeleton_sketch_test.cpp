@@ -248,22 +248,17 @@ TEST(SkeletonSketch, AutoSketchFitsRadiiAndRegularises) {
 // cleared (`reconstruct --refit`) the same rebuild fits every node from the cloud.
 TEST(SkeletonSketch, TheSketchRebuildsTheAutomaticModel) {
   const auto cloud = test::sampleCylinders(test::threeLevelTree(), 0.02, 0.003, 2);
-  for (double ratio : {2.0, 0.6}) {  // 0.6: many fits rejected, so forks are bridged
+  for (double ratio : {2.0, 0.6}) {  // 0.6: many fits rejected, forks without a fit among them
     skeleton::AutoSkeletonOptions o;
     o.radii.maxRadiusRatio = ratio;
     const auto res = skeleton::autoSkeletonSketch(cloud, o);
     ASSERT_FALSE(res.mesh.empty());
-    std::size_t bridged = 0;
     for (std::size_t i = 0; i < res.model.size(); ++i) {
-      const bool fork = res.model[i].parent >= 0 && res.model[i].children.size() >= 2;
-      const bool bridge = fork && !res.fitAccepted[i];
       const sketch::Node& node = res.sketch.node(static_cast<sketch::NodeId>(i));
-      EXPECT_EQ(node.params.enabled, !bridge) << "node " << i;
-      EXPECT_EQ(node.kept.has_value(), !bridge) << "node " << i;
-      if (node.kept) EXPECT_EQ(node.kept->radius, res.model[i].radius) << "node " << i;
-      bridged += bridge;
+      EXPECT_TRUE(node.params.enabled) << "node " << i;
+      ASSERT_TRUE(node.kept.has_value()) << "node " << i;
+      EXPECT_EQ(node.kept->radius, res.model[i].radius) << "node " << i;
     }
-    if (ratio < 1) EXPECT_GE(bridged, 1u);
     std::stringstream file;
     io::writeSketch(file, res.sketch);
     const sketch::Sketch back = io::readSketch(file, "auto.json");
@@ -277,7 +272,7 @@ TEST(SkeletonSketch, TheSketchRebuildsTheAutomaticModel) {
     std::size_t kept = 0;
     for (const auto& [id, r] : rebuilt.results) kept += r.kept;
     EXPECT_EQ(kept, res.sketch.keptCircleCount());
-    EXPECT_EQ(kept + bridged, res.model.size());
+    EXPECT_EQ(kept, res.model.size());
   }
   sketch::Sketch refit = skeleton::autoSkeletonSketch(cloud).sketch;
   refit.clearKeptCircles();
@@ -412,22 +407,23 @@ TEST(SkeletonSketch, EmptyCloud) {
   EXPECT_TRUE(res.mesh.empty());
 }
 
-TEST(SkeletonSketch, UnfittedForksAreBridgedInTheMesh) {
+TEST(SkeletonSketch, EveryNodeIsAKeptCircleForksWithoutAFitToo) {
+  // Forks without an accepted fit keep their ring in the sketch (and so in the mesh), at the
+  // model's position and radius: the sketch a person edits is the model.
   const auto cloud = test::sampleCylinders(test::threeLevelTree(), 0.02, 0.003, 2);
   skeleton::AutoSkeletonOptions o;
   o.radii.maxRadiusRatio = 1e-6;  // reject (nearly) every fit, so the forks have none
-  o.bridgeUnfittedForks = false;
-  const auto kept = skeleton::autoSkeletonSketch(cloud, o);
-  o.bridgeUnfittedForks = true;
-  const auto bridged = skeleton::autoSkeletonSketch(cloud, o);
-  ASSERT_EQ(kept.model.size(), bridged.model.size());
+  const auto res = skeleton::autoSkeletonSketch(cloud, o);
+  ASSERT_EQ(res.sketch.size(), res.model.size());
   int unfittedForks = 0;
-  for (std::size_t i = 0; i < bridged.model.size(); ++i)
-    unfittedForks += bridged.model[i].parent >= 0 && bridged.model[i].children.size() >= 2 && !bridged.fitAccepted[i];
-  ASSERT_GE(unfittedForks, 1);
-  // Each bridged fork loses exactly its ring; its parent and children keep theirs (no new caps).
-  EXPECT_EQ(kept.mesh.vertices.size() - bridged.mesh.vertices.size(), std::size_t(16 * unfittedForks));
-  EXPECT_EQ(bridged.sketch.size(), kept.sketch.size());  // the sketch keeps every node
+  for (std::size_t i = 0; i < res.model.size(); ++i) {
+    unfittedForks += res.model[i].parent >= 0 && res.model[i].children.size() >= 2 && !res.fitAccepted[i];
+    const sketch::Node& node = res.sketch.node(static_cast<sketch::NodeId>(i));
+    ASSERT_TRUE(node.kept.has_value()) << "node " << i;
+    EXPECT_EQ(node.kept->centre, res.model[i].position) << "node " << i;
+    EXPECT_EQ(node.kept->radius, res.model[i].radius) << "node " << i;
+  }
+  EXPECT_GE(unfittedForks, 1);
 }
 
 TEST(SkeletonSketch, ABranchTapersPastItsLastFit) {

@@ -191,7 +191,7 @@ TEST(ActionScript, RefitButtonsDropKeptCircles) {
   EXPECT_TRUE(report.failures.empty());
   const std::size_t kept = state.sketch().keptCircleCount();
   ASSERT_GE(kept, 2u);
-  ASSERT_TRUE(state.sketch().node(0).kept.has_value());  // the root is never a bridged fork
+  ASSERT_TRUE(state.sketch().node(0).kept.has_value());  // every node is the model's circle
   report = runActionScript(state, parse(R"([{"select": 0}, "refit"])"));
   EXPECT_TRUE(report.failures.empty());
   EXPECT_FALSE(state.sketch().node(0).kept.has_value());

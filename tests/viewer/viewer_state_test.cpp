@@ -355,7 +355,7 @@ TEST(ViewerState, SkeletonAutoSketchKeepsItsModelUntilRefit) {
   const std::size_t n = f.state.sketch().size();
   ASSERT_GE(n, 3u);
   const std::size_t kept = f.state.sketch().keptCircleCount();
-  EXPECT_GE(kept, n - 1);  // all but bridged forks (a trunk has none)
+  EXPECT_EQ(kept, n);  // every node is the model's circle
   const sketch::NodeId id = f.state.sketch().root();
   ASSERT_TRUE(f.state.scene().nodeFit(id).kept);
   EXPECT_EQ(f.state.scene().nodeFit(id).status, NodeStatus::Fitted);

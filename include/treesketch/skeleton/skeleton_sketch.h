@@ -158,10 +158,6 @@ struct AutoSkeletonOptions {
   fit::NodeFitOptions fit = autoNodeFitOptions();
   RadiusRules radii;
   AxisRules axes;
-  /// Forks without an accepted fit are bridged (disabled in the sketch, so the children's tubes
-  /// join the fork's parent ring): a fork's level set holds its children's bases, so its centroid
-  /// often sits between the branches, off the wood. The node stays in the model and the sketch.
-  bool bridgeUnfittedForks = true;
   /// Nodes whose piece is more than this share flat voxels (leaves; SkeletonNode::flatFraction,
   /// only the leaf-on settings measure it) are not fitted: their slices hold blades, not the twig.
   /// 1 = fit every node.
