@@ -71,15 +71,13 @@ const geom::PointCloud& cloud1M() {
   return cloud;
 }
 
-/// An earlier leaf-off skeleton (no sparse links, bridges within 8 voxels along a piece's axis,
-/// the cross-section rule 0.6 / 0.3): the reference path for same-run ratios.
+/// An earlier leaf-off skeleton (no sparse links, bridges within 8 voxels along a piece's axis):
+/// the reference path for same-run ratios. (It also had a cross-section rule, since removed.)
 void earlierLeafOffSkeleton(skeleton::SkeletonOptions& o) {
   o.graph.sparseLinkNeighbours = 0;
   o.graph.maxGapVoxels = 8;
   o.graph.coneAngleDeg = 45;
   o.graph.minBridgeLinearity = 0.4;
-  o.minTubularFraction = 0.6;
-  o.minTubularFractionLong = 0.3;
 }
 
 void BM_ExtractSkeleton1M(benchmark::State& state) {

@@ -319,8 +319,6 @@ void setRadiiAndShape(const VoxelGraph& g, const GeodesicLevels& lv, const std::
     const double mean = ownSum[i] / count[i];
     const double var = std::max(ownSq[i] / count[i] - mean * mean, 0.0);
     nodes[i].ringVariation = static_cast<float>(mean > 0 ? std::sqrt(var) / mean : 0.0);
-    nodes[i].tubular =
-        mean <= options.thinRadiusVoxels * g.voxelSize || nodes[i].ringVariation <= options.maxRingVariation;
   }
 }
 

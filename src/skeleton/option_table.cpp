@@ -57,8 +57,6 @@ std::vector<SettingRow> levelSetRows() {
       TS_SETTING(skeleton.binWidthVoxels, Real, 1e-3, 1e3, "level set width, voxels"),
       TS_SETTING(skeleton.rootHeightVoxels, Real, 0, 1e6, "root region height, voxels"),
       TS_SETTING(skeleton.minRadiusVoxels, Real, 1e-3, 1e3, "smallest node radius, voxels"),
-      TS_SETTING(skeleton.thinRadiusVoxels, Real, 0, 1e3, "a piece this thin is tubular, voxels"),
-      TS_SETTING(skeleton.maxRingVariation, Real, 0, 1e3, "a piece this ring-like is tubular"),
       TS_SETTING(skeleton.trackStem, Boolean, 0, 1, "track the stem by circle fits"),
       TS_SETTING(skeleton.splitMergedForks, Boolean, 0, 1, "cut merged pieces below a fork along its limbs"),
   };
@@ -69,9 +67,6 @@ std::vector<SettingRow> pruningRows() {
       TS_SETTING(skeleton.spurLengthRadii, Real, 0, 1e3, "spur length, fork radii (0 = by level sets only)"),
       TS_SETTING(skeleton.spurLengthBins, Real, 0, 1e3, "spur length, level sets"),
       TS_SETTING(skeleton.twigOutBins, Real, 0, 1e3, "a spur standing out this far is a twig, level sets (0 = off)"),
-      TS_SETTING(skeleton.minTubularFraction, Real, 0, 1, "foliage rule: tubular share a side branch needs (0 = off)"),
-      TS_SETTING(skeleton.longBranchBins, Real, 0, 1e6, "sub-trees this long are limbs, level sets"),
-      TS_SETTING(skeleton.minTubularFractionLong, Real, 0, 1, "tubular share long sub-trees need (0 = off)"),
       TS_SETTING(skeleton.minEndSupportFraction, Real, 0, 1e3, "end nodes below this share of the parent's points go"),
       TS_SETTING(skeleton.forkZoneRadii, Real, 0, 1e3, "fork zone moved onto the parent's line, radii"),
       TS_SETTING(skeleton.collinearToleranceRadii, Real, 0, 1e3, "chain simplification tolerance, radii"),

@@ -34,7 +34,6 @@ struct RawTree {
   std::vector<double> reach;         ///< longest path down each subtree, world units
   std::vector<std::int32_t> mainOf;  ///< the child continuing each node's branch, -1 for none
   std::vector<double> radius;        ///< smoothed radii
-  std::vector<double> tubularShare;  ///< tubular points / points of each subtree
 };
 
 // Radius: running median over radiusMedianWindow nodes along the main chain through each node.
@@ -62,34 +61,15 @@ std::vector<double> smoothRadii(const std::vector<SkeletonNode>& raw, const std:
   return radius;
 }
 
-// Share of each subtree's points (support) in tubular pieces, bottom-up.
-std::vector<double> tubularShares(const std::vector<SkeletonNode>& raw) {
-  const std::size_t n = raw.size();
-  std::vector<double> tubSum(n), supSum(n);
-  for (std::size_t i = n; i-- > 0;) {
-    tubSum[i] += raw[i].tubular ? raw[i].support : 0;
-    supSum[i] += raw[i].support;
-    if (raw[i].parent >= 0) {
-      tubSum[raw[i].parent] += tubSum[i];
-      supSum[raw[i].parent] += supSum[i];
-    }
-  }
-  std::vector<double> share(n);
-  for (std::size_t i = 0; i < n; ++i) share[i] = supSum[i] > 0 ? tubSum[i] / supSum[i] : 0.0;
-  return share;
-}
-
 RawTree describe(const std::vector<SkeletonNode>& raw, const SkeletonOptions& options) {
-  RawTree t{raw, detail::subtreeReach(raw), {}, {}, {}};
+  RawTree t{raw, detail::subtreeReach(raw), {}, {}};
   t.mainOf.resize(raw.size());
   for (std::size_t i = 0; i < raw.size(); ++i) t.mainOf[i] = mainChild(raw, t.reach, i);
   t.radius = smoothRadii(raw, t.mainOf, options.radiusMedianWindow);
-  t.tubularShare = tubularShares(raw);
   return t;
 }
 
-// Drop spurs and foliage: a side child c of node i is kept when its sub-tree is long enough not to
-// be a spur and tubular enough not to be leaves (long sub-trees need a smaller share).
+// Drop spurs: a side child c of node i is kept when its sub-tree is long enough not to be a spur.
 // How far a side sub-tree reaches out of its parent's surface: the largest distance of its nodes
 // from the parent's axis (the line through node i along its direction) less i's radius.
 double reachOutOfParent(const RawTree& t, std::size_t i, std::int32_t c) {
@@ -109,9 +89,6 @@ double reachOutOfParent(const RawTree& t, std::size_t i, std::int32_t c) {
 bool keepSideBranch(const RawTree& t, std::size_t i, std::int32_t c, double binWidth, const SkeletonOptions& o) {
   const double spur = std::max(o.spurLengthRadii * t.radius[i], o.spurLengthBins * binWidth);
   const double length = t.reach[c] + (t.raw[c].position - t.raw[i].position).norm();
-  const double minTub = length >= o.longBranchBins * binWidth ? std::min(o.minTubularFraction, o.minTubularFractionLong)
-                                                              : o.minTubularFraction;
-  if (t.tubularShare[c] < minTub) return false;
   if (length >= spur) return true;
   // Shorter than a spur, but standing out of the parent's surface: a twig, not a bump or a strip
   // of bark (those lie on the surface).

@@ -33,11 +33,6 @@ void checkOptions(const SkeletonOptions& o) {
   nonNegative(o.twigOutBins, "twigOutBins");
   nonNegative(o.minEndSupportFraction, "minEndSupportFraction");
   nonNegative(o.forkZoneRadii, "forkZoneRadii");
-  nonNegative(o.thinRadiusVoxels, "thinRadiusVoxels");
-  nonNegative(o.maxRingVariation, "maxRingVariation");
-  nonNegative(o.minTubularFraction, "minTubularFraction");
-  nonNegative(o.longBranchBins, "longBranchBins");
-  nonNegative(o.minTubularFractionLong, "minTubularFractionLong");
   nonNegative(o.collinearToleranceRadii, "collinearToleranceRadii");
   nonNegative(o.collinearToleranceVoxels, "collinearToleranceVoxels");
   positive(o.maxSegmentRadii, "maxSegmentRadii");
@@ -164,8 +159,6 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
 SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base) {
   base.graph.autoSpacingFactor = 1.5;
   base.binWidthVoxels = 1.0;
-  base.minTubularFraction = 0.2;
-  base.minTubularFractionLong = 0.3;
   base.graph.maxGapVoxels = 8.0;
   base.graph.coneAngleDeg = 45.0;
   base.graph.minBridgeLinearity = 0.4;

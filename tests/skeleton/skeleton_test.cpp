@@ -167,31 +167,28 @@ TEST(Skeleton, LeafClutterDoesNotGrowBranches) {
   auto cloud = test::sampleCylinders(cyls, 0.02, 0.003, 7);
   const std::vector<test::Cyl> tips = {cyls[1], cyls[2]};
   cloud.append(leafClutter(tips, 40, 0.35, 9));
-  // The foliage guards (the leaf-on settings' bridging cone and cross-section rule, here on the
-  // leaf-off voxels, with the strict 0.6 rule) keep leaves from growing branches...
+  // The foliage guards (the leaf-on settings' bridging cone, here on the leaf-off voxels) keep
+  // leaves from growing branches...
   skeleton::SkeletonOptions guarded;
-  guarded.minTubularFraction = 0.6;
-  guarded.minTubularFractionLong = 0.3;
   guarded.graph.maxGapVoxels = 8;
   guarded.graph.coneAngleDeg = 45;
   guarded.graph.minBridgeLinearity = 0.4;
   guarded.twigOutBins = 0;  // as leafOnSkeletonOptions: a short piece standing out is a leaf as often
   guarded.splitMergedForks = false;  // as leafOnSkeletonOptions: leaf clusters are not limbs
   const auto s = skeleton::extractSkeleton(cloud, guarded);
-  // Known limit: with this dense clutter (80 leaves within 0.35 of two tips) a few leaf spurs
-  // survive; the true tree has 1 fork and 2 ends. The foliage rules remove most of them.
-  EXPECT_LE(skeleton::countBranchPoints(s.nodes), 4u);
-  EXPECT_LE(skeleton::countEnds(s.nodes), 5u);
-  // ...which the leaf-off defaults do not have (a leaf-off scan has no leaves): the clutter grows forks.
+  // ...which the leaf-off defaults do not have (a leaf-off scan has no leaves): the clutter grows
+  // forks. Known limit: with this dense clutter (80 leaves within 0.35 of two tips) leaf spurs
+  // survive the guards too (the true tree has 1 fork and 2 ends; measured 8 forks and 10 ends
+  // guarded, 14 and 23 without); the guards take at least 40 % of them.
   const auto unfiltered = skeleton::extractSkeleton(cloud);
-  EXPECT_GE(skeleton::countBranchPoints(unfiltered.nodes), skeleton::countBranchPoints(s.nodes) + 3);
+  const std::size_t forks = skeleton::countBranchPoints(s.nodes), ends = skeleton::countEnds(s.nodes);
+  EXPECT_GE(skeleton::countBranchPoints(unfiltered.nodes), forks + 3);
+  EXPECT_LE(10 * forks, 6 * skeleton::countBranchPoints(unfiltered.nodes));
+  EXPECT_LE(10 * ends, 6 * skeleton::countEnds(unfiltered.nodes));
 }
 
 // A tree scanned sparsely from one side only (a single station, as real scans often are): the
-// level sets of a branch are noisy half rings, neither thin nor rings, so a strict cross-section
-// rule (0.6 for every side sub-tree, the old leaf-off default) drops side branches; the leaf-off
-// defaults have no foliage rule, and the leaf-on rule asks long sub-trees for only
-// minTubularFractionLong.
+// level sets of a branch are noisy half rings, and every side branch and twig is still reached.
 TEST(Skeleton, OneSidedLimbsAreKept) {
   const auto cyls = test::threeLevelTree();
   const auto full = test::sampleCylinders(cyls, 0.04, 0.01, 13);
@@ -217,13 +214,7 @@ TEST(Skeleton, OneSidedLimbsAreKept) {
   const auto s = skeleton::extractSkeleton(half);
   EXPECT_EQ(tipsReached(s.nodes), 4);
   EXPECT_LE(skeleton::countEnds(s.nodes), 7u);  // the true tree has 5
-  skeleton::SkeletonOptions longRule;
-  longRule.minTubularFraction = 0.6;
-  longRule.minTubularFractionLong = 0.3;
-  EXPECT_EQ(tipsReached(skeleton::extractSkeleton(half, longRule).nodes), 4);
-  skeleton::SkeletonOptions strict = longRule;
-  strict.minTubularFractionLong = strict.minTubularFraction;
-  EXPECT_LE(tipsReached(skeleton::extractSkeleton(half, strict).nodes), 2);
+  EXPECT_EQ(tipsReached(skeleton::extractSkeleton(half, skeleton::leafOnSkeletonOptions()).nodes), 4);
 }
 
 TEST(Skeleton, Deterministic) {
@@ -248,7 +239,6 @@ TEST(Skeleton, LeafOnSettingsKeepTheRestOfTheBase) {
   EXPECT_LT(o.graph.autoSpacingFactor, base.graph.autoSpacingFactor);
   EXPECT_LT(o.binWidthVoxels, base.binWidthVoxels);
   // The foliage guards are on leaf-on only.
-  EXPECT_GT(o.minTubularFraction, base.minTubularFraction);
   EXPECT_LT(o.graph.maxGapVoxels, base.graph.maxGapVoxels);
   EXPECT_LT(o.graph.coneAngleDeg, base.graph.coneAngleDeg);
 }
@@ -362,8 +352,6 @@ TEST(Skeleton, LevelSetCentroidPositionsMoveCentroidsAndRadiiButNotTheShapeTest)
     EXPECT_NEAR(moved[i].radius, 0.5 * own[i].radius, 0.15 * own[i].radius) << i;
     EXPECT_LT(std::hypot(moved[i].position.x(), moved[i].position.z()), 0.3 * own[i].radius) << i;
     EXPECT_NEAR(moved[i].ringVariation, own[i].ringVariation, 0.05) << i;
-    EXPECT_TRUE(own[i].tubular) << i;
-    EXPECT_TRUE(moved[i].tubular) << i;
   }
   EXPECT_GT(compared, 5);
   // One centroid position per voxel or an error.

@@ -45,12 +45,6 @@ struct SkeletonOptions {
   double rootHeightVoxels = 1.5;
   /// Smallest node radius, voxels: a piece one voxel across has no measurable spread about its axis.
   double minRadiusVoxels = 0.25;
-  /// A piece is tubular when it is thin: mean distance of its voxels to its axis at most this, voxels
-  /// (a twig's piece, a voxel or two across)...
-  double thinRadiusVoxels = 0.5;
-  /// ...or a ring: std / mean of those distances at most this (a noisy ring ~0.1-0.3, a leaf cluster
-  /// a blob ~0.5 and more).
-  double maxRingVariation = 0.4;
   /// Track the stem from its base by circle fits and make each level set's voxels in its tube one
   /// piece (stem_tracking.h): on a sparsely scanned trunk a level set's ring breaks into arcs,
   /// and each arc went on as a thin chain up the trunk's surface beside a one-sided trunk node.
@@ -74,17 +68,6 @@ struct SkeletonOptions {
   /// spurious tips at 73k rays to 2.5 per limb, 1.5–2 gained half as much
   /// (docs/notes/skeleton_options.md, "twigOutBins").
   double twigOutBins = 1.0;
-  /// Foliage: a side sub-tree whose tubular share (by points) is below this is dropped as leaves.
-  /// 0 (off) for leaf-off scans: there are no leaves, and the rule dropped sparsely or noisily
-  /// scanned limbs (real scans' missed wood 7.5 → 4 %, 40 → 20 %); leaf-on 0.2
-  /// (leafOnSkeletonOptions); 0.6 keeps the leaf-clutter test at ≤ 4 forks.
-  double minTubularFraction = 0.0;
-  /// Sub-trees at least this many level sets long are real limbs even when scanned sparsely or
-  /// from one side (then neither thin nor ring-like); leaf clusters grow spurs a few leaves long.
-  double longBranchBins = 10.0;
-  /// The tubular share such long sub-trees need (the smaller of the two rules applies): 0.3 kept
-  /// the one-sided limbs that 0.6 dropped; 0 (off) leaf-off, 0.3 leaf-on.
-  double minTubularFractionLong = 0.0;
   /// End nodes with less support (points) than this fraction of their parent's are dropped: the
   /// partial last level set of a tip, off the axis; 0.1 drops the slivers, and shortens branches least.
   double minEndSupportFraction = 0.1;
@@ -151,13 +134,15 @@ struct SkeletonOptions {
 
 /// Settings for scans of trees in leaf, applied to `base`: finer voxels (graph.autoSpacingFactor 1.5
 /// instead of 2.5), level sets one voxel wide, the foliage guards on (bridges only along a piece's
-/// axis within 8 voxels; a weak cross-section rule, minTubularFraction 0.2, 0.3 for long
-/// sub-trees), partial tips dropped below half their parent's support (in a crown they are leaf
-/// ends), no short side branch kept for standing out of its parent (twigOutBins 0: leaves stand
-/// out too), no pieces cut along a fork's limbs (splitMergedForks off: leaf clusters are not limbs) and leaf-entry
-/// positions with plane convergence. Finer pieces keep neighbouring twigs' clusters apart and follow them out to the
-/// twigs, where the strict rule drops them with the limbs that carry them. Not the default: on densely, randomly
-/// sampled surfaces 1.5 spacings leave holes in the voxel graph that split rings into arcs (spurious forks).
+/// axis within 8 voxels), partial tips dropped below half their parent's support (in a crown they
+/// are leaf ends), no short side branch kept for standing out of its parent (twigOutBins 0: leaves
+/// stand out too), no pieces cut along a fork's limbs (splitMergedForks off: leaf clusters are not
+/// limbs) and leaf-entry positions with plane convergence. Finer pieces keep neighbouring twigs'
+/// clusters apart and follow them out to the twigs. (A cross-section rule that dropped side
+/// sub-trees with few thin or ring-like pieces as foliage was removed: over the leaf-on matrix it
+/// changed the RMS by under 0.01 and the tips per limb by 2-9 %; docs/notes/leaf_on_skeleton.md.)
+/// Not the default: on densely, randomly sampled surfaces 1.5 spacings leave holes in the voxel
+/// graph that split rings into arcs (spurious forks).
 SkeletonOptions leafOnSkeletonOptions(SkeletonOptions base = {});
 
 /// One skeleton node (raw level-set piece, or a kept node after simplification).
@@ -172,7 +157,6 @@ struct SkeletonNode {
   std::int32_t support = 0;  ///< input points in the piece(s) the node stands for
   float linearity = 0;       ///< support-weighted mean linearity of the piece's voxels
   float ringVariation = 0;   ///< std / mean of the voxels' (own) distances to the axis (ring ~ low)
-  bool tubular = true;       ///< thin or ring-like (see SkeletonOptions::maxRingVariation)
   /// Share of the piece's voxels the leaf-plane test found flat (leaves; see
   /// SkeletonOptions::leafEntryPositions); 0 when the test did not run (leaf-off settings).
   float flatFraction = 0;
@@ -227,11 +211,11 @@ Skeleton extractSkeleton(const geom::PointCloud& cloud, const SkeletonOptions& o
 /// with other options): Dijkstra from the root region, then level-set nodes.
 GeodesicLevels computeGeodesicLevels(const VoxelGraph& graph, const SkeletonOptions& options);
 /// `centroids` (optional, one per voxel): the positions the pieces' centroids and radii are taken
-/// over instead of the voxels' own (the leaf-entry positions); ring variation and the tubular
-/// test stay on the voxels' own positions (the scanned shape).
+/// over instead of the voxels' own (the leaf-entry positions); ring variation stays on the voxels'
+/// own positions (the scanned shape).
 std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& graph, GeodesicLevels& levels, const SkeletonOptions& options,
                                         const std::vector<geom::Vec3>* centroids = nullptr);
-/// Pruning (spurs, foliage) and simplification of raw nodes. The result's index 0 is the root
+/// Pruning (spurs, partial tips) and simplification of raw nodes. The result's index 0 is the root
 /// and parents come before children.
 std::vector<SkeletonNode> simplifySkeleton(const std::vector<SkeletonNode>& raw, double voxelSize, double binWidth,
                                            const SkeletonOptions& options);
