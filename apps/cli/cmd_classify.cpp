@@ -41,6 +41,9 @@ struct ClassifyArgs {
   int leafVariants = 2;
   bool noPosition = false;
   bool noNormal = false;
+  int rounds = 0, depth = 0;  // 0: the library's defaults (classify::BoostOptions)
+  double learningRate = 0;
+  std::size_t rowsPerScan = 0;  // 0: eval::ClassifierTraining's default
 };
 
 classify::ClassifyOptions classifyOptions(const ClassifyArgs& a) {
@@ -75,6 +78,10 @@ void runTrain(const ClassifyArgs& a) {
   t.leafVariants = a.leafVariants;
   t.features.positionFeatures = !a.noPosition;
   t.features.normalFeatures = !a.noNormal;
+  if (a.rounds > 0) t.boost.rounds = a.rounds;
+  if (a.depth > 0) t.boost.depth = a.depth;
+  if (a.learningRate > 0) t.boost.learningRate = a.learningRate;
+  if (a.rowsPerScan > 0) t.rowsPerScan = a.rowsPerScan;
   t.log = [](const std::string& line) { std::cerr << line << "\n"; };
   const classify::BoostedTrees m = a.train.empty() ? eval::trainContextClassifier(labelledTrees(a, true), t)
                                                    : eval::trainClassifier(labelledTrees(a, true), t);
@@ -184,6 +191,16 @@ void registerClassify(CLI::App& app, Action& action) {
                 "--train: leave out the height and distance from the stem (shape and paths only)");
   cmd->add_flag("--no-normal-features", a->noNormal,
                 "--train: leave out how the surface normals turn over each neighbourhood");
+  cmd->add_option("--rounds", a->rounds, "--train, --train-context: boosted trees (default: the library's, 150)")
+      ->check(CLI::Range(1, 10000));
+  cmd->add_option("--depth", a->depth, "--train, --train-context: depth of each tree (default: the library's, 3)")
+      ->check(CLI::Range(1, 12));
+  cmd->add_option("--learning-rate", a->learningRate,
+                  "--train, --train-context: each tree's learning rate (default: the library's, 0.15)")
+      ->check(CLI::Range(1e-4, 1.0));
+  cmd->add_option("--rows-per-scan", a->rowsPerScan,
+                  "--train, --train-context: core points sampled per scan (default: 20000)")
+      ->check(CLI::Range(std::size_t{100}, std::size_t{10000000}));
   cmd->add_option("--metres-per-unit", a->metresPerUnit, "Scale of the --trees meshes")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

@@ -103,6 +103,11 @@ TEST(ClassifyCli, BadInputAndOptionsGiveClearErrors) {
             2)
       << out;
   EXPECT_NE(out.find("separate runs"), std::string::npos) << out;
+  // The training's size options are checked before anything is scanned.
+  for (const char* bad : {" --depth 0", " --rounds 0", " --learning-rate 2", " --rows-per-scan 10"})
+    EXPECT_EQ(test::runCli("classify --train " + quoted(dir / "c.json") + " --trees " + quoted(dir.path()) + bad, &out),
+              2)
+        << bad << ": " << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "c.json"));
   EXPECT_FALSE(std::filesystem::exists(dir / "o.ply"));
 }
