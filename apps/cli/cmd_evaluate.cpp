@@ -111,7 +111,7 @@ void addMethodOptions(CLI::App& cmd, EvaluateOpts& o) {
   cmd.add_option("--target", o.c.targetPct, "--correcting-user: RMS target both ways, % of the diagonal")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  // The automatic model's settings, over its leaf-off or leaf-on preset (the skeleton methods).
+  // The automatic model's settings, over its leaf-off or leaf-on preset (eval::automaticModelOptions).
   addSettingOptions(&cmd, o.e.skeletonSettings);
 }
 

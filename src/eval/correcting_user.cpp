@@ -405,10 +405,8 @@ std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& 
         if ((leafOn && !(eo.leafOn && c.leafOn)) || (!leafOn && !(eo.leafOff && c.leafOff))) continue;
         const Stopwatch timer;
         TreeScan scan = scanTree(tree, c, leafOn, eo.seed);
-        skeleton::AutoSkeletonOptions so =
-            skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, tree.up);
-        so.seed = eo.seed;
-        skeleton::AutoSkeletonResult automatic = skeleton::autoSkeletonSketch(scan.cloud, so);
+        skeleton::AutoSkeletonResult automatic =
+            skeleton::autoSkeletonSketch(scan.cloud, automaticModelOptions(leafOn, tree.up, eo));
         CorrectingUserOptions co = o;
         co.distance.minSamples = eo.minSamples;
         co.distance.samples = eo.samples;

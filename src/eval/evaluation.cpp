@@ -105,10 +105,7 @@ MethodOutput methodIdeal(const MethodInput& in) {
 
 MethodOutput methodSkeleton(const MethodInput& in) {
   const Stopwatch timer;
-  skeleton::AutoSkeletonOptions so =
-      skeleton::autoSkeletonPreset(in.leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, in.tree.up);
-  so.seed = in.options.seed;
-  for (const std::string& s : in.options.skeletonSettings) skeleton::applySetting(so, s);
+  const skeleton::AutoSkeletonOptions so = automaticModelOptions(in.leafOn, in.tree.up, in.options);
   skeleton::AutoSkeletonResult r = skeleton::autoSkeletonSketch(in.cloud, so);
   MethodOutput out;
   out.model = model::fromAutoSkeleton(r, in.tree.up);
@@ -155,6 +152,14 @@ const std::map<std::string, Method>& registry() {
 }
 
 }  // namespace
+
+skeleton::AutoSkeletonOptions automaticModelOptions(bool leafOn, geom::UpAxis up, const EvalOptions& options) {
+  skeleton::AutoSkeletonOptions so =
+      skeleton::autoSkeletonPreset(leafOn ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, up);
+  so.seed = options.seed;
+  for (const std::string& s : options.skeletonSettings) skeleton::applySetting(so, s);
+  return so;
+}
 
 std::vector<std::string> defaultMethodNames() {
   std::vector<std::string> names;

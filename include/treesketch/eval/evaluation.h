@@ -40,6 +40,7 @@
 #include "treesketch/geom/tri_mesh.h"
 #include "treesketch/model/tree_model.h"
 #include "treesketch/recon/reconstruction.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
 #include "treesketch/sketch/sketch.h"
 
 namespace treesketch::eval {
@@ -112,8 +113,9 @@ struct EvalOptions {
   std::uint64_t minSamples = 20000;
   std::uint64_t seed = 1;
   /// Settings of the automatic model (skeleton/option_table.h, NAME=VALUE as `reconstruct --set`),
-  /// applied after the leaf-off or leaf-on preset in the skeleton methods: an ablation of one rule
-  /// over the matrix. Empty: the defaults.
+  /// applied after the leaf-off or leaf-on preset wherever the automatic model is made (the
+  /// skeleton methods, the simulated correcting user's start): an ablation of one rule over the
+  /// matrix. Empty: the defaults.
   std::vector<std::string> skeletonSettings;
   /// Called with a one-line message as each case finishes (may be empty).
   std::function<void(const std::string&)> log;
@@ -218,6 +220,9 @@ using Method = std::function<MethodOutput(const MethodInput&)>;
 std::vector<std::string> methodNames();
 /// The methods an evaluation runs when none are named: all but "skeleton-wood".
 std::vector<std::string> defaultMethodNames();
+/// The automatic model's settings for a scan in leaf or not: the preset for `up`, options.seed,
+/// then options.skeletonSettings (the skeleton methods and the simulated correcting user).
+skeleton::AutoSkeletonOptions automaticModelOptions(bool leafOn, geom::UpAxis up, const EvalOptions& options);
 /// How the simulated careful user's nodes are fitted (seed: options.seed): the thesis's fit, with
 /// the depth choice and radius inference of the desktop tool when options.chooseDepth, no growth
 /// of a screen node's test region unless options.userGrowth, and the inlier band
