@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "eval_methods.h"
+#include "treesketch/accel/point_index.h"
 #include "treesketch/classify/classify.h"
 #include "treesketch/eval/user_node_causes.h"
 #include "treesketch/sketch/auto_sketch.h"
@@ -98,10 +99,80 @@ std::vector<TrueNode> trueNodes(const TreeCase& tree, const std::vector<sketch::
 
 }  // namespace
 
+std::vector<sketch::BranchPolyline> seenBranches(const std::vector<sketch::BranchPolyline>& axes,
+                                                 const std::vector<std::vector<double>>& radii,
+                                                 const geom::PointCloud& seen, double halfThickness, int minPoints) {
+  const accel::PointIndex index(seen);
+  std::vector<std::uint32_t> near;
+  // Whether the points show the branch at p (tangent t, radius r): enough of them in the slab
+  // across it, within two radii and a slab's half-thickness (where a node there would fit).
+  auto shows = [&](const geom::Vec3& p, const geom::Vec3& t, double r) {
+    index.withinRadius(p, 2 * r + halfThickness, near);
+    int n = 0;
+    for (std::uint32_t i : near)
+      if (std::abs((index.point(i) - p).dot(t)) <= halfThickness && ++n >= minPoints) return true;
+    return false;
+  };
+  // drawn[i]: how many of branch i's vertices are drawn (0: the branch is not).
+  std::vector<std::size_t> drawn(axes.size(), 0);
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    const auto& b = axes[i];
+    const int parent = b.parent;
+    if (parent >= static_cast<int>(i)) continue;  // parents come first; anything else is not drawn
+    if (parent >= 0 && (drawn[parent] == 0 || b.parentVertex >= drawn[parent])) continue;
+    const std::vector<double>* rs = i < radii.size() && radii[i].size() == b.points.size() ? &radii[i] : nullptr;
+    // Vertex 0, then each segment sampled a radius apart (at least a slab's thickness) up to its
+    // end vertex: the vertices reached while every sample shows the branch are drawn.
+    auto radiusAt = [&](std::size_t v) { return rs ? std::max((*rs)[v], 0.0) : 0.0; };
+    std::size_t count = 0;
+    if (b.points.size() >= 2) {
+      const geom::Vec3 d0 = b.points[1] - b.points[0];
+      const geom::Vec3 t0 = d0.norm() > 0 ? geom::Vec3(d0.normalized()) : geom::Vec3::UnitY();
+      if (shows(b.points[0], t0, radiusAt(0))) count = 1;
+    }
+    for (std::size_t v = 0; count == v + 1 && v + 1 < b.points.size(); ++v) {
+      const geom::Vec3 a = b.points[v], e = b.points[v + 1];
+      const double len = (e - a).norm();
+      if (!(len > 0)) {
+        count = v + 2;
+        continue;
+      }
+      const geom::Vec3 t = (e - a) / len;
+      const double ra = radiusAt(v), re = radiusAt(v + 1);
+      const double step = std::max(std::max(ra, re), 2 * halfThickness);
+      const int samples = std::max(1, static_cast<int>(std::ceil(len / step)));
+      bool ok = true;
+      for (int k = 1; k <= samples && ok; ++k) {
+        const double f = static_cast<double>(k) / samples;
+        ok = shows(a + f * (e - a), t, ra + f * (re - ra));
+      }
+      if (ok) count = v + 2;
+    }
+    // A branch drawn is a line: its base and one more vertex at least.
+    drawn[i] = count >= 2 ? count : 0;
+  }
+  std::vector<int> newIndex(axes.size(), -1);
+  std::vector<sketch::BranchPolyline> out;
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    if (drawn[i] == 0) continue;
+    newIndex[i] = static_cast<int>(out.size());
+    sketch::BranchPolyline b = axes[i];
+    b.points.resize(drawn[i]);
+    if (b.parent >= 0) b.parent = newIndex[b.parent];
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
 sketch::PolylineSketchOptions userOptions(const MethodInput& in, std::vector<sketch::BranchPolyline>& axes) {
+  return userOptions(in, in.tree.axes, axes);
+}
+
+sketch::PolylineSketchOptions userOptions(const MethodInput& in, const std::vector<sketch::BranchPolyline>& source,
+                                          std::vector<sketch::BranchPolyline>& axes) {
   sketch::PolylineSketchOptions po;
   double spacing = 0;
-  axes = branchesForBudget(in.tree.axes, in.nodeCount, &spacing);
+  axes = branchesForBudget(source, in.nodeCount, &spacing);
   po.nodeSpacing = spacing;
   po.pixelNoise = in.options.pixelNoise;
   po.seed = in.options.seed;
@@ -142,23 +213,32 @@ namespace detail {
 // labels (a simulated scan) each node's cause is recorded (not timed).
 MethodOutput methodUser(const MethodInput& in) {
   const Stopwatch timer;
-  std::vector<sketch::BranchPolyline> axes;
-  auto po = userOptions(in, axes);
-  sketch::Sketch sk = sketch::sketchFromPolylines(axes, viewCamera(in), po);
   const recon::ReconstructionOptions ro = carefulUserFitOptions(in.options, in.tree.metresPerUnit);
   std::vector<std::uint8_t> kept(in.cloud.size(), 1);
-  MethodOutput out;
-  NodeResults results;
-  bool fitted = false;
+  bool onWood = false;
   if (in.leafOn && in.options.userFitsOnWood) {
     classify::Classification c = classify::classifyWood(in.cloud, in.tree.up);
     if (c.woodPoints >= kMinWoodPoints) {  // else no tree's wood: every point, as before
       kept = std::move(c.wood);
-      out = reconstructSketch(sk, pointsWhere(in.cloud, kept), ro, timer, &results);
-      fitted = true;
+      onWood = true;
     }
   }
-  if (!fitted) out = reconstructSketch(sk, in.cloud, ro, timer, &results);
+  const geom::PointCloud wood = onWood ? pointsWhere(in.cloud, kept) : geom::PointCloud{};
+  const geom::PointCloud& fitCloud = onWood ? wood : in.cloud;
+  std::vector<sketch::BranchPolyline> axes;
+  sketch::PolylineSketchOptions po;
+  if (in.options.userDrawsWhatItSees) {
+    // A person sketches over what the view shows: the points its nodes are fitted on.
+    const double h = sketch::defaultSamplingFor(in.cloud.bounds()).sliceHalfThickness;
+    const auto seen = seenBranches(in.tree.axes, in.tree.axisRadii, fitCloud, h, ro.fit.circle.minInliers);
+    po = userOptions(in, seen.empty() ? in.tree.axes : seen, axes);
+  } else {
+    po = userOptions(in, axes);
+  }
+  sketch::Sketch sk = sketch::sketchFromPolylines(axes, viewCamera(in), po);
+  MethodOutput out;
+  NodeResults results;
+  out = reconstructSketch(sk, fitCloud, ro, timer, &results);
   if (in.cloud.meshId.size() == in.cloud.size() && !in.cloud.empty()) {
     fit::NodeFitOptions fo = ro.fit;
     fo.circle.seed = ro.seed;  // the base seed, as recon's

@@ -26,6 +26,17 @@ geom::PointCloud pointsWhere(const geom::PointCloud& cloud, const std::vector<st
 geom::Camera viewCamera(const MethodInput& in);
 /// The simulated user's branches (into `axes`) and polyline options for in.nodeCount nodes.
 sketch::PolylineSketchOptions userOptions(const MethodInput& in, std::vector<sketch::BranchPolyline>& axes);
+/// The same from `source` instead of the tree's true branches (a part of them).
+sketch::PolylineSketchOptions userOptions(const MethodInput& in, const std::vector<sketch::BranchPolyline>& source,
+                                          std::vector<sketch::BranchPolyline>& axes);
+/// The part of each true branch (`axes`, radii per vertex in `radii`) that the points `seen`
+/// show: a branch from its base as far as every sample along it (a radius apart, at least a slab's
+/// thickness) has `minPoints` points within two radii plus `halfThickness` of it in the slab
+/// across the branch there; a branch whose base is not seen, or whose parent's drawn part does
+/// not reach its base, is left out with its branches. Parents are renumbered.
+std::vector<sketch::BranchPolyline> seenBranches(const std::vector<sketch::BranchPolyline>& axes,
+                                                 const std::vector<std::vector<double>>& radii,
+                                                 const geom::PointCloud& seen, double halfThickness, int minPoints);
 
 /// The row's skipped-node counts from the user's causes.
 void setCauses(EvalRow& row, const NodeCauseCounts& causes);

@@ -6,6 +6,7 @@
 #include <random>
 #include <sstream>
 
+#include "eval/eval_methods.h"
 #include "treesketch/eval/evaluation.h"
 #include "treesketch/eval/evaluation_report.h"
 #include "treesketch/io/view_camera.h"
@@ -125,8 +126,10 @@ TEST(CarefulUserFitOptions, GrowthAndBandInTheTreesUnits) {
   const double defaultBand = fit::CircleFitOptions{}.inlierThreshold;
   recon::ReconstructionOptions ro = carefulUserFitOptions(o, 0.1);
   EXPECT_TRUE(ro.fit.growScreenNodes);  // the thesis's fit unless asked
-  EXPECT_DOUBLE_EQ(ro.fit.circle.inlierThreshold, defaultBand);
+  EXPECT_DOUBLE_EQ(ro.fit.circle.inlierThreshold, 0.1);  // the fit's 1 cm, in decimetres
   EXPECT_FALSE(ro.fit.chooseDepth);
+  o.userInlierBandMetres = 0;  // the fit's value taken in scene units
+  EXPECT_DOUBLE_EQ(carefulUserFitOptions(o, 0.1).fit.circle.inlierThreshold, defaultBand);
   o.userGrowth = false;
   o.userInlierBandMetres = 0.01;
   o.chooseDepth = true;
@@ -136,6 +139,45 @@ TEST(CarefulUserFitOptions, GrowthAndBandInTheTreesUnits) {
   EXPECT_TRUE(ro.fit.chooseDepth);
   EXPECT_TRUE(ro.radii.enabled);
   EXPECT_DOUBLE_EQ(carefulUserFitOptions(o, 1.0).fit.circle.inlierThreshold, 0.01);
+}
+
+TEST(CarefulUserSketch, DrawsABranchAsFarAsItsPointsShowIt) {
+  // A trunk up the y axis (radius 0.2, a vertex per unit) whose points stop at 6 units; three
+  // side branches along x: one at 2 units with points, one at 3 without, one at 8 with points
+  // but above where the trunk can be followed.
+  std::vector<sketch::BranchPolyline> axes(4);
+  std::vector<std::vector<double>> radii(4);
+  for (int i = 0; i <= 10; ++i) axes[0].points.emplace_back(0, i, 0);
+  radii[0].assign(11, 0.2);
+  const int bases[] = {2, 3, 8};
+  for (int b = 1; b <= 3; ++b) {
+    axes[b].parent = 0;
+    axes[b].parentVertex = static_cast<std::size_t>(bases[b - 1]);
+    for (int i = 0; i <= 4; ++i) axes[b].points.emplace_back(i, bases[b - 1], 0);
+    radii[b].assign(5, 0.1);
+  }
+  geom::PointCloud seen;
+  auto ring = [&](const Vec3& c, const Vec3& u, const Vec3& v, double r) {
+    for (int k = 0; k < 16; ++k) seen.positions.push_back(c + r * (std::cos(k * 0.39) * u + std::sin(k * 0.39) * v));
+  };
+  for (double y = 0; y <= 6.0; y += 0.05) ring(Vec3(0, y, 0), Vec3::UnitX(), Vec3::UnitZ(), 0.2);
+  for (double x = 0.3; x <= 4.0; x += 0.05) {
+    ring(Vec3(x, 2, 0), Vec3::UnitY(), Vec3::UnitZ(), 0.1);
+    ring(Vec3(x, 8, 0), Vec3::UnitY(), Vec3::UnitZ(), 0.1);
+  }
+  const auto drawn = detail::seenBranches(axes, radii, seen, 0.05, 8);
+  ASSERT_EQ(drawn.size(), 2u);
+  EXPECT_EQ(drawn[0].parent, -1);
+  EXPECT_EQ(drawn[0].points.size(), 7u);  // vertices 0-6: the points stop at 6
+  EXPECT_EQ(drawn[1].parent, 0);
+  EXPECT_DOUBLE_EQ(drawn[1].points.front().y(), 2.0);
+  EXPECT_EQ(drawn[1].points.size(), 5u);
+  // With every point seen nothing is cut: the same cloud plus the missing parts.
+  for (double y = 6.05; y <= 10.0; y += 0.05) ring(Vec3(0, y, 0), Vec3::UnitX(), Vec3::UnitZ(), 0.2);
+  for (double x = 0.3; x <= 4.0; x += 0.05) ring(Vec3(x, 3, 0), Vec3::UnitY(), Vec3::UnitZ(), 0.1);
+  const auto all = detail::seenBranches(axes, radii, seen, 0.05, 8);
+  ASSERT_EQ(all.size(), 4u);
+  EXPECT_EQ(all[0].points.size(), 11u);
 }
 
 TEST(CarefulUserCauses, ReachTheCsv) {

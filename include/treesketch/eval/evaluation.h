@@ -103,10 +103,17 @@ struct EvalOptions {
   /// first test region. Measured (docs/evaluation/README.md): off, fewer nodes fit but more of
   /// them on their own limb; the RMS trade backward for forward error. On: the thesis.
   bool userGrowth = true;
+  /// The simulated careful user draws only what the cloud shows it: each branch from its base as
+  /// far as the points it would fit on (the classified wood on a leaf-on scan, else every point)
+  /// follow it, and a branch whose base it cannot see is not drawn (eval/careful_user.cpp). Off:
+  /// every true branch, seen or not, as the thesis's experiment planned its sketch from the tree.
+  bool userDrawsWhatItSees = true;
   /// The circle fit's inlier band for the simulated careful user, metres (converted with the
-  /// tree's TreeCase::metresPerUnit); 0 = the fit's default (fit::CircleFitOptions::inlierThreshold,
-  /// 0.01 in scene units: 1 mm on the ez-tree trees, which are decimetres).
-  double userInlierBandMetres = 0.0;
+  /// tree's TreeCase::metresPerUnit): the fit's design value, 1 cm (fit::CircleFitOptions::
+  /// inlierThreshold, 0.01 meant as metres), in the tree's own units. 0 = that value taken in scene
+  /// units, as before: 1 mm on the ez-tree trees, which are decimetres, where most limbs with
+  /// points found no admissible circle or too little support.
+  double userInlierBandMetres = 0.01;
   /// Comparison samples per direction; 0 = MeshLab's default (as many as the sampled mesh has
   /// vertices), raised to at least `minSamples`.
   std::uint64_t samples = 0;
