@@ -207,34 +207,36 @@ recon::ReconstructionOptions carefulUserFitOptions(const EvalOptions& o, double 
 
 namespace detail {
 
-// The careful user draws over the whole cloud, as the person sees it; on a leaf-on scan its nodes
-// are fitted to the points the wood/leaf classification calls wood (EvalOptions::userFitsOnWood),
-// as the desktop tool fits a person's nodes once the cloud is classified. With the scanner's
-// labels (a simulated scan) each node's cause is recorded (not timed).
+std::vector<std::uint8_t> carefulUserPoints(const MethodInput& in) {
+  if (in.leafOn && in.options.userFitsOnWood) {
+    classify::Classification c = classify::classifyWood(in.cloud, in.tree.up);
+    if (c.woodPoints >= kMinWoodPoints) return std::move(c.wood);  // else no tree's wood: every point
+  }
+  return std::vector<std::uint8_t>(in.cloud.size(), 1);
+}
+
+sketch::PolylineSketchOptions carefulUserPlan(const MethodInput& in, const geom::PointCloud& seen, int minPoints,
+                                              std::vector<sketch::BranchPolyline>& axes) {
+  if (!in.options.userDrawsWhatItSees) return userOptions(in, axes);
+  // A person sketches over what the view shows: the points its nodes are fitted on.
+  const double h = sketch::defaultSamplingFor(in.cloud.bounds()).sliceHalfThickness;
+  const auto drawn = seenBranches(in.tree.axes, in.tree.axisRadii, seen, h, minPoints);
+  return userOptions(in, drawn.empty() ? in.tree.axes : drawn, axes);
+}
+
+// The careful user draws what the points it fits on show; on a leaf-on scan those are the points
+// the wood/leaf classification calls wood (EvalOptions::userFitsOnWood), as the desktop tool fits a
+// person's nodes once the cloud is classified. With the scanner's labels (a simulated scan) each
+// node's cause is recorded (not timed).
 MethodOutput methodUser(const MethodInput& in) {
   const Stopwatch timer;
   const recon::ReconstructionOptions ro = carefulUserFitOptions(in.options, in.tree.metresPerUnit);
-  std::vector<std::uint8_t> kept(in.cloud.size(), 1);
-  bool onWood = false;
-  if (in.leafOn && in.options.userFitsOnWood) {
-    classify::Classification c = classify::classifyWood(in.cloud, in.tree.up);
-    if (c.woodPoints >= kMinWoodPoints) {  // else no tree's wood: every point, as before
-      kept = std::move(c.wood);
-      onWood = true;
-    }
-  }
-  const geom::PointCloud wood = onWood ? pointsWhere(in.cloud, kept) : geom::PointCloud{};
-  const geom::PointCloud& fitCloud = onWood ? wood : in.cloud;
+  const std::vector<std::uint8_t> kept = carefulUserPoints(in);
+  const bool every = std::all_of(kept.begin(), kept.end(), [](std::uint8_t k) { return k != 0; });
+  const geom::PointCloud wood = every ? geom::PointCloud{} : pointsWhere(in.cloud, kept);
+  const geom::PointCloud& fitCloud = every ? in.cloud : wood;
   std::vector<sketch::BranchPolyline> axes;
-  sketch::PolylineSketchOptions po;
-  if (in.options.userDrawsWhatItSees) {
-    // A person sketches over what the view shows: the points its nodes are fitted on.
-    const double h = sketch::defaultSamplingFor(in.cloud.bounds()).sliceHalfThickness;
-    const auto seen = seenBranches(in.tree.axes, in.tree.axisRadii, fitCloud, h, ro.fit.circle.minInliers);
-    po = userOptions(in, seen.empty() ? in.tree.axes : seen, axes);
-  } else {
-    po = userOptions(in, axes);
-  }
+  const sketch::PolylineSketchOptions po = carefulUserPlan(in, fitCloud, ro.fit.circle.minInliers, axes);
   sketch::Sketch sk = sketch::sketchFromPolylines(axes, viewCamera(in), po);
   MethodOutput out;
   NodeResults results;

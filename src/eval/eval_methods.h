@@ -29,6 +29,13 @@ sketch::PolylineSketchOptions userOptions(const MethodInput& in, std::vector<ske
 /// The same from `source` instead of the tree's true branches (a part of them).
 sketch::PolylineSketchOptions userOptions(const MethodInput& in, const std::vector<sketch::BranchPolyline>& source,
                                           std::vector<sketch::BranchPolyline>& axes);
+/// The points the simulated careful user fits on and sees (a flag per point of in.cloud): on a
+/// leaf-on scan with EvalOptions::userFitsOnWood the classified wood, else every point.
+std::vector<std::uint8_t> carefulUserPoints(const MethodInput& in);
+/// The careful user's branches (into `axes`) and polyline options: those `seen` shows
+/// (seenBranches, with `minPoints`) unless EvalOptions::userDrawsWhatItSees is off.
+sketch::PolylineSketchOptions carefulUserPlan(const MethodInput& in, const geom::PointCloud& seen, int minPoints,
+                                              std::vector<sketch::BranchPolyline>& axes);
 /// The part of each true branch (`axes`, radii per vertex in `radii`) that the points `seen`
 /// show: a branch from its base as far as every sample along it (a radius apart, at least a slab's
 /// thickness) has `minPoints` points within two radii plus `halfThickness` of it in the slab

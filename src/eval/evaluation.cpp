@@ -81,7 +81,6 @@ recon::ReconstructionOptions thesisOptions(std::uint64_t seed) {
 }
 
 using detail::reconstructSketch;
-using detail::userOptions;
 using detail::viewCamera;
 
 MethodOutput methodUniform(const MethodInput& in) {
@@ -95,10 +94,14 @@ geom::PointCloud classifiedWood(const geom::PointCloud& cloud, geom::UpAxis up) 
   return detail::pointsWhere(cloud, classify::classifyWood(cloud, up, classify::woodModellingOptions()).wood);
 }
 
+// The careful user's nodes (the branches it draws, detail::carefulUserPlan) as point nodes on the
+// true axes, fitted on every point with the thesis's fit.
 MethodOutput methodIdeal(const MethodInput& in) {
   const Stopwatch timer;
   std::vector<sketch::BranchPolyline> axes;
-  auto po = userOptions(in, axes);
+  const std::vector<std::uint8_t> seen = detail::carefulUserPoints(in);
+  const int minPoints = carefulUserFitOptions(in.options, in.tree.metresPerUnit).fit.circle.minInliers;
+  auto po = detail::carefulUserPlan(in, detail::pointsWhere(in.cloud, seen), minPoints, axes);
   sketch::Sketch sk = sketch::pointNodesFromPolylines(axes, po);
   return reconstructSketch(sk, in.cloud, thesisOptions(in.options.seed), timer);
 }

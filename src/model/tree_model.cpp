@@ -259,13 +259,15 @@ std::string percent(double share) {
 /// as thin as √(R² − (kσ)²), two noises for a 95 % allowance (a blob of R < 2σ: down to nothing).
 constexpr double kNoiseRadiusAllowance = 2.0;
 
-/// `noise`: the scan's noise in model units, or < 0 when unknown.
+/// `noise`: the scan's noise in model units, or < 0 when unknown. An inferred radius takes the same
+/// allowance before its own factor: it is scaled from measured ones the noise thickens alike, and
+/// where it is under two noises its points cannot tell the tube from none.
 void volumeRange(const TreeModel& model, double unit3, double noise, ModelMeasures* m) {
   double low = 0, high = 0;
   const double allowance = noise > 0 ? kNoiseRadiusAllowance * noise : 0.0;
-  auto lower = [&](double r) {
+  auto lower = [&](double r, double factor) {
     const double r2 = r * r - allowance * allowance;
-    return r2 > 0 ? (1 - kMeasuredRadiusSpread) * std::sqrt(r2) : 0.0;
+    return r2 > 0 ? factor * std::sqrt(r2) : 0.0;
   };
   for (std::size_t i = 0; i < model.cylinders.size(); ++i) {
     const geom::ModelCylinder& c = model.cylinders.cylinders[i];
@@ -273,13 +275,10 @@ void volumeRange(const TreeModel& model, double unit3, double noise, ModelMeasur
     const bool measured = i < model.measured.size() && model.measured[i];
     const double hi = measured ? 1 + kMeasuredRadiusSpread : kInferredRadiusHigh;
     high += v * hi * hi;
-    if (!measured) {
-      low += v * kInferredRadiusLow * kInferredRadiusLow;
-      continue;
-    }
+    const double factor = measured ? 1 - kMeasuredRadiusSpread : kInferredRadiusLow;
     geom::ModelCylinder thin = c;
-    thin.startRadius = lower(c.startRadius);
-    thin.endRadius = lower(c.endRadius);
+    thin.startRadius = lower(c.startRadius, factor);
+    thin.endRadius = lower(c.endRadius, factor);
     low += thin.volume() * unit3;
   }
   m->volumeLow = low;

@@ -78,7 +78,11 @@ TEST(TreeModel, TheScansNoiseLowersTheRangeOfMeasuredRadiiInQuadrature) {
   EXPECT_NEAR(m.volumeHigh / m.figures.volume, 1.21, 1e-9);  // noise thickens a circle, never thins it
   noisy.noise = 0.06;  // a tube under two noises thick may be the noise's own blob
   EXPECT_NEAR(measure(stem(0.1, true), cloud, noisy).volumeLow, 0.0, 1e-12);
-  // Inferred radii keep their own range.
+  // Inferred radii take the same allowance before their own factor: under two noises, nothing.
+  EXPECT_NEAR(measure(stem(0.1, false), cloud, noisy).volumeLow, 0.0, 1e-12);
+  noisy.noise = 0.03;
+  EXPECT_NEAR(measure(stem(0.1, false), cloud, noisy).volumeLow / m.figures.volume, 0.64 * 4.0 / 9.0, 1e-9);
+  noisy.noise = -1;  // unknown noise: their own factor alone
   EXPECT_NEAR(measure(stem(0.1, false), cloud, noisy).volumeLow / m.figures.volume, 4.0 / 9.0, 1e-9);
 }
 

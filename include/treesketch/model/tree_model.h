@@ -135,7 +135,7 @@ struct ModelMeasures {
   /// The volume's range, m³: pieces on fitted circles with their radii ±10 % (a circle fitted to a
   /// scanned arc), the lower end also allowing for the scan's noise σ (MeasureOptions::noise: a
   /// radius R down to √(R² − 4σ²), noise adding to a radius in quadrature), inferred pieces ×2/3
-  /// to ×1.5 (the pipe model's spread between trees).
+  /// to ×1.5 (the pipe model's spread between trees), their lower end after the same allowance.
   double volumeLow = 0, volumeHigh = 0;
   /// Volume over the cylinder of the stem's DBH and the tree's height (a tree's form factor,
   /// branches included: about 0.5–2.5); NaN without a DBH.
