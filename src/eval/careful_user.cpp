@@ -221,6 +221,7 @@ sketch::PolylineSketchOptions carefulUserPlan(const MethodInput& in, const geom:
   // A person sketches over what the view shows: the points its nodes are fitted on.
   const double h = sketch::defaultSamplingFor(in.cloud.bounds()).sliceHalfThickness;
   const auto drawn = seenBranches(in.tree.axes, in.tree.axisRadii, seen, h, minPoints);
+  // A scan that shows not even the trunk's base: every branch, as the thesis planned it.
   return userOptions(in, drawn.empty() ? in.tree.axes : drawn, axes);
 }
 
