@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -669,22 +670,30 @@ TEST(Skeleton, ANarrowForksLimbsAreApartWhereTheirTubesAre) {
   EXPECT_GT(merged.offAxes, 1.5 * split.offAxes);
 }
 
+// The skeleton of a cloud of ../shared/data/real (z up) with `o`, and its lowest height in *foot;
+// none when the file is absent.
+std::optional<skeleton::Skeleton> skeletonOfRealCloud(const std::string& name, skeleton::SkeletonOptions o,
+                                                      double* foot) {
+  const std::filesystem::path file = test::sharedDataDir() / "real" / name;
+  if (!std::filesystem::exists(file)) return std::nullopt;
+  const geom::PointCloud cloud = io::readPointCloud(file);
+  o.up = geom::UpAxis::Z;
+  *foot = cloud.bounds().min.z();
+  return skeleton::extractSkeleton(cloud, o);
+}
+
 // A piece touching two pieces of the level below grows out of the larger. voxr_Tree_t0 of
 // ../shared/data/real forks 1.5 m above its foot; a 2 cm limb leaves the 4 cm stem there and leans
 // on it again 0.7 m higher, and the shortest path from the root to the stem above ran through the
 // limb: the stem's branch took the limb (up to 0.2 m off the stem's axis) and the stem itself
 // became a side branch.
 TEST(Skeleton, TheStemBranchStaysOnTheStemWhereALimbLeansOnIt) {
-  const std::filesystem::path file = test::sharedDataDir() / "real" / "voxr_Tree_t0.asc";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
-  const geom::PointCloud cloud = io::readPointCloud(file);
-  skeleton::SkeletonOptions o;
-  o.up = geom::UpAxis::Z;
-  const auto s = skeleton::extractSkeleton(cloud, o);
-  const double foot = cloud.bounds().min.z();
+  double foot = 0;
+  const auto s = skeletonOfRealCloud("voxr_Tree_t0.asc", skeleton::SkeletonOptions{}, &foot);
+  if (!s) GTEST_SKIP() << "no voxr_Tree_t0.asc in ../shared/data/real";
   // Over the fork (1.8-2.3 m above the foot) the stem's axis stands at (0.04, 0.10).
   int seen = 0;
-  for (const auto& n : s.nodes) {
+  for (const auto& n : s->nodes) {
     const double h = n.position.z() - foot;
     if (n.branchOrder != 0 || h < 1.8 || h > 2.3) continue;
     ++seen;
@@ -698,15 +707,11 @@ TEST(Skeleton, TheStemBranchStaysOnTheStemWhereALimbLeansOnIt) {
 // from a slab above it. The palm of ../shared/data/real: a slice 1.3 m above its base is a circle
 // of about 0.17 m radius; before, no stem was tracked and the crown's fits gave it 0.34 m.
 TEST(Skeleton, APalmsStemIsTrackedAboveItsSwollenBase) {
-  const std::filesystem::path file = test::sharedDataDir() / "real" / "pytlidar_tree_1.las";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
-  const geom::PointCloud cloud = io::readPointCloud(file);
-  skeleton::SkeletonOptions o = skeleton::leafOnSkeletonOptions();
-  o.up = geom::UpAxis::Z;
-  const auto s = skeleton::extractSkeleton(cloud, o);
-  const double base = cloud.bounds().min.z();
+  double base = 0;
+  const auto s = skeletonOfRealCloud("pytlidar_tree_1.las", skeleton::leafOnSkeletonOptions(), &base);
+  if (!s) GTEST_SKIP() << "no pytlidar_tree_1.las in ../shared/data/real";
   int measured = 0;
-  for (const auto& n : s.nodes) {
+  for (const auto& n : s->nodes) {
     const double h = n.position.z() - base;
     if (!n.stem || h < 1.0 || h > 4.0) continue;
     ++measured;
