@@ -215,6 +215,13 @@ std::vector<std::uint8_t> carefulUserPoints(const MethodInput& in) {
   return std::vector<std::uint8_t>(in.cloud.size(), 1);
 }
 
+const geom::PointCloud& pointsKept(const geom::PointCloud& cloud, const std::vector<std::uint8_t>& kept,
+                                  geom::PointCloud& storage) {
+  if (std::all_of(kept.begin(), kept.end(), [](std::uint8_t k) { return k != 0; })) return cloud;
+  storage = pointsWhere(cloud, kept);
+  return storage;
+}
+
 sketch::PolylineSketchOptions carefulUserPlan(const MethodInput& in, const geom::PointCloud& seen, int minPoints,
                                               std::vector<sketch::BranchPolyline>& axes) {
   if (!in.options.userDrawsWhatItSees) return userOptions(in, axes);
@@ -233,9 +240,8 @@ MethodOutput methodUser(const MethodInput& in) {
   const Stopwatch timer;
   const recon::ReconstructionOptions ro = carefulUserFitOptions(in.options, in.tree.metresPerUnit);
   const std::vector<std::uint8_t> kept = carefulUserPoints(in);
-  const bool every = std::all_of(kept.begin(), kept.end(), [](std::uint8_t k) { return k != 0; });
-  const geom::PointCloud wood = every ? geom::PointCloud{} : pointsWhere(in.cloud, kept);
-  const geom::PointCloud& fitCloud = every ? in.cloud : wood;
+  geom::PointCloud wood;
+  const geom::PointCloud& fitCloud = pointsKept(in.cloud, kept, wood);
   std::vector<sketch::BranchPolyline> axes;
   const sketch::PolylineSketchOptions po = carefulUserPlan(in, fitCloud, ro.fit.circle.minInliers, axes);
   sketch::Sketch sk = sketch::sketchFromPolylines(axes, viewCamera(in), po);

@@ -32,6 +32,9 @@ sketch::PolylineSketchOptions userOptions(const MethodInput& in, const std::vect
 /// The points the simulated careful user fits on and sees (a flag per point of in.cloud): on a
 /// leaf-on scan with EvalOptions::userFitsOnWood the classified wood, else every point.
 std::vector<std::uint8_t> carefulUserPoints(const MethodInput& in);
+/// `cloud` when every flag of `kept` is set, else its kept points copied into `storage`.
+const geom::PointCloud& pointsKept(const geom::PointCloud& cloud, const std::vector<std::uint8_t>& kept,
+                                  geom::PointCloud& storage);
 /// The careful user's branches (into `axes`) and polyline options: those `seen` shows
 /// (seenBranches, with `minPoints`) unless EvalOptions::userDrawsWhatItSees is off.
 sketch::PolylineSketchOptions carefulUserPlan(const MethodInput& in, const geom::PointCloud& seen, int minPoints,

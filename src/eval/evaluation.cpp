@@ -99,9 +99,10 @@ geom::PointCloud classifiedWood(const geom::PointCloud& cloud, geom::UpAxis up) 
 MethodOutput methodIdeal(const MethodInput& in) {
   const Stopwatch timer;
   std::vector<sketch::BranchPolyline> axes;
-  const std::vector<std::uint8_t> seen = detail::carefulUserPoints(in);
+  geom::PointCloud storage;
+  const geom::PointCloud& seen = detail::pointsKept(in.cloud, detail::carefulUserPoints(in), storage);
   const int minPoints = carefulUserFitOptions(in.options, in.tree.metresPerUnit).fit.circle.minInliers;
-  auto po = detail::carefulUserPlan(in, detail::pointsWhere(in.cloud, seen), minPoints, axes);
+  auto po = detail::carefulUserPlan(in, seen, minPoints, axes);
   sketch::Sketch sk = sketch::pointNodesFromPolylines(axes, po);
   return reconstructSketch(sk, in.cloud, thesisOptions(in.options.seed), timer);
 }

@@ -215,6 +215,32 @@ UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv, const std::
   return uf;
 }
 
+// A piece that touches several pieces of the level below grows out of the largest of them (the
+// most voxels: the stem, not a limb leaning on it). The shortest path from the root can reach such
+// a piece through the limb: on voxr_Tree_t0 the stem's branch then left the stem at its lowest fork
+// for a 2 cm limb and met it again 0.7 m higher (docs/notes/radii_and_volume.md). A parent of the
+// piece's own level (the stem's tube, levelPieces) stays.
+void growFromLargestPieceBelow(const VoxelGraph& g, const GeodesicLevels& lv, const std::vector<std::uint32_t>& count,
+                               std::vector<SkeletonNode>& nodes) {
+  std::vector<std::int32_t> best(nodes.size(), -1);
+  for (std::size_t v = 0; v < g.size(); ++v) {
+    if (lv.level[v] <= 0) continue;
+    const std::int32_t id = lv.vertexNode[v];
+    for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+      const std::uint32_t w = g.targets[k];
+      if (lv.level[w] != lv.level[v] - 1) continue;
+      const std::int32_t c = lv.vertexNode[w];
+      if (c < 0 || c == id) continue;
+      if (best[id] < 0 || count[c] > count[best[id]]) best[id] = c;
+    }
+  }
+  for (std::size_t i = 1; i < nodes.size(); ++i) {
+    const std::int32_t p = nodes[i].parent;
+    if (p < 0 || best[i] < 0 || best[i] == p || nodes[p].level != nodes[i].level - 1) continue;
+    nodes[i].parent = best[i];
+  }
+}
+
 // One node per piece, ordered by level, then by the piece's lowest vertex (deterministic; parents
 // first): support, linearity, level, the centroid of `at` over the piece, the geodesic distance of
 // its vertex nearest the root and the parent through that vertex's predecessor, or, when the piece
@@ -267,30 +293,7 @@ std::vector<SkeletonNode> pieceNodes(const VoxelGraph& g, GeodesicLevels& lv, Un
     const std::int64_t pred = lv.predecessor[firstVertex[i]];
     node.parent = (i == 0 || pred < 0) ? -1 : lv.vertexNode[pred];
   }
-  {
-    // A piece that touches several pieces of the level below grows out of the largest of them (the
-    // most voxels: the stem, not a limb leaning on it). The shortest path from the root can reach
-    // such a piece through the limb: on voxr_Tree_t0 the stem's branch then left the stem at its
-    // lowest fork for a 2 cm limb and met it again 0.7 m higher (docs/notes/radii_and_volume.md).
-    std::vector<std::int32_t> best(nodes.size(), -1);
-    for (std::size_t v = 0; v < n; ++v) {
-      if (lv.level[v] <= 0) continue;
-      const std::int32_t id = lv.vertexNode[v];
-      for (std::uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
-        const std::uint32_t w = g.targets[k];
-        if (lv.level[w] != lv.level[v] - 1) continue;
-        const std::int32_t c = lv.vertexNode[w];
-        if (c < 0 || c == id) continue;
-        if (best[id] < 0 || count[c] > count[best[id]]) best[id] = c;
-      }
-    }
-    for (std::size_t i = 1; i < nodes.size(); ++i) {
-      const std::int32_t p = nodes[i].parent;
-      if (p < 0 || best[i] < 0 || best[i] == p) continue;
-      if (nodes[p].level != nodes[i].level - 1) continue;  // a same-level parent (the stem's tube) stays
-      nodes[i].parent = best[i];
-    }
-  }
+  growFromLargestPieceBelow(g, lv, count, nodes);
   detail::linkChildren(nodes);
   return nodes;
 }
