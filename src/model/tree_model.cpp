@@ -192,17 +192,11 @@ geom::PointCloud woodOnlyCloud(const geom::PointCloud& cloud, geom::UpAxis up, c
   return cloud::selectPoints(cloud, wood);
 }
 
-/// A radius under this many of the scanner's range noise is not measured, whatever fitted it: a
-/// section's points have their median distance to its axis within 3 % of its radius only above
-/// 1.5 noises (skeleton/range_noise.h); under that the points show the noise's blob, and a circle
-/// fitted round them its shape.
-constexpr double kResolvableNoises = 1.5;
-
 TreeModel fromAutoSkeleton(const skeleton::AutoSkeletonResult& r, geom::UpAxis up) {
   std::vector<char> measured = r.radiusMeasured;
   if (r.rangeNoise > 0)
     for (std::size_t i = 0; i < measured.size() && i < r.model.size(); ++i)
-      if (r.model[i].radius < kResolvableNoises * r.rangeNoise) measured[i] = 0;
+      if (r.model[i].radius < skeleton::kResolvableNoises * r.rangeNoise) measured[i] = 0;  // the noise's blob
   TreeModel model = fromSkeletonNodes(r.model, measured, up);
   model.mesh = r.mesh;
   return model;

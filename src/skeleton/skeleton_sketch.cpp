@@ -13,6 +13,7 @@
 #include "treesketch/util/stopwatch.h"
 #include "skeleton/completion.h"
 #include "skeleton/radius_allometry.h"
+#include "skeleton/radius_rules.h"
 #include "skeleton/stem_tracking.h"
 #include "skeleton/surface_bound.h"
 #include "treesketch/compare/tree_metrics.h"
@@ -26,8 +27,6 @@ namespace {
 
 using geom::Vec3;
 
-/// Weight of an interpolated (not fitted) radius in the taper fit, relative to a trusted fit's.
-constexpr double kInterpolatedRadiusWeight = 0.25;
 /// Below this share of nodes with an accepted circle (and without a tracked stem) the circles do
 /// not measure the tree and every radius is inferred from its crown (see fitModel).
 constexpr double kMinFittedShare = 0.05;
@@ -53,17 +52,6 @@ sketch::SamplingParams paramsFor(double radius, double voxel, const SkeletonSket
   return p;
 }
 
-void checkRules(const RadiusRules& r) {
-  if (!(r.maxRadiusRatio > 0) || !(r.maxCentreShiftRadii > 0) || !(r.maxRelativeRms > 0))
-    throw OptionsError("skeleton radii: maxRadiusRatio, maxCentreShiftRadii and maxRelativeRms must be > 0");
-  if (r.medianWindow < 1) throw OptionsError("skeleton radii: medianWindow must be >= 1");
-  if (!(r.allometryMaxRatio == 0 || r.allometryMaxRatio >= 1) || !std::isfinite(r.allometryMaxRatio))
-    throw OptionsError("skeleton radii: allometryMaxRatio must be 0 (off) or >= 1");
-  if (!(r.slackVoxels >= 0) || !(r.rmsFloorVoxels >= 0) || !std::isfinite(r.slackVoxels) ||
-      !std::isfinite(r.rmsFloorVoxels))
-    throw OptionsError("skeleton radii: slackVoxels and rmsFloorVoxels must be finite numbers >= 0");
-}
-
 }  // namespace
 
 sketch::Sketch skeletonToSketch(const Skeleton& skeleton, const SkeletonSketchOptions& options) {
@@ -81,148 +69,6 @@ sketch::Sketch skeletonToSketch(const Skeleton& skeleton, const SkeletonSketchOp
   return s;
 }
 
-namespace {
-
-/// Step 1 of regularizeRadii: rejected fits interpolated along each branch by arc length (the
-/// fork at a side branch's start is the parent's node: it is read, not written).
-void interpolateRejected(const std::vector<SkeletonNode>& nodes, const std::vector<std::vector<std::int32_t>>& chains,
-                         const std::vector<char>& ok, const detail::Allometry& allometry, std::vector<double>& r) {
-  std::vector<double> arc;
-  for (const auto& chain : chains) {
-    arc.assign(chain.size(), 0.0);
-    for (std::size_t k = 1; k < chain.size(); ++k)
-      arc[k] = arc[k - 1] + (nodes[chain[k]].position - nodes[chain[k - 1]].position).norm();
-    std::vector<std::size_t> good;
-    for (std::size_t k = 0; k < chain.size(); ++k)
-      if (ok[chain[k]]) good.push_back(k);
-    if (good.empty()) {
-      // No fit on the whole branch: the pipe law where there is one (the level-set
-      // pieces' own radii are the spread of whatever the bins held: twigs and noise), else
-      // those estimates.
-      if (allometry.valid)
-        for (std::size_t id : chain) r[id] = allometry.predict(id);
-      continue;
-    }
-    for (std::size_t k = 0; k < chain.size(); ++k) {
-      if (ok[chain[k]]) continue;
-      // With the pipe law, the fits give the scale and the law the shape: the
-      // ratio fit / prediction is interpolated, so a branch still tapers past its last fit
-      // instead of keeping that fit's radius out to its tip. Without one, the radii themselves.
-      auto value = [&](std::size_t j) {
-        return allometry.valid ? r[chain[j]] / allometry.predict(chain[j]) : r[chain[j]];
-      };
-      auto after = std::lower_bound(good.begin(), good.end(), k);
-      double v;
-      if (after == good.begin()) {
-        v = value(*after);
-      } else if (after == good.end()) {
-        v = value(good.back());
-      } else {
-        const std::size_t b = *after, a = *(after - 1);
-        const double t = arc[b] > arc[a] ? (arc[k] - arc[a]) / (arc[b] - arc[a]) : 0.5;
-        v = (1 - t) * value(a) + t * value(b);
-      }
-      r[chain[k]] = allometry.valid ? v * allometry.predict(chain[k]) : v;
-    }
-  }
-}
-
-/// Step 2: a running median of `size` nodes along each branch.
-void medianAlongBranches(const std::vector<std::vector<std::int32_t>>& chains, int size, std::vector<double>& r) {
-  {
-    std::vector<double> smoothed = r, window;
-    const int half = size / 2;
-    for (const auto& chain : chains) {
-      const int m = static_cast<int>(chain.size());
-      for (int k = 0; k < m; ++k) {
-        window.clear();
-        for (int j = std::max(0, k - half); j <= std::min(m - 1, k + half); ++j) window.push_back(r[chain[j]]);
-        std::nth_element(window.begin(), window.begin() + window.size() / 2, window.end());
-        smoothed[chain[k]] = window[window.size() / 2];
-      }
-    }
-    r = smoothed;
-  }
-}
-
-/// Step 3: the pipe model at forks, bottom-up (nodes are parent-first); measured nodes keep theirs.
-void pipeAtForks(const std::vector<SkeletonNode>& nodes, const std::vector<char>& measured, std::vector<double>& r) {
-  for (std::size_t i = nodes.size(); i-- > 0;) {
-    if (nodes[i].children.size() < 2 || measured[i]) continue;
-    double sum = 0;
-    for (std::int32_t c : nodes[i].children) sum += r[c] * r[c];
-    r[i] = std::max(r[i], std::sqrt(sum));
-  }
-}
-
-/// Step 4: no child thicker than its parent (see RadiusRules::childNotThicker).
-void taperAlongBranches(const std::vector<SkeletonNode>& nodes, const std::vector<std::vector<std::int32_t>>& chains,
-                        const std::vector<char>& ok, std::vector<double>& r) {
-  // Along each branch the least-absolute-deviations non-increasing radii (isotonic regression, trusted fits
-  // weighing most), so one thin fit lowers its neighbours a little instead of capping the whole
-  // branch above it; then a branch is capped by the node it forks from (chains are parent-first,
-  // so that node is final).
-  for (const auto& chain : chains) {
-    std::vector<double> values(chain.size()), weights(chain.size());
-    for (std::size_t k = 0; k < chain.size(); ++k) {
-      values[k] = r[chain[k]];
-      weights[k] = ok[chain[k]] ? 1.0 : kInterpolatedRadiusWeight;
-    }
-    detail::nonIncreasingFit(values, weights);
-    const std::int32_t parent = nodes[chain.front()].parent;
-    const double cap = parent >= 0 ? r[parent] : std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < chain.size(); ++k) r[chain[k]] = std::min(values[k], cap);
-  }
-}
-
-}  // namespace
-
-std::vector<double> regularizeRadii(const std::vector<SkeletonNode>& nodes, const std::vector<double>& fitted,
-                                    const std::vector<char>& valid, const RadiusRules& rules, std::vector<char>* kept) {
-  checkRules(rules);
-  if (fitted.size() != nodes.size() || valid.size() != nodes.size())
-    throw OptionsError("skeleton radii: one fitted radius and one validity flag per node expected");
-  const std::size_t n = nodes.size();
-  std::vector<double> r(n);
-  std::vector<char> ok(n);
-  // A node on the tracked stem has a measured radius even without a fit of its own (the stem's
-  // circle fits over whole slabs), and no rule below raises it: the pipe model and the allometry
-  // stand in for radii the data cannot give. (Leaf-on, the allometry, fitted mostly to leaf
-  // clusters that carry thousands of leaf pieces, gave an oak's 0.14 m trunk a 0.57 m radius.)
-  std::vector<char> measured(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    ok[i] = valid[i] && std::isfinite(fitted[i]) && fitted[i] > 0;
-    r[i] = ok[i] ? fitted[i] : nodes[i].radius;
-    measured[i] = nodes[i].stem && nodes[i].radius > 0;
-    ok[i] = ok[i] || measured[i];
-  }
-  // 0. Fits much thicker than the pipe model anchored at the stem (radius against the length a
-  // node carries) are rejected; no radius ends above that bound (step 5).
-  detail::Allometry allometry;
-  if (rules.allometryMaxRatio > 0) {
-    allometry = detail::fitAllometry(nodes, r, ok, measured);
-    if (allometry.valid)
-      for (std::size_t i = 0; i < n; ++i) {
-        const double p = allometry.predict(i);
-        if (ok[i] && !measured[i] && r[i] > p * rules.allometryMaxRatio) ok[i] = 0;
-      }
-  }
-  if (kept) *kept = ok;
-  const auto chains = detail::branchChains(nodes);
-  interpolateRejected(nodes, chains, ok, allometry, r);
-  if (rules.medianWindow > 1) medianAlongBranches(chains, rules.medianWindow, r);
-  if (rules.pipeModel) pipeAtForks(nodes, measured, r);
-  if (rules.childNotThicker) taperAlongBranches(nodes, chains, ok, r);
-  // 5. Not above the pipe law's bound.
-  if (allometry.valid)
-    for (std::size_t i = 0; i < n; ++i) {
-      if (measured[i]) continue;
-      const double p = allometry.predict(i);
-      r[i] = std::min(r[i], p * rules.allometryMaxRatio);
-    }
-  return r;
-}
-
 AutoSkeletonOptions autoSkeletonPreset(Foliage foliage, geom::UpAxis up) {
   AutoSkeletonOptions o;
   if (foliage == Foliage::LeafOn) {
@@ -236,7 +82,7 @@ AutoSkeletonOptions autoSkeletonPreset(Foliage foliage, geom::UpAxis up) {
 namespace {
 
 void checkOptions(const AutoSkeletonOptions& options) {
-  checkRules(options.radii);
+  detail::checkRadiusRules(options.radii);
   if (!(options.maxFitFlatFraction >= 0 && options.maxFitFlatFraction <= 1))
     throw OptionsError("skeleton: maxFitFlatFraction must be in [0, 1]");
   if (!(options.minInlierBandVoxels >= 0) || !std::isfinite(options.minInlierBandVoxels))

@@ -9,6 +9,7 @@
 #include "skeleton/range_noise.h"
 #include "treesketch/compare/model_fit.h"
 #include "treesketch/skeleton/skeleton_export.h"
+#include "treesketch/skeleton/skeleton_sketch.h"
 
 namespace treesketch::skeleton::detail {
 namespace {
@@ -51,7 +52,11 @@ constexpr double kRaiseQuantile = 0.25;
 /// (a twig thinner than the noise) have their distances' lower quartile at 0.76σ (Rayleigh), so a
 /// margin of one noise raises no tube on noise alone; a surface of radius r sampled all round has
 /// it at r − 0.67σ, and seen from one side with the axis at the points' centroid lower still, so
-/// the raise never passes the wood the points show.
+/// the raise never passes the wood the points show. Where the scanner's range noise is known and
+/// the points' median is over kResolvableNoises of it, the points resolve the section, and the raise
+/// goes to the radius their median shows under that noise (radiusUnderNoise): the quartile less a
+/// noise left the inferred twigs of real scans a median 1.5–3.4 of their radii inside their points
+/// (docs/notes/radii_and_volume.md, "Inferred radii read through the noise").
 constexpr double kRaiseMarginNoise = 1.0;
 /// The circles' noise is the lower quartile of their spreads: a well-sampled branch's circle shows
 /// the scanner's noise, a circle around a leaf cluster or a twig's blob of points a wider spread
@@ -232,7 +237,12 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
       // quartile, less the noise's share, at 0.85 of its area's radius or more.
       const double low = quantile(pooled, kRaiseQuantile);
       bound[k] = std::min(bound[k], (low + kNoiseQuartile * noise) / kConvexQuartile);
-      if (inferred) raise[k] = low - kRaiseMarginNoise * noise;
+      if (inferred) {
+        raise[k] = low - kRaiseMarginNoise * noise;
+        const double median = quantile(pooled, kBoundQuantile);
+        if (rangeNoise > 0 && median >= kResolvableNoises * rangeNoise)
+          raise[k] = std::max(raise[k], radiusUnderNoise(median, rangeNoise));
+      }
       ++stats.nodesWithEvidence;
     }
     const std::int32_t parent = model[chain.front()].parent;

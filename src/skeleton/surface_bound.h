@@ -73,7 +73,8 @@ struct SurfaceBoundStats {
 /// raised to that, never above the node before it along its branch. A branch's first node is also
 /// capped by its parent's radius. With `rangeNoise` (the scanner's, range_noise.h) the median is read
 /// as the radius that shows it under that noise (radiusUnderNoise): a twig thinner than the noise
-/// has its points' median at 0.68 of the noise whatever its radius.
+/// has its points' median at 0.68 of the noise whatever its radius; and where that median is over
+/// kResolvableNoises noises, an inferred radius is raised to the radius it shows (same cap).
 SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
                                       double voxel, int window, const std::vector<double>& ownResidual = {},
                                       double rangeNoise = 0.0);

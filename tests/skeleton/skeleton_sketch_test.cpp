@@ -50,6 +50,7 @@ TEST(SkeletonSketch, RegularizeInterpolatesSmoothsAndCaps) {
   rules.medianWindow = 1;
   rules.childNotThicker = false;
   rules.allometryMaxRatio = 0;  // the pipe law's bound is tested on its own below
+  rules.maxGrowthRatio = 0;     // and the fits wider than the branch below them
   auto r = skeleton::regularizeRadii(nodes, fitted, valid, rules);
   EXPECT_NEAR(r[3], 0.24, 1e-12);  // linear between 0.26 and 0.22
   EXPECT_NEAR(r[5], 0.40, 1e-12);
@@ -73,6 +74,37 @@ TEST(SkeletonSketch, RegularizeInterpolatesSmoothsAndCaps) {
   for (double x : r) EXPECT_EQ(x, 0.5);
   EXPECT_THROW(skeleton::regularizeRadii(nodes, {0.1}, valid, rules), OptionsError);
   rules.medianWindow = 0;
+  EXPECT_THROW(skeleton::regularizeRadii(nodes, fitted, valid, rules), OptionsError);
+}
+
+TEST(SkeletonSketch, AFitWiderThanTheFitsBelowItAndThePipeLawIsSetAside) {
+  // A stem tracked to 0.30 at its foot, then a limb of fits: 0.08 on three one-sided arcs, 0.20
+  // where the limb's circle is whole again, 0.06 and 0.05, then 0.22 (a circle round the limb and
+  // a neighbour), 0.045 and 0.04. The 0.20 is 2.5 times the arcs below it but under the pipe law
+  // the stem sets for the length it carries: kept. The 0.22 is over both: set aside, and its node
+  // takes the radii either side of it.
+  std::vector<skeleton::SkeletonNode> nodes;
+  for (int i = 0; i < 14; ++i) nodes.push_back(chainNode(i - 1, i, 0.1));
+  for (int i = 0; i < 3; ++i) nodes[i].stem = true, nodes[i].radius = 0.30;
+  nodes = linkUp(nodes);
+  const std::vector<double> fitted = {0, 0, 0, 0.08, 0.08, 0.08, 0.20, 0.06, 0.05, 0.22, 0.045, 0.04, 0.04, 0.04};
+  std::vector<char> valid(14, 1);
+  for (int i = 0; i < 3; ++i) valid[i] = 0;
+  skeleton::RadiusRules rules;
+  rules.medianWindow = 1;
+  rules.childNotThicker = false;
+  std::vector<char> kept;
+  auto r = skeleton::regularizeRadii(nodes, fitted, valid, rules, &kept);
+  EXPECT_TRUE(kept[6]);
+  EXPECT_NEAR(r[6], 0.20, 1e-12);
+  EXPECT_FALSE(kept[9]);
+  EXPECT_LT(r[9], 0.06);
+  EXPECT_GT(r[9], 0.04);
+  rules.maxGrowthRatio = 0;  // the rule off: the neighbour's circle stays
+  r = skeleton::regularizeRadii(nodes, fitted, valid, rules, &kept);
+  EXPECT_TRUE(kept[9]);
+  EXPECT_NEAR(r[9], 0.22, 1e-12);
+  rules.maxGrowthRatio = 0.5;
   EXPECT_THROW(skeleton::regularizeRadii(nodes, fitted, valid, rules), OptionsError);
 }
 

@@ -172,6 +172,23 @@ TEST(SurfaceBound, AnInferredBranchThinnerThanItsPointsIsRaisedAMeasuredOneIsNot
   for (std::size_t i = 21; i < measured.size(); ++i) EXPECT_DOUBLE_EQ(measured[i].radius, 0.005) << i;
 }
 
+TEST(SurfaceBound, WhereThePointsResolveAnInferredBranchItIsRaisedToTheRadiusTheyShow) {
+  // The same branch (radius 0.02, ten noises) inferred at 0.005. Without the scanner's noise the
+  // raise stops a noise and a quartile short of its surface; with it, the points' median resolves
+  // the section and the raise goes to the radius it shows.
+  const geom::PointCloud cloud = test::sampleCylinders(kTree, 0.01, kNoise, 6);
+  std::vector<double> trunkOwn(trunkAndBranch(0.10, 0.005).size(), 0.0);
+  for (std::size_t i = 0; i <= 20; ++i) trunkOwn[i] = kNoise;
+  auto quartile = trunkAndBranch(0.10, 0.005);
+  skeleton::detail::boundRadiiBySurface(quartile, cloud, kNoise, 0.02, 5, trunkOwn);
+  auto resolved = trunkAndBranch(0.10, 0.005);
+  skeleton::detail::boundRadiiBySurface(resolved, cloud, kNoise, 0.02, 5, trunkOwn, kNoise);
+  for (std::size_t i = 22; i < resolved.size(); ++i) {
+    EXPECT_NEAR(resolved[i].radius, 0.02, 0.5 * kNoise) << i;
+    EXPECT_LT(quartile[i].radius, 0.02 - 0.5 * kNoise) << i;
+  }
+}
+
 TEST(SurfaceBound, ATwigThinnerThanTheNoiseIsNotRaisedByTheNoise) {
   // A twig of 1 mm under 8 mm of noise: its points are a blob about the line, not a surface, whose
   // distances' lower quartile (here 0.3 noise; 0.76 noise for noise in the plane) is under the
@@ -184,6 +201,10 @@ TEST(SurfaceBound, ATwigThinnerThanTheNoiseIsNotRaisedByTheNoise) {
   EXPECT_GE(stats.nodesWithEvidence, 25u);
   EXPECT_EQ(stats.nodesThickened, 0u);
   for (std::size_t i = 21; i < model.size(); ++i) EXPECT_DOUBLE_EQ(model[i].radius, 0.001) << i;
+  // Nor with the scanner's noise known: the blob's median is under the noises a section needs.
+  auto known = trunkAndBranch(0.10, 0.001);
+  skeleton::detail::boundRadiiBySurface(known, cloud, noise, 0.02, 5, {}, noise);
+  for (std::size_t i = 21; i < known.size(); ++i) EXPECT_DOUBLE_EQ(known[i].radius, 0.001) << i;
 }
 
 TEST(SurfaceBound, ATubesSpreadIsItsPointsNoiseAboutTheAxis) {
