@@ -406,7 +406,8 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
     }
     res.rangeNoise = detail::rangeNoise(res.model, cloud, boundNoise + voxel);
     const detail::SurfaceBoundStats bound = detail::boundRadiiBySurface(
-        res.model, cloud, boundNoise, voxel, options.radii.medianWindow, own, std::max(0.0, res.rangeNoise));
+        res.model, cloud, boundNoise, voxel, options.radii.medianWindow, own, std::max(0.0, res.rangeNoise),
+        options.maxFitFlatFraction);
     res.thinnedBySurface = bound.nodesThinned;
     res.thickenedBySurface = bound.nodesThickened;
   }

@@ -74,9 +74,11 @@ struct SurfaceBoundStats {
 /// capped by its parent's radius. With `rangeNoise` (the scanner's, range_noise.h) the median is read
 /// as the radius that shows it under that noise (radiusUnderNoise): a twig thinner than the noise
 /// has its points' median at 0.68 of the noise whatever its radius; and where that median is over
-/// kResolvableNoises noises, an inferred radius is raised to the radius it shows (same cap).
+/// kResolvableNoises noises, an inferred radius is raised to the radius it shows (same cap), unless
+/// its piece's flat share (SkeletonNode::flatFraction) is over `maxFlatFraction`: points on leaves
+/// show where the foliage is, not the wood's surface.
 SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
                                       double voxel, int window, const std::vector<double>& ownResidual = {},
-                                      double rangeNoise = 0.0);
+                                      double rangeNoise = 0.0, double maxFlatFraction = 1.0);
 
 }  // namespace treesketch::skeleton::detail

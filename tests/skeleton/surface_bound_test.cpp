@@ -187,6 +187,12 @@ TEST(SurfaceBound, WhereThePointsResolveAnInferredBranchItIsRaisedToTheRadiusThe
     EXPECT_NEAR(resolved[i].radius, 0.02, 0.5 * kNoise) << i;
     EXPECT_LT(quartile[i].radius, 0.02 - 0.5 * kNoise) << i;
   }
+  // Pieces made mostly of flat patches (a leaf-on scan's leaves) show the foliage, not the wood:
+  // their points' median does not raise them.
+  auto leafy = trunkAndBranch(0.10, 0.005);
+  for (std::size_t i = 21; i < leafy.size(); ++i) leafy[i].flatFraction = 0.9f;
+  skeleton::detail::boundRadiiBySurface(leafy, cloud, kNoise, 0.02, 5, trunkOwn, kNoise, 0.5);
+  for (std::size_t i = 22; i < leafy.size(); ++i) EXPECT_DOUBLE_EQ(leafy[i].radius, quartile[i].radius) << i;
 }
 
 TEST(SurfaceBound, ATwigThinnerThanTheNoiseIsNotRaisedByTheNoise) {
