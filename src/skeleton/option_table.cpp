@@ -120,7 +120,7 @@ std::vector<SettingRow> modelRows() {
       TS_SETTING(radii.childNotThicker, Boolean, 0, 1, "radii never grow towards a tip"),
       TS_SETTING(radii.pipeModel, Boolean, 0, 1, "grow forks to carry their children (pipe model)"),
       TS_SETTING(radii.allometryMaxRatio, Real, 0, 1e6, "pipe-model bound factor (0 = off, else >= 1)"),
-      TS_SETTING(radii.maxGrowthRatio, Real, 0, 1e6, "fit wider than this x the fits below it on its branch and than the pipe law: set aside (0 = off)"),
+      TS_SETTING(radii.maxGrowthRatio, Real, 0, 1e6, "fits over this x the fits below and the pipe law set aside (0 = off)"),
       TS_SETTING(radii.surfaceBound, Boolean, 0, 1, "no tube thicker than its points allow"),
       TS_SETTING(axes.halfWindowNodes, Integer, 0, 1000, "axis smoothing half-window, nodes (0 = off)"),
       TS_SETTING(axes.unfittedWeight, Real, 1e-6, 1,

@@ -87,8 +87,9 @@ void interpolateRejected(const std::vector<SkeletonNode>& nodes, const std::vect
 /// Step 0b: along each branch (parent-first), a fit wider than `ratio` times the median of the
 /// last kGrowthWindow fits kept below it, and wider than the pipe law, is set aside (RadiusRules::
 /// maxGrowthRatio); measured (tracked stem) radii are kept and count as fits below.
-void setAsideGrowth(const std::vector<std::vector<std::int32_t>>& chains, const std::vector<char>& measured, const detail::Allometry& allometry, double ratio,
-                    const std::vector<double>& r, std::vector<char>& ok) {
+void setAsideGrowth(const std::vector<std::vector<std::int32_t>>& chains, const std::vector<char>& measured,
+                    const detail::Allometry& allometry, double ratio, const std::vector<double>& r,
+                    std::vector<char>& ok) {
   std::vector<double> below, last;
   for (const auto& chain : chains) {
     below.clear();

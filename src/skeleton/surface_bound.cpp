@@ -205,8 +205,8 @@ double stemNoise(const std::vector<SkeletonNode>& model, const geom::PointCloud&
 }
 
 SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const geom::PointCloud& cloud, double noise,
-                                      double voxel, int window, const std::vector<double>& ownResidual, double rangeNoise,
-                                      double maxFlatFraction) {
+                                      double voxel, int window, const std::vector<double>& ownResidual,
+                                      double rangeNoise, double maxFlatFraction) {
   SurfaceBoundStats stats;
   if (model.size() < 2 || cloud.empty() || !(noise > 0) || !(voxel > 0)) return stats;
   const std::vector<std::vector<double>> perNode = distancesPerNode(model, cloud, noise + voxel, kCornerRadii);
@@ -241,7 +241,8 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
       if (inferred) {
         raise[k] = low - kRaiseMarginNoise * noise;
         const double median = quantile(pooled, kBoundQuantile);
-        if (rangeNoise > 0 && median >= kResolvableNoises * rangeNoise && !(model[chain[k]].flatFraction > maxFlatFraction))
+        const bool leafPiece = model[chain[k]].flatFraction > maxFlatFraction;
+        if (rangeNoise > 0 && median >= kResolvableNoises * rangeNoise && !leafPiece)
           raise[k] = std::max(raise[k], radiusUnderNoise(median, rangeNoise));
       }
       ++stats.nodesWithEvidence;
