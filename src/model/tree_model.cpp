@@ -341,6 +341,11 @@ Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions&
         leafOn.empty() ? "remove ground, neighbours and outliers from the cloud" : leafOn);
   if (!o.leafOn && o.leafPieceShare > kMaxLeafPieceShare)
     add(L::Uncertain, percent(o.leafPieceShare) + " of the skeleton's pieces are flat, as leaves are", leafOn);
+  if (o.leafOn && !o.woodOnly)
+    add(L::Uncertain,
+        "modelled from every point of a tree in leaf: its tubes run through the foliage, so its volume is not "
+        "the wood's",
+        leafOn);
   if (o.woodOnly)
     add(L::Uncertain,
         "modelled from the points classified as wood only: twigs and limbs the classification calls leaf are "

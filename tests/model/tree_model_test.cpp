@@ -58,6 +58,21 @@ TEST(TreeModel, TubesThickerThanThePointsAreNotTrustedAndSaySo) {
   EXPECT_EQ(measure(stem(0.2, true), cloud, leafOn).verdictLine().find("--leaf-on"), std::string::npos);
 }
 
+TEST(TreeModel, AModelOfEveryPointOfATreeInLeafIsNeverTrustedForItsVolume) {
+  // A model that explains its points well, made with --leaf-on from every point: its tubes may run
+  // through the foliage, and nothing in its fit tells them from wood. Made from the wood only, the
+  // same model keeps the wood-only reason instead.
+  const geom::PointCloud cloud = stemScan(0.05);
+  MeasureOptions leafOn;
+  leafOn.leafOn = true;
+  const ModelMeasures every = measure(stem(0.05, true), cloud, leafOn);
+  EXPECT_GE(every.verdict.level, Verdict::Level::Uncertain);
+  EXPECT_NE(every.verdictLine().find("through the foliage"), std::string::npos) << every.verdictLine();
+  EXPECT_NE(every.verdictLine().find("--wood-only"), std::string::npos) << every.verdictLine();
+  leafOn.woodOnly = true;
+  EXPECT_EQ(measure(stem(0.05, true), cloud, leafOn).verdictLine().find("through the foliage"), std::string::npos);
+}
+
 TEST(TreeModel, AStemThatDisagreesWithThePointsAtBreastHeightIsNamed) {
   const geom::PointCloud cloud = stemScan(0.1);
   const ModelMeasures thin = measure(stem(0.08, true), cloud);  // a DBH 20 % under the points' circle
