@@ -7,8 +7,6 @@
 namespace treesketch::skeleton::detail {
 namespace {
 
-// Fewer anchoring radii than this do not set the law's scale.
-constexpr std::size_t kMinAnchors = 3;
 // The pipe model's exponent: cross-section area proportional to the carried length.
 constexpr double kPipeExponent = 0.5;
 
@@ -63,13 +61,13 @@ Allometry fitAllometry(const std::vector<SkeletonNode>& nodes, const std::vector
   // tree), then any fits.
   const double most = a.carried.empty() ? 0.0 : *std::max_element(a.carried.begin(), a.carried.end());
   for (const double share : {0.5, 0.0}) {
-    if (logScale.size() >= kMinAnchors) break;
+    if (logScale.size() >= kMinAllometryAnchors) break;
     logScale.clear();
     for (std::size_t i = 0; i < nodes.size(); ++i)
       if (trusted[i] && usable(i) && a.carried[i] >= share * most)
         logScale.push_back(std::log(r[i]) - a.b * std::log(a.carried[i]));
   }
-  if (logScale.size() < kMinAnchors) return a;
+  if (logScale.size() < kMinAllometryAnchors) return a;
   a.logA = median(logScale);
   a.valid = true;
   return a;

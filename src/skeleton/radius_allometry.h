@@ -15,6 +15,9 @@
 
 namespace treesketch::skeleton::detail {
 
+/// Fewer anchoring radii than this do not set the law's scale.
+inline constexpr std::size_t kMinAllometryAnchors = 3;
+
 struct Allometry {
   bool valid = false;  ///< false when too few trusted fits to fit it
   double logA = 0, b = 0.5;  ///< r = exp(logA) · L^b

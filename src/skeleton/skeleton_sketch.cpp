@@ -222,13 +222,15 @@ void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const geom::P
   // (the crown: under 2.5). Every real scan in ../shared/data/real has 11 % or more of its nodes
   // fitted; adtree_tree1 thinned to 30 % of its points has 4.1 % (41 circles of 5-15 cm, residuals
   // of 2-5 mm), and with the share at 5 % lost its stem's circles to the crown's guess, a third of
-  // its wood (docs/notes/radii_and_volume.md). A tracked stem is a measurement of its own.
+  // its wood (docs/notes/radii_and_volume.md). Fewer circles than the pipe law needs to take its scale
+  // from do not measure it either. A tracked stem is a measurement of its own.
   const bool stemMeasured = std::any_of(res.skeleton.nodes.begin(), res.skeleton.nodes.end(),
                                         [](const SkeletonNode& n) { return n.stem && n.radius > 0; });
   const auto accepted = std::count(res.fitAccepted.begin(), res.fitAccepted.end(), 1);
   const bool measured =
       stemMeasured ||
-      (accepted >= 3 && static_cast<double>(accepted) >= kMinFittedShare * static_cast<double>(res.model.size()));
+      (accepted >= static_cast<std::ptrdiff_t>(detail::kMinAllometryAnchors) &&
+       static_cast<double>(accepted) >= kMinFittedShare * static_cast<double>(res.model.size()));
   if (!measured) {
     std::fill(res.fitAccepted.begin(), res.fitAccepted.end(), 0);
     std::fill(fitted.begin(), fitted.end(), 0.0);

@@ -231,7 +231,8 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
       // The allowance for the median's sampling error keeps a measured radius from being thinned by
       // chance; an inferred one is the pipe model's guess, and its points say more than it does.
       const bool inferred = !(own > 0) && !model[chain[k]].stem;
-      bound[k] = radiusUnderNoise(quantile(pooled, kBoundQuantile), rangeNoise);
+      const double median = quantile(pooled, kBoundQuantile);
+      bound[k] = radiusUnderNoise(median, rangeNoise);
       if (!inferred)
         bound[k] += kMedianErrors * kMedianStandardError * noise / std::sqrt(static_cast<double>(pooled.size()));
       // One convex section (round, or of three or more flat sides) about the axis has its lower
@@ -240,7 +241,6 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
       bound[k] = std::min(bound[k], (low + kNoiseQuartile * noise) / kConvexQuartile);
       if (inferred) {
         raise[k] = low - kRaiseMarginNoise * noise;
-        const double median = quantile(pooled, kBoundQuantile);
         const bool leafPiece = model[chain[k]].flatFraction > maxFlatFraction;
         if (rangeNoise > 0 && median >= kResolvableNoises * rangeNoise && !leafPiece)
           raise[k] = std::max(raise[k], radiusUnderNoise(median, rangeNoise));
