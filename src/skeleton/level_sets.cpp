@@ -99,7 +99,7 @@ using PiecePairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
 // Joins the pieces of level k that share a piece below (`below`: (piece at k, piece at k-1),
 // sorted) and a piece above (`above`: (piece at k+1, piece at k)).
-void mergeLevel(UnionFind& uf, const PiecePairs& below, PiecePairs above) {
+void mergeLevel(UnionFind& uf, const PiecePairs& below, PiecePairs above, const std::vector<char>& apart) {
   std::sort(above.begin(), above.end());
   above.erase(std::unique(above.begin(), above.end()), above.end());
   auto lowerOf = [&](std::uint32_t piece) {
@@ -114,7 +114,7 @@ void mergeLevel(UnionFind& uf, const PiecePairs& below, PiecePairs above) {
     for (std::size_t i = a; i < b; ++i)
       for (std::size_t j = i + 1; j < b; ++j) {
         const std::uint32_t pi = uf.find(above[i].second), pj = uf.find(above[j].second);
-        if (pi == pj) continue;
+        if (pi == pj || (!apart.empty() && apart[pi] != apart[pj])) continue;
         const auto li = lowerOf(above[i].second), lj = lowerOf(above[j].second);
         bool share = false;
         for (std::uint32_t x : li)
@@ -125,7 +125,8 @@ void mergeLevel(UnionFind& uf, const PiecePairs& below, PiecePairs above) {
   }
 }
 
-void mergeSplitRings(const VoxelGraph& g, const GeodesicLevels& lv, UnionFind& uf) {
+// `apart` (empty: none): per voxel, the side of a cut no join crosses (levelPieces' stem tube).
+void mergeSplitRings(const VoxelGraph& g, const GeodesicLevels& lv, UnionFind& uf, const std::vector<char>& apart) {
   std::vector<Step> steps;
   for (std::size_t v = 0; v < g.size(); ++v) {
     if (lv.level[v] < 0) continue;
@@ -149,7 +150,7 @@ void mergeSplitRings(const VoxelGraph& g, const GeodesicLevels& lv, UnionFind& u
     for (std::size_t i = end; i < next; ++i) above.emplace_back(uf.find(steps[i].high), uf.find(steps[i].low));
     std::sort(below.begin(), below.end());
     below.erase(std::unique(below.begin(), below.end()), below.end());
-    mergeLevel(uf, below, above);
+    mergeLevel(uf, below, above, apart);
     begin = end;
   }
 }
@@ -173,7 +174,7 @@ void joinStemRings(const GeodesicLevels& lv, const std::vector<char>& tube, Unio
 // level set of a sparsely scanned stem holds a few voxels, and their centroid lies off the axis
 // towards whichever side they are on.
 void snapToStem(const GeodesicLevels& lv, const std::vector<char>& tube, const std::vector<detail::StemSample>& stem,
-                std::vector<SkeletonNode>& nodes) {
+                bool besideRoot, std::vector<SkeletonNode>& nodes) {
   std::vector<std::uint32_t> inside(nodes.size(), 0), all(nodes.size(), 0);
   for (std::size_t v = 0; v < tube.size(); ++v) {
     const std::int32_t id = lv.vertexNode[v];
@@ -182,7 +183,9 @@ void snapToStem(const GeodesicLevels& lv, const std::vector<char>& tube, const s
     inside[id] += tube[v] ? 1 : 0;
   }
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (2 * inside[i] <= all[i]) continue;
+    // The root of a stem found beside the root region is the stem's foot (trackStemFromRoot),
+    // whatever else its level holds (the dead branches on the ground round a conifer's foot).
+    if (2 * inside[i] <= all[i] && !(i == 0 && besideRoot && inside[i] > 0)) continue;
     const detail::StemSample at = detail::stemAt(stem, nodes[i].position);
     nodes[i].position = at.centre;
     nodes[i].radius = at.radius;
@@ -211,7 +214,7 @@ UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv, const std::
     }
   }
   joinStemRings(lv, stemTube, uf);
-  mergeSplitRings(g, lv, uf);
+  mergeSplitRings(g, lv, uf, cutAtTube ? stemTube : std::vector<char>{});
   return uf;
 }
 
@@ -221,7 +224,18 @@ UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv, const std::
 // for a 2 cm limb and met it again 0.7 m higher (docs/notes/radii_and_volume.md). A parent of the
 // piece's own level (the stem's tube, levelPieces) stays.
 void growFromLargestPieceBelow(const VoxelGraph& g, const GeodesicLevels& lv, const std::vector<std::uint32_t>& count,
-                               std::vector<SkeletonNode>& nodes) {
+                               const std::vector<char>& tube, std::vector<SkeletonNode>& nodes) {
+  // A piece on the tracked stem (most of its voxels in the tube) grows out of the stem's piece
+  // below it, however large a neighbour: at a conifer's foot the level below holds the dead
+  // branches round the stem in one piece larger than the stem's ring.
+  std::vector<std::uint32_t> inTube(nodes.size(), 0);
+  for (std::size_t v = 0; v < tube.size(); ++v)
+    if (tube[v] && lv.vertexNode[v] >= 0) ++inTube[lv.vertexNode[v]];
+  const auto onStem = [&](std::int32_t id) { return !tube.empty() && 2 * inTube[id] > count[id]; };
+  const auto better = [&](std::int32_t id, std::int32_t c, std::int32_t b) {
+    if (onStem(id) && onStem(c) != onStem(b)) return onStem(c);
+    return count[c] > count[b];
+  };
   std::vector<std::int32_t> best(nodes.size(), -1);
   for (std::size_t v = 0; v < g.size(); ++v) {
     if (lv.level[v] <= 0) continue;
@@ -231,7 +245,7 @@ void growFromLargestPieceBelow(const VoxelGraph& g, const GeodesicLevels& lv, co
       if (lv.level[w] != lv.level[v] - 1) continue;
       const std::int32_t c = lv.vertexNode[w];
       if (c < 0 || c == id) continue;
-      if (best[id] < 0 || count[c] > count[best[id]]) best[id] = c;
+      if (best[id] < 0 || better(id, c, best[id])) best[id] = c;
     }
   }
   for (std::size_t i = 1; i < nodes.size(); ++i) {
@@ -248,7 +262,8 @@ void growFromLargestPieceBelow(const VoxelGraph& g, const GeodesicLevels& lv, co
 // lv.vertexNode; `count` receives each node's number of voxels. With `cutAtTube` (levelPieces) a
 // piece's parent may be a piece of its own level: within a level, pieces nearer the root first.
 std::vector<SkeletonNode> pieceNodes(const VoxelGraph& g, GeodesicLevels& lv, UnionFind& uf,
-                                     const std::vector<Vec3>& at, bool cutAtTube, std::vector<std::uint32_t>& count) {
+                                     const std::vector<Vec3>& at, const std::vector<char>& tube, bool cutAtTube,
+                                     std::vector<std::uint32_t>& count) {
   const std::size_t n = g.size();
   std::vector<std::uint32_t> reps;
   for (std::size_t v = 0; v < n; ++v)
@@ -293,7 +308,7 @@ std::vector<SkeletonNode> pieceNodes(const VoxelGraph& g, GeodesicLevels& lv, Un
     const std::int64_t pred = lv.predecessor[firstVertex[i]];
     node.parent = (i == 0 || pred < 0) ? -1 : lv.vertexNode[pred];
   }
-  growFromLargestPieceBelow(g, lv, count, nodes);
+  growFromLargestPieceBelow(g, lv, count, tube, nodes);
   detail::linkChildren(nodes);
   return nodes;
 }
@@ -386,9 +401,9 @@ std::vector<SkeletonNode> levelSetNodes(const VoxelGraph& g, GeodesicLevels& lv,
   UnionFind uf = levelPieces(g, lv, tube, besideRoot);
   std::vector<std::uint32_t> count;
   const std::vector<Vec3>& at = centroids ? *centroids : g.positions;
-  std::vector<SkeletonNode> nodes = pieceNodes(g, lv, uf, at, besideRoot, count);
+  std::vector<SkeletonNode> nodes = pieceNodes(g, lv, uf, at, tube, besideRoot, count);
   if (options.splitMergedForks) detail::splitMergedForks(g, lv, at, tube, options, nodes, count);
-  if (!stem.empty()) snapToStem(lv, tube, stem, nodes);
+  if (!stem.empty()) snapToStem(lv, tube, stem, besideRoot, nodes);
   setDirections(nodes, options.up);
   setRadiiAndShape(g, lv, centroids, count, options, nodes);
   return nodes;

@@ -349,7 +349,12 @@ std::vector<StemSample> stemFromColumn(const VoxelGraph& g, const std::vector<st
     StemSample base;
     const double bottom = lowest + (column.first + j * kBaseSlabVoxels) * voxel;
     if (!columnBase(g, column, f, bottom, upAxis, maxSearch, base)) continue;
-    const std::vector<StemSample> below = followStem(g, base, -up, true), above = followStem(g, base, up, true);
+    std::vector<StemSample> below = followStem(g, base, -up, true);
+    const std::vector<StemSample> above = followStem(g, base, up, true);
+    // No stem under the tree's lowest voxel: a slab there is empty until, its height doubled, it
+    // reaches what lies on the ground round the foot (a conifer's dead branches). The samples stop
+    // there; trackStem carries the stem down to the lowest voxel along its first segment.
+    while (below.size() > 1 && geom::height(below.back().centre, upAxis) < lowest) below.pop_back();
     std::vector<StemSample> stem(below.rbegin(), below.rend() - 1);
     stem.insert(stem.end(), above.begin(), above.end());
     if (stem.size() >= 3) return stem;

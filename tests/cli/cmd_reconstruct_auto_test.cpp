@@ -330,5 +330,45 @@ TEST(CmdAuto, NoTubeLeavesTheCloud) {
   EXPECT_GT(table.model.cylinders.size(), 100u);
 }
 
+// A conifer's stem is one branch from its foot to its crown. The TreeLS spruce's wood-only cloud
+// has a skirt of dead branches round its lowest 1.5 m: its stem's branch wandered 0.8 m through
+// them (rooted among them, joined to the stem 1.5 m up) and ended at 3 m, the rest of the stem
+// carried as limbs; the trunk diameter came from those branches (20 cm against the points' 25).
+TEST(CmdAuto, AConifersStemIsOneBranchFromItsFoot) {
+  const auto file = test::sharedDataDir() / "real" / "treels_spruce_decoded.xyz";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
+  test::TempDir dir;
+  std::string out;
+  ASSERT_EQ(test::runCli("reconstruct " + quoted(file) + " --auto --leaf-on --wood-only --up z -o " +
+                             quoted(dir / "m.ply") + " --cylinders " + quoted(dir / "c.csv"),
+                         &out),
+            0)
+      << out;
+  const geom::BBox box = io::readPointCloud(file).bounds();
+  const double height = box.max.z() - box.min.z();
+  const io::CylinderTable table = io::readCylinderTable(dir / "c.csv");
+  double stemLength = 0;
+  std::vector<geom::Vec3> stem;
+  for (const geom::ModelCylinder& c : table.model.cylinders)
+    if (c.branchOrder == 0) {
+      stemLength += (c.end - c.start).norm();
+      stem.push_back(c.start);
+      stem.push_back(c.end);
+    }
+  EXPECT_GT(stemLength, 0.6 * height);
+  // Its lowest 3 m stand within 10 cm of one vertical line (the stem leans by under 2 cm there).
+  geom::Vec3 mean = geom::Vec3::Zero();
+  int n = 0;
+  for (const geom::Vec3& p : stem)
+    if (p.z() < box.min.z() + 3.0) {
+      mean += p;
+      ++n;
+    }
+  ASSERT_GT(n, 2);
+  mean /= n;
+  for (const geom::Vec3& p : stem)
+    if (p.z() < box.min.z() + 3.0) EXPECT_LT(std::hypot(p.x() - mean.x(), p.y() - mean.y()), 0.1) << p.transpose();
+}
+
 }  // namespace
 }  // namespace treesketch

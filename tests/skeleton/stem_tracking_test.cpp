@@ -216,5 +216,48 @@ TEST(StemTracking, TheModelsStemStaysOnTheTrackedAxisThroughDenseWhorls) {
   EXPECT_GT(onStem, 10);
 }
 
+// A conifer's foot in a skirt of dead branches, some rising close beside the stem: the stem's
+// branch is the tracked stem from a root on its axis up to the top whorl, and the stem is not
+// followed down past the tree's lowest voxel (a slab under the tree, doubled in height, reached up
+// to the skirt: samples 0.25 m under the ground, their tube round the branches on it).
+std::vector<Cyl> skirtedConifer() {
+  std::vector<Cyl> c = denseWhorls();
+  for (int k = 0; k < 14; ++k) {
+    const double a = 2.0 * M_PI * (k + 0.5) / 14.0, y = 0.35 + 0.03 * (k % 4);
+    const double reach = 0.7 + 0.1 * (k % 3);
+    c.push_back({Vec3(0, y, 0), Vec3(reach * std::cos(a), 0.02 + 0.04 * (k % 2), reach * std::sin(a)), 0.02, 0});
+    const double b = a + 0.3;
+    c.push_back({Vec3(0, y + 0.15, 0), Vec3(0.6 * std::cos(b), y + 0.05, 0.6 * std::sin(b)), 0.02, 0});
+  }
+  for (int k = 0; k < 6; ++k) {  // dead shoots rising close beside the stem
+    const double a = 2.0 * M_PI * k / 6.0;
+    c.push_back({Vec3(0, 0.32, 0), Vec3(0.2 * std::cos(a), 1.1, 0.2 * std::sin(a)), 0.015, 0});
+  }
+  return c;
+}
+
+TEST(StemTracking, TheStemsBranchRunsFromItsFootThroughASkirtOfDeadBranches) {
+  const geom::PointCloud cloud = test::sampleCylinders(skirtedConifer(), 0.012, 0.002, 7);
+  skeleton::SkeletonOptions o;
+  o.graph.voxelSize = kVoxel;
+  const skeleton::Skeleton s = skeleton::extractSkeleton(cloud, o);
+  ASSERT_FALSE(s.levels.stemCentres.empty());
+  double lowest = 1e300;
+  for (const Vec3& p : s.graph.positions) lowest = std::min(lowest, p.y());
+  EXPECT_GE(s.levels.stemCentres.front().y(), lowest - 1e-9) << "a stem sample under the tree";
+  ASSERT_FALSE(s.nodes.empty());
+  EXPECT_LT(std::hypot(s.nodes.front().position.x(), s.nodes.front().position.z()), kStemRadius);
+  constexpr double kTopWhorl = 0.8 + 0.5 * 6;
+  double high = -1e300;
+  int off = 0;
+  for (const auto& n : s.nodes) {
+    if (n.branchOrder != 0 || n.position.y() > kTopWhorl) continue;
+    if (std::hypot(n.position.x(), n.position.z()) > kStemRadius + kVoxel) ++off;
+    high = std::max(high, n.position.y());
+  }
+  EXPECT_EQ(off, 0) << "nodes of the stem's branch off the stem";
+  EXPECT_GT(high, 3.5);
+}
+
 }  // namespace
 }  // namespace treesketch
