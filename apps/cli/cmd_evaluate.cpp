@@ -94,17 +94,21 @@ void addMethodOptions(CLI::App& cmd, EvaluateOpts& o) {
   cmd.add_flag("--choose-depth", o.e.chooseDepth,
                "The simulated user's screen nodes choose their depth along the view ray from the parent's circle "
                "(as the viewer does) instead of the thesis's fit (the best-supported circle along the whole ray)");
-  cmd.add_flag_function("--user-every-point", [&o](std::int64_t) { o.e.userFitsOnWood = false; },
-               "On leaf-on scans the simulated user's nodes are fitted to every point (the thesis) instead of "
-               "the points the wood/leaf classification calls wood");
-  cmd.add_flag_function("--user-draws-hidden", [&o](std::int64_t) { o.e.userDrawsWhatItSees = false; },
-                        "The simulated user draws every true branch, also where the points it fits on do not show it "
-                        "(limbs hidden behind leaves); by default it draws only what they show");
-  cmd.add_flag_function("--user-no-growth", [&o](std::int64_t) { o.e.userGrowth = false; },
-                        "The simulated user's nodes keep to their first test region (no growth until a circle is found)");
-  cmd.add_option("--user-band-metres", o.e.userInlierBandMetres,
-                 "Inlier band of the simulated user's circle fits, metres, converted to the trees' units (0: the fit's default "
-                 "taken in scene units)")
+  cmd.add_flag_function(
+      "--user-every-point", [&o](std::int64_t) { o.e.userFitsOnWood = false; },
+      "On leaf-on scans the simulated user's nodes are fitted to every point (the thesis) instead of "
+      "the points the wood/leaf classification calls wood");
+  cmd.add_flag_function(
+      "--user-draws-hidden", [&o](std::int64_t) { o.e.userDrawsWhatItSees = false; },
+      "The simulated user draws every true branch, also where the points it fits on do not show it "
+      "(limbs hidden behind leaves); by default it draws only what they show");
+  cmd.add_flag_function(
+      "--user-no-growth", [&o](std::int64_t) { o.e.userGrowth = false; },
+      "The simulated user's nodes keep to their first test region (no growth until a circle is found)");
+  cmd.add_option(
+         "--user-band-metres", o.e.userInlierBandMetres,
+         "Inlier band of the simulated user's circle fits, metres, converted to the trees' units (0: the fit's default "
+         "taken in scene units)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd.add_flag("--correcting-user", o.correcting,

@@ -9,6 +9,7 @@
 #include <set>
 #include <tuple>
 
+#include "eval_methods.h"
 #include "treesketch/classify/classify.h"
 #include "treesketch/eval/mesh_distance.h"
 #include "treesketch/io/view_camera.h"
@@ -21,7 +22,6 @@
 #include "treesketch/sketch/polyline_sketch.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/stopwatch.h"
-#include "eval_methods.h"
 
 namespace treesketch::eval {
 
@@ -239,7 +239,8 @@ TreeScan scanTree(const TreeCase& tree, const ScanCondition& c, bool leafOn, std
   // The terrain a clip of the tree out of a plot's scan keeps: under its crown and a little past it.
   if (c.terrainSlopeDeg >= 0) {
     const geom::Vec3 extent = tree.branches.bounds().extent();
-    const double crown = tree.up == geom::UpAxis::Y ? std::max(extent.x(), extent.z()) : std::max(extent.x(), extent.y());
+    const double crown =
+        tree.up == geom::UpAxis::Y ? std::max(extent.x(), extent.z()) : std::max(extent.x(), extent.y());
     meshes.push_back(terrainUnder(tree.branches.bounds(), tree.up, tree.metresPerUnit, 0.6 * crown, c.terrainSlopeDeg));
   }
   const double noise =

@@ -208,9 +208,10 @@ TEST(EvaluateMatrix, SetChangesTheAutomaticModel) {
   const std::string common =
       "evaluate --matrix quick --conditions wood-5k --methods skeleton --builtin 2 --split held-out --out ";
   ASSERT_EQ(test::runCli(common + (dir / "d").string(), &out), 0) << out;
-  ASSERT_EQ(test::runCli(common + (dir / "s").string() + " --set radii.allometryMaxRatio=0 --set radii.surfaceBound=false",
-                         &out),
-            0)
+  ASSERT_EQ(
+      test::runCli(common + (dir / "s").string() + " --set radii.allometryMaxRatio=0 --set radii.surfaceBound=false",
+                   &out),
+      0)
       << out;
   const Csv d = readCsv(dir / "d" / "results.csv"), s = readCsv(dir / "s" / "results.csv");
   ASSERT_EQ(d.rows.size(), 1u);
@@ -256,8 +257,8 @@ TEST(EvaluateCli, ATreeWithAZeroAreaBranchMeshIsADataErrorNamingIt) {
   test::writeText(dir / "trees" / "flat_s1.branches.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
   test::writeText(dir / "trees" / "flat_s1.json", "{}");
   std::string out;
-  EXPECT_EQ(test::runCli("evaluate --trees " + test::quoted(dir / "trees") + " --out " + test::quoted(dir / "out"), &out),
-            5)
+  EXPECT_EQ(
+      test::runCli("evaluate --trees " + test::quoted(dir / "trees") + " --out " + test::quoted(dir / "out"), &out), 5)
       << out;
   EXPECT_NE(out.find("flat_s1.branches.obj: the branch mesh has zero area"), std::string::npos) << out;
 }
