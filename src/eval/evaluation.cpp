@@ -165,6 +165,19 @@ skeleton::AutoSkeletonOptions automaticModelOptions(bool leafOn, geom::UpAxis up
   return so;
 }
 
+skeleton::AutoSkeletonResult automaticModel(const geom::PointCloud& cloud, bool leafOn, bool woodOnly, geom::UpAxis up,
+                                            const EvalOptions& options, bool* onWood) {
+  if (onWood) *onWood = false;
+  if (leafOn && woodOnly && !cloud.empty()) {
+    const geom::PointCloud wood = classifiedWood(cloud, up);
+    if (wood.size() >= detail::kMinWoodPoints) {  // else no tree's wood: every point, as "skeleton-wood"
+      if (onWood) *onWood = true;
+      return skeleton::autoSkeletonSketch(wood, automaticModelOptions(false, up, options));
+    }
+  }
+  return skeleton::autoSkeletonSketch(cloud, automaticModelOptions(leafOn, up, options));
+}
+
 std::vector<std::string> defaultMethodNames() {
   std::vector<std::string> names;
   for (const auto& name : methodNames())

@@ -15,6 +15,10 @@
 // model → reference, forward: reference → model, % of the reference diagonal, as runEvaluation)
 // are measured after every edit. The interactive-segmentation field reports "number of clicks to
 // reach a target" the same way (NoC@90); here NoE@target, both directions.
+// Leaf-on, the person starts from the model of the classified wood (`reconstruct --auto --leaf-on
+// --wood-only`: the classification's wood modelled with the leaf-off settings), which misses the
+// limbs the classifier called leaf, and draws those; leaf-off, from the model of every point.
+// Every edit is rebuilt on the whole scan (see CorrectingUserOptions::leafOnWoodOnly).
 #pragma once
 
 #include <cstdint>
@@ -47,6 +51,15 @@ struct CorrectingUserOptions {
   /// whole; at 0.6 the subtrees taken held real limbs, and every such deletion was undone (the
   /// dev trees, leaf-on: no change in 20 edits).
   double subtreeWrongShare = 0.9;
+  /// Leaf-on scans: the person starts from the automatic model of the points the wood/leaf
+  /// classification calls wood, with the leaf-off settings (eval::automaticModel with woodOnly,
+  /// the "skeleton-wood" method), as a person works in the product (`--leaf-on --wood-only`, then
+  /// corrects). false: from the model of every point with the leaf-on settings (the former start,
+  /// thousands of small tubes in the foliage). Leaf-off scans are not affected. Either way the
+  /// model's nodes keep their circles, and the strokes' nodes are picked and fitted on every point
+  /// of the scan: the person sees the whole cloud, and a limb the classifier called leaf has no
+  /// wood points to fit on.
+  bool leafOnWoodOnly = true;
   std::uint64_t seed = 1;
   DistanceOptions distance;
 };
@@ -66,12 +79,17 @@ struct CorrectingRun {
   int editsToTarget = -1;
 };
 
-/// Runs the simulated person on one scan, from `automatic` (the automatic skeleton's sketch).
+/// Runs the simulated person on one scan (`cloud`, every point), from `automatic` (the automatic
+/// skeleton's sketch; its nodes' kept circles are kept, whichever points they were fitted on).
+/// Every rebuild, and every stroke's depth and fits, use all of `cloud`. `startLabel` names the
+/// start in step 0's action.
 CorrectingRun runCorrectingUser(const TreeCase& tree, const geom::PointCloud& cloud, const sketch::Sketch& automatic,
-                                const CorrectingUserOptions& options);
+                                const CorrectingUserOptions& options,
+                                const std::string& startLabel = "start (automatic model)");
 
-/// Scans every tree under every condition of `evalOptions` (leaf states as it says), runs the
-/// automatic skeleton and the correcting user on each; `evalOptions.log` reports progress.
+/// Scans every tree under every condition of `evalOptions` (leaf states as it says), builds the
+/// automatic model (leaf-on: of the classified wood unless options.leafOnWoodOnly is false) and
+/// runs the correcting user on each; `evalOptions.log` reports progress.
 std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& trees, const EvalOptions& evalOptions,
                                                    const CorrectingUserOptions& options);
 
