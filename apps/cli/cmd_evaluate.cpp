@@ -115,9 +115,9 @@ void addMethodOptions(CLI::App& cmd, EvaluateOpts& o) {
                "Run only the simulated correcting user: from the automatic skeleton, one edit at a time "
                "on the worst visible error; writes correcting_user.{csv,md} and correcting_user_*.svg");
   cmd.add_flag_function(
-      "--correcting-every-point", [&o](std::int64_t) { o.c.leafOnWoodOnly = false; },
-      "--correcting-user: leaf-on runs start from the automatic model of every point with the "
-      "leaf-on settings instead of the model of the classified wood (--leaf-on --wood-only)");
+      "--correcting-wood-only", [&o](std::int64_t) { o.c.leafOnWoodOnly = true; },
+      "--correcting-user: leaf-on runs start from the automatic model of the points the wood/leaf "
+      "classification calls wood (as reconstruct --auto --leaf-on --wood-only) instead of every point");
   cmd.add_option("--edits", o.c.maxEdits, "--correcting-user: edits per case")
       ->capture_default_str()
       ->check(CLI::Range(1, 500));
@@ -144,7 +144,7 @@ void runEvaluate(const EvaluateOpts& o, bool cmdRaysGiven, const std::string& le
     throw OptionsError(legacyGiven + " sets the former single condition; it does not combine with --matrix");
   if (o.matrix.empty() && (!o.conditions.empty() || o.list))
     throw OptionsError("--conditions and --list need --matrix quick|full");
-  if (!o.correcting && !o.c.leafOnWoodOnly) throw OptionsError("--correcting-every-point needs --correcting-user");
+  if (!o.correcting && o.c.leafOnWoodOnly) throw OptionsError("--correcting-wood-only needs --correcting-user");
   checkSettings(o.e.skeletonSettings);  // before any scan
   eval::EvalOptions e = o.e;
   if (cmdRaysGiven) e.sphereTargetPoints = 0;

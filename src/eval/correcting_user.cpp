@@ -226,9 +226,21 @@ class CorrectingSession {
     }
   }
 
+  // Every node's tube as the model sweeps it: its circle, fitted, kept or inferred from its limb.
+  // A stroke's nodes that found no circle of their own (a limb among leaves) have tubes of
+  // inferred radius that edit::nodeAnchors leaves at radius 0; the person sees those tubes too.
+  std::map<NodeId, edit::NodeAnchor> modelTubes() const {
+    std::map<NodeId, edit::NodeAnchor> tubes = edit::nodeAnchors(sk_, &rec_);
+    for (auto& [id, a] : tubes) {
+      const recon::NodeRadius* r = rec_.radius(id);
+      if (r && r->source != recon::RadiusSource::None && r->radius > 0) a = edit::NodeAnchor{r->centre, r->radius};
+    }
+    return tubes;
+  }
+
   // Wrong tubes: nodes whose circle lies farther than the tolerance outside the reference.
   void addWrongTubes(std::vector<Candidate>& cands) const {
-    const auto anchors = edit::nodeAnchors(sk_, &rec_);
+    const auto anchors = modelTubes();
     std::map<NodeId, double> wrong;  // node -> its score
     std::map<NodeId, double> area;   // node -> its tube's surface, radius x spacing (a proxy)
     for (const auto& [id, a] : anchors) {

@@ -247,7 +247,7 @@ TEST(EvaluateCorrectingUser, WritesTheCurveAndRejectsBadOptions) {
   EXPECT_NE(csv.find(",0,\"start (automatic model)\","), std::string::npos);
   EXPECT_NE(out.find("edits to 0.5 %"), std::string::npos) << out;
   EXPECT_EQ(test::runCli("evaluate --correcting-user --edits 0 --out " + (dir / "x").string(), &out), 2) << out;
-  EXPECT_EQ(test::runCli("evaluate --correcting-every-point --out " + (dir / "y").string(), &out), 2) << out;
+  EXPECT_EQ(test::runCli("evaluate --correcting-wood-only --out " + (dir / "y").string(), &out), 2) << out;
   EXPECT_NE(out.find("needs --correcting-user"), std::string::npos) << out;
 }
 

@@ -77,9 +77,9 @@ TEST(CorrectingUser, DrawsAMissedLimbAndNeverKeepsAWorseEdit) {
   EXPECT_NE(md.find("edits to 0.5 %"), std::string::npos);
 }
 
-// Leaf-on, the person starts from the automatic model of the classified wood (as `--leaf-on
-// --wood-only`), not from the model of every point with its tubes through the foliage: far fewer
-// nodes, and its tubes lie on the wood (a lower backward error). The old start stays available.
+// Leaf-on with leafOnWoodOnly, the person starts from the automatic model of the classified wood
+// (as `--leaf-on --wood-only`), not from the model of every point with its tubes through the
+// foliage: far fewer nodes, and its tubes lie on the wood (a lower backward error).
 TEST(CorrectingUser, LeafOnStartsFromTheModelOfTheClassifiedWood) {
   const std::vector<TreeCase> trees = builtinTrees(1);
   EvalOptions eo;
@@ -88,9 +88,9 @@ TEST(CorrectingUser, LeafOnStartsFromTheModelOfTheClassifiedWood) {
   eo.minSamples = 3000;
   CorrectingUserOptions o;
   o.maxEdits = 1;
-  const std::vector<CorrectingRun> wood = runCorrectingEvaluation(trees, eo, o);
-  o.leafOnWoodOnly = false;
   const std::vector<CorrectingRun> every = runCorrectingEvaluation(trees, eo, o);
+  o.leafOnWoodOnly = true;
+  const std::vector<CorrectingRun> wood = runCorrectingEvaluation(trees, eo, o);
   ASSERT_EQ(wood.size(), 1u);
   ASSERT_EQ(every.size(), 1u);
   const CorrectingStep& w = wood[0].steps.front();
