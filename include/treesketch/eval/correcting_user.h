@@ -61,7 +61,7 @@ struct CorrectingUserOptions {
   /// whole cloud, and a limb the classifier called leaf has no wood points to fit on. Default
   /// false, measured (docs/classify.md, "Correcting the model of the wood", four trees, 20 edits):
   /// from the wood the forward error falls from 4.3 to 2.1 % but strokes inside the foliage raise
-  /// the backward error from 0.5 to 1.2 %; from every point 1.20 / 0.41 %.
+  /// the backward error from 0.5 to 1.2 % (sphere scans); from every point 1.20 / 0.41 %.
   bool leafOnWoodOnly = false;
   std::uint64_t seed = 1;
   DistanceOptions distance;
