@@ -94,22 +94,30 @@ void addMethodOptions(CLI::App& cmd, EvaluateOpts& o) {
   cmd.add_flag("--choose-depth", o.e.chooseDepth,
                "The simulated user's screen nodes choose their depth along the view ray from the parent's circle "
                "(as the viewer does) instead of the thesis's fit (the best-supported circle along the whole ray)");
-  cmd.add_flag_function("--user-every-point", [&o](std::int64_t) { o.e.userFitsOnWood = false; },
-               "On leaf-on scans the simulated user's nodes are fitted to every point (the thesis) instead of "
-               "the points the wood/leaf classification calls wood");
-  cmd.add_flag_function("--user-draws-hidden", [&o](std::int64_t) { o.e.userDrawsWhatItSees = false; },
-                        "The simulated user draws every true branch, also where the points it fits on do not show it "
-                        "(limbs hidden behind leaves); by default it draws only what they show");
-  cmd.add_flag_function("--user-no-growth", [&o](std::int64_t) { o.e.userGrowth = false; },
-                        "The simulated user's nodes keep to their first test region (no growth until a circle is found)");
-  cmd.add_option("--user-band-metres", o.e.userInlierBandMetres,
-                 "Inlier band of the simulated user's circle fits, metres, converted to the trees' units (0: the fit's default "
-                 "taken in scene units)")
+  cmd.add_flag_function(
+      "--user-every-point", [&o](std::int64_t) { o.e.userFitsOnWood = false; },
+      "On leaf-on scans the simulated user's nodes are fitted to every point (the thesis) instead of "
+      "the points the wood/leaf classification calls wood");
+  cmd.add_flag_function(
+      "--user-draws-hidden", [&o](std::int64_t) { o.e.userDrawsWhatItSees = false; },
+      "The simulated user draws every true branch, also where the points it fits on do not show it "
+      "(limbs hidden behind leaves); by default it draws only what they show");
+  cmd.add_flag_function(
+      "--user-no-growth", [&o](std::int64_t) { o.e.userGrowth = false; },
+      "The simulated user's nodes keep to their first test region (no growth until a circle is found)");
+  cmd.add_option(
+         "--user-band-metres", o.e.userInlierBandMetres,
+         "Inlier band of the simulated user's circle fits, metres, converted to the trees' units (0: the fit's default "
+         "taken in scene units)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd.add_flag("--correcting-user", o.correcting,
                "Run only the simulated correcting user: from the automatic skeleton, one edit at a time "
                "on the worst visible error; writes correcting_user.{csv,md} and correcting_user_*.svg");
+  cmd.add_flag_function(
+      "--correcting-wood-only", [&o](std::int64_t) { o.c.leafOnWoodOnly = true; },
+      "--correcting-user: leaf-on runs start from the automatic model of the points the wood/leaf "
+      "classification calls wood (as reconstruct --auto --leaf-on --wood-only) instead of every point");
   cmd.add_option("--edits", o.c.maxEdits, "--correcting-user: edits per case")
       ->capture_default_str()
       ->check(CLI::Range(1, 500));
@@ -136,6 +144,7 @@ void runEvaluate(const EvaluateOpts& o, bool cmdRaysGiven, const std::string& le
     throw OptionsError(legacyGiven + " sets the former single condition; it does not combine with --matrix");
   if (o.matrix.empty() && (!o.conditions.empty() || o.list))
     throw OptionsError("--conditions and --list need --matrix quick|full");
+  if (!o.correcting && o.c.leafOnWoodOnly) throw OptionsError("--correcting-wood-only needs --correcting-user");
   checkSettings(o.e.skeletonSettings);  // before any scan
   eval::EvalOptions e = o.e;
   if (cmdRaysGiven) e.sphereTargetPoints = 0;

@@ -120,8 +120,15 @@ SubtreeSums subtreeSums(const sketch::Sketch& sk, const std::vector<NodeId>& ord
 // edit that removes the most error, looks at the result and undoes an edit that made it worse.
 class CorrectingSession {
  public:
+  // `cloud` is the whole scan, also when `automatic` is the model of its classified wood: its nodes
+  // carry kept circles (fitted on the wood), so the rebuild reproduces that model and re-fits only
+  // what an edit adds; a stroke picks its depth among, and fits its nodes on, every point, as the
+  // person sees the whole cloud and draws over the limbs the classifier called leaf. (With the
+  // leaf points left out, as the viewer's strokes are once the cloud is classified, such a limb
+  // has no points: the person would first lasso it as wood; that lasso is taken as part of the
+  // stroke here.)
   CorrectingSession(const TreeCase& tree, const geom::PointCloud& cloud, const sketch::Sketch& automatic,
-                    const CorrectingUserOptions& o)
+                    const CorrectingUserOptions& o, const std::string& startLabel)
       : tree_(tree),
         cloud_(cloud),
         o_(o),
@@ -131,7 +138,7 @@ class CorrectingSession {
         sk_(automatic) {
     run_.tree = tree.name;
     rec_.update(sk_);
-    record(0, "start (automatic model)", 0.0);
+    record(0, startLabel, 0.0);
     reference_ = std::make_unique<accel::MeshClosestPoint>(tree.branches);
     const geom::BBox bounds = cloud.bounds();
     for (double deg : {0.0, 90.0, 180.0, 270.0}) views_.push_back(viewAround(bounds, tree.up, deg));
@@ -219,9 +226,21 @@ class CorrectingSession {
     }
   }
 
+  // Every node's tube as the model sweeps it: its circle, fitted, kept or inferred from its limb.
+  // A stroke's nodes that found no circle of their own (a limb among leaves) have tubes of
+  // inferred radius that edit::nodeAnchors leaves at radius 0; the person sees those tubes too.
+  std::map<NodeId, edit::NodeAnchor> modelTubes() const {
+    std::map<NodeId, edit::NodeAnchor> tubes = edit::nodeAnchors(sk_, &rec_);
+    for (auto& [id, a] : tubes) {
+      const recon::NodeRadius* r = rec_.radius(id);
+      if (r && r->source != recon::RadiusSource::None && r->radius > 0) a = edit::NodeAnchor{r->centre, r->radius};
+    }
+    return tubes;
+  }
+
   // Wrong tubes: nodes whose circle lies farther than the tolerance outside the reference.
   void addWrongTubes(std::vector<Candidate>& cands) const {
-    const auto anchors = edit::nodeAnchors(sk_, &rec_);
+    const auto anchors = modelTubes();
     std::map<NodeId, double> wrong;  // node -> its score
     std::map<NodeId, double> area;   // node -> its tube's surface, radius x spacing (a proxy)
     for (const auto& [id, a] : anchors) {
@@ -390,8 +409,8 @@ class CorrectingSession {
 }  // namespace
 
 CorrectingRun runCorrectingUser(const TreeCase& tree, const geom::PointCloud& cloud, const sketch::Sketch& automatic,
-                                const CorrectingUserOptions& o) {
-  return CorrectingSession(tree, cloud, automatic, o).run();
+                                const CorrectingUserOptions& o, const std::string& startLabel) {
+  return CorrectingSession(tree, cloud, automatic, o, startLabel).run();
 }
 
 std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& trees, const EvalOptions& eo,
@@ -405,13 +424,16 @@ std::vector<CorrectingRun> runCorrectingEvaluation(const std::vector<TreeCase>& 
         if ((leafOn && !(eo.leafOn && c.leafOn)) || (!leafOn && !(eo.leafOff && c.leafOff))) continue;
         const Stopwatch timer;
         TreeScan scan = scanTree(tree, c, leafOn, eo.seed);
+        bool onWood = false;
         skeleton::AutoSkeletonResult automatic =
-            skeleton::autoSkeletonSketch(scan.cloud, automaticModelOptions(leafOn, tree.up, eo));
+            automaticModel(scan.cloud, leafOn, o.leafOnWoodOnly, tree.up, eo, &onWood);
         CorrectingUserOptions co = o;
         co.distance.minSamples = eo.minSamples;
         co.distance.samples = eo.samples;
         co.distance.seed = eo.seed;
-        CorrectingRun r = runCorrectingUser(tree, scan.cloud, automatic.sketch, co);
+        CorrectingRun r =
+            runCorrectingUser(tree, scan.cloud, automatic.sketch, co,
+                              onWood ? "start (automatic model of the classified wood)" : "start (automatic model)");
         r.condition = c.name;
         r.pattern = c.pattern;
         r.leaf = leafOn ? "leaf-on" : "leaf-off";
@@ -467,6 +489,10 @@ std::string correctingMarkdown(const std::vector<CorrectingRun>& runs, const Cor
     << "From the automatic skeleton's sketch, the simulated person makes one edit at a time on the worst visible "
        "error (a stroke along a missed reference limb in the view where it shows best, with "
     << o.pixelNoise << " px hand jitter; deleting a wrong subtree or node), with the viewer's correction tools. "
+    << (o.leafOnWoodOnly ? "Leaf-on, it starts from the automatic model of the points the wood/leaf classification "
+                           "calls wood (leaf-off settings, as `reconstruct --auto --leaf-on --wood-only`); its strokes "
+                           "and rebuilds use every point. "
+                         : "Leaf-on, it starts from the automatic model of every point (leaf-on settings). ")
     << "RMS distances are % of the reference diagonal (backward: model to reference; forward: reference to model). "
     << "Error tolerance " << o.tolerancePct << " %; at most " << o.maxEdits << " edits.\n\n";
   s << "| tree | condition | leaf | start back / fwd % | after 5 | after " << o.maxEdits

@@ -9,6 +9,7 @@
 #include <set>
 #include <tuple>
 
+#include "eval_methods.h"
 #include "treesketch/classify/classify.h"
 #include "treesketch/eval/mesh_distance.h"
 #include "treesketch/io/view_camera.h"
@@ -21,7 +22,6 @@
 #include "treesketch/sketch/polyline_sketch.h"
 #include "treesketch/util/error.h"
 #include "treesketch/util/stopwatch.h"
-#include "eval_methods.h"
 
 namespace treesketch::eval {
 
@@ -165,6 +165,19 @@ skeleton::AutoSkeletonOptions automaticModelOptions(bool leafOn, geom::UpAxis up
   return so;
 }
 
+skeleton::AutoSkeletonResult automaticModel(const geom::PointCloud& cloud, bool leafOn, bool woodOnly, geom::UpAxis up,
+                                            const EvalOptions& options, bool* onWood) {
+  if (onWood) *onWood = false;
+  if (leafOn && woodOnly && !cloud.empty()) {
+    const geom::PointCloud wood = classifiedWood(cloud, up);
+    if (wood.size() >= detail::kMinWoodPoints) {  // else no tree's wood: every point, as "skeleton-wood"
+      if (onWood) *onWood = true;
+      return skeleton::autoSkeletonSketch(wood, automaticModelOptions(false, up, options));
+    }
+  }
+  return skeleton::autoSkeletonSketch(cloud, automaticModelOptions(leafOn, up, options));
+}
+
 std::vector<std::string> defaultMethodNames() {
   std::vector<std::string> names;
   for (const auto& name : methodNames())
@@ -239,7 +252,8 @@ TreeScan scanTree(const TreeCase& tree, const ScanCondition& c, bool leafOn, std
   // The terrain a clip of the tree out of a plot's scan keeps: under its crown and a little past it.
   if (c.terrainSlopeDeg >= 0) {
     const geom::Vec3 extent = tree.branches.bounds().extent();
-    const double crown = tree.up == geom::UpAxis::Y ? std::max(extent.x(), extent.z()) : std::max(extent.x(), extent.y());
+    const double crown =
+        tree.up == geom::UpAxis::Y ? std::max(extent.x(), extent.z()) : std::max(extent.x(), extent.y());
     meshes.push_back(terrainUnder(tree.branches.bounds(), tree.up, tree.metresPerUnit, 0.6 * crown, c.terrainSlopeDeg));
   }
   const double noise =

@@ -208,9 +208,10 @@ TEST(EvaluateMatrix, SetChangesTheAutomaticModel) {
   const std::string common =
       "evaluate --matrix quick --conditions wood-5k --methods skeleton --builtin 2 --split held-out --out ";
   ASSERT_EQ(test::runCli(common + (dir / "d").string(), &out), 0) << out;
-  ASSERT_EQ(test::runCli(common + (dir / "s").string() + " --set radii.allometryMaxRatio=0 --set radii.surfaceBound=false",
-                         &out),
-            0)
+  ASSERT_EQ(
+      test::runCli(common + (dir / "s").string() + " --set radii.allometryMaxRatio=0 --set radii.surfaceBound=false",
+                   &out),
+      0)
       << out;
   const Csv d = readCsv(dir / "d" / "results.csv"), s = readCsv(dir / "s" / "results.csv");
   ASSERT_EQ(d.rows.size(), 1u);
@@ -246,6 +247,8 @@ TEST(EvaluateCorrectingUser, WritesTheCurveAndRejectsBadOptions) {
   EXPECT_NE(csv.find(",0,\"start (automatic model)\","), std::string::npos);
   EXPECT_NE(out.find("edits to 0.5 %"), std::string::npos) << out;
   EXPECT_EQ(test::runCli("evaluate --correcting-user --edits 0 --out " + (dir / "x").string(), &out), 2) << out;
+  EXPECT_EQ(test::runCli("evaluate --correcting-wood-only --out " + (dir / "y").string(), &out), 2) << out;
+  EXPECT_NE(out.find("needs --correcting-user"), std::string::npos) << out;
 }
 
 // A tree folder whose branch mesh has zero area is a data error naming the mesh (exit 5), before
@@ -256,8 +259,8 @@ TEST(EvaluateCli, ATreeWithAZeroAreaBranchMeshIsADataErrorNamingIt) {
   test::writeText(dir / "trees" / "flat_s1.branches.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
   test::writeText(dir / "trees" / "flat_s1.json", "{}");
   std::string out;
-  EXPECT_EQ(test::runCli("evaluate --trees " + test::quoted(dir / "trees") + " --out " + test::quoted(dir / "out"), &out),
-            5)
+  EXPECT_EQ(
+      test::runCli("evaluate --trees " + test::quoted(dir / "trees") + " --out " + test::quoted(dir / "out"), &out), 5)
       << out;
   EXPECT_NE(out.find("flat_s1.branches.obj: the branch mesh has zero area"), std::string::npos) << out;
 }

@@ -309,8 +309,7 @@ TEST(Evaluation, SummaryHasVolumeMeanAndWorstPerHalf) {
   EXPECT_NE(md.find("1 of 3"), std::string::npos) << md;
   EXPECT_NE(md.find("2, +20.0 (c)"), std::string::npos) << md;
   EXPECT_NE(md.find("## Volume, skeleton, leaf-off"), std::string::npos) << md;
-  EXPECT_NE(md.find("| tls-base | 3 / 1 | 20.0 / 5.0 | -30.0 (b) / +5.0 (e) | 70.0 / 90.0 |"), std::string::npos)
-      << md;
+  EXPECT_NE(md.find("| tls-base | 3 / 1 | 20.0 / 5.0 | -30.0 (b) / +5.0 (e) | 70.0 / 90.0 |"), std::string::npos) << md;
   const std::string table = markdownTable(rows);
   EXPECT_NE(table.find("| -30.0 (60.0) |"), std::string::npos) << table;
   // Rows with no volume at all: no volume table.
@@ -363,7 +362,7 @@ TEST(Evaluation, CsvHasTheMatrixColumns) {
   EXPECT_EQ(col("sparse"), "0");
   EXPECT_EQ(col("backward_only"), "0");
   EXPECT_EQ(col("true_volume"), "nan");  // not given: unknown
-  auto reread = [&] {  // the row's cells again, after a change to it
+  auto reread = [&] {                    // the row's cells again, after a change to it
     std::istringstream again(csvTable({r}));
     std::getline(again, header);
     std::getline(again, line);
@@ -392,6 +391,16 @@ TEST(Evaluation, CsvHasTheMatrixColumns) {
   // volume judged, mean, worst, tree, share; one ranged case holding the truth, none trusted
   EXPECT_NE(sum.find(",1,25,25,t,0.75,1,1,0,nan,\n"), std::string::npos) << sum;
   EXPECT_EQ(std::count(sum.begin(), sum.end(), '\n'), 3);  // header + held-out + all
+}
+
+// The automatic model a person starts from: an empty scan gives an empty model, not a
+// classification of nothing; onWood says which points were modelled.
+TEST(AutomaticModel, AnEmptyScanGivesAnEmptyModel) {
+  const EvalOptions o;
+  bool onWood = true;
+  const skeleton::AutoSkeletonResult r = automaticModel(geom::PointCloud{}, true, true, geom::UpAxis::Y, o, &onWood);
+  EXPECT_TRUE(r.sketch.empty());
+  EXPECT_FALSE(onWood);
 }
 
 }  // namespace

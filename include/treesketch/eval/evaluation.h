@@ -230,6 +230,15 @@ std::vector<std::string> defaultMethodNames();
 /// The automatic model's settings for a scan in leaf or not: the preset for `up`, options.seed,
 /// then options.skeletonSettings (the skeleton methods and the simulated correcting user).
 skeleton::AutoSkeletonOptions automaticModelOptions(bool leafOn, geom::UpAxis up, const EvalOptions& options);
+/// The automatic model of a scan (`cloud`, world frame, the tree's units), as a person gets it from
+/// `reconstruct --auto`: on a leaf-on scan with `woodOnly` (`--leaf-on --wood-only`), the skeleton
+/// with the leaf-off settings on the points the wood/leaf classification calls wood (the
+/// "skeleton-wood" method); otherwise the skeleton on every point with the leaf state's settings
+/// ("skeleton"). A classification that calls fewer than 100 points wood found no tree's wood:
+/// every point then, as "skeleton-wood" does. `*onWood` (optional) tells whether the model is of
+/// the classified wood. An empty cloud gives an empty model.
+skeleton::AutoSkeletonResult automaticModel(const geom::PointCloud& cloud, bool leafOn, bool woodOnly, geom::UpAxis up,
+                                            const EvalOptions& options, bool* onWood = nullptr);
 /// How the simulated careful user's nodes are fitted (seed: options.seed): the thesis's fit, with
 /// the depth choice and radius inference of the desktop tool when options.chooseDepth, no growth
 /// of a screen node's test region unless options.userGrowth, and the inlier band
