@@ -207,6 +207,7 @@ MeasureOptions autoMeasureOptions(const skeleton::AutoSkeletonResult& r, const s
   MeasureOptions mo;
   mo.leafOn = leafOn;
   mo.noise = r.rangeNoise > 0 ? r.rangeNoise : r.noiseMeasured ? r.noise : -1.0;
+  mo.contraction = r.contraction;
   std::size_t leafPieces = 0;
   for (const auto& n : r.model) leafPieces += skeleton::isLeafPiece(n, options);
   mo.leafPieceShare = r.model.empty() ? 0.0 : static_cast<double>(leafPieces) / static_cast<double>(r.model.size());
@@ -301,6 +302,16 @@ std::string severalTrees(const cloud::Stems& stems) {
   return buf;
 }
 
+/// The verdict's reason for a model on points drawn together (AutoSkeletonResult::contraction).
+std::string drawnTogether(const ModelMeasures& m) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "the scan's noise (%.1f mm) blurs its thinner branches: the skeleton was grown on the points drawn "
+                "together by %.1f mm",
+                1000.0 * m.noiseMetres, 1000.0 * m.contractionMetres);
+  return buf;
+}
+
 Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions& o) {
   Verdict v;
   auto add = [&](Verdict::Level level, std::string reason, std::string advice) {
@@ -351,6 +362,8 @@ Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions&
         "modelled from the points classified as wood only: twigs and limbs the classification calls leaf are "
         "missing, so the volume is a lower figure",
         "");
+  if (m.contractionMetres > 0)
+    add(L::Uncertain, drawnTogether(m), "a less noisy scan of the crown measures more of it");
   const compare::CloudDbh& cloudDbh = m.metrics.cloudDbh;
   const double modelDbh = m.metrics.figures.trunkDiameter;
   if (m.metrics.hasCloud && cloudDbh.ok && modelDbh > 0 && cloudDbh.diameter > 0 &&
@@ -405,6 +418,11 @@ std::string ModelMeasures::summary() const {
     std::snprintf(buf, sizeof buf, "; scan noise %.1f mm", 1000.0 * noiseMetres);
     line += buf;
   }
+  if (contractionMetres > 0) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " (skeleton on the points drawn together by %.1f mm)", 1000.0 * contractionMetres);
+    line += buf;
+  }
   return line;
 }
 
@@ -427,6 +445,7 @@ ModelMeasures measure(const TreeModel& model, const geom::PointCloud& cloud, con
   const double cylinder = std::numbers::pi / 4 * dbh * dbh * height;
   m.formFactor = cylinder > 0 ? m.figures.volume / cylinder : std::numeric_limits<double>::quiet_NaN();
   if (options.noise >= 0 && std::isfinite(options.noise)) m.noiseMetres = options.noise * u;
+  if (options.contraction > 0 && std::isfinite(options.contraction)) m.contractionMetres = options.contraction * u;
   m.stemsLookedFor = options.stemsLookedFor;
   m.stems = options.stems;
   m.verdict = assess(m, cloud.size(), options);
@@ -487,7 +506,8 @@ nlohmann::json reportJson(const ModelMeasures& m, nlohmann::json header) {
                      {"measuredVolumeShare", m.measuredVolumeShare},
                      {"volumeRangeM3", {m.volumeLow, m.volumeHigh}},
                      {"formFactor", std::isfinite(m.formFactor) ? nlohmann::json(m.formFactor) : nlohmann::json()},
-                     {"noiseM", std::isfinite(m.noiseMetres) ? nlohmann::json(m.noiseMetres) : nlohmann::json()}};
+                     {"noiseM", std::isfinite(m.noiseMetres) ? nlohmann::json(m.noiseMetres) : nlohmann::json()},
+                     {"contractionM", m.contractionMetres}};
   if (m.stemsLookedFor) {
     nlohmann::json stems = nlohmann::json::array();
     for (const cloud::Stem& s : m.stems.stems)

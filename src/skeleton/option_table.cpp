@@ -128,6 +128,8 @@ std::vector<SettingRow> modelRows() {
       TS_SETTING(axes.maxShiftRadii, Real, 0, 1e6, "largest axis move, radii"),
       TS_SETTING(maxFitFlatFraction, Real, 0, 1, "pieces flatter than this are not fitted (1 = fit all)"),
       TS_SETTING(minInlierBandVoxels, Real, 0, 1e6, "least inlier band of the fits, voxels"),
+      TS_SETTING(contractionNoises, Real, 0, 1e3,
+                 "noisy scans: skeleton on the points drawn together by this x the noise (0 = off)"),
   };
 }
 

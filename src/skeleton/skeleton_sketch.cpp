@@ -2,24 +2,30 @@
 // by Xu et al. 2007 for branch thickness); the node fit is the thesis's (fit module).
 #include "treesketch/skeleton/skeleton_sketch.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
-#include <numbers>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "skeleton/axis_smoothing.h"
-#include "skeleton/range_noise.h"
-#include "treesketch/util/stopwatch.h"
 #include "skeleton/completion.h"
+#include "skeleton/nearest_tube.h"
 #include "skeleton/radius_allometry.h"
 #include "skeleton/radius_rules.h"
+#include "skeleton/range_noise.h"
 #include "skeleton/stem_tracking.h"
 #include "skeleton/surface_bound.h"
+#include "treesketch/accel/point_index.h"
+#include "treesketch/compare/model_fit.h"
 #include "treesketch/compare/tree_metrics.h"
 #include "treesketch/recon/reconstruction.h"
 #include "treesketch/skeleton/skeleton_export.h"
 #include "treesketch/util/error.h"
+#include "treesketch/util/stopwatch.h"
 #include "treesketch/util/union_find.h"
 
 namespace treesketch::skeleton {
@@ -87,6 +93,8 @@ void checkOptions(const AutoSkeletonOptions& options) {
     throw OptionsError("skeleton: maxFitFlatFraction must be in [0, 1]");
   if (!(options.minInlierBandVoxels >= 0) || !std::isfinite(options.minInlierBandVoxels))
     throw OptionsError("skeleton: minInlierBandVoxels must be a finite number >= 0");
+  if (!(options.contractionNoises >= 0) || !std::isfinite(options.contractionNoises))
+    throw OptionsError("skeleton: contractionNoises must be a finite number >= 0 (0 = off)");
   if (options.axes.halfWindowNodes < 0 || !(options.axes.unfittedWeight > 0 && options.axes.unfittedWeight <= 1) ||
       !(options.axes.maxShiftRadii >= 0) || !std::isfinite(options.axes.maxShiftRadii))
     throw OptionsError(
@@ -228,9 +236,8 @@ void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const geom::P
                                         [](const SkeletonNode& n) { return n.stem && n.radius > 0; });
   const auto accepted = std::count(res.fitAccepted.begin(), res.fitAccepted.end(), 1);
   const bool measured =
-      stemMeasured ||
-      (accepted >= static_cast<std::ptrdiff_t>(detail::kMinAllometryAnchors) &&
-       static_cast<double>(accepted) >= kMinFittedShare * static_cast<double>(res.model.size()));
+      stemMeasured || (accepted >= static_cast<std::ptrdiff_t>(detail::kMinAllometryAnchors) &&
+                       static_cast<double>(accepted) >= kMinFittedShare * static_cast<double>(res.model.size()));
   if (!measured) {
     std::fill(res.fitAccepted.begin(), res.fitAccepted.end(), 0);
     std::fill(fitted.begin(), fitted.end(), 0.0);
@@ -242,8 +249,7 @@ void fitModel(AutoSkeletonResult& res, recon::Reconstruction& rec, const geom::P
   res.radiusMeasured.assign(res.model.size(), 0);
   if (radii.empty())
     radii = regularizeRadii(res.skeleton.nodes, fitted, res.fitAccepted, options.radii, &res.radiusMeasured);
-  const std::vector<geom::Vec3> axes =
-      detail::smoothAxes(res.model, res.fitAccepted, radii, options.axes);
+  const std::vector<geom::Vec3> axes = detail::smoothAxes(res.model, res.fitAccepted, radii, options.axes);
   const std::vector<detail::StemSample> stem =
       keepsStemAxis(res.skeleton) ? detail::trackedStem(res.skeleton.levels) : std::vector<detail::StemSample>{};
   for (std::size_t i = 0; i < res.model.size(); ++i) {
@@ -346,14 +352,58 @@ void measureNoise(AutoSkeletonResult& res, const geom::PointCloud& cloud) {
 }
 
 /// The pipeline on the kept points.
+/// A noise's shell is drawn onto its branch's axis in this many rounds of the mean shift (one
+/// leaves half of it on a twig under the noise).
+constexpr int kContractionRounds = 2;
+/// The points are drawn together when the radius reaches this share of a voxel: below it the
+/// voxels hold the noise's shell within a branch's own voxels.
+constexpr double kMinContractionVoxels = 0.5;
+
+/// `cloud` with each point moved `kContractionRounds` times to the mean of its neighbours within
+/// `radius`, but for the points at most `radius` outside a piece of `model` at least `radius`
+/// thick (they keep their place: the first model measured that piece above the noise).
+geom::PointCloud drawnTogether(const geom::PointCloud& cloud, const std::vector<SkeletonNode>& model, double radius) {
+  std::vector<char> stays(cloud.size(), 0);
+  const geom::CylinderModel pieces = cylinderModelFromSkeleton(model);
+  if (!pieces.empty()) {
+    const compare::CylinderModelIndex index(pieces);
+    for (const detail::NearestTube& n : detail::nearestTubes(index, cloud, cloud.size())) {
+      const geom::ModelCylinder& c = pieces.cylinders[static_cast<std::size_t>(n.piece)];
+      if (std::max(c.startRadius, c.endRadius) >= radius && n.distance <= radius) stays[n.point] = 1;
+    }
+  }
+  geom::PointCloud out = cloud;
+  for (int round = 0; round < kContractionRounds; ++round) {
+    const accel::PointIndex index(out.positions);
+    std::vector<geom::Vec3> next(out.positions.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, next.size(), 1024),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        std::vector<std::uint32_t> near;
+                        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                          next[i] = out.positions[i];
+                          if (stays[i]) continue;
+                          index.withinRadius(out.positions[i], radius, near);
+                          if (near.empty()) continue;
+                          geom::Vec3 sum = geom::Vec3::Zero();
+                          for (std::uint32_t j : near) sum += out.positions[j];
+                          next[i] = sum / static_cast<double>(near.size());
+                        }
+                      });
+    out.positions = std::move(next);
+  }
+  return out;
+}
+
+/// The pipeline on the kept points; the skeleton grown on `skeletonPoints` when given (the same
+/// points, drawn together: drawnTogether).
 AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkeletonOptions& options,
-                                   const ProgressFn& progress) {
+                                   const ProgressFn& progress, const geom::PointCloud* skeletonPoints = nullptr) {
   AutoSkeletonResult res;
   // 1. The skeleton.
   const Stopwatch t0;
   // `progress` sees the extraction's four steps (d of 4), then the fit pass (d of n); a callback
   // may throw (treesketch::Cancelled) to stop at the next report.
-  res.skeleton = extractSkeleton(cloud, options.skeleton, progress);
+  res.skeleton = extractSkeleton(skeletonPoints ? *skeletonPoints : cloud, options.skeleton, progress);
   res.skeletonMs = t0.ms();
   if (res.skeleton.nodes.empty()) {
     res.sketch = skeletonToSketch(res.skeleton, options.sketch);
@@ -408,9 +458,9 @@ AutoSkeletonResult modelKeptPoints(const geom::PointCloud& cloud, const AutoSkel
       if (spread > 0) boundNoise = std::min(boundNoise, spread);
     }
     res.rangeNoise = detail::rangeNoise(res.model, cloud, boundNoise + voxel);
-    const detail::SurfaceBoundStats bound = detail::boundRadiiBySurface(
-        res.model, cloud, boundNoise, voxel, options.radii.medianWindow, own, std::max(0.0, res.rangeNoise),
-        options.maxFitFlatFraction);
+    const detail::SurfaceBoundStats bound =
+        detail::boundRadiiBySurface(res.model, cloud, boundNoise, voxel, options.radii.medianWindow, own,
+                                    std::max(0.0, res.rangeNoise), options.maxFitFlatFraction);
     res.thinnedBySurface = bound.nodesThinned;
     res.thickenedBySurface = bound.nodesThickened;
   }
@@ -429,9 +479,27 @@ AutoSkeletonResult autoSkeletonSketch(const geom::PointCloud& cloud, const AutoS
   checkOptions(options);
   cloud::StrayPoints strays =
       cloud::findStrayAndGroundPoints(cloud, options.skeleton.up, options.strays, options.ground, options.markedNoise);
-  AutoSkeletonResult res =
-      strays.empty() ? modelKeptPoints(cloud, options, progress)
-                     : modelKeptPoints(cloud::keptPoints(cloud, strays), options, progress);
+  const geom::PointCloud kept = strays.empty() ? geom::PointCloud{} : cloud::keptPoints(cloud, strays);
+  const geom::PointCloud& points = strays.empty() ? cloud : kept;
+  AutoSkeletonResult res = modelKeptPoints(points, options, progress);
+  // A scan whose noise blurs its branches at the voxel's scale: the skeleton again, on the points
+  // drawn together (AutoSkeletonOptions::contractionNoises).
+  // The radius in whole quarters of a voxel (the graph's own resolution), rounded down: a reading
+  // of the noise a percent apart (the same cloud moved 1e9 m) draws the points together the same way.
+  const double quarter = 0.25 * res.skeleton.graph.voxelSize;
+  const double radius = quarter > 0 && res.rangeNoise > 0
+                            ? quarter * std::floor(options.contractionNoises * res.rangeNoise / quarter)
+                            : 0.0;
+  if (!options.skeleton.leafEntryPositions && options.contractionNoises > 0 && radius > 0 &&
+      radius >= kMinContractionVoxels * res.skeleton.graph.voxelSize) {
+    const Stopwatch t;
+    const double firstMs = res.skeletonMs + res.fitMs + res.sweepMs + res.completionMs;
+    const geom::PointCloud drawn = drawnTogether(points, res.model, radius);
+    const double drawMs = t.ms();
+    res = modelKeptPoints(points, options, progress, &drawn);
+    res.contraction = radius;
+    res.skeletonMs += firstMs + drawMs;  // the first model and the drawing together are the skeleton's cost
+  }
   res.strays = std::move(strays);
   return res;
 }

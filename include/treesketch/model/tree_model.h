@@ -97,6 +97,9 @@ struct MeasureOptions {
   /// The scan's noise measured while modelling (cloud units; the points' spread about the stem or
   /// the circles, AutoSkeletonResult::noise), or < 0 when not measured.
   double noise = -1;
+  /// The radius the automatic skeleton's points were drawn together by (AutoSkeletonResult::
+  /// contraction; cloud units), 0 when not.
+  double contraction = 0;
   /// The stems at breast height in the scan (lookForStems), when looked for: a cloud of two trees
   /// or more is a plot, which one model joins into one tree.
   bool stemsLookedFor = false;
@@ -142,6 +145,9 @@ struct ModelMeasures {
   double formFactor = 0;
   /// The scan's noise in metres (MeasureOptions::noise), NaN when not measured.
   double noiseMetres = std::numeric_limits<double>::quiet_NaN();
+  /// The radius the skeleton's points were drawn together by, metres (MeasureOptions::contraction);
+  /// 0 when the skeleton is the scan's own.
+  double contractionMetres = 0;
   /// The stems at breast height (MeasureOptions::stems; empty when not looked for).
   bool stemsLookedFor = false;
   cloud::Stems stems;

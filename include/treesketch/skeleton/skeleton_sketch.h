@@ -174,6 +174,15 @@ struct AutoSkeletonOptions {
   /// The fits' inlier band is at least this many voxels, so it follows the cloud's units (the fit
   /// module's 0.01-unit band would be 0.01 mm on a cloud in millimetres). 0 = the band as given.
   double minInlierBandVoxels = 0.1;
+  /// The skeleton of a scan whose noise blurs its branches (docs/notes/radii_and_volume.md, "The
+  /// skeleton of a noisy scan"): when this many of the scan's range noises (rangeNoise, read on a
+  /// first model) reach half a voxel, the model is made again on a skeleton grown from the points
+  /// drawn together: each point moved twice to the mean of its neighbours within that radius, so
+  /// that a branch thinner than it becomes a line of points and the noise's shell round it goes.
+  /// The points of the first model's tubes at least that thick stay (a stem the noise does not
+  /// hide is measured as it is). The fits, the radii and the fit report still read the scan's
+  /// own points. Leaf-off settings only (leaf-on ones have the leaf machinery); 0 = off.
+  double contractionNoises = 2.0;
   /// Node i is fitted with seed `seed + i`.
   std::uint64_t seed = 1;
   /// Vertices per ring of the swept mesh.
@@ -241,6 +250,9 @@ struct AutoSkeletonResult {
   /// little of it (a circle fitted to a noisy arc takes the noise into its own shape); this reading
   /// sets which radii the points can measure and is the noise the report gives.
   double rangeNoise = -1;
+  /// The radius the skeleton's points were drawn together by (AutoSkeletonOptions::
+  /// contractionNoises; cloud units), 0 when the skeleton is the scan's own.
+  double contraction = 0;
   /// Nodes whose radius was lowered because the points around their tube lie inside it (a scanner
   /// sees the surface; see surface_bound.h).
   std::size_t thinnedBySurface = 0;
