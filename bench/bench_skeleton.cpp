@@ -101,13 +101,15 @@ BENCHMARK(BM_ExtractSkeleton1M)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   const auto& cloud = cloud1M();
-  double skel = 0, fit = 0, sweep = 0, completion = 0;
+  double skel = 0, fit = 0, sweep = 0, completion = 0, contraction = 0;
   std::size_t nodes = 0, forks = 0;
   // Arg 0: defaults. Arg 1: the fits' inlier band 15 % of the hypothesis's radius (the earliest fits).
   // Arg 2: the earlier leaf-off model (earlierLeafOffSkeleton, no allometric radius bound). Arg 3: no
-  // completion (the model before it). For same-run ratios.
+  // completion (the model before it). Arg 4: the skeleton on the scan's own points (no drawing
+  // together). For same-run ratios.
   skeleton::AutoSkeletonOptions o;
   if (state.range(0) == 3) o.completion.enabled = false;
+  if (state.range(0) == 4) o.contractionNoises = 0;
   if (state.range(0) == 1) o.fit.circle.inlierThresholdRelative = 0.15;
   if (state.range(0) == 2) {
     earlierLeafOffSkeleton(o.skeleton);
@@ -119,6 +121,7 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
     fit = r.fitMs;
     sweep = r.sweepMs;
     completion = r.completionMs;
+    contraction = r.contraction;
     nodes = r.model.size();
     forks = skeleton::countBranchPoints(r.model);
     benchmark::DoNotOptimize(r);
@@ -130,8 +133,9 @@ void BM_AutoSkeletonSketch1M(benchmark::State& state) {
   state.counters["fitMs"] = fit;
   state.counters["sweepMs"] = sweep;
   state.counters["completionMs"] = completion;
+  state.counters["contraction"] = contraction;
 }
-BENCHMARK(BM_AutoSkeletonSketch1M)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AutoSkeletonSketch1M)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMillisecond);
 
 const geom::PointCloud& leafyCloud1M() {
   static const geom::PointCloud cloud = [] {

@@ -176,7 +176,7 @@ struct AutoSkeletonOptions {
   double minInlierBandVoxels = 0.1;
   /// The skeleton of a scan whose noise blurs its branches (docs/notes/radii_and_volume.md, "The
   /// skeleton of a noisy scan"): when this many of the scan's range noises (rangeNoise, read on a
-  /// first model) reach half a voxel, the model is made again on a skeleton grown from the points
+  /// first model) reach three quarters of a voxel, the model is made again on a skeleton grown from the points
   /// drawn together: each point moved twice to the mean of its neighbours within that radius, so
   /// that a branch thinner than it becomes a line of points and the noise's shell round it goes.
   /// The points of the first model's tubes at least that thick stay (a stem the noise does not
