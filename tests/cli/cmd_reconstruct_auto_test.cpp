@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -305,22 +306,31 @@ TEST(CmdAuto, ASparseScanKeepsTheCirclesItHas) {
   EXPECT_LT(volume[1], 1.5 * volume[0]);
 }
 
-// Every tube stays within the cloud: a tip is moved along its direction to the last of its own
-// points, never to those of a limb that goes on beside it. The TreeLS spruce's wood, modelled with
-// its repeated points set aside, had a tip carried 11 m out of the crown in a straight tube.
-TEST(CmdAuto, NoTubeLeavesTheCloud) {
+// The TreeLS spruce in leaf modelled from its wood (`reconstruct --auto --leaf-on --wood-only`):
+// its cylinder table, and the cloud's bounds in `box`. Empty when ../shared/data is not there.
+std::optional<io::CylinderTable> spruceWoodModel(const test::TempDir& dir, geom::BBox& box) {
   const auto file = test::sharedDataDir() / "real" / "treels_spruce_decoded.xyz";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
-  test::TempDir dir;
+  if (!std::filesystem::exists(file)) return std::nullopt;
   std::string out;
-  ASSERT_EQ(test::runCli("reconstruct " + quoted(file) + " --auto --leaf-on --wood-only --up z -o " +
+  EXPECT_EQ(test::runCli("reconstruct " + quoted(file) + " --auto --leaf-on --wood-only --up z -o " +
                              quoted(dir / "m.ply") + " --cylinders " + quoted(dir / "c.csv"),
                          &out),
             0)
       << out;
-  const geom::BBox box = io::readPointCloud(file).bounds();
+  box = io::readPointCloud(file).bounds();
+  return io::readCylinderTable(dir / "c.csv");
+}
+
+// Every tube stays within the cloud: a tip is moved along its direction to the last of its own
+// points, never to those of a limb that goes on beside it. The TreeLS spruce's wood, modelled with
+// its repeated points set aside, had a tip carried 11 m out of the crown in a straight tube.
+TEST(CmdAuto, NoTubeLeavesTheCloud) {
+  test::TempDir dir;
+  geom::BBox box;
+  const std::optional<io::CylinderTable> model = spruceWoodModel(dir, box);
+  if (!model) GTEST_SKIP() << "no ../shared/data/real/treels_spruce_decoded.xyz";
   const double margin = 0.1;  // metres: a tube's radius beyond the outermost points
-  const io::CylinderTable table = io::readCylinderTable(dir / "c.csv");
+  const io::CylinderTable& table = *model;
   for (const geom::ModelCylinder& c : table.model.cylinders)
     for (const geom::Vec3& end : {c.start, c.end})
       for (int a = 0; a < 3; ++a) {
@@ -336,18 +346,12 @@ TEST(CmdAuto, NoTubeLeavesTheCloud) {
 // carried as limbs; the trunk diameter came from those branches (20 cm against the points' 25).
 // (It now runs 7 m, into the crown's whorls, where the stem goes on as a branch of its own.)
 TEST(CmdAuto, AConifersStemIsOneBranchFromItsFoot) {
-  const auto file = test::sharedDataDir() / "real" / "treels_spruce_decoded.xyz";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
   test::TempDir dir;
-  std::string out;
-  ASSERT_EQ(test::runCli("reconstruct " + quoted(file) + " --auto --leaf-on --wood-only --up z -o " +
-                             quoted(dir / "m.ply") + " --cylinders " + quoted(dir / "c.csv"),
-                         &out),
-            0)
-      << out;
-  const geom::BBox box = io::readPointCloud(file).bounds();
+  geom::BBox box;
+  const std::optional<io::CylinderTable> model = spruceWoodModel(dir, box);
+  if (!model) GTEST_SKIP() << "no ../shared/data/real/treels_spruce_decoded.xyz";
   const double height = box.max.z() - box.min.z();
-  const io::CylinderTable table = io::readCylinderTable(dir / "c.csv");
+  const io::CylinderTable& table = *model;
   double stemLength = 0;
   std::vector<geom::Vec3> stem;
   for (const geom::ModelCylinder& c : table.model.cylinders)
