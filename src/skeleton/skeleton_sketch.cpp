@@ -351,7 +351,6 @@ void measureNoise(AutoSkeletonResult& res, const geom::PointCloud& cloud) {
   if (!res.noiseMeasured) res.noise = 0.5 * voxel;
 }
 
-/// The pipeline on the kept points.
 /// A noise's shell is drawn onto its branch's axis in this many rounds of the mean shift (one
 /// leaves half of it on a twig under the noise).
 constexpr int kContractionRounds = 2;
