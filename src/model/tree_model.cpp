@@ -303,7 +303,7 @@ std::string severalTrees(const cloud::Stems& stems) {
 }
 
 /// The verdict's reason for a model on points drawn together (AutoSkeletonResult::contraction).
-std::string drawnTogether(const ModelMeasures& m) {
+std::string drawnTogetherReason(const ModelMeasures& m) {
   char buf[200];
   std::snprintf(buf, sizeof buf,
                 "the scan's noise (%.1f mm) blurs its thinner branches: the skeleton was grown on the points drawn "
@@ -363,7 +363,7 @@ Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions&
         "missing, so the volume is a lower figure",
         "");
   if (m.contractionMetres > 0)
-    add(L::Uncertain, drawnTogether(m), "a less noisy scan of the crown measures more of it");
+    add(L::Uncertain, drawnTogetherReason(m), "a less noisy scan of the crown measures more of it");
   const compare::CloudDbh& cloudDbh = m.metrics.cloudDbh;
   const double modelDbh = m.metrics.figures.trunkDiameter;
   if (m.metrics.hasCloud && cloudDbh.ok && modelDbh > 0 && cloudDbh.diameter > 0 &&

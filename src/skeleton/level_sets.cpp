@@ -99,7 +99,7 @@ using PiecePairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
 // Joins the pieces of level k that share a piece below (`below`: (piece at k, piece at k-1),
 // sorted) and a piece above (`above`: (piece at k+1, piece at k)).
-void mergeLevel(UnionFind& uf, const PiecePairs& below, PiecePairs above, const std::vector<char>& apart) {
+void mergeLevel(UnionFind& uf, const PiecePairs& below, PiecePairs above, const std::vector<char>* apart) {
   std::sort(above.begin(), above.end());
   above.erase(std::unique(above.begin(), above.end()), above.end());
   auto lowerOf = [&](std::uint32_t piece) {
@@ -114,7 +114,7 @@ void mergeLevel(UnionFind& uf, const PiecePairs& below, PiecePairs above, const 
     for (std::size_t i = a; i < b; ++i)
       for (std::size_t j = i + 1; j < b; ++j) {
         const std::uint32_t pi = uf.find(above[i].second), pj = uf.find(above[j].second);
-        if (pi == pj || (!apart.empty() && apart[pi] != apart[pj])) continue;
+        if (pi == pj || (apart && (*apart)[pi] != (*apart)[pj])) continue;
         const auto li = lowerOf(above[i].second), lj = lowerOf(above[j].second);
         bool share = false;
         for (std::uint32_t x : li)
@@ -125,8 +125,8 @@ void mergeLevel(UnionFind& uf, const PiecePairs& below, PiecePairs above, const 
   }
 }
 
-// `apart` (empty: none): per voxel, the side of a cut no join crosses (levelPieces' stem tube).
-void mergeSplitRings(const VoxelGraph& g, const GeodesicLevels& lv, UnionFind& uf, const std::vector<char>& apart) {
+// `apart` (null: none): per voxel, the side of a cut no join crosses (levelPieces' stem tube).
+void mergeSplitRings(const VoxelGraph& g, const GeodesicLevels& lv, UnionFind& uf, const std::vector<char>* apart) {
   std::vector<Step> steps;
   for (std::size_t v = 0; v < g.size(); ++v) {
     if (lv.level[v] < 0) continue;
@@ -214,7 +214,7 @@ UnionFind levelPieces(const VoxelGraph& g, const GeodesicLevels& lv, const std::
     }
   }
   joinStemRings(lv, stemTube, uf);
-  mergeSplitRings(g, lv, uf, cutAtTube ? stemTube : std::vector<char>{});
+  mergeSplitRings(g, lv, uf, cutAtTube && !stemTube.empty() ? &stemTube : nullptr);
   return uf;
 }
 
