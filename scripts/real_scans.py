@@ -3,6 +3,7 @@
 same cloud: how well each model explains its cloud, its volume, DBH and height, and a picture.
 
 Usage: scripts/real_scans.py [--build build] [--out docs/evaluation/real] [--only NAME ...]
+                             [--extra DIR [--extra-only]]
 
 The clouds in leaf are modelled with `--leaf-on --wood-only` (the points the wood/leaf
 classification calls wood), the way to their wood's volume; their share within ±2 cm counts the
@@ -13,6 +14,12 @@ OUT/<name>.png; prints the table. The clouds marked "tuning" are the ones the au
 rules were developed on; the others are reported apart and never used to choose a setting.
 TreeQSM's figures are those of ../shared/data/real/treeqsm (TreeQSM 2.4.1, quick-guide settings,
 seed 1), measured against the cloud by the same fit-report as treesketch's own model.
+
+--extra DIR adds every cloud file of DIR (leaf-off, Z up, metres) as a third group, "Other clouds":
+clouds of your own, or others' public ones, that no rule was chosen on. A TreeQSM model of a cloud
+there is read from DIR/<stem>_cyl.txt and DIR/<stem>_treedata.txt (as `../shared/peers/treeqsm/
+run.sh CLOUD DIR/<stem>` writes them); whether it is credible is measured, not given: at least
+70 % of the points within ±5 cm of it and at most 2 % deeper than 2 cm inside.
 """
 import argparse
 import json
@@ -24,6 +31,7 @@ import tempfile
 
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REAL = os.path.join(HERE, "..", "shared", "data", "real")
+CLOUD_EXTENSIONS = (".xyz", ".txt", ".las", ".laz", ".ply", ".asc", ".pts", ".csv")
 
 # name, file, leaf-on, tuning, TreeQSM file stem (None: no model), TreeQSM credible
 CLOUDS = [
@@ -49,9 +57,9 @@ def run(cmd):
     return p.returncode, p.stdout + p.stderr
 
 
-def treeqsm_volume(stem):
-    """TreeQSM's total volume (m^3) from its treedata text (litres), or None."""
-    path = os.path.join(REAL, "treeqsm", stem + "_treedata.txt")
+def treeqsm_volume(stem, folder):
+    """TreeQSM's total volume (m^3) from its treedata text (litres) in `folder`, or None."""
+    path = os.path.join(folder, stem + "_treedata.txt")
     if not os.path.exists(path):
         return None
     with open(path) as f:
@@ -81,18 +89,33 @@ def main():
     ap.add_argument("--out", default=os.path.join("docs", "evaluation", "real"))
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--no-pictures", action="store_true")
+    ap.add_argument("--extra", help="folder of more leaf-off clouds (Z up, metres), reported apart")
+    ap.add_argument("--extra-only", action="store_true", help="with --extra: only those clouds")
     a = ap.parse_args()
     binary = os.path.join(HERE, a.build, "treesketch")
     out_dir = os.path.join(HERE, a.out)
     os.makedirs(out_dir, exist_ok=True)
-    if not os.path.isdir(REAL):
-        sys.exit("real_scans: ../shared/data/real not found beside the repository")
+    # name, cloud path, leaf-on, group (True tuning, False held-out, None other), TreeQSM stem,
+    # TreeQSM folder, credible (None: measured)
+    clouds = []
+    if not a.extra_only:
+        if not os.path.isdir(REAL):
+            sys.exit("real_scans: ../shared/data/real not found beside the repository")
+        clouds += [(n, os.path.join(REAL, f), leaf, tune, stem, os.path.join(REAL, "treeqsm"), cred)
+                   for n, f, leaf, tune, stem, cred in CLOUDS]
+    if a.extra:
+        if not os.path.isdir(a.extra):
+            sys.exit("real_scans: --extra %s is not a folder" % a.extra)
+        for f in sorted(os.listdir(a.extra)):
+            stem, ext = os.path.splitext(f)
+            if ext.lower() in CLOUD_EXTENSIONS and not stem.endswith(("_cyl", "_treedata")):
+                clouds.append((stem, os.path.join(a.extra, f), False, None, stem, a.extra, None))
     results = []
     with tempfile.TemporaryDirectory() as tmp:
-        for name, file, leaf_on, tuning, qsm_stem, credible in CLOUDS:
+        for name, cloud, leaf_on, tuning, qsm_stem, qsm_dir, credible in clouds:
             if a.only and name not in a.only:
                 continue
-            cloud = os.path.join(REAL, file)
+            file = os.path.basename(cloud)
             if file.endswith(".asc") and run([binary, "info", cloud])[0] != 0:
                 # A reader without the .asc variant: the same numbers, its header line dropped.
                 plain = os.path.join(tmp, name + ".xyz")
@@ -122,15 +145,17 @@ def main():
             else:
                 r["error"] = text.strip().splitlines()[-1] if text.strip() else "exit %d" % rc
                 r["error"] = r["error"].replace(cloud, file)  # no machine paths in the table
-            qv = treeqsm_volume(qsm_stem) if qsm_stem else None
+            qv = treeqsm_volume(qsm_stem, qsm_dir) if qsm_stem else None
             r["treeqsmVolume"] = qv
             r["treeqsmCredible"] = credible
-            qcyl = os.path.join(REAL, "treeqsm", (qsm_stem or "") + "_cyl.txt")
+            qcyl = os.path.join(qsm_dir, (qsm_stem or "") + "_cyl.txt")
             if qsm_stem and os.path.exists(qcyl):
                 q = fit_report(binary, cloud, qcyl, tmp)
                 if q:
                     r["treeqsmWithin2"] = q["fit"]["within2cm"]
                     r["treeqsmInside2"] = q["fit"]["insideDeeper2cm"]
+                    if credible is None:
+                        r["treeqsmCredible"] = q["fit"]["within5cm"] >= 0.7 and q["fit"]["insideDeeper2cm"] <= 0.02
             if rc == 0 and qv:
                 r["volumeRatio"] = r["volume"] / qv
             results.append(r)
@@ -138,13 +163,15 @@ def main():
     with open(os.path.join(out_dir, "results.json"), "w") as f:
         json.dump(results, f, indent=2)
     lines = []
-    for title, tuning in (("Tuning clouds", True), ("Held-out clouds", False)):
+    for title, tuning in (("Tuning clouds", True), ("Held-out clouds", False), ("Other clouds", None)):
+        if not any(r["tuning"] is tuning for r in results):
+            continue
         lines += ["", "### " + title, "",
                   "| cloud | leaf | within ±2 cm % (TreeQSM) | > 2 cm inside % (TreeQSM) | missed > 5 cm % | volume m³ "
                   "| × TreeQSM (credible?) | measured share % | DBH cm | height m | form factor | verdict |",
                   "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for r in results:
-            if r["tuning"] != tuning:
+            if r["tuning"] is not tuning:
                 continue
             leaf = "on (wood only)" if r["leafOn"] else "off"
             if r["rc"] != 0:
