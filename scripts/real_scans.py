@@ -3,7 +3,7 @@
 same cloud: how well each model explains its cloud, its volume, DBH and height, and a picture.
 
 Usage: scripts/real_scans.py [--build build] [--out docs/evaluation/real] [--only NAME ...]
-                             [--extra DIR [--extra-only]]
+                             [--extra DIR] [--extra-leaf-on DIR] [--extra-only]
 
 The clouds in leaf are modelled with `--leaf-on --wood-only` (the points the wood/leaf
 classification calls wood), the way to their wood's volume; their share within ±2 cm counts the
@@ -15,7 +15,8 @@ rules were developed on; the others are reported apart and never used to choose 
 TreeQSM's figures are those of ../shared/data/real/treeqsm (TreeQSM 2.4.1, quick-guide settings,
 seed 1), measured against the cloud by the same fit-report as treesketch's own model.
 
---extra DIR adds every cloud file of DIR (leaf-off, Z up, metres) as a third group, "Other clouds":
+--extra DIR adds every cloud file of DIR (leaf-off, Z up, metres) as a third group, "Other clouds"
+(--extra-leaf-on DIR: clouds in leaf, modelled as those above are):
 clouds of your own, or others' public ones, that no rule was chosen on. A TreeQSM model of a cloud
 there is read from DIR/<stem>_cyl.txt and DIR/<stem>_treedata.txt (as `../shared/peers/treeqsm/
 run.sh CLOUD DIR/<stem>` writes them); whether it is credible is measured, not given: at least
@@ -90,7 +91,8 @@ def main():
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--no-pictures", action="store_true")
     ap.add_argument("--extra", help="folder of more leaf-off clouds (Z up, metres), reported apart")
-    ap.add_argument("--extra-only", action="store_true", help="with --extra: only those clouds")
+    ap.add_argument("--extra-leaf-on", help="folder of more clouds in leaf (Z up, metres), reported apart")
+    ap.add_argument("--extra-only", action="store_true", help="with --extra or --extra-leaf-on: only those clouds")
     a = ap.parse_args()
     binary = os.path.join(HERE, a.build, "treesketch")
     out_dir = os.path.join(HERE, a.out)
@@ -103,13 +105,15 @@ def main():
             sys.exit("real_scans: ../shared/data/real not found beside the repository")
         clouds += [(n, os.path.join(REAL, f), leaf, tune, stem, os.path.join(REAL, "treeqsm"), cred)
                    for n, f, leaf, tune, stem, cred in CLOUDS]
-    if a.extra:
-        if not os.path.isdir(a.extra):
-            sys.exit("real_scans: --extra %s is not a folder" % a.extra)
-        for f in sorted(os.listdir(a.extra)):
+    for folder, leaf_on in ((a.extra, False), (a.extra_leaf_on, True)):
+        if not folder:
+            continue
+        if not os.path.isdir(folder):
+            sys.exit("real_scans: %s is not a folder" % folder)
+        for f in sorted(os.listdir(folder)):
             stem, ext = os.path.splitext(f)
             if ext.lower() in CLOUD_EXTENSIONS and not stem.endswith(("_cyl", "_treedata")):
-                clouds.append((stem, os.path.join(a.extra, f), False, None, stem, a.extra, None))
+                clouds.append((stem, os.path.join(folder, f), leaf_on, None, stem, folder, None))
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         for name, cloud, leaf_on, tuning, qsm_stem, qsm_dir, credible in clouds:
