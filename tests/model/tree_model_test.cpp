@@ -89,6 +89,23 @@ TEST(TreeModel, AModelOnPointsDrawnTogetherIsNeverTrustedForItsVolume) {
   EXPECT_NEAR(m.contractionMetres, 0.04, 1e-12);
 }
 
+TEST(TreeModel, AModelThatStopsWellBelowTheCloudsTopSaysSo) {
+  // A drone scan of a 25 m tree in leaf: its wood-only model stopped at 12 m, where the
+  // classification called the sparse upper stem leaf, and its volume was called uncertain only for
+  // being the wood's lower figure. The cloud here goes on 4 m above the model's 4 m stem.
+  geom::PointCloud tall = test::sampleCylinders({{Vec3(0, 0, 0), Vec3(0, 0, 8), 0.1, -1}}, 0.01, 0.002, 3);
+  const ModelMeasures every = measure(stem(0.1, true), tall);
+  EXPECT_EQ(every.verdict.level, Verdict::Level::NotTrusted) << every.verdictLine();
+  EXPECT_NE(every.verdictLine().find("reaches 4.0 m of the cloud's 8.0 m"), std::string::npos) << every.verdictLine();
+  MeasureOptions wood;
+  wood.leafOn = wood.woodOnly = true;
+  const ModelMeasures woodOnly = measure(stem(0.1, true), tall, wood);
+  EXPECT_NE(woodOnly.verdictLine().find("the classification calls it leaf"), std::string::npos) << woodOnly.verdictLine();
+  // A crown's outer twigs and leaves a little above the model's top are a tree's own.
+  const geom::PointCloud near = test::sampleCylinders({{Vec3(0, 0, 0), Vec3(0, 0, 4.8), 0.1, -1}}, 0.01, 0.002, 3);
+  EXPECT_EQ(measure(stem(0.1, true), near).verdictLine().find("reaches"), std::string::npos);
+}
+
 TEST(TreeModel, AStemThatDisagreesWithThePointsAtBreastHeightIsNamed) {
   const geom::PointCloud cloud = stemScan(0.1);
   const ModelMeasures thin = measure(stem(0.08, true), cloud);  // a DBH 20 % under the points' circle
