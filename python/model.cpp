@@ -49,11 +49,15 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bo
     geom::PointCloud woodStore;
     if (woodOnly) woodStore = model::woodOnlyCloud(*cloud, choice.up, t.source);
     const geom::PointCloud& modelled = woodOnly ? woodStore : *cloud;
-    skeleton::AutoSkeletonOptions opt = skeleton::autoSkeletonPreset(
-        leafOn && !woodOnly ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, choice.up);
-    opt.seed = seed;
-    opt.ringVertices = ring;
-    if (threshold >= 0.0) opt.fit.circle.inlierThreshold = threshold;
+    auto options = [&](skeleton::Foliage foliage) {
+      skeleton::AutoSkeletonOptions o = skeleton::autoSkeletonPreset(foliage, choice.up);
+      o.seed = seed;
+      o.ringVertices = ring;
+      if (threshold >= 0.0) o.fit.circle.inlierThreshold = threshold;
+      return o;
+    };
+    const skeleton::AutoSkeletonOptions opt =
+        options(leafOn && !woodOnly ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff);
     skeleton::AutoSkeletonResult s;
     try {
       s = skeleton::autoSkeletonSketch(modelled, opt, progress.function());
@@ -103,6 +107,8 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bo
     model::MeasureOptions mo = model::autoMeasureOptions(s, opt, leafOn);
     mo.unitMetres = unitMetres;
     mo.woodOnly = woodOnly;
+    // The range's upper end: a model of every point, as the CLI makes it.
+    if (woodOnly) mo.everyPointVolume = model::everyPointVolume(*cloud, options(skeleton::Foliage::LeafOn), choice.up);
     model::lookForStems(mo, modelled, choice.up, s.strays);
     t.measures = model::measure(t.tree, kept, mo);
     t.measureOptions = mo;

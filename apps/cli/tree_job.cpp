@@ -51,6 +51,17 @@ nlohmann::json reportHeader(const TreeJob& a, const TreeJobResult& r, const skel
   return header;
 }
 
+/// The automatic model's settings for `foliage`: the preset, then the job's seed, ring, inlier
+/// threshold and --set changes.
+skeleton::AutoSkeletonOptions jobOptions(const TreeJob& a, skeleton::Foliage foliage, geom::UpAxis up) {
+  skeleton::AutoSkeletonOptions opt = skeleton::autoSkeletonPreset(foliage, up);
+  opt.seed = a.seed;
+  opt.ringVertices = a.ring;
+  if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;
+  for (const std::string& s : a.settings) skeleton::applySetting(opt, s);
+  return opt;
+}
+
 }  // namespace
 
 TreeJobResult runTreeJob(const TreeJob& a) {
@@ -80,12 +91,8 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   if (a.woodOnly) woodStore = model::woodOnlyCloud(cloud, up.up, a.cloud);
   const geom::PointCloud& modelled = a.woodOnly ? woodStore : cloud;
   r.woodPoints = a.woodOnly ? woodStore.size() : 0;
-  skeleton::AutoSkeletonOptions opt = skeleton::autoSkeletonPreset(
-      a.leafOn && !a.woodOnly ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, up.up);
-  opt.seed = a.seed;
-  opt.ringVertices = a.ring;
-  if (a.inlierThreshold >= 0.0) opt.fit.circle.inlierThreshold = a.inlierThreshold;
-  for (const std::string& s : a.settings) skeleton::applySetting(opt, s);
+  const skeleton::AutoSkeletonOptions opt =
+      jobOptions(a, a.leafOn && !a.woodOnly ? skeleton::Foliage::LeafOn : skeleton::Foliage::LeafOff, up.up);
   const skeleton::AutoSkeletonResult s = skeleton::autoSkeletonSketch(modelled, opt);
   // The model is made from, and measured against, the points kept (the strays are set aside);
   // with --wood-only, against every point.
@@ -111,6 +118,9 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   model::MeasureOptions mo = model::autoMeasureOptions(s, opt, a.leafOn);
   mo.unitMetres = a.unitMetres;
   mo.woodOnly = a.woodOnly;
+  // A wood-only model's wood may be as much as a model of every point holds (its range's upper end).
+  if (a.woodOnly)
+    mo.everyPointVolume = model::everyPointVolume(cloud, jobOptions(a, skeleton::Foliage::LeafOn, up.up), up.up);
   model::lookForStems(mo, modelled, up.up, s.strays);
   const model::ModelMeasures measures = model::measure(tree, kept, mo);
   r.metricsMs = tm.ms();

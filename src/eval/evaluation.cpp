@@ -136,7 +136,12 @@ MethodOutput methodSkeletonWood(const MethodInput& in) {
   if (wood.size() < detail::kMinWoodPoints) return methodSkeleton(in);  // nothing to model as wood: as before
   MethodInput woodInput{in.tree, wood, in.options, in.nodeCount, false};
   MethodOutput out = methodSkeleton(woodInput);
-  if (out.measure) out.measure->woodOnly = true;
+  if (out.measure) {
+    out.measure->woodOnly = true;
+    // The range's upper end: the model of every point (leaf-on), as the CLI's --wood-only makes it.
+    out.measure->everyPointVolume =
+        model::everyPointVolume(in.cloud, automaticModelOptions(true, in.tree.up, in.options), in.tree.up);
+  }
   out.setAside = {};  // indices into the wood, not the scan: measured against every point, as the CLI does
   out.ms = timer.ms();
   return out;

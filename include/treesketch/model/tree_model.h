@@ -104,7 +104,16 @@ struct MeasureOptions {
   /// or more is a plot, which one model joins into one tree.
   bool stemsLookedFor = false;
   cloud::Stems stems;
+  /// With woodOnly: the volume of the automatic model of every point with the leaf-on settings
+  /// (everyPointVolume(); cloud units³), or < 0 when not made. It is the upper end of the volume's
+  /// range when above it: the points the classification calls leaf may hold wood, and a model of
+  /// every point is the wood with what the foliage adds to it.
+  double everyPointVolume = -1;
 };
+
+/// The volume (cloud units³) of the automatic model of every point of `cloud` made with `options`
+/// (the leaf-on settings, for MeasureOptions::everyPointVolume).
+double everyPointVolume(const geom::PointCloud& cloud, const skeleton::AutoSkeletonOptions& options, geom::UpAxis up);
 
 /// Looks for the stems at breast height in `scan` (cloud/stems.h; `strays`: the points set aside
 /// before modelling, the ground among them), in `options.unitMetres`, for the verdict and the report.
