@@ -249,6 +249,7 @@ TEST(CmdAuto, WoodOnlyNeedsAuto) {
 // Trees in leaf modelled from the points the wood/leaf classification calls wood (../shared/data/real;
 // skipped without it): a palm and a 22 m tropical tree. With every point, the palm's fronds became
 // 7.3 m³ of tubes (form factor 6.5) holding 8 % of its points deeper than 2 cm; its wood is its stem.
+// What the classification calls leaf may hold wood: the volume's range reaches up to every point's model.
 // The tropical tree has a published TreeQSM model of its stem (263.7 L).
 TEST(CmdAuto, WoodOnlyModelsATreeInLeafFromItsWood) {
   const auto real = test::sharedDataDir() / "real";
@@ -272,6 +273,12 @@ TEST(CmdAuto, WoodOnlyModelsATreeInLeafFromItsWood) {
       EXPECT_GT(volume, 0.75 * 0.2637) << out;
       EXPECT_LT(volume, 1.33 * 0.2637) << out;
     }
+    // The range reaches up to the model of every point: the palm's fronds as tubes, several times
+    // its stem's wood.
+    const double high = report["model"]["volumeRangeM3"][1].get<double>();
+    EXPECT_GE(high, volume) << file;
+    if (std::string(file) == "pytlidar_tree_1.las") EXPECT_GT(high, 3.0 * volume) << out;
+    EXPECT_NE(report["verdict"].dump().find("a model of every point holds"), std::string::npos) << file;
   }
 }
 
