@@ -210,7 +210,8 @@ void registerReconstruct(CLI::App& app, Action& action) {
                 "With --auto: the tree was scanned in leaf (finer voxels, weaker foliage rule)");
   sub->add_flag("--wood-only", a->woodOnly,
                 "With --auto: model only the points the wood/leaf classification calls wood (as `classify` "
-                "does), with the leaf-off settings; for the volume of a tree in leaf");
+                "does), with the leaf-off settings; for the volume of a tree in leaf (its range reaches up to a "
+                "model of every point)");
   sub->add_option("--outliers", a->outliers,
                   "With --auto: write the stray points set aside before modelling (far from the tree or isolated) "
                   "to this cloud file (.ply, .xyz)");
