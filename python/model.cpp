@@ -107,8 +107,10 @@ std::shared_ptr<PyModel> reconstruct(const py::object& cloudObj, bool leafOn, bo
     model::MeasureOptions mo = model::autoMeasureOptions(s, opt, leafOn);
     mo.unitMetres = unitMetres;
     mo.woodOnly = woodOnly;
-    // The range's upper end: a model of every point, as the CLI makes it.
+    // The range's ends, as the CLI makes them: a model of every point (wood-only), of the wood (leaf-on).
     if (woodOnly) mo.everyPointVolume = model::everyPointVolume(*cloud, options(skeleton::Foliage::LeafOn), choice.up);
+    if (leafOn && !woodOnly)
+      mo.classifiedWoodVolume = model::classifiedWoodVolume(*cloud, options(skeleton::Foliage::LeafOff), choice.up);
     model::lookForStems(mo, modelled, choice.up, s.strays);
     t.measures = model::measure(t.tree, kept, mo);
     t.measureOptions = mo;

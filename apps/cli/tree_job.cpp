@@ -118,9 +118,13 @@ TreeJobResult runTreeJob(const TreeJob& a) {
   model::MeasureOptions mo = model::autoMeasureOptions(s, opt, a.leafOn);
   mo.unitMetres = a.unitMetres;
   mo.woodOnly = a.woodOnly;
-  // A wood-only model's wood may be as much as a model of every point holds (its range's upper end).
+  // A wood-only model's wood may be as much as a model of every point holds (its range's upper end);
+  // a model of every point of a tree in leaf may hold no more than the classified wood shows (its lower end).
   if (a.woodOnly)
     mo.everyPointVolume = model::everyPointVolume(cloud, jobOptions(a, skeleton::Foliage::LeafOn, up.up), up.up);
+  if (a.leafOn && !a.woodOnly)
+    mo.classifiedWoodVolume =
+        model::classifiedWoodVolume(cloud, jobOptions(a, skeleton::Foliage::LeafOff, up.up), up.up);
   model::lookForStems(mo, modelled, up.up, s.strays);
   const model::ModelMeasures measures = model::measure(tree, kept, mo);
   r.metricsMs = tm.ms();

@@ -180,12 +180,30 @@ TreeModel fromSkeletonNodes(const std::vector<skeleton::SkeletonNode>& nodes, co
   return model;
 }
 
-geom::PointCloud woodOnlyCloud(const geom::PointCloud& cloud, geom::UpAxis up, const std::string& source) {
-  constexpr std::size_t kMinWoodPoints = 100;
+namespace {
+
+/// Fewer points classified as wood than this are no tree's wood to model.
+constexpr std::size_t kMinWoodPoints = 100;
+
+/// The indices of the points of `cloud` the classification calls wood (woodModellingOptions).
+std::vector<std::uint32_t> classifiedWoodIndices(const geom::PointCloud& cloud, geom::UpAxis up) {
   const classify::Classification c = classify::classifyWood(cloud, up, classify::woodModellingOptions());
   std::vector<std::uint32_t> wood;
   for (std::size_t i = 0; i < cloud.size() && i < c.wood.size(); ++i)
     if (c.wood[i]) wood.push_back(static_cast<std::uint32_t>(i));
+  return wood;
+}
+
+double modelVolume(const TreeModel& model) {
+  double v = 0;
+  for (const geom::ModelCylinder& c : model.cylinders.cylinders) v += c.volume();
+  return v;
+}
+
+}  // namespace
+
+geom::PointCloud woodOnlyCloud(const geom::PointCloud& cloud, geom::UpAxis up, const std::string& source) {
+  const std::vector<std::uint32_t> wood = classifiedWoodIndices(cloud, up);
   if (wood.size() < kMinWoodPoints)
     throw DegenerateInputError(source + ": --wood-only: " + std::to_string(wood.size()) + " of " +
                                std::to_string(cloud.size()) +
@@ -194,10 +212,14 @@ geom::PointCloud woodOnlyCloud(const geom::PointCloud& cloud, geom::UpAxis up, c
 }
 
 double everyPointVolume(const geom::PointCloud& cloud, const skeleton::AutoSkeletonOptions& options, geom::UpAxis up) {
-  const TreeModel every = fromAutoSkeleton(skeleton::autoSkeletonSketch(cloud, options), up);
-  double v = 0;
-  for (const geom::ModelCylinder& c : every.cylinders.cylinders) v += c.volume();
-  return v;
+  return modelVolume(fromAutoSkeleton(skeleton::autoSkeletonSketch(cloud, options), up));
+}
+
+double classifiedWoodVolume(const geom::PointCloud& cloud, const skeleton::AutoSkeletonOptions& options,
+                            geom::UpAxis up) {
+  const std::vector<std::uint32_t> wood = classifiedWoodIndices(cloud, up);
+  if (wood.size() < kMinWoodPoints) return -1.0;
+  return modelVolume(fromAutoSkeleton(skeleton::autoSkeletonSketch(cloud::selectPoints(cloud, wood), options), up));
 }
 
 TreeModel fromAutoSkeleton(const skeleton::AutoSkeletonResult& r, geom::UpAxis up) {
@@ -274,8 +296,10 @@ constexpr double kNoiseRadiusAllowance = 2.0;
 /// where it is under two noises its points cannot tell the tube from none. `ceiling` (model units³,
 /// MeasureOptions::everyPointVolume; <= 0: none) raises the upper end: a wood-only model's wood
 /// may be as much as a model of every point holds (on the synthetic trees in leaf its range then
-/// held the true volume in 90 of 98 scans, 64 without).
-void volumeRange(const TreeModel& model, double unit3, double noise, double ceiling, ModelMeasures* m) {
+/// held the true volume in 90 of 98 scans, 64 without). `floor` (model units³, MeasureOptions::
+/// classifiedWoodVolume; < 0: none) lowers the lower end: a model of every point of a tree in leaf
+/// may hold no more wood than the points classified as wood show.
+void volumeRange(const TreeModel& model, double unit3, double noise, double ceiling, double floor, ModelMeasures* m) {
   double low = 0, high = 0;
   const double allowance = noise > 0 ? kNoiseRadiusAllowance * noise : 0.0;
   auto lower = [&](double r, double factor) {
@@ -294,7 +318,7 @@ void volumeRange(const TreeModel& model, double unit3, double noise, double ceil
     thin.endRadius = lower(c.endRadius, factor);
     low += thin.volume() * unit3;
   }
-  m->volumeLow = low;
+  m->volumeLow = floor >= 0 ? std::min(low, floor * unit3) : low;
   m->volumeHigh = std::max(high, ceiling > 0 ? ceiling * unit3 : 0.0);
 }
 
@@ -337,6 +361,21 @@ void shortOfTheTop(const ModelMeasures& m, const MeasureOptions& o,
     add(Verdict::Level::NotTrusted, buf,
         "look at the model's top (treesketch gui): points of another object above the tree, or a leader too sparse "
         "to model");
+}
+
+/// The verdict's reason for a model of every point of a tree in leaf, with its classified wood's volume.
+std::string everyPointReason(const ModelMeasures& m, const MeasureOptions& o) {
+  std::string reason =
+      "modelled from every point of a tree in leaf: its tubes run through the foliage, so its volume is not the "
+      "wood's";
+  if (o.classifiedWoodVolume >= 0) {
+    char buf[160];
+    const double u = o.unitMetres, wood = o.classifiedWoodVolume * (u * u * u);  // as volumeRange multiplies
+    std::snprintf(buf, sizeof buf, "; a model of the points classified as wood holds %.3g m³%s", wood,
+                  wood <= m.volumeLow ? ", the range's lower end" : "");
+    reason += buf;
+  }
+  return reason;
 }
 
 /// The verdict's reason for a model of the classified wood, with the volume of every point's model.
@@ -404,11 +443,7 @@ Verdict assess(const ModelMeasures& m, std::size_t points, const MeasureOptions&
         leafOn.empty() ? "remove ground, neighbours and outliers from the cloud" : leafOn);
   if (!o.leafOn && o.leafPieceShare > kMaxLeafPieceShare)
     add(L::Uncertain, percent(o.leafPieceShare) + " of the skeleton's pieces are flat, as leaves are", leafOn);
-  if (o.leafOn && !o.woodOnly)
-    add(L::Uncertain,
-        "modelled from every point of a tree in leaf: its tubes run through the foliage, so its volume is not "
-        "the wood's",
-        leafOn);
+  if (o.leafOn && !o.woodOnly) add(L::Uncertain, everyPointReason(m, o), leafOn);
   if (o.woodOnly)
     add(L::Uncertain, woodOnlyReason(m, o), "");
   if (m.contractionMetres > 0)
@@ -491,7 +526,8 @@ ModelMeasures measure(const TreeModel& model, const geom::PointCloud& cloud, con
   }
   const double u = options.unitMetres;
   volumeRange(model, u * u * u, std::isfinite(options.noise) ? options.noise : -1.0,
-              options.woodOnly ? options.everyPointVolume : -1.0, &m);
+              options.woodOnly ? options.everyPointVolume : -1.0,
+              options.leafOn && !options.woodOnly ? options.classifiedWoodVolume : -1.0, &m);
   const double dbh = m.metrics.figures.trunkDiameter, height = m.metrics.height;
   const double cylinder = std::numbers::pi / 4 * dbh * dbh * height;
   m.formFactor = cylinder > 0 ? m.figures.volume / cylinder : std::numeric_limits<double>::quiet_NaN();

@@ -109,11 +109,22 @@ struct MeasureOptions {
   /// range when above it: the points the classification calls leaf may hold wood, and a model of
   /// every point is the wood with what the foliage adds to it.
   double everyPointVolume = -1;
+  /// With leafOn and not woodOnly: the volume of the automatic model of the points the wood/leaf
+  /// classification calls wood (classifiedWoodVolume(); cloud units³), or < 0 when not made. It is
+  /// the lower end of the volume's range when below it: a model of every point of a tree in leaf
+  /// takes its foliage for wood.
+  double classifiedWoodVolume = -1;
 };
 
 /// The volume (cloud units³) of the automatic model of every point of `cloud` made with `options`
 /// (the leaf-on settings, for MeasureOptions::everyPointVolume).
 double everyPointVolume(const geom::PointCloud& cloud, const skeleton::AutoSkeletonOptions& options, geom::UpAxis up);
+
+/// The volume (cloud units³) of the automatic model, made with `options` (the leaf-off settings),
+/// of the points of `cloud` the wood/leaf classification calls wood (as woodOnlyCloud chooses
+/// them), for MeasureOptions::classifiedWoodVolume; -1 when it calls too few wood to model.
+double classifiedWoodVolume(const geom::PointCloud& cloud, const skeleton::AutoSkeletonOptions& options,
+                            geom::UpAxis up);
 
 /// Looks for the stems at breast height in `scan` (cloud/stems.h; `strays`: the points set aside
 /// before modelling, the ground among them), in `options.unitMetres`, for the verdict and the report.
