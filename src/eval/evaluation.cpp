@@ -124,9 +124,7 @@ MethodOutput methodSkeleton(const MethodInput& in) {
     out.root = node.kept ? node.kept->centre : node.point;  // point nodes: the model's own position
   }
   out.ms = timer.ms();
-  // The range's lower end for a model of every point of a tree in leaf, as the CLI's --leaf-on makes
-  // it (measured, not timed: the reconstruction's time is the model's own).
-  if (in.leafOn)
+  if (in.leafOn)  // the range's lower end, as --leaf-on makes it (not timed: the model's time is its own)
     out.measure->classifiedWoodVolume =
         model::classifiedWoodVolume(in.cloud, automaticModelOptions(false, in.tree.up, in.options), in.tree.up);
   return out;
@@ -143,13 +141,10 @@ MethodOutput methodSkeletonWood(const MethodInput& in) {
   MethodOutput out = methodSkeleton(woodInput);
   out.setAside = {};  // indices into the wood, not the scan: measured against every point, as the CLI does
   out.ms = timer.ms();
-  if (out.measure) {
-    out.measure->woodOnly = true;
-    // The range's upper end: the model of every point (leaf-on), as the CLI's --wood-only makes it
-    // (measured, not timed).
-    out.measure->everyPointVolume =
-        model::everyPointVolume(in.cloud, automaticModelOptions(true, in.tree.up, in.options), in.tree.up);
-  }
+  if (!out.measure) return out;
+  out.measure->woodOnly = true;  // and the range's upper end, as --wood-only makes it (not timed)
+  out.measure->everyPointVolume =
+      model::everyPointVolume(in.cloud, automaticModelOptions(true, in.tree.up, in.options), in.tree.up);
   return out;
 }
 
