@@ -3,6 +3,7 @@
 // (io/classified_cloud.h). Two more modes on labelled virtual scans of a tree folder
 // (eval/classify_eval.h): --evaluate REPORT.md scores the built-in classifier per scan, --train
 // OUT.json trains a new one on the tuning half (docs/classify.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "treesketch/classify/classify.h"
 #include "treesketch/cloud/usable_extent.h"
 #include "treesketch/eval/classify_eval.h"
+#include "treesketch/eval/condition_matrix.h"
 #include "treesketch/io/classified_cloud.h"
 #include "treesketch/io/point_cloud_io.h"
 #include "treesketch/io/up_axis.h"
@@ -36,6 +38,7 @@ struct ClassifyArgs {
   std::string model;  // a trained JSON instead of the built-in model
   // labelled scans
   std::string train, trainContext, evaluate, trees, split = "held-out";
+  std::vector<std::string> moreTrees;  // --train: folders of further trees, every one trained on
   std::vector<std::string> conditions;
   double metresPerUnit = eval::kEzTreeMetresPerUnit;
   int leafVariants = 2;
@@ -70,6 +73,20 @@ std::vector<eval::ScanCondition> conditions(const ClassifyArgs& a) {
   return a.conditions.empty() ? all : eval::selectConditions(all, a.conditions);
 }
 
+/// The training trees: the tuning half of --trees and every tree of the --more-trees folders. A
+/// tree named as one of the held-out developer trees is refused: it would be scored on its own scans.
+std::vector<eval::TreeCase> trainingTrees(const ClassifyArgs& a) {
+  std::vector<eval::TreeCase> trees = labelledTrees(a, true);
+  const auto& heldOut = eval::developerHeldOutTrees();
+  for (const auto& folder : a.moreTrees)
+    for (auto& t : eval::loadTreeFolder(folder, a.metresPerUnit)) {
+      if (std::find(heldOut.begin(), heldOut.end(), t.name) != heldOut.end())
+        throw OptionsError(folder + ": " + t.name + " is a held-out developer tree; it cannot be trained on");
+      trees.push_back(std::move(t));
+    }
+  return trees;
+}
+
 void runTrain(const ClassifyArgs& a) {
   const std::string& out = a.train.empty() ? a.trainContext : a.train;
   checkOutputWritable(out);
@@ -83,8 +100,8 @@ void runTrain(const ClassifyArgs& a) {
   if (a.learningRate > 0) t.boost.learningRate = a.learningRate;
   if (a.rowsPerScan > 0) t.rowsPerScan = a.rowsPerScan;
   t.log = [](const std::string& line) { std::cerr << line << "\n"; };
-  const classify::BoostedTrees m = a.train.empty() ? eval::trainContextClassifier(labelledTrees(a, true), t)
-                                                   : eval::trainClassifier(labelledTrees(a, true), t);
+  const classify::BoostedTrees m =
+      a.train.empty() ? eval::trainContextClassifier(trainingTrees(a), t) : eval::trainClassifier(trainingTrees(a), t);
   writeFileAtomically(out, [&](std::ostream& o) { o << classify::toJson(m); });
   std::printf("wrote %s (%zu trees, threshold %.3f)\n", out.c_str(), m.trees.size(), m.threshold);
 }
@@ -180,6 +197,9 @@ void registerClassify(CLI::App& app, Action& action) {
                   "Train the context model (the second pass the wood-only model classifies with) on the tuning half "
                   "of --trees and write it here (JSON)");
   cmd->add_option("--trees", a->trees, "Folder of test trees (ez-tree layout), e.g. ../shared/data/trees");
+  cmd->add_option("--more-trees", a->moreTrees,
+                  "--train, --train-context: also train on every tree of these folders (ez-tree layout, e.g. made by "
+                  "scripts/test_trees/make_trees.sh; never the held-out developer trees)");
   cmd->add_option("--split", a->split, "--evaluate: tune, held-out or all")
       ->capture_default_str()
       ->check(CLI::IsMember({"tune", "held-out", "all"}));

@@ -112,5 +112,26 @@ TEST(ClassifyCli, BadInputAndOptionsGiveClearErrors) {
   EXPECT_FALSE(std::filesystem::exists(dir / "o.ply"));
 }
 
+/// Writes a one-triangle tree named `name` into `folder`, in the developer trees' layout.
+void writeTinyTree(const std::filesystem::path& folder, const std::string& name) {
+  std::filesystem::create_directories(folder);
+  test::writeText(folder / (name + ".branches.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  test::writeText(folder / (name + ".json"), "{\"skeleton\": {\"limbs\": [ {\"sections\": [ {\"center\": [0, 0, 0]} ]} ]}}");
+}
+
+TEST(ClassifyCli, MoreTrainingTreesNeverIncludeAHeldOutDeveloperTree) {
+  test::TempDir dir;
+  writeTinyTree(dir / "dev", "aspen_small_s914");  // a tuning tree's name
+  writeTinyTree(dir / "more", "oak_small_s6120");  // a held-out tree's name
+  std::string out;
+  EXPECT_EQ(test::runCli("classify --train " + quoted(dir / "m.json") + " --trees " + quoted(dir / "dev") +
+                             " --more-trees " + quoted(dir / "more"),
+                         &out),
+            2)
+      << out;
+  EXPECT_NE(out.find("oak_small_s6120 is a held-out developer tree"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m.json"));
+}
+
 }  // namespace
 }  // namespace treesketch
