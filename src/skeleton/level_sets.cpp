@@ -23,8 +23,59 @@ namespace {
 using geom::Vec3;
 using util::UnionFind;
 
+// The foot: a tree stands where the wood of its lowest part is. Its lowest tenth of height (the
+// band) holds the stem's foot, or a bush's stems where they meet, and maybe a branch bent down
+// below it (a bush's stem arching to the ground, a conifer's lowest branch): the foot is the band's
+// points' horizontal median centre, and its disc reaches four times their median distance from it
+// (plus a voxel). A lowest voxel outside that disc is such a branch's tip, no root. Measured: the
+// lowest voxel lies within 2.2 median distances of the centre on every scan of 29 synthetic trees
+// but one, and within 1.8 on 13 real clouds; that one tree's stem bent 20 cm below its foot puts
+// its tip 9.5-12 of them away. A part grafted on by the completion is a branch, not a tree: its
+// root is its lowest voxel, as before.
+constexpr double kFootBandShare = 0.1;
+constexpr double kFootDiscMedians = 4.0;
+// Each band voxel counts once per point it holds, up to this many: a dense voxel counts more than
+// a sparse one, a scanner's near side does not outweigh the rest.
+constexpr int kFootVoxelWeightCap = 8;
+
+struct FootDisc {
+  geom::Vec3 centre = geom::Vec3::Zero();  ///< in the horizontal plane through the origin
+  double radius = std::numeric_limits<double>::infinity();
+  double lowest = std::numeric_limits<double>::infinity();  ///< the lowest voxel's height in the disc
+};
+
+geom::Vec3 horizontal(const geom::Vec3& p, const geom::Vec3& up) { return p - p.dot(up) * up; }
+
+// The foot's disc over the band's voxels `band` (see kFootBandShare).
+FootDisc footDisc(const VoxelGraph& g, const std::vector<std::uint32_t>& band, geom::UpAxis upAxis) {
+  FootDisc foot;
+  if (band.empty()) return foot;
+  const geom::Vec3 up = geom::upVector(upAxis);
+  const geom::Vec3 e1 = (std::abs(up.x()) < 0.9 ? up.cross(geom::Vec3::UnitX()) : up.cross(geom::Vec3::UnitY())).normalized();
+  const geom::Vec3 e2 = up.cross(e1);
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  std::vector<double> a, b, d;
+  for (std::uint32_t v : band)
+    for (int k = 0; k < std::min(g.pointCount[v], kFootVoxelWeightCap); ++k) {
+      a.push_back(g.positions[v].dot(e1));
+      b.push_back(g.positions[v].dot(e2));
+    }
+  foot.centre = median(a) * e1 + median(b) * e2;
+  for (std::uint32_t v : band)
+    for (int k = 0; k < std::min(g.pointCount[v], kFootVoxelWeightCap); ++k)
+      d.push_back((horizontal(g.positions[v], up) - foot.centre).norm());
+  foot.radius = kFootDiscMedians * median(d) + g.voxelSize;
+  for (std::uint32_t v : band)
+    if ((horizontal(g.positions[v], up) - foot.centre).norm() <= foot.radius)
+      foot.lowest = std::min(foot.lowest, geom::height(g.positions[v], upAxis));
+  return foot;
+}
+
 // Dijkstra sources: the tree's voxels (the connected set, bridges included, holding the most
-// points) within rootHeightVoxels of its lowest one.
+// points) within rootHeightVoxels of its lowest one, that one within the foot's disc.
 std::vector<std::uint32_t> rootRegion(const VoxelGraph& g, const SkeletonOptions& options) {
   const std::size_t n = g.size();
   std::int32_t components = 0;
@@ -32,13 +83,26 @@ std::vector<std::uint32_t> rootRegion(const VoxelGraph& g, const SkeletonOptions
   std::vector<std::int64_t> points(components, 0);
   for (std::size_t v = 0; v < n; ++v) points[label[v]] += g.pointCount[v];
   const auto tree = static_cast<std::int32_t>(std::max_element(points.begin(), points.end()) - points.begin());
-  double lowest = std::numeric_limits<double>::infinity();
+  double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
   for (std::size_t i = 0; i < n; ++i)
-    if (label[i] == tree) lowest = std::min(lowest, geom::height(g.positions[i], options.up));
-  const double rootTop = lowest + options.rootHeightVoxels * g.voxelSize;
+    if (label[i] == tree) {
+      lowest = std::min(lowest, geom::height(g.positions[i], options.up));
+      highest = std::max(highest, geom::height(g.positions[i], options.up));
+    }
+  std::vector<std::uint32_t> band;
+  for (std::size_t i = 0; i < n; ++i)
+    if (label[i] == tree && geom::height(g.positions[i], options.up) <= lowest + kFootBandShare * (highest - lowest))
+      band.push_back(static_cast<std::uint32_t>(i));
+  // The tree's lowest voxel in the disc (nearly always): the voxels within rootHeightVoxels of it,
+  // wherever they are. Else the foot's, within the disc only: the bent branch passes that height too.
+  const FootDisc foot = options.trackStem ? footDisc(g, band, options.up) : FootDisc{};
+  const bool bentBelow = std::isfinite(foot.lowest) && foot.lowest > lowest + 0.5 * g.voxelSize;
+  const double rootTop = (bentBelow ? foot.lowest : lowest) + options.rootHeightVoxels * g.voxelSize;
+  const geom::Vec3 up = geom::upVector(options.up);
   std::vector<std::uint32_t> root;
   for (std::size_t i = 0; i < n; ++i)
-    if (label[i] == tree && geom::height(g.positions[i], options.up) <= rootTop)
+    if (label[i] == tree && geom::height(g.positions[i], options.up) <= rootTop &&
+        (!bentBelow || (horizontal(g.positions[i], up) - foot.centre).norm() <= foot.radius))
       root.push_back(static_cast<std::uint32_t>(i));
   return root;
 }

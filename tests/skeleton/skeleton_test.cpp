@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -473,6 +475,31 @@ TEST(Skeleton, TheRootIsAtTheTrunksFoot) {
   EXPECT_LT(std::hypot(s.nodes[0].position.x(), s.nodes[0].position.z()), 0.06);
   ASSERT_GE(s.nodes.size(), 2u);
   EXPECT_GT(s.nodes[1].position.y(), s.nodes[0].position.y() + o.graph.voxelSize);
+}
+
+// A branch bent down below the foot (a bush's stem arching to the ground, a conifer's lowest
+// branch) holds the tree's lowest points; the root stays at the stem's foot, not at that tip.
+TEST(Skeleton, ABranchBentBelowTheFootIsNoRoot) {
+  // A bush: a short foot, seven stems leaning out from it (no vertical stem to find) and a thin
+  // eighth arching out and down to 10 cm below the foot.
+  std::vector<test::Cyl> bush = {{Vec3(0, 0, 0), Vec3(0, 0.04, 0), 0.12, -1}};
+  for (int k = 0; k < 7; ++k) {
+    const double a = 2 * std::numbers::pi * k / 7;
+    bush.push_back({Vec3(0, 0.04, 0), Vec3(1.1 * std::cos(a), 3.0, 1.1 * std::sin(a)), 0.05, 0});
+  }
+  bush.push_back({Vec3(0, 0.04, 0), Vec3(0.9, 0.45, 0.15), 0.012, 0});
+  bush.push_back({Vec3(0.9, 0.45, 0.15), Vec3(1.8, -0.1, 0.3), 0.012, 8});
+  const auto cloud = test::sampleCylinders(bush, 0.008, 0.001, 7);
+  skeleton::SkeletonOptions o;
+  o.graph.voxelSize = 0.02;
+  const auto s = skeleton::extractSkeleton(cloud, o);
+  ASSERT_FALSE(s.nodes.empty());
+  EXPECT_LT(std::hypot(s.nodes[0].position.x(), s.nodes[0].position.z()), 0.15) << s.nodes[0].position.transpose();
+  EXPECT_LT(std::abs(s.nodes[0].position.y()), 0.1) << s.nodes[0].position.transpose();
+  // The bent branch is still modelled, down to its tip.
+  double lowest = 1e9;
+  for (const auto& n : s.nodes) lowest = std::min(lowest, n.position.y());
+  EXPECT_LT(lowest, -0.05);
 }
 
 // At a fork the stem goes on into the child carrying the most wood, not the one with the longest
