@@ -29,7 +29,6 @@ class RecordingTree extends Tree {
   generate() {
     this.tubes = [];
     this.current = -1;
-    this.pending = [];
     const queuePush = this.branchQueue.push.bind(this.branchQueue);
     // Every branch queued while another is grown is that one's child; note which and how.
     this.branchQueue.push = (...items) => {
