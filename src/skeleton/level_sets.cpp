@@ -51,7 +51,7 @@ FootDisc footDisc(const VoxelGraph& g, const std::vector<std::uint32_t>& band, g
   FootDisc foot;
   if (band.empty()) return foot;
   const geom::Vec3 up = geom::upVector(upAxis);
-  const geom::Vec3 e1 = (std::abs(up.x()) < 0.9 ? up.cross(geom::Vec3::UnitX()) : up.cross(geom::Vec3::UnitY())).normalized();
+  const geom::Vec3 e1 = geom::anyPerpendicular(up);
   const geom::Vec3 e2 = up.cross(e1);
   const auto median = [](std::vector<double> v) {
     std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -89,13 +89,16 @@ std::vector<std::uint32_t> rootRegion(const VoxelGraph& g, const SkeletonOptions
       lowest = std::min(lowest, geom::height(g.positions[i], options.up));
       highest = std::max(highest, geom::height(g.positions[i], options.up));
     }
-  std::vector<std::uint32_t> band;
-  for (std::size_t i = 0; i < n; ++i)
-    if (label[i] == tree && geom::height(g.positions[i], options.up) <= lowest + kFootBandShare * (highest - lowest))
-      band.push_back(static_cast<std::uint32_t>(i));
   // The tree's lowest voxel in the disc (nearly always): the voxels within rootHeightVoxels of it,
   // wherever they are. Else the foot's, within the disc only: the bent branch passes that height too.
-  const FootDisc foot = options.trackStem ? footDisc(g, band, options.up) : FootDisc{};
+  FootDisc foot;
+  if (options.trackStem) {
+    std::vector<std::uint32_t> band;
+    for (std::size_t i = 0; i < n; ++i)
+      if (label[i] == tree && geom::height(g.positions[i], options.up) <= lowest + kFootBandShare * (highest - lowest))
+        band.push_back(static_cast<std::uint32_t>(i));
+    foot = footDisc(g, band, options.up);
+  }
   const bool bentBelow = std::isfinite(foot.lowest) && foot.lowest > lowest + 0.5 * g.voxelSize;
   const double rootTop = (bentBelow ? foot.lowest : lowest) + options.rootHeightVoxels * g.voxelSize;
   const geom::Vec3 up = geom::upVector(options.up);
