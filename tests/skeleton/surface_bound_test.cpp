@@ -96,6 +96,33 @@ TEST(SurfaceBound, ABranchThreeTimesTooThickComesBackToItsPoints) {
   }
 }
 
+TEST(SurfaceBound, AStemOfFewLongSegmentsIsNotThinnedToTheLimbAboveIt) {
+  // A stem of radius 0.2 with nodes a metre apart, sparsely scanned, and above its last node a
+  // limb of radius 0.06 that the stem's branch runs on into (as a stem tracked into a limb at a
+  // fork does), densely scanned. Pooled with the limb's many points, the stem's nodes read the
+  // limb's radius; on their own points they keep theirs, and the limb keeps its own.
+  const std::vector<test::Cyl> stem = {{Vec3(0, 0, 0), Vec3(0, 2, 0), 0.2, -1}};
+  const std::vector<test::Cyl> limb = {{Vec3(0, 2, 0), Vec3(0, 3, 0), 0.06, -1}};
+  geom::PointCloud cloud = test::sampleCylinders(stem, 0.04, kNoise, 5);
+  const geom::PointCloud limbPoints = test::sampleCylinders(limb, 0.004, kNoise, 6);
+  cloud.positions.insert(cloud.positions.end(), limbPoints.positions.begin(), limbPoints.positions.end());
+  std::vector<skeleton::SkeletonNode> model;
+  for (int k = 0; k <= 12; ++k) {
+    skeleton::SkeletonNode n;
+    n.position = Vec3(0, k <= 2 ? 1.0 * k : 2.0 + 0.1 * (k - 2), 0);
+    n.radius = k <= 2 ? 0.2 : 0.06;
+    n.parent = k - 1;
+    n.stem = true;
+    model.push_back(n);
+  }
+  for (std::size_t i = 1; i < model.size(); ++i) model[model[i].parent].children.push_back(static_cast<std::int32_t>(i));
+  const std::vector<double> own(model.size(), kNoise);
+  skeleton::detail::boundRadiiBySurface(model, cloud, kNoise, 0.02, 5, own);
+  EXPECT_DOUBLE_EQ(model[0].radius, 0.2);
+  EXPECT_DOUBLE_EQ(model[1].radius, 0.2);
+  for (std::size_t i = 4; i < model.size(); ++i) EXPECT_DOUBLE_EQ(model[i].radius, 0.06) << i;
+}
+
 TEST(SurfaceBound, ABranchStartsNoThickerThanItsParent) {
   const geom::PointCloud cloud;  // no points: only the fork's cap acts
   auto model = trunkAndBranch(0.05, 0.08);
