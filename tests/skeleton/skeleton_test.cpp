@@ -241,9 +241,10 @@ TEST(Skeleton, LeafOnSettingsKeepTheRestOfTheBase) {
   EXPECT_EQ(o.spurLengthRadii, 7.0);
   EXPECT_LT(o.graph.autoSpacingFactor, base.graph.autoSpacingFactor);
   EXPECT_LT(o.binWidthVoxels, base.binWidthVoxels);
-  // The foliage guards are on leaf-on only.
-  EXPECT_LT(o.graph.maxGapVoxels, base.graph.maxGapVoxels);
+  // The foliage guards are on leaf-on only; the occlusion gaps bridged are the same.
+  EXPECT_EQ(o.graph.maxGapVoxels, base.graph.maxGapVoxels);
   EXPECT_LT(o.graph.coneAngleDeg, base.graph.coneAngleDeg);
+  EXPECT_GT(o.graph.minBridgeLinearity, base.graph.minBridgeLinearity);
 }
 
 TEST(Skeleton, LeafEntryPositionsPutLeafNodesAtTheLeafBase) {
