@@ -220,9 +220,9 @@ SurfaceBoundStats boundRadiiBySurface(std::vector<SkeletonNode>& model, const ge
   // Each node is judged on the points of the nodes around it along its branch (a window of
   // `window` nodes; a stem node on its own points when it has enough, kOwnStemPoints): a sparse
   // scan puts a few points on each node, a window enough for a quantile, and one odd node does not
-  // decide alone. A branch's first node is capped by its parent's radius
-  // (chains are parent-first, so that radius is final). An inferred radius the points show too
-  // thin is raised, never above the node before it along the branch (or its parent).
+  // decide alone. A branch's first node is capped by its parent's radius (chains are parent-first,
+  // so that radius is final). An inferred radius the points show too thin is raised, never above
+  // the node before it along the branch (or its parent).
   const int half = std::max(0, window / 2);
   std::vector<double> pooled;
   for (const auto& chain : branchChains(model)) {
